@@ -1,0 +1,105 @@
+//! The contract between a derived model and the integrators.
+
+use nalgebra::{RealField, SMatrix, SVector};
+
+/// A mechanical system in minimal generalized coordinates, written as
+/// `M(t, q) q̈ = f(t, q, q̇)`.
+///
+/// `lagrangian!` implements this trait for every model it derives; the
+/// integrators consume nothing else. `N` is the number of degrees of freedom.
+///
+/// Only [`mass_matrix`](Lagrangian::mass_matrix), [`forcing`](Lagrangian::forcing)
+/// and the two energies are required. Generated code also overrides
+/// [`mass_matrix_and_forcing`](Lagrangian::mass_matrix_and_forcing) so that the
+/// subexpressions `M` and `f` share are computed once per right-hand side.
+///
+/// ```
+/// use lagrange_runtime::Lagrangian;
+/// use nalgebra::{SMatrix, SVector};
+///
+/// /// A unit mass on a spring of stiffness `k`, written by hand.
+/// struct Oscillator { k: f64 }
+///
+/// impl Lagrangian<1> for Oscillator {
+///     type Scalar = f64;
+///     const COORDINATES: [&'static str; 1] = ["x"];
+///     fn mass_matrix(&self, _t: f64, _q: &SVector<f64, 1>) -> SMatrix<f64, 1, 1> {
+///         SMatrix::<f64, 1, 1>::new(1.0)
+///     }
+///     fn forcing(&self, _t: f64, q: &SVector<f64, 1>, _qd: &SVector<f64, 1>) -> SVector<f64, 1> {
+///         SVector::<f64, 1>::new(-self.k * q[0])
+///     }
+///     fn kinetic_energy(&self, _t: f64, _q: &SVector<f64, 1>, qd: &SVector<f64, 1>) -> f64 {
+///         0.5 * qd[0] * qd[0]
+///     }
+///     fn potential_energy(&self, _t: f64, q: &SVector<f64, 1>) -> f64 {
+///         0.5 * self.k * q[0] * q[0]
+///     }
+/// }
+///
+/// let osc = Oscillator { k: 4.0 };
+/// let q = SVector::<f64, 1>::new(1.0);
+/// let qd = SVector::<f64, 1>::new(0.0);
+/// assert_eq!(osc.energy(0.0, &q, &qd), 2.0);
+/// ```
+pub trait Lagrangian<const N: usize> {
+    /// The scalar type: `f64` by default in generated models, `f32` works too.
+    type Scalar: RealField + Copy;
+
+    /// Names of the generalized coordinates, in the order of `q`.
+    const COORDINATES: [&'static str; N];
+
+    /// The mass matrix `M(t, q) = ∂²T/∂q̇²` (symmetric).
+    fn mass_matrix(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+    ) -> SMatrix<Self::Scalar, N, N>;
+
+    /// The forcing `f(t, q, q̇)` such that `M q̈ = f`.
+    fn forcing(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> SVector<Self::Scalar, N>;
+
+    /// `M` and `f` together; generated models compute their shared
+    /// subexpressions once. Integrators call this, once per right-hand side.
+    fn mass_matrix_and_forcing(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> (SMatrix<Self::Scalar, N, N>, SVector<Self::Scalar, N>) {
+        (self.mass_matrix(t, q), self.forcing(t, q, qdot))
+    }
+
+    /// Kinetic energy `T(t, q, q̇)`.
+    fn kinetic_energy(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> Self::Scalar;
+
+    /// Potential energy `V(t, q)`.
+    fn potential_energy(&self, t: Self::Scalar, q: &SVector<Self::Scalar, N>) -> Self::Scalar;
+
+    /// Total energy `T + V`. Conserved when the model has no forces, no
+    /// dissipation and no explicit time dependence.
+    fn energy(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> Self::Scalar {
+        self.kinetic_energy(t, q, qdot) + self.potential_energy(t, q)
+    }
+
+    /// Whether every runtime parameter of the model is finite. Integrators
+    /// reject a model with a NaN or infinite parameter before the first step.
+    fn parameters_are_finite(&self) -> bool {
+        true
+    }
+}

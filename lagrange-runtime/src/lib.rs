@@ -1,0 +1,4 @@
+//! Runtime for lagrange models.
+mod lagrangian;
+pub use lagrangian::Lagrangian;
+pub use nalgebra;

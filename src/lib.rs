@@ -1,0 +1,4 @@
+extern crate self as lagrange;
+pub use lagrange_macros::lagrangian;
+pub use lagrange_runtime::*;
+pub use nalgebra;
