@@ -1,2 +1,171 @@
+//! The symbolic engine behind `lagrangian!`.
+//!
+//! An ordinary library, so that it is unit-tested and benchmarked without
+//! rustc: it takes the macro's tokens and returns the generated items. The
+//! pipeline, one module per stage:
+//!
+//! 1. [`parse`]: tokens → [`ast`], with mathematical precedence for `^`;
+//! 2. [`model`]: names resolved, `let`s and `dot` expanded into the
+//!    hash-consed expression DAG of [`expr`], built only through the
+//!    simplifying constructors of [`simplify`];
+//! 3. [`check`]: the physics (V free of velocities, T quadratic in them, a
+//!    regular mass matrix), each failure a spanned error;
+//! 4. [`diff`] and [`derive`]: `M = ∂²T/∂q̇²` and
+//!    `f = ∂L/∂q − (∂²L/∂q̇∂q) q̇ − ∂²L/∂q̇∂t − ∂R/∂q̇ + Q`;
+//! 5. [`cse`]: which shared nodes become `let`s, in which order;
+//! 6. [`emit`]: straight-line, allocation-free Rust; [`render`] the same
+//!    equations as text. On any error, [`fallback`] emits the error and a
+//!    stub, so one mistake gives one error.
+//!
+//! Output is deterministic: no step iterates a hash map, and node ids (which
+//! order everything) are handed out in a deterministic order.
+//!
+//! ```
+//! let tokens: proc_macro2::TokenStream = r#"
+//!     pub struct Pendulum {
+//!         coordinates: theta;
+//!         parameters: m, l, g;
+//!         let y = -l*cos(theta);
+//!         kinetic: m/2*l^2*dot(theta)^2;
+//!         potential: m*g*y;
+//!     }
+//! "#.parse().unwrap();
+//! let derived = lagrange_engine::derive(tokens).unwrap();
+//! // M = m l², f = -m g l sin θ
+//! assert_eq!(derived.equations_text(), "M[theta, theta] = m*l^2\nf[theta] = -l*m*g*sin(theta)\n");
+//! ```
+
+pub mod ast;
+pub mod check;
+pub mod cse;
+pub mod derive;
+pub mod diff;
+pub mod emit;
+pub mod expr;
+pub mod fallback;
+pub mod model;
+pub mod parse;
+pub mod render;
+pub mod simplify;
+
 use proc_macro2::TokenStream;
-pub fn expand(input: TokenStream) -> TokenStream { input }
+
+/// A derived model: the lowered model and its equations of motion.
+pub struct Derived {
+    pub model: model::Model,
+    pub equations: derive::Equations,
+}
+
+impl Derived {
+    /// The generated Rust items.
+    pub fn tokens(&self) -> TokenStream {
+        emit::emit(&self.model, &self.equations, &self.equations_text())
+    }
+
+    /// The equations as readable text (the generated `EQUATIONS` constant).
+    pub fn equations_text(&self) -> String {
+        render::render(&self.model, &self.equations)
+    }
+
+    /// Values of the symbols in the order `t, q, q̇, parameters`.
+    fn values(&self, t: f64, q: &[f64], qdot: &[f64], params: &[f64]) -> Vec<f64> {
+        let mut v = vec![t];
+        v.extend_from_slice(q);
+        v.extend_from_slice(qdot);
+        v.extend_from_slice(params);
+        assert_eq!(
+            v.len(),
+            self.model.symbols.count(),
+            "wrong number of values"
+        );
+        v
+    }
+
+    /// Evaluates `M` numerically (row-major), for tests.
+    pub fn eval_mass_matrix(&self, t: f64, q: &[f64], params: &[f64]) -> Vec<Vec<f64>> {
+        let zeros = vec![0.0; q.len()];
+        let v = self.values(t, q, &zeros, params);
+        let mut memo = Default::default();
+        self.equations
+            .mass
+            .iter()
+            .map(|row| {
+                row.iter()
+                    .map(|&m| self.model.pool.eval_memo(m, &v, &mut memo))
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// Evaluates `f` numerically, for tests.
+    pub fn eval_forcing(&self, t: f64, q: &[f64], qdot: &[f64], params: &[f64]) -> Vec<f64> {
+        let v = self.values(t, q, qdot, params);
+        let mut memo = Default::default();
+        self.equations
+            .forcing
+            .iter()
+            .map(|&f| self.model.pool.eval_memo(f, &v, &mut memo))
+            .collect()
+    }
+
+    /// Evaluates `T + V` numerically, for tests.
+    pub fn eval_energy(&self, t: f64, q: &[f64], qdot: &[f64], params: &[f64]) -> f64 {
+        let v = self.values(t, q, qdot, params);
+        self.model.pool.eval(self.equations.energy, &v)
+    }
+
+    /// Operation counts of `M` and `f` as emitted (with sharing) and as a
+    /// tree without sharing would need.
+    pub fn op_counts(&self) -> (cse::OpCount, cse::OpCount) {
+        let n = self.model.dof();
+        let mut roots = Vec::new();
+        for i in 0..n {
+            for j in i..n {
+                roots.push(self.equations.mass[i][j]);
+            }
+        }
+        roots.extend(&self.equations.forcing);
+        (
+            cse::shared_ops(&self.model.pool, &roots),
+            cse::tree_ops(&self.model.pool, &roots),
+        )
+    }
+}
+
+/// Parses, lowers, checks and differentiates a model.
+pub fn derive(input: TokenStream) -> syn::Result<Derived> {
+    let parsed = parse::parse(input)?;
+    if let Some(e) = parsed.error {
+        return Err(e);
+    }
+    derive_model(parsed.model)
+}
+
+fn derive_model(def: ast::ModelDef) -> syn::Result<Derived> {
+    let mut model = model::lower(def)?;
+    check::potential_has_no_velocity(&mut model)?;
+    let equations = derive::euler_lagrange(&mut model);
+    model
+        .pool
+        .check_budget()
+        .map_err(|b| model::budget_error(&model.name, b.budget))?;
+    check::mass_matrix_is_regular(&mut model, &equations)?;
+    Ok(Derived { model, equations })
+}
+
+/// The macro: tokens in, items out. Never panics on user input; every error
+/// is a `compile_error!` on the offending tokens, plus a stub of the model.
+pub fn expand(input: TokenStream) -> TokenStream {
+    let parsed = match parse::parse(input) {
+        Ok(p) => p,
+        Err(e) => return e.to_compile_error(),
+    };
+    let stub = fallback::Stub::of(&parsed.model);
+    if let Some(e) = parsed.error {
+        return stub.emit(e);
+    }
+    match derive_model(parsed.model) {
+        Ok(derived) => derived.tokens(),
+        Err(e) => stub.emit(e),
+    }
+}

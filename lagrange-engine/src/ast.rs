@@ -1,0 +1,144 @@
+//! The model as written: what `parse` produces and `model` lowers.
+//! Every node keeps the spans of its first and last tokens, so an error can
+//! underline exactly the user's text.
+
+use proc_macro2::{Span, TokenStream};
+use quote::ToTokens;
+use syn::{Attribute, Ident, Visibility};
+
+/// A source range: first and last token. `syn::Error::new_spanned` on it
+/// underlines the whole range on stable Rust.
+#[derive(Clone, Copy, Debug)]
+pub struct SpanRange {
+    pub start: Span,
+    pub end: Span,
+}
+
+impl SpanRange {
+    pub fn single(span: Span) -> Self {
+        SpanRange {
+            start: span,
+            end: span,
+        }
+    }
+
+    pub fn to(self, other: SpanRange) -> Self {
+        SpanRange {
+            start: self.start,
+            end: other.end,
+        }
+    }
+
+    pub fn error(self, message: impl std::fmt::Display) -> syn::Error {
+        syn::Error::new_spanned(self, message)
+    }
+}
+
+impl ToTokens for SpanRange {
+    fn to_tokens(&self, tokens: &mut TokenStream) {
+        let mut a = proc_macro2::Punct::new('<', proc_macro2::Spacing::Alone);
+        a.set_span(self.start);
+        let mut b = proc_macro2::Punct::new('>', proc_macro2::Spacing::Alone);
+        b.set_span(self.end);
+        tokens.extend([
+            proc_macro2::TokenTree::Punct(a),
+            proc_macro2::TokenTree::Punct(b),
+        ]);
+    }
+}
+
+/// `lagrangian! { #[attrs] vis struct Name { items } }`.
+pub struct ModelDef {
+    pub attrs: Vec<Attribute>,
+    pub vis: Visibility,
+    pub name: Ident,
+    /// Where the closing brace is: "missing section" errors point at the name.
+    pub items: Vec<Item>,
+}
+
+pub enum Item {
+    Coordinates {
+        keyword: Ident,
+        names: Vec<Ident>,
+    },
+    Parameters {
+        keyword: Ident,
+        names: Vec<Ident>,
+    },
+    Let {
+        name: Ident,
+        value: Expr,
+    },
+    Kinetic {
+        keyword: Ident,
+        value: Expr,
+    },
+    Potential {
+        keyword: Ident,
+        value: Expr,
+    },
+    Dissipation {
+        keyword: Ident,
+        value: Expr,
+    },
+    Forces {
+        keyword: Ident,
+        entries: Vec<(Ident, Expr)>,
+    },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BinOp {
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Pow,
+}
+
+#[derive(Clone, Debug)]
+pub enum Expr {
+    Num {
+        value: f64,
+        span: Span,
+    },
+    Name(Ident),
+    Neg {
+        range: SpanRange,
+        inner: Box<Expr>,
+    },
+    Binary {
+        op: BinOp,
+        range: SpanRange,
+        lhs: Box<Expr>,
+        rhs: Box<Expr>,
+    },
+    /// `f(a, b)` and the method form `a.f(b)` alike; `dot(e)` too.
+    Call {
+        func: Ident,
+        range: SpanRange,
+        args: Vec<Expr>,
+    },
+}
+
+impl Expr {
+    pub fn range(&self) -> SpanRange {
+        match self {
+            Expr::Num { span, .. } => SpanRange::single(*span),
+            Expr::Name(id) => SpanRange::single(id.span()),
+            Expr::Neg { range, .. } | Expr::Binary { range, .. } | Expr::Call { range, .. } => {
+                *range
+            }
+        }
+    }
+
+    /// Direct subexpressions, left to right.
+    pub fn children(&self) -> Vec<&Expr> {
+        match self {
+            Expr::Num { .. } | Expr::Name(_) => Vec::new(),
+            Expr::Neg { inner, .. } => vec![inner],
+            Expr::Binary { lhs, rhs, .. } => vec![lhs, rhs],
+            Expr::Call { args, .. } => args.iter().collect(),
+        }
+    }
+}

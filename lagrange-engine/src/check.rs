@@ -1,0 +1,135 @@
+//! Physics checks, at compile time, each a spanned error that names the
+//! problem: a potential that depends on a velocity, a kinetic energy that is
+//! not quadratic in the velocities, a coordinate without kinetic energy, a
+//! mass matrix that is singular at every state.
+
+use crate::derive::Equations;
+use crate::expr::{ExprId, Pool};
+use crate::model::{Model, SymKind};
+
+/// V must be a function of t and q alone.
+pub fn potential_has_no_velocity(model: &mut Model) -> syn::Result<()> {
+    let velocities = model.symbols.velocities.clone();
+    let v = model.potential.value;
+    let Some(i) = velocities.iter().position(|&s| model.pool.depends_on(v, s)) else {
+        return Ok(());
+    };
+    let vel = velocities[i];
+    let ast = model.potential.ast.clone();
+    let range = model.locate(&ast, &|pool: &Pool, id: ExprId| pool.depends_on(id, vel));
+    Err(range.error(format!(
+        "the potential energy depends on the velocity `dot({})`: V must be a function of the coordinates and `t` only \
+         (velocity-dependent forces go in `forces:` or `dissipation:`)",
+        model.coordinates[i]
+    )))
+}
+
+/// M must not depend on velocities, and must not be singular.
+pub fn mass_matrix_is_regular(model: &mut Model, eq: &Equations) -> syn::Result<()> {
+    let n = model.dof();
+    let s = model.symbols.clone();
+    for i in 0..n {
+        for j in i..n {
+            let m = eq.mass[i][j];
+            if let Some(k) = s
+                .velocities
+                .iter()
+                .position(|&v| model.pool.depends_on(m, v))
+            {
+                return Err(model.kinetic.keyword_and_value().error(format!(
+                    "the kinetic energy is not quadratic in the velocities: ∂²T/∂dot({})∂dot({}) depends on `dot({})`, \
+                     so the mass matrix would depend on the velocities",
+                    model.coordinates[i], model.coordinates[j], model.coordinates[k]
+                )));
+            }
+        }
+    }
+    for i in 0..n {
+        if eq.mass[i].iter().all(|&m| m == Pool::ZERO) {
+            let c = &model.coordinates[i];
+            return Err(syn::Error::new(
+                c.span(),
+                format!(
+                    "coordinate `{c}` has no kinetic energy: the mass matrix is singular \
+                     (T holds no `dot({c})` squared or times another velocity)"
+                ),
+            ));
+        }
+    }
+    // Structurally full, but singular everywhere? Try two generic states; an
+    // analytic M singular at both is singular identically (or nearly so).
+    let mut singular_everywhere = true;
+    let mut rank = n;
+    for seed in [1u64, 2] {
+        match numeric_rank(model, eq, seed) {
+            Some(r) if r < n => rank = r,
+            _ => singular_everywhere = false,
+        }
+    }
+    if singular_everywhere {
+        return Err(model.kinetic.keyword_and_value().error(format!(
+            "the mass matrix ∂²T/∂q̇² is singular at every state (rank {rank} of {n}): the kinetic energy \
+             sees fewer independent velocity combinations than there are coordinates"
+        )));
+    }
+    Ok(())
+}
+
+/// A reproducible pseudo-random generic value in `[lo, hi)`.
+fn generic_value(seed: u64, k: usize, lo: f64, hi: f64) -> f64 {
+    let mut x = seed
+        .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        .wrapping_add((k as u64 + 1).wrapping_mul(0xBF58_476D_1CE4_E5B9));
+    x ^= x >> 31;
+    x = x.wrapping_mul(0x94D0_49BB_1331_11EB);
+    x ^= x >> 29;
+    lo + (hi - lo) * ((x >> 11) as f64 / (1u64 << 53) as f64)
+}
+
+/// The numerical rank of M at a generic state, `None` if M is not finite there.
+fn numeric_rank(model: &Model, eq: &Equations, seed: u64) -> Option<usize> {
+    let n = model.dof();
+    let values: Vec<f64> = (0..model.symbols.count())
+        .map(|k| match model.symbols.kind(crate::expr::SymId(k as u32)) {
+            SymKind::Parameter(_) => generic_value(seed, k, 0.5, 2.0),
+            _ => generic_value(seed, k, 0.1, 1.3),
+        })
+        .collect();
+    let mut memo = std::collections::HashMap::new();
+    let mut a: Vec<Vec<f64>> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| model.pool.eval_memo(eq.mass[i][j], &values, &mut memo))
+                .collect()
+        })
+        .collect();
+    if a.iter().flatten().any(|x| !x.is_finite()) {
+        return None;
+    }
+    let scale = a.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+    if scale == 0.0 {
+        return Some(0);
+    }
+    let tol = 1e-10 * scale;
+    let mut rank = 0;
+    let mut row = 0;
+    for col in 0..n {
+        let pivot = (row..n).max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))?;
+        if a[pivot][col].abs() <= tol {
+            continue;
+        }
+        a.swap(row, pivot);
+        for r in row + 1..n {
+            let factor = a[r][col] / a[row][col];
+            for c in col..n {
+                a[r][c] -= factor * a[row][c];
+            }
+        }
+        rank += 1;
+        row += 1;
+        if row == n {
+            break;
+        }
+    }
+    Some(rank)
+}

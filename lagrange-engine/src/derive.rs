@@ -1,0 +1,77 @@
+//! Lagrange's equations, symbolically.
+//!
+//! With `L = T - V`, `p_i = ∂T/∂q̇_i` (V holds no velocity, see `check`):
+//!
+//! ```text
+//! M_ij = ∂p_i/∂q̇_j
+//! f_i  = ∂L/∂q_i − Σ_j (∂p_i/∂q_j) q̇_j − ∂p_i/∂t − ∂R/∂q̇_i + Q_i
+//! ```
+//!
+//! so that `M q̈ = f`. `M` is never inverted symbolically: the runtime solves.
+
+use crate::expr::{ExprId, Pool};
+use crate::model::Model;
+
+/// The derived equations of motion.
+pub struct Equations {
+    /// `M`, full and symmetric: `mass[i][j]` and `mass[j][i]` are one node.
+    pub mass: Vec<Vec<ExprId>>,
+    pub forcing: Vec<ExprId>,
+    /// `T + V`.
+    pub energy: ExprId,
+}
+
+pub fn euler_lagrange(model: &mut Model) -> Equations {
+    let n = model.dof();
+    let s = model.symbols.clone();
+    let t_kin = model.kinetic.value;
+    let v_pot = model.potential.value;
+    let dissipation = model.dissipation.as_ref().map(|d| d.value);
+    let forces: Vec<Option<ExprId>> = model
+        .forces
+        .iter()
+        .map(|f| f.as_ref().map(|f| f.2))
+        .collect();
+    let pool = &mut model.pool;
+
+    let lagrangian = pool.sub(t_kin, v_pot);
+    let momenta: Vec<ExprId> = s.velocities.iter().map(|&v| pool.diff(t_kin, v)).collect();
+
+    let mut mass = vec![vec![Pool::ZERO; n]; n];
+    for i in 0..n {
+        for j in i..n {
+            let m = pool.diff(momenta[i], s.velocities[j]);
+            mass[i][j] = m;
+            mass[j][i] = m;
+        }
+    }
+
+    let mut forcing = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut terms = vec![pool.diff(lagrangian, s.coordinates[i])];
+        for j in 0..n {
+            if pool.depends_on(momenta[i], s.coordinates[j]) {
+                let d = pool.diff(momenta[i], s.coordinates[j]);
+                let v = pool.sym(s.velocities[j]);
+                let dv = pool.mul2(d, v);
+                terms.push(pool.neg(dv));
+            }
+        }
+        let dt = pool.diff(momenta[i], s.time);
+        terms.push(pool.neg(dt));
+        if let Some(r) = dissipation {
+            let dr = pool.diff(r, s.velocities[i]);
+            terms.push(pool.neg(dr));
+        }
+        if let Some(q) = forces[i] {
+            terms.push(q);
+        }
+        forcing.push(pool.add(&terms));
+    }
+    let energy = pool.add2(t_kin, v_pot);
+    Equations {
+        mass,
+        forcing,
+        energy,
+    }
+}

@@ -1,0 +1,414 @@
+//! Tokens → [`ast::ModelDef`](crate::ast::ModelDef).
+//!
+//! Expressions use mathematical precedence, not Rust's: `^` is power and binds
+//! tighter than unary minus (`-x^2 = -(x²)`), which binds tighter than `*` and
+//! `/` (`a*b^2 = a·b²`); `^` is right-associative and its exponent may carry a
+//! sign (`x^-1`). Rust method syntax (`x.sin()`, `x.powi(2)`) means the same as
+//! the function form.
+//!
+//! A malformed section does not stop the parse: the parser records the first
+//! error, skips to the next `;` and goes on, so the fallback can still emit a
+//! stub with the coordinates and parameters that were declared (one mistake,
+//! one error).
+
+use crate::ast::{BinOp, Expr, Item, ModelDef, SpanRange};
+use proc_macro2::{TokenStream, TokenTree};
+use syn::parse::{ParseStream, Parser};
+use syn::{braced, parenthesized, Attribute, Ident, LitFloat, LitInt, Token, Visibility};
+
+/// The sections a model may contain, for error messages.
+pub const SECTIONS: &str =
+    "`coordinates:`, `parameters:`, `let`, `kinetic:`, `potential:`, `dissipation:` or `forces:`";
+
+/// A parsed model and the first error met inside its body, if any.
+pub struct Parsed {
+    pub model: ModelDef,
+    pub error: Option<syn::Error>,
+}
+
+/// Parses the macro input. `Err` only when not even the `struct Name { .. }`
+/// header could be read.
+pub fn parse(tokens: TokenStream) -> syn::Result<Parsed> {
+    let parser = |input: ParseStream| -> syn::Result<Parsed> {
+        let attrs = input.call(Attribute::parse_outer)?;
+        let vis: Visibility = input.parse()?;
+        if !input.peek(Token![struct]) {
+            return Err(input.error(
+                "expected `struct Name { ... }`: a model is written as a struct holding its sections",
+            ));
+        }
+        input.parse::<Token![struct]>()?;
+        let name: Ident = input.parse()?;
+        if input.peek(Token![<]) {
+            return Err(input.error(
+                "a model takes no generic parameters: the generated struct is generic over its scalar `S` already",
+            ));
+        }
+        let body;
+        braced!(body in input);
+        let mut items = Vec::new();
+        let mut error: Option<syn::Error> = None;
+        while !body.is_empty() {
+            match parse_item(&body) {
+                Ok(item) => items.push(item),
+                Err(e) => {
+                    error.get_or_insert(e);
+                    skip_past_semicolon(&body)?;
+                }
+            }
+        }
+        if !input.is_empty() {
+            error.get_or_insert(input.error("unexpected tokens after the model's closing brace"));
+        }
+        Ok(Parsed {
+            model: ModelDef {
+                attrs,
+                vis,
+                name,
+                items,
+            },
+            error,
+        })
+    };
+    parser.parse2(tokens)
+}
+
+fn skip_past_semicolon(input: ParseStream) -> syn::Result<()> {
+    input.step(|cursor| {
+        let mut rest = *cursor;
+        while let Some((tt, next)) = rest.token_tree() {
+            rest = next;
+            if let TokenTree::Punct(p) = &tt {
+                if p.as_char() == ';' {
+                    break;
+                }
+            }
+        }
+        Ok(((), rest))
+    })
+}
+
+fn parse_item(input: ParseStream) -> syn::Result<Item> {
+    if input.peek(Token![let]) {
+        input.parse::<Token![let]>()?;
+        let name: Ident = input.parse()?;
+        input.parse::<Token![=]>()?;
+        let value = parse_expr(input)?;
+        expect_semicolon(input)?;
+        return Ok(Item::Let { name, value });
+    }
+    if !input.peek(syn::Ident) {
+        return Err(input.error(format!("expected a section: {SECTIONS}")));
+    }
+    let keyword: Ident = input.parse()?;
+    let section = keyword.to_string();
+    let known = [
+        "coordinates",
+        "parameters",
+        "kinetic",
+        "potential",
+        "dissipation",
+        "forces",
+    ];
+    if !known.contains(&section.as_str()) {
+        return Err(syn::Error::new(
+            keyword.span(),
+            format!("unknown section `{section}`: expected {SECTIONS}"),
+        ));
+    }
+    input.parse::<Token![:]>()?;
+    Ok(match section.as_str() {
+        "coordinates" => Item::Coordinates {
+            names: parse_names(input)?,
+            keyword,
+        },
+        "parameters" => Item::Parameters {
+            names: parse_names(input)?,
+            keyword,
+        },
+        "forces" => Item::Forces {
+            entries: parse_forces(input)?,
+            keyword,
+        },
+        _ => {
+            let value = parse_expr(input)?;
+            expect_semicolon(input)?;
+            match section.as_str() {
+                "kinetic" => Item::Kinetic { keyword, value },
+                "potential" => Item::Potential { keyword, value },
+                _ => Item::Dissipation { keyword, value },
+            }
+        }
+    })
+}
+
+fn expect_semicolon(input: ParseStream) -> syn::Result<()> {
+    if input.peek(Token![;]) {
+        input.parse::<Token![;]>()?;
+        Ok(())
+    } else if input.is_empty() {
+        Err(input.error("expected `;` at the end of this section"))
+    } else {
+        Err(input.error("expected an operator or `;`"))
+    }
+}
+
+fn parse_names(input: ParseStream) -> syn::Result<Vec<Ident>> {
+    let mut names = Vec::new();
+    loop {
+        if input.peek(Token![;]) && !names.is_empty() {
+            input.parse::<Token![;]>()?;
+            return Ok(names);
+        }
+        names.push(input.parse::<Ident>()?);
+        if input.peek(Token![,]) {
+            input.parse::<Token![,]>()?;
+        } else if input.peek(Token![;]) {
+            input.parse::<Token![;]>()?;
+            return Ok(names);
+        } else {
+            return Err(input.error("expected `,` or `;` after a name"));
+        }
+    }
+}
+
+fn parse_forces(input: ParseStream) -> syn::Result<Vec<(Ident, Expr)>> {
+    let mut entries = Vec::new();
+    loop {
+        if input.peek(Token![;]) && !entries.is_empty() {
+            input.parse::<Token![;]>()?;
+            return Ok(entries);
+        }
+        let target: Ident = input.parse()?;
+        if !input.peek(Token![=]) {
+            return Err(input.error(
+                "expected `=`: a force is written `coordinate = expression`, e.g. `x1 = -c*dot(x1)`",
+            ));
+        }
+        input.parse::<Token![=]>()?;
+        let value = parse_expr(input)?;
+        entries.push((target, value));
+        if input.peek(Token![,]) {
+            input.parse::<Token![,]>()?;
+        } else if input.peek(Token![;]) {
+            input.parse::<Token![;]>()?;
+            return Ok(entries);
+        } else {
+            return Err(input.error("expected an operator, `,` or `;`"));
+        }
+    }
+}
+
+/// `sum := product (('+' | '-') product)*`
+pub fn parse_expr(input: ParseStream) -> syn::Result<Expr> {
+    let mut lhs = parse_product(input)?;
+    loop {
+        let op = if input.peek(Token![+]) {
+            input.parse::<Token![+]>()?;
+            BinOp::Add
+        } else if input.peek(Token![-]) {
+            input.parse::<Token![-]>()?;
+            BinOp::Sub
+        } else {
+            return Ok(lhs);
+        };
+        let rhs = parse_product(input)?;
+        lhs = binary(op, lhs, rhs);
+    }
+}
+
+fn binary(op: BinOp, lhs: Expr, rhs: Expr) -> Expr {
+    Expr::Binary {
+        op,
+        range: lhs.range().to(rhs.range()),
+        lhs: Box::new(lhs),
+        rhs: Box::new(rhs),
+    }
+}
+
+/// `product := unary (('*' | '/') unary)*`
+fn parse_product(input: ParseStream) -> syn::Result<Expr> {
+    let mut lhs = parse_unary(input)?;
+    loop {
+        let op = if input.peek(Token![*]) {
+            input.parse::<Token![*]>()?;
+            BinOp::Mul
+        } else if input.peek(Token![/]) {
+            input.parse::<Token![/]>()?;
+            BinOp::Div
+        } else {
+            return Ok(lhs);
+        };
+        let rhs = parse_unary(input)?;
+        lhs = binary(op, lhs, rhs);
+    }
+}
+
+/// `unary := '-' unary | power`
+fn parse_unary(input: ParseStream) -> syn::Result<Expr> {
+    if input.peek(Token![-]) {
+        let minus = input.parse::<Token![-]>()?;
+        let inner = parse_unary(input)?;
+        return Ok(Expr::Neg {
+            range: SpanRange::single(minus.span).to(inner.range()),
+            inner: Box::new(inner),
+        });
+    }
+    parse_power(input)
+}
+
+/// `power := postfix ('^' unary)?` — right-associative through `unary`.
+fn parse_power(input: ParseStream) -> syn::Result<Expr> {
+    let base = parse_postfix(input)?;
+    if input.peek(Token![^]) {
+        input.parse::<Token![^]>()?;
+        let exponent = parse_unary(input)?;
+        return Ok(binary(BinOp::Pow, base, exponent));
+    }
+    Ok(base)
+}
+
+/// `postfix := primary ('.' name '(' args ')')*`
+fn parse_postfix(input: ParseStream) -> syn::Result<Expr> {
+    let mut e = parse_primary(input)?;
+    while input.peek(Token![.]) {
+        input.parse::<Token![.]>()?;
+        let method: Ident = input.parse()?;
+        if !input.peek(syn::token::Paren) {
+            return Err(syn::Error::new(
+                method.span(),
+                format!(
+                    "expected `(` after `.{method}`: only method calls such as `x.sin()` or `x.powi(2)` may follow a `.`"
+                ),
+            ));
+        }
+        let (mut args, close) = parse_args(input)?;
+        args.insert(0, e);
+        e = Expr::Call {
+            range: args[0].range().to(SpanRange::single(close)),
+            func: method,
+            args,
+        };
+    }
+    Ok(e)
+}
+
+fn parse_args(input: ParseStream) -> syn::Result<(Vec<Expr>, proc_macro2::Span)> {
+    let inner;
+    let paren = parenthesized!(inner in input);
+    let mut args = Vec::new();
+    while !inner.is_empty() {
+        args.push(parse_expr(&inner)?);
+        if inner.is_empty() {
+            break;
+        }
+        if !inner.peek(Token![,]) {
+            return Err(inner.error("expected an operator, `,` or `)`"));
+        }
+        inner.parse::<Token![,]>()?;
+    }
+    Ok((args, paren.span.close()))
+}
+
+/// `primary := number | name | name '(' args ')' | '(' sum ')'`
+fn parse_primary(input: ParseStream) -> syn::Result<Expr> {
+    if input.peek(LitInt) {
+        let lit: LitInt = input.parse()?;
+        let value = lit
+            .base10_digits()
+            .parse::<f64>()
+            .map_err(|_| syn::Error::new(lit.span(), "this number is not a real number"))?;
+        return Ok(Expr::Num {
+            value,
+            span: lit.span(),
+        });
+    }
+    if input.peek(LitFloat) {
+        let lit: LitFloat = input.parse()?;
+        let value = lit
+            .base10_digits()
+            .parse::<f64>()
+            .map_err(|_| syn::Error::new(lit.span(), "this number is not a real number"))?;
+        return Ok(Expr::Num {
+            value,
+            span: lit.span(),
+        });
+    }
+    if input.peek(syn::token::Paren) {
+        let inner;
+        parenthesized!(inner in input);
+        if inner.is_empty() {
+            return Err(inner.error("expected an expression inside `()`"));
+        }
+        let e = parse_expr(&inner)?;
+        if !inner.is_empty() {
+            return Err(inner.error("expected an operator or `)`"));
+        }
+        return Ok(e);
+    }
+    if input.peek(syn::Ident) {
+        let name: Ident = input.parse()?;
+        if input.peek(syn::token::Paren) {
+            let (args, close) = parse_args(input)?;
+            return Ok(Expr::Call {
+                range: SpanRange::single(name.span()).to(SpanRange::single(close)),
+                func: name,
+                args,
+            });
+        }
+        return Ok(Expr::Name(name));
+    }
+    if input.is_empty() || input.peek(Token![;]) || input.peek(Token![,]) {
+        return Err(input.error("expected an expression here"));
+    }
+    Err(input.error("expected an expression: a number, a name, a function call or `(`"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn expr(src: &str) -> Expr {
+        parse_expr.parse_str(src).unwrap()
+    }
+
+    fn show(e: &Expr) -> String {
+        match e {
+            Expr::Num { value, .. } => format!("{value}"),
+            Expr::Name(n) => n.to_string(),
+            Expr::Neg { inner, .. } => format!("(-{})", show(inner)),
+            Expr::Binary { op, lhs, rhs, .. } => {
+                let o = match op {
+                    BinOp::Add => "+",
+                    BinOp::Sub => "-",
+                    BinOp::Mul => "*",
+                    BinOp::Div => "/",
+                    BinOp::Pow => "^",
+                };
+                format!("({} {o} {})", show(lhs), show(rhs))
+            }
+            Expr::Call { func, args, .. } => {
+                let a: Vec<String> = args.iter().map(show).collect();
+                format!("{func}({})", a.join(", "))
+            }
+        }
+    }
+
+    #[test]
+    fn power_binds_tighter_than_unary_minus_and_product() {
+        assert_eq!(show(&expr("-x^2")), "(-(x ^ 2))");
+        assert_eq!(show(&expr("a*b^2")), "(a * (b ^ 2))");
+        assert_eq!(show(&expr("x^-1")), "(x ^ (-1))");
+        assert_eq!(show(&expr("a^b^c")), "(a ^ (b ^ c))");
+        assert_eq!(show(&expr("m1/2*(x + y)")), "((m1 / 2) * (x + y))");
+        assert_eq!(show(&expr("a - b - c")), "((a - b) - c)");
+    }
+
+    #[test]
+    fn method_syntax_is_a_call_with_the_receiver_first() {
+        assert_eq!(show(&expr("x.sin()")), "sin(x)");
+        assert_eq!(show(&expr("(a - b).cos()")), "cos((a - b))");
+        assert_eq!(show(&expr("x.powi(2) * 2.0")), "(powi(x, 2) * 2)");
+        assert_eq!(show(&expr("y.atan2(x)")), "atan2(y, x)");
+    }
+}
