@@ -134,15 +134,21 @@ impl Derived {
 
 /// Parses, lowers, checks and differentiates a model.
 pub fn derive(input: TokenStream) -> syn::Result<Derived> {
+    derive_with_budget(input, expr::DEFAULT_NODE_BUDGET)
+}
+
+/// [`derive`] with a node budget other than the default: a derivation that
+/// would need more expression nodes stops with an error naming the budget.
+pub fn derive_with_budget(input: TokenStream, budget: usize) -> syn::Result<Derived> {
     let parsed = parse::parse(input)?;
     if let Some(e) = parsed.error {
         return Err(e);
     }
-    derive_model(parsed.model)
+    derive_model(parsed.model, budget)
 }
 
-fn derive_model(def: ast::ModelDef) -> syn::Result<Derived> {
-    let mut model = model::lower(def)?;
+fn derive_model(def: ast::ModelDef, budget: usize) -> syn::Result<Derived> {
+    let mut model = model::lower_with_pool(def, expr::Pool::with_budget(budget))?;
     check::potential_has_no_velocity(&mut model)?;
     let equations = derive::euler_lagrange(&mut model);
     model
@@ -164,7 +170,7 @@ pub fn expand(input: TokenStream) -> TokenStream {
     if let Some(e) = parsed.error {
         return stub.emit(e);
     }
-    match derive_model(parsed.model) {
+    match derive_model(parsed.model, expr::DEFAULT_NODE_BUDGET) {
         Ok(derived) => derived.tokens(),
         Err(e) => stub.emit(e),
     }

@@ -117,10 +117,6 @@ fn function_list() -> String {
 }
 
 /// Lowers a parsed model. The first error met is returned.
-pub fn lower(def: ModelDef) -> syn::Result<Model> {
-    lower_with_pool(def, Pool::default())
-}
-
 pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
     let mut coordinates: Vec<Ident> = Vec::new();
     let mut parameters: Vec<Ident> = Vec::new();

@@ -1,0 +1,202 @@
+//! The engine outside rustc: canonical forms, derivatives, determinism.
+
+use lagrange_engine::expr::{ExprId, Func, Pool, SymId};
+
+fn syms(pool: &mut Pool, n: u32) -> Vec<ExprId> {
+    (0..n).map(|k| pool.sym(SymId(k))).collect()
+}
+
+#[test]
+fn like_terms_and_powers_collect_to_one_node() {
+    let mut p = Pool::default();
+    let v = syms(&mut p, 3);
+    let (x, y) = (v[0], v[1]);
+    assert_eq!(p.sub(x, x), Pool::ZERO);
+    let inv = p.div(Pool::ONE, x);
+    assert_eq!(p.mul2(x, inv), Pool::ONE);
+    let two = p.num(2.0);
+    let three = p.num(3.0);
+    let five = p.num(5.0);
+    let a = p.mul2(two, x);
+    let b = p.mul2(three, x);
+    let expected = p.mul2(five, x);
+    assert_eq!(p.add2(a, b), expected);
+    // (x y)^2 = x^2 y^2
+    let xy = p.mul2(x, y);
+    let lhs = p.pow(xy, two);
+    let x2 = p.pow(x, two);
+    let y2 = p.pow(y, two);
+    assert_eq!(lhs, p.mul2(x2, y2));
+    // x·x = x²
+    assert_eq!(p.mul2(x, x), x2);
+    // 1/2 folds to 0.5
+    let half = p.div(Pool::ONE, two);
+    assert_eq!(p.as_num(half), Some(0.5));
+}
+
+#[test]
+fn odd_and_even_functions_share_nodes_across_signs() {
+    let mut p = Pool::default();
+    let v = syms(&mut p, 2);
+    let (a, b) = (v[0], v[1]);
+    let amb = p.sub(a, b);
+    let bma = p.sub(b, a);
+    let c1 = p.func(Func::Cos, amb);
+    assert_eq!(c1, p.func(Func::Cos, bma));
+    let s1 = p.func(Func::Sin, amb);
+    let s2 = p.func(Func::Sin, bma);
+    assert_eq!(p.neg(s1), s2);
+}
+
+#[test]
+fn pythagoras_folds_a_rotating_point_to_its_radius() {
+    let mut p = Pool::default();
+    let v = syms(&mut p, 3);
+    let (theta, l, w) = (v[0], v[1], v[2]);
+    let two = p.num(2.0);
+    let s = p.func(Func::Sin, theta);
+    let c = p.func(Func::Cos, theta);
+    // (l cos θ w)^2 + (l sin θ w)^2 = l² w²
+    let xs = p.mul(&[l, c, w]);
+    let ys = p.mul(&[l, s, w]);
+    let x2 = p.pow(xs, two);
+    let y2 = p.pow(ys, two);
+    let sum = p.add2(x2, y2);
+    let l2 = p.pow(l, two);
+    let w2 = p.pow(w, two);
+    assert_eq!(sum, p.mul2(l2, w2));
+    // sin² + cos² alone folds to 1
+    let s2 = p.pow(s, two);
+    let c2 = p.pow(c, two);
+    assert_eq!(p.add2(s2, c2), Pool::ONE);
+}
+
+/// Central differences have error O(h²·f''') + O(eps/h); with h = 1e-5 on
+/// these smooth functions of O(1) values that is ~1e-9, so 1e-6 relative
+/// separates a wrong rule (O(1) error) from round-off with a wide margin.
+#[test]
+fn every_derivative_rule_matches_central_differences() {
+    let mut p = Pool::default();
+    let v = syms(&mut p, 2);
+    let (x, y) = (v[0], v[1]);
+    let two = p.num(2.0);
+    let half = p.num(0.5);
+    let x2 = p.pow(x, two);
+    let xy = p.mul2(x, y);
+    let mut cases: Vec<(&str, ExprId)> = Vec::new();
+    for f in [
+        Func::Sin,
+        Func::Cos,
+        Func::Tan,
+        Func::Asin,
+        Func::Acos,
+        Func::Atan,
+        Func::Sinh,
+        Func::Cosh,
+        Func::Tanh,
+        Func::Exp,
+        Func::Ln,
+    ] {
+        let arg = p.mul2(half, xy);
+        cases.push((f.name(), p.func(f, arg)));
+    }
+    cases.push(("atan2", p.atan2(y, x2)));
+    cases.push(("sqrt", p.sqrt(xy)));
+    cases.push(("x^y", p.pow(x, y)));
+    let inv = p.div(y, x2);
+    cases.push(("quotient", inv));
+    let poly = p.add(&[x2, xy, Pool::ONE]);
+    let m3 = p.num(-3.0);
+    cases.push(("negative power of a sum", p.pow(poly, m3)));
+    let h = 1e-5;
+    for (name, e) in cases {
+        for (k, s) in [(0usize, SymId(0)), (1, SymId(1))] {
+            let d = p.diff(e, s);
+            let at = [0.7, 0.4];
+            let mut plus = at;
+            plus[k] += h;
+            let mut minus = at;
+            minus[k] -= h;
+            let fd = (p.eval(e, &plus) - p.eval(e, &minus)) / (2.0 * h);
+            let exact = p.eval(d, &at);
+            assert!(
+                (fd - exact).abs() <= 1e-6 * (1.0 + exact.abs()),
+                "d{name}/d{k}: symbolic {exact}, central difference {fd}"
+            );
+        }
+    }
+}
+
+const DOUBLE_PENDULUM: &str = r#"
+    /// The double pendulum.
+    pub struct DoublePendulum {
+        coordinates: theta1, theta2;
+        parameters: m1, m2, l1, l2, g;
+        let x1 = l1*sin(theta1);
+        let y1 = -l1*cos(theta1);
+        let x2 = x1 + l2*sin(theta2);
+        let y2 = y1 - l2*cos(theta2);
+        kinetic: m1/2*(dot(x1)^2 + dot(y1)^2) + m2/2*(dot(x2)^2 + dot(y2)^2);
+        potential: m1*g*y1 + m2*g*y2;
+    }
+"#;
+
+#[test]
+fn the_same_model_always_expands_to_the_same_tokens() {
+    let a = lagrange_engine::expand(DOUBLE_PENDULUM.parse().unwrap()).to_string();
+    for _ in 0..3 {
+        let b = lagrange_engine::expand(DOUBLE_PENDULUM.parse().unwrap()).to_string();
+        assert_eq!(a, b);
+    }
+}
+
+#[test]
+fn sharing_keeps_the_double_pendulum_small() {
+    let d = lagrange_engine::derive(DOUBLE_PENDULUM.parse().unwrap()).unwrap();
+    let (shared, tree) = d.op_counts();
+    // Four trig calls (sin and cos of each angle) are all the model needs.
+    assert_eq!(shared.calls, 4, "{}", d.equations_text());
+    assert!(shared.total() < tree.total(), "{shared:?} vs {tree:?}");
+}
+
+#[test]
+fn derived_double_pendulum_matches_its_closed_form_numerically() {
+    let d = lagrange_engine::derive(DOUBLE_PENDULUM.parse().unwrap()).unwrap();
+    let (m1, m2, l1, l2, g) = (1.3, 0.7, 0.9, 1.1, 9.81);
+    let params = [m1, m2, l1, l2, g];
+    let (q, qd) = ([0.3, -1.2], [0.8, 2.1]);
+    let m = d.eval_mass_matrix(0.0, &q, &params);
+    let f = d.eval_forcing(0.0, &q, &qd, &params);
+    let delta: f64 = q[0] - q[1];
+    let m_ref = [
+        [(m1 + m2) * l1 * l1, m2 * l1 * l2 * delta.cos()],
+        [m2 * l1 * l2 * delta.cos(), m2 * l2 * l2],
+    ];
+    let f_ref = [
+        -m2 * l1 * l2 * qd[1] * qd[1] * delta.sin() - (m1 + m2) * g * l1 * q[0].sin(),
+        m2 * l1 * l2 * qd[0] * qd[0] * delta.sin() - m2 * g * l2 * q[1].sin(),
+    ];
+    // A few dozen flops on O(10) values: round-off ~1e-14; 1e-12 is margin.
+    for i in 0..2 {
+        assert!(
+            (f[i] - f_ref[i]).abs() < 1e-12,
+            "f[{i}]: {} vs {}",
+            f[i],
+            f_ref[i]
+        );
+        for j in 0..2 {
+            assert!((m[i][j] - m_ref[i][j]).abs() < 1e-12);
+        }
+    }
+}
+
+#[test]
+fn a_derivation_past_the_node_budget_is_an_error_naming_the_budget() {
+    let err = lagrange_engine::derive_with_budget(DOUBLE_PENDULUM.parse().unwrap(), 60)
+        .err()
+        .expect("the double pendulum needs more than 60 nodes");
+    let msg = err.to_string();
+    assert!(msg.contains("size budget of 60 expression nodes"), "{msg}");
+    // The default budget is ample for it.
+    assert!(lagrange_engine::derive(DOUBLE_PENDULUM.parse().unwrap()).is_ok());
+}
