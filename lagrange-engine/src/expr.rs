@@ -102,6 +102,7 @@ pub struct Pool {
     deps: Vec<Box<[u64]>>,
     index: HashMap<Node, ExprId>,
     pub(crate) diff_memo: HashMap<(ExprId, SymId), ExprId>,
+    pub(crate) content_memo: HashMap<ExprId, Option<(f64, Vec<ExprId>, ExprId)>>,
     budget: usize,
     exceeded: bool,
 }
@@ -124,6 +125,7 @@ impl Pool {
             deps: Vec::new(),
             index: HashMap::new(),
             diff_memo: HashMap::new(),
+            content_memo: HashMap::new(),
             budget,
             exceeded: false,
         };

@@ -240,11 +240,12 @@ impl Pool {
                 _ => {}
             }
             let (mut base, exp) = self.split_pow(f);
-            // A sum whose terms share one coefficient gives it to the product:
-            // `0.5·m·(2a + 2b) = m·(a + b)`. Only for a plain factor (exponent 1).
+            // A sum gives its content to the product, `0.5·m·(2a·x + 2b·x) =
+            // m·x·(a + b)`; only for a plain factor (exponent 1).
             if exp == Pool::ONE {
-                if let Some((k, inner)) = self.common_coefficient(base) {
+                if let Some((k, common, inner)) = self.content(base) {
                     coeff *= k;
+                    stack.extend(common);
                     base = inner;
                 }
             }
@@ -307,37 +308,87 @@ impl Pool {
         self.intern(Node::Mul(out.into_boxed_slice()))
     }
 
-    /// `Some((k, s))` with `sum = k·s` when every term of the sum `id` has a
-    /// coefficient of magnitude `|k| ≠ 1` (`k` the first term's, so `s` starts
-    /// with a positive term), or all are negative (`k = -1`).
-    fn common_coefficient(&mut self, id: ExprId) -> Option<(f64, ExprId)> {
+    /// The content of a sum: `sum = k · c1^e1 ⋯ · s`, where the `c` are the
+    /// factors every term shares, `k` the shared coefficient magnitude (if all
+    /// are equal) times the first term's sign, and `s` the primitive part.
+    /// `None` if there is nothing to pull out. Memoized per sum.
+    ///
+    /// Products hold only primitive sums, so `-m·(a·x − b·x)` and
+    /// `m·x·(b − a)` are one node and cancel in an enclosing sum.
+    fn content(&mut self, id: ExprId) -> Option<(f64, Vec<ExprId>, ExprId)> {
         let Node::Add(xs) = self.node(id) else {
             return None;
         };
+        if let Some(c) = self.content_memo.get(&id) {
+            return c.clone();
+        }
         let xs = xs.to_vec();
         let parts: Vec<(f64, ExprId)> = xs.iter().map(|&x| self.split_coeff(x)).collect();
-        let k = parts[0].0;
-        if k == 1.0 || parts.iter().any(|(c, _)| c.abs() != k.abs()) {
-            return None;
-        }
-        let terms: Vec<ExprId> = parts
+        let sign = parts[0].0.signum();
+        let mag = parts[0].0.abs();
+        let k = if parts.iter().all(|(c, _)| c.abs() == mag) {
+            sign * mag
+        } else {
+            sign
+        };
+        // Bases every term holds, with the smallest positive numeric exponent.
+        let factor_lists: Vec<Vec<(ExprId, ExprId)>> = parts
             .iter()
-            .map(|&(c, rest)| {
-                let c = self.num(c / k);
-                self.mul_raw_coeff_or_rest(c, rest)
+            .map(|&(_, rest)| {
+                let fs = match self.node(rest) {
+                    Node::Mul(fs) => fs.to_vec(),
+                    _ if rest == Pool::ONE => Vec::new(),
+                    _ => vec![rest],
+                };
+                fs.into_iter().map(|f| self.split_pow(f)).collect()
             })
             .collect();
-        Some((k, self.add(&terms)))
-    }
-
-    fn mul_raw_coeff_or_rest(&mut self, c: ExprId, rest: ExprId) -> ExprId {
-        if rest == Pool::ONE {
-            c
-        } else if c == Pool::ONE {
-            rest
-        } else {
-            self.mul_raw_coeff(c, rest)
+        let mut common: Vec<(ExprId, f64)> = Vec::new();
+        for &(base, e) in &factor_lists[0] {
+            let Some(mut min) = self.as_num(e).filter(|&v| v > 0.0) else {
+                continue;
+            };
+            let everywhere = factor_lists[1..].iter().all(|fs| {
+                fs.iter().any(|&(b, e2)| {
+                    b == base
+                        && self.as_num(e2).is_some_and(|v| {
+                            min = min.min(v);
+                            v > 0.0
+                        })
+                })
+            });
+            if everywhere {
+                common.push((base, min));
+            }
         }
+        let result = if k == 1.0 && common.is_empty() {
+            None
+        } else {
+            let common: Vec<ExprId> = common
+                .into_iter()
+                .map(|(b, e)| {
+                    let e = self.num(e);
+                    self.pow(b, e)
+                })
+                .collect();
+            let inv_k = self.num(1.0 / k);
+            let mut divisor: Vec<ExprId> = vec![inv_k];
+            for &c in &common {
+                let m1 = self.num(-1.0);
+                divisor.push(self.pow(c, m1));
+            }
+            let terms: Vec<ExprId> = xs
+                .iter()
+                .map(|&x| {
+                    let mut fs = divisor.clone();
+                    fs.push(x);
+                    self.mul(&fs)
+                })
+                .collect();
+            Some((k, common, self.add(&terms)))
+        };
+        self.content_memo.insert(id, result.clone());
+        result
     }
 
     /// `base ^ exp` in canonical form.
