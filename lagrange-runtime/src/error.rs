@@ -1,0 +1,275 @@
+//! What can stop an integration, where, and in which state.
+//!
+//! Every runtime failure carries the time and the state `(q, q̇)` at which it
+//! was detected, and [`Failure`] carries the samples computed before it, so a
+//! simulation that dies at `t = 9.7` still hands back everything up to there.
+
+use core::fmt;
+
+use nalgebra::{RealField, SVector};
+
+use crate::Trajectory;
+
+/// Why an integration stopped before the last requested sample time.
+///
+/// `t`, `q` and `qdot` are where the model was being evaluated (or the
+/// integrator stood) when the problem was found. For a failing Runge–Kutta
+/// stage that is a point inside the step, not necessarily a sample.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum IntegrationError<S: RealField + Copy, const N: usize> {
+    /// `M(t, q)` has no usable inverse, so `M q̈ = f` does not determine the
+    /// accelerations: a coordinate without inertia, or a degenerate
+    /// configuration (a pendulum in a coordinate chart's pole, say).
+    #[error(
+        "mass matrix is singular at t = {t:?} (q = {}, q̇ = {}): M q̈ = f does not determine \
+         the accelerations (a coordinate without inertia, or a degenerate configuration)",
+        Row(.q), Row(.qdot)
+    )]
+    SingularMassMatrix {
+        /// Time of the evaluation.
+        t: S,
+        /// Generalized coordinates at `t`.
+        q: SVector<S, N>,
+        /// Generalized velocities at `t`.
+        qdot: SVector<S, N>,
+    },
+
+    /// A NaN or an infinity appeared in the state, or in `M` or `f` as the
+    /// model returned them; continuing would only spread it.
+    #[error("{value} at t = {t:?} (q = {}, q̇ = {})", Row(.q), Row(.qdot))]
+    NonFiniteState {
+        /// Time of the evaluation.
+        t: S,
+        /// Generalized coordinates at `t` (may themselves be the culprit).
+        q: SVector<S, N>,
+        /// Generalized velocities at `t` (may themselves be the culprit).
+        qdot: SVector<S, N>,
+        /// Which value was not finite.
+        value: NonFiniteValue,
+    },
+
+    /// The adaptive step size fell below what the arithmetic can resolve at
+    /// `t` (`h ≤ 10 ε |t|` or `t + h == t`): usually a solution that blows
+    /// up, or a model that is not smooth here.
+    #[error(
+        "step size underflow at t = {t:?} (q = {}, q̇ = {}): h = {h:?} no longer advances t; \
+         the solution may blow up or the model may be discontinuous here",
+        Row(.q), Row(.qdot)
+    )]
+    StepSizeUnderflow {
+        /// Time reached.
+        t: S,
+        /// The step size that was too small.
+        h: S,
+        /// Generalized coordinates at `t`.
+        q: SVector<S, N>,
+        /// Generalized velocities at `t`.
+        qdot: SVector<S, N>,
+    },
+
+    /// The integrator used its whole step budget before the last sample time.
+    #[error(
+        "used all {max_steps} steps and stopped at t = {t:?} (q = {}, q̇ = {}) before the last \
+         sample time; raise max_steps or loosen the tolerances",
+        Row(.q), Row(.qdot)
+    )]
+    TooManySteps {
+        /// Time reached.
+        t: S,
+        /// The step budget that was exhausted (accepted plus rejected steps).
+        max_steps: usize,
+        /// Generalized coordinates at `t`.
+        q: SVector<S, N>,
+        /// Generalized velocities at `t`.
+        qdot: SVector<S, N>,
+    },
+
+    /// The call itself was wrong; nothing was integrated.
+    #[error("invalid input: {0}")]
+    InvalidInput(InvalidInput<S>),
+}
+
+impl<S: RealField + Copy, const N: usize> From<InvalidInput<S>> for IntegrationError<S, N> {
+    fn from(invalid: InvalidInput<S>) -> Self {
+        Self::InvalidInput(invalid)
+    }
+}
+
+/// Which value of an evaluation was NaN or infinite.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum NonFiniteValue {
+    /// The state `(q, q̇)` handed to the model, e.g. after an overflow.
+    State,
+    /// The mass matrix `M(t, q)` returned by the model.
+    MassMatrix,
+    /// The forcing `f(t, q, q̇)` returned by the model.
+    Forcing,
+}
+
+impl fmt::Display for NonFiniteValue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::State => "the state is NaN or infinite",
+            Self::MassMatrix => "the mass matrix M(t, q) returned by the model is NaN or infinite",
+            Self::Forcing => "the forcing f(t, q, q̇) returned by the model is NaN or infinite",
+        })
+    }
+}
+
+/// A call that cannot be integrated as given, and what is wrong with it.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum InvalidInput<S: RealField + Copy> {
+    /// `t0` is NaN or infinite.
+    #[error("the start time t0 = {t0:?} is not finite")]
+    NonFiniteStartTime {
+        /// The start time given.
+        t0: S,
+    },
+
+    /// A component of `q0` is NaN or infinite.
+    #[error("the initial position of coordinate `{coordinate}` is {value:?}, not a finite number")]
+    NonFiniteInitialPosition {
+        /// Name of the coordinate, from [`Lagrangian::COORDINATES`](crate::Lagrangian::COORDINATES).
+        coordinate: &'static str,
+        /// The value given.
+        value: S,
+    },
+
+    /// A component of `q̇0` is NaN or infinite.
+    #[error("the initial velocity of coordinate `{coordinate}` is {value:?}, not a finite number")]
+    NonFiniteInitialVelocity {
+        /// Name of the coordinate, from [`Lagrangian::COORDINATES`](crate::Lagrangian::COORDINATES).
+        coordinate: &'static str,
+        /// The value given.
+        value: S,
+    },
+
+    /// [`Lagrangian::parameters_are_finite`](crate::Lagrangian::parameters_are_finite)
+    /// returned `false`.
+    #[error("a parameter of the model is NaN or infinite")]
+    NonFiniteParameters,
+
+    /// A sample time is NaN or infinite.
+    #[error("sample time times[{index}] = {time:?} is not finite")]
+    NonFiniteSampleTime {
+        /// Index into the sample times.
+        index: usize,
+        /// The value given.
+        time: S,
+    },
+
+    /// The sample times decrease somewhere.
+    #[error(
+        "sample times must be non-decreasing, but times[{index}] = {time:?} comes after \
+         times[{}] = {previous:?}",
+        .index - 1
+    )]
+    UnsortedSampleTimes {
+        /// Index of the first sample time smaller than its predecessor.
+        index: usize,
+        /// `times[index - 1]`.
+        previous: S,
+        /// `times[index]`.
+        time: S,
+    },
+
+    /// A sample time precedes `t0`; integration runs forward only.
+    #[error(
+        "sample time times[{index}] = {time:?} is before the start time t0 = {t0:?} \
+         (integration runs forward only)"
+    )]
+    SampleBeforeStart {
+        /// Index of the offending sample time.
+        index: usize,
+        /// The sample time.
+        time: S,
+        /// The start time.
+        t0: S,
+    },
+
+    /// A fixed step size that is zero, negative or not finite.
+    #[error("the step size h = {h:?} must be positive and finite")]
+    InvalidStepSize {
+        /// The step size given.
+        h: S,
+    },
+
+    /// A relative tolerance the scalar type cannot honour.
+    #[error(
+        "the relative tolerance rtol = {rtol:?} must be finite and at least {min:?} \
+         (10 ε of the scalar type): tighter cannot be met in its arithmetic"
+    )]
+    InvalidRelativeTolerance {
+        /// The tolerance given.
+        rtol: S,
+        /// The smallest accepted value, `10 ε`.
+        min: S,
+    },
+
+    /// An absolute tolerance that is zero, negative or not finite. Zero is
+    /// refused because a component passing through zero would then have no
+    /// error scale at all.
+    #[error("the absolute tolerance atol = {atol:?} must be positive and finite")]
+    InvalidAbsoluteTolerance {
+        /// The tolerance given.
+        atol: S,
+    },
+}
+
+/// An integration that stopped early: the reason, and every requested
+/// sample computed before it.
+///
+/// Integrators return it boxed (see [`IntegrationResult`]) so that the
+/// successful path stays small.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Failure<S: RealField + Copy, const N: usize> {
+    /// What went wrong, where, and in which state.
+    pub error: IntegrationError<S, N>,
+    /// The samples at the requested times before the failure, with the work
+    /// spent; empty when the input was invalid.
+    pub trajectory: Trajectory<S, N>,
+}
+
+impl<S: RealField + Copy, const N: usize> Failure<S, N> {
+    /// Boxes a failure; the form every integrator returns.
+    pub fn boxed(error: IntegrationError<S, N>, trajectory: Trajectory<S, N>) -> Box<Self> {
+        Box::new(Self { error, trajectory })
+    }
+}
+
+impl<S: RealField + Copy, const N: usize> fmt::Display for Failure<S, N> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let kept = self.trajectory.len();
+        let plural = if kept == 1 { "" } else { "s" };
+        write!(f, "{} ({kept} sample{plural} kept)", self.error)
+    }
+}
+
+// The message already contains the error's, so `source` stays `None`
+// (reporters would otherwise print it twice).
+impl<S: RealField + Copy, const N: usize> std::error::Error for Failure<S, N> {}
+
+/// What every integrator returns: the requested samples, or the reason it
+/// stopped together with the samples computed before.
+pub type IntegrationResult<S, const N: usize> = Result<Trajectory<S, N>, Box<Failure<S, N>>>;
+
+/// Formats a vector on one line, `[1.0, -0.5]`, instead of nalgebra's boxed
+/// multi-line matrix layout. Scalars use `Debug`, which switches to
+/// exponents for tiny and huge values (`2.2e-15`, not 17 zeros).
+struct Row<'a, S, const N: usize>(&'a SVector<S, N>);
+
+impl<S: RealField + Copy, const N: usize> fmt::Display for Row<'_, S, N> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("[")?;
+        for (i, x) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str(", ")?;
+            }
+            write!(f, "{x:?}")?;
+        }
+        f.write_str("]")
+    }
+}

@@ -1,0 +1,164 @@
+//! The classic fourth-order Runge–Kutta method with a fixed step.
+
+use nalgebra::{RealField, SVector};
+
+use super::{invalid, Integrator, Recorder};
+use crate::{IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue};
+
+/// Classic RK4 with a fixed step `h`: four right-hand sides per step,
+/// global error `O(h⁴)`, no error control.
+///
+/// Sample times are hit exactly, not interpolated: each interval between
+/// consecutive sample times is cut into the fewest equal steps no longer than
+/// `h`. When the sample spacing is a multiple of `h`, every step is exactly
+/// `h`.
+///
+/// ```
+/// use lagrange_runtime::Rk4;
+///
+/// let rk4 = Rk4::new(1e-3).max_steps(1_000_000);
+/// # let _: Rk4<f64> = rk4;
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rk4<S> {
+    h: S,
+    max_steps: usize,
+}
+
+impl<S: RealField + Copy> Rk4<S> {
+    /// RK4 with step `h` and a budget of 10 000 000 steps.
+    ///
+    /// `h` is checked when integrating: it must be positive and finite.
+    pub fn new(h: S) -> Self {
+        Self {
+            h,
+            max_steps: 10_000_000,
+        }
+    }
+
+    /// The step budget; exceeding it is
+    /// [`TooManySteps`](IntegrationError::TooManySteps), so a step size that
+    /// is far too small fails instead of running for hours.
+    pub fn max_steps(mut self, max_steps: usize) -> Self {
+        self.max_steps = max_steps;
+        self
+    }
+
+    /// The step size.
+    pub fn step_size(&self) -> S {
+        self.h
+    }
+}
+
+impl<S: RealField + Copy> Integrator<S> for Rk4<S> {
+    fn integrate<L, const N: usize>(
+        &self,
+        model: &L,
+        t0: S,
+        q0: SVector<S, N>,
+        qdot0: SVector<S, N>,
+        times: &[S],
+    ) -> IntegrationResult<S, N>
+    where
+        L: Lagrangian<N, Scalar = S>,
+    {
+        let h = self.h;
+        if !(h.is_finite() && h > S::zero()) {
+            return Err(invalid(InvalidInput::InvalidStepSize { h }));
+        }
+        let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
+        let (mut t, mut q, mut qdot) = (t0, q0, qdot0);
+
+        while let Some(target) = rec.pending() {
+            let (start, span) = (t, target - t);
+            let steps = steps_to_cover(span, h);
+            let step = span / nalgebra::convert::<f64, S>(steps as f64);
+            if start + step == start {
+                let error = IntegrationError::StepSizeUnderflow {
+                    t,
+                    h: step,
+                    q,
+                    qdot,
+                };
+                return Err(rec.fail(error));
+            }
+            for k in 1..=steps {
+                if rec.stats.steps_accepted >= self.max_steps {
+                    let max_steps = self.max_steps;
+                    let error = IntegrationError::TooManySteps {
+                        t,
+                        max_steps,
+                        q,
+                        qdot,
+                    };
+                    return Err(rec.fail(error));
+                }
+                // Positions from the interval start, so rounding does not
+                // accumulate in t and the last step lands on the target.
+                let t_next = if k == steps {
+                    target
+                } else {
+                    start + step * nalgebra::convert::<f64, S>(k as f64)
+                };
+                match rk4_step(&mut rec, model, t, &q, &qdot, t_next - t) {
+                    Ok((q_next, qdot_next)) => (q, qdot) = (q_next, qdot_next),
+                    Err(error) => return Err(rec.fail(error)),
+                }
+                t = t_next;
+                rec.stats.steps_accepted += 1;
+            }
+            // The last step's state is not evaluated by the model, so check it
+            // here rather than record a NaN.
+            if !(q.iter().chain(qdot.iter()).all(|x| x.is_finite())) {
+                let value = NonFiniteValue::State;
+                let error = IntegrationError::NonFiniteState { t, q, qdot, value };
+                return Err(rec.fail(error));
+            }
+            while rec.pending() == Some(target) {
+                rec.record(target, q, qdot);
+            }
+        }
+        Ok(rec.finish())
+    }
+}
+
+/// The fewest equal steps no longer than `h` that cover `span`, forgiving a
+/// few ulps so that a span of exactly `10 h` in decimal takes 10 steps, not
+/// 11. Saturates at `usize::MAX`; the step budget stops it long before.
+fn steps_to_cover<S: RealField + Copy>(span: S, h: S) -> usize {
+    let ratio = span / h;
+    let slack: S = nalgebra::convert(8.0);
+    let steps = (ratio * (S::one() - slack * S::default_epsilon())).ceil();
+    let steps: f64 = nalgebra::try_convert(steps).unwrap_or(f64::MAX);
+    // `as` saturates; a span of zero never reaches here.
+    (steps as usize).max(1)
+}
+
+/// `(q, q̇)`.
+type State<S, const N: usize> = (SVector<S, N>, SVector<S, N>);
+
+/// One RK4 step for `y = (q, q̇)`, `ẏ = (q̇, q̈)`.
+fn rk4_step<L: Lagrangian<N>, const N: usize>(
+    rec: &mut Recorder<'_, L::Scalar, N>,
+    model: &L,
+    t: L::Scalar,
+    q: &SVector<L::Scalar, N>,
+    qdot: &SVector<L::Scalar, N>,
+    h: L::Scalar,
+) -> Result<State<L::Scalar, N>, IntegrationError<L::Scalar, N>> {
+    let two: L::Scalar = nalgebra::convert(2.0);
+    let half = h / two;
+    let sixth = h / nalgebra::convert(6.0);
+
+    let (v1, a1) = (*qdot, rec.rhs(model, t, q, qdot)?);
+    let (q2, v2) = (q + v1 * half, qdot + a1 * half);
+    let a2 = rec.rhs(model, t + half, &q2, &v2)?;
+    let (q3, v3) = (q + v2 * half, qdot + a2 * half);
+    let a3 = rec.rhs(model, t + half, &q3, &v3)?;
+    let (q4, v4) = (q + v3 * h, qdot + a3 * h);
+    let a4 = rec.rhs(model, t + h, &q4, &v4)?;
+
+    let q_next = q + (v1 + (v2 + v3) * two + v4) * sixth;
+    let qdot_next = qdot + (a1 + (a2 + a3) * two + a4) * sixth;
+    Ok((q_next, qdot_next))
+}

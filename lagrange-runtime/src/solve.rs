@@ -1,0 +1,240 @@
+//! The accelerations: solving `M q̈ = f` on the stack.
+//!
+//! Every integrator gets `q̈` from [`acceleration`], so singular and
+//! non-finite cases are detected in one place and never leak out as NaN.
+
+use nalgebra::{ComplexField, RealField, SMatrix, SVector};
+
+use crate::{IntegrationError, Lagrangian, NonFiniteValue};
+
+/// Why `M q̈ = f` has no usable solution.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SolveError {
+    /// `M` has a NaN or infinite entry.
+    #[error("the mass matrix has a NaN or infinite entry")]
+    NonFiniteMassMatrix,
+    /// `f` has a NaN or infinite entry.
+    #[error("the forcing has a NaN or infinite entry")]
+    NonFiniteForcing,
+    /// `M` is singular, or so close to it that `q̈` would be noise or overflow.
+    #[error("the mass matrix is singular or too ill-conditioned for the scalar type")]
+    Singular,
+}
+
+/// Solves `M q̈ = f` without allocating.
+///
+/// Mass matrices are symmetric positive definite whenever the kinetic energy
+/// is, so Cholesky comes first; LU with partial pivoting catches the rest
+/// (a hand-written or semi-definite `M`). Either factorization is refused
+/// when its smallest pivot is below `N ε` times its largest: the solve would
+/// then amplify rounding by more than `1 / (N ε)`, i.e. return noise. A
+/// non-finite result from finite input (overflow) counts as singular too.
+///
+/// ```
+/// use lagrange_runtime::solve::{solve_mass_matrix, SolveError};
+/// use nalgebra::{Matrix2, Vector2};
+///
+/// let m = Matrix2::new(2.0, 1.0, 1.0, 2.0);
+/// let qdd = solve_mass_matrix(&m, &Vector2::new(3.0, 3.0)).unwrap();
+/// assert!((qdd - Vector2::new(1.0, 1.0)).norm() < 1e-15);
+///
+/// // A coordinate without inertia: the second row of M is zero.
+/// let m = Matrix2::new(1.0, 0.0, 0.0, 0.0);
+/// assert_eq!(solve_mass_matrix(&m, &Vector2::new(1.0, 1.0)), Err(SolveError::Singular));
+/// ```
+pub fn solve_mass_matrix<S: RealField + Copy, const N: usize>(
+    m: &SMatrix<S, N, N>,
+    f: &SVector<S, N>,
+) -> Result<SVector<S, N>, SolveError> {
+    if !all_finite(m.iter()) {
+        return Err(SolveError::NonFiniteMassMatrix);
+    }
+    if !all_finite(f.iter()) {
+        return Err(SolveError::NonFiniteForcing);
+    }
+    // In exact arithmetic LU without pivoting of an SPD matrix has pivots
+    // L_ii², so both factorizations are judged on the same scale.
+    let solution = match m.cholesky() {
+        Some(chol)
+            if well_conditioned::<S, N>(chol.l_dirty().diagonal().iter().map(|&l| l * l)) =>
+        {
+            chol.solve(f)
+        }
+        _ => lu_solve(*m, *f)?,
+    };
+    if all_finite(solution.iter()) {
+        Ok(solution)
+    } else {
+        Err(SolveError::Singular)
+    }
+}
+
+/// Gaussian elimination with partial pivoting, on a stack copy. (nalgebra's
+/// `LU` needs a typenum bound that a generic `const N` cannot name.)
+fn lu_solve<S: RealField + Copy, const N: usize>(
+    mut a: SMatrix<S, N, N>,
+    mut b: SVector<S, N>,
+) -> Result<SVector<S, N>, SolveError> {
+    for k in 0..N {
+        let p = (k + 1..N).fold(k, |p, i| {
+            if a[(i, k)].abs() > a[(p, k)].abs() {
+                i
+            } else {
+                p
+            }
+        });
+        a.swap_rows(k, p);
+        b.swap_rows(k, p);
+        let pivot = a[(k, k)];
+        if pivot == S::zero() {
+            return Err(SolveError::Singular);
+        }
+        for i in k + 1..N {
+            let l = a[(i, k)] / pivot;
+            for j in k + 1..N {
+                let akj = a[(k, j)];
+                a[(i, j)] -= l * akj;
+            }
+            let bk = b[k];
+            b[i] -= l * bk;
+        }
+    }
+    if !well_conditioned::<S, N>(a.diagonal().iter().copied()) {
+        return Err(SolveError::Singular);
+    }
+    for i in (0..N).rev() {
+        let mut x = b[i];
+        for j in i + 1..N {
+            x -= a[(i, j)] * b[j];
+        }
+        b[i] = x / a[(i, i)];
+    }
+    Ok(b)
+}
+
+/// `q̈` of `model` in the state `(t, q, q̇)`: one right-hand side evaluation.
+///
+/// Errors carry `t` and the state, as the integrators report them.
+pub fn acceleration<L: Lagrangian<N>, const N: usize>(
+    model: &L,
+    t: L::Scalar,
+    q: &SVector<L::Scalar, N>,
+    qdot: &SVector<L::Scalar, N>,
+) -> Result<SVector<L::Scalar, N>, IntegrationError<L::Scalar, N>> {
+    let non_finite = |value| IntegrationError::NonFiniteState {
+        t,
+        q: *q,
+        qdot: *qdot,
+        value,
+    };
+    if !t.is_finite() || !all_finite(q.iter()) || !all_finite(qdot.iter()) {
+        return Err(non_finite(NonFiniteValue::State));
+    }
+    let (m, f) = model.mass_matrix_and_forcing(t, q, qdot);
+    solve_mass_matrix(&m, &f).map_err(|err| match err {
+        SolveError::NonFiniteMassMatrix => non_finite(NonFiniteValue::MassMatrix),
+        SolveError::NonFiniteForcing => non_finite(NonFiniteValue::Forcing),
+        SolveError::Singular => IntegrationError::SingularMassMatrix {
+            t,
+            q: *q,
+            qdot: *qdot,
+        },
+    })
+}
+
+fn all_finite<'a, S: RealField + Copy>(mut values: impl Iterator<Item = &'a S>) -> bool {
+    values.all(|x| x.is_finite())
+}
+
+/// Whether the smallest `|pivot|` exceeds `N ε` times the largest (vacuously
+/// true for `N = 0`).
+fn well_conditioned<S: RealField + Copy, const N: usize>(pivots: impl Iterator<Item = S>) -> bool {
+    let (smallest, largest) = pivots.fold((None, S::zero()), |(small, large), p| {
+        let p = p.abs();
+        (Some(small.map_or(p, |s: S| s.min(p))), large.max(p))
+    });
+    let n: S = nalgebra::convert(N as f64);
+    smallest.is_none_or(|s| s > n * S::default_epsilon() * largest)
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
+
+    use super::*;
+
+    #[test]
+    fn symmetric_positive_definite_mass_matrix_is_solved() {
+        let m = Matrix3::new(4.0, 1.0, 0.5, 1.0, 3.0, 0.2, 0.5, 0.2, 2.0);
+        let expected = Vector3::new(1.0, -2.0, 0.5);
+        let qdd = solve_mass_matrix(&m, &(m * expected)).unwrap();
+        // Cholesky is backward stable: error ≲ cond(M) ε |q̈| with cond(M) < 10.
+        assert!((qdd - expected).norm() < 1e-14);
+    }
+
+    #[test]
+    fn indefinite_matrix_falls_back_to_lu() {
+        // Symmetric but indefinite: Cholesky refuses it, LU solves it.
+        let m = Matrix2::new(0.0, 1.0, 1.0, 0.0);
+        assert!(m.cholesky().is_none());
+        let qdd = solve_mass_matrix(&m, &Vector2::new(2.0, 3.0)).unwrap();
+        assert_eq!(qdd, Vector2::new(3.0, 2.0));
+    }
+
+    #[test]
+    fn coordinate_without_inertia_is_singular() {
+        let m = Matrix2::new(1.0, 0.0, 0.0, 0.0);
+        let f = Vector2::new(1.0, 0.0);
+        assert_eq!(solve_mass_matrix(&m, &f), Err(SolveError::Singular));
+    }
+
+    #[test]
+    fn nearly_rank_deficient_matrix_is_numerically_singular() {
+        // The second pivot is exactly ε (M₂₂ - M₂₁²/M₁₁ = ε): below N ε
+        // relative to the first, so q̈ would be rounding noise times 1/ε.
+        let m = Matrix2::new(1.0, 1.0, 1.0, 1.0 + f64::EPSILON);
+        assert_eq!(
+            solve_mass_matrix(&m, &Vector2::new(1.0, 1.0)),
+            Err(SolveError::Singular)
+        );
+    }
+
+    #[test]
+    fn badly_scaled_but_regular_mass_matrix_is_accepted() {
+        // Pivot ratio 1e-12 ≫ N ε = 4.4e-16: a light and a heavy body.
+        let m = Matrix2::new(1e-6, 0.0, 0.0, 1e6);
+        let qdd = solve_mass_matrix(&m, &Vector2::new(1e-6, 1e6)).unwrap();
+        assert!((qdd - Vector2::new(1.0, 1.0)).norm() < 1e-15);
+    }
+
+    #[test]
+    fn nan_in_mass_matrix_or_forcing_is_reported_not_propagated() {
+        let m = Matrix2::new(1.0, 0.0, 0.0, f64::NAN);
+        let f = Vector2::new(1.0, 1.0);
+        assert_eq!(
+            solve_mass_matrix(&m, &f),
+            Err(SolveError::NonFiniteMassMatrix)
+        );
+        let f = Vector2::new(f64::INFINITY, 1.0);
+        assert_eq!(
+            solve_mass_matrix(&Matrix2::identity(), &f),
+            Err(SolveError::NonFiniteForcing)
+        );
+    }
+
+    #[test]
+    fn overflowing_acceleration_counts_as_singular() {
+        let m = Matrix2::new(1e-300, 0.0, 0.0, 1e-300);
+        let f = Vector2::new(1e300, 1.0);
+        assert_eq!(solve_mass_matrix(&m, &f), Err(SolveError::Singular));
+    }
+
+    #[test]
+    fn single_precision_solve_works() {
+        let m = Matrix2::new(2.0f32, 1.0, 1.0, 2.0);
+        let qdd = solve_mass_matrix(&m, &Vector2::new(3.0, 3.0)).unwrap();
+        // Residual of a backward-stable solve with cond(M) = 3: a few ε_f32.
+        assert!((qdd - Vector2::new(1.0, 1.0)).norm() < 1e-6);
+    }
+}

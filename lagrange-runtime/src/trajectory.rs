@@ -1,0 +1,160 @@
+//! The result of an integration: the state at each requested time.
+//!
+//! Only the requested samples are stored, never the steps in between, so
+//! memory is set by the caller's sample times and not by the tolerances.
+
+use nalgebra::{RealField, SVector};
+
+/// The state `(q, q̇)` at each requested sample time, in order, and the work
+/// it took.
+///
+/// ```
+/// # use lagrange_runtime::Trajectory;
+/// fn print_positions(trajectory: &Trajectory<f64, 2>) {
+///     for sample in trajectory {
+///         println!("t = {}: q = ({}, {})", sample.t, sample.q[0], sample.q[1]);
+///     }
+/// }
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Trajectory<S, const N: usize> {
+    times: Vec<S>,
+    positions: Vec<SVector<S, N>>,
+    velocities: Vec<SVector<S, N>>,
+    stats: Stats,
+}
+
+/// One sample of a [`Trajectory`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample<S, const N: usize> {
+    /// The sample time.
+    pub t: S,
+    /// Generalized coordinates at `t`.
+    pub q: SVector<S, N>,
+    /// Generalized velocities at `t`.
+    pub qdot: SVector<S, N>,
+}
+
+/// The work an integration did, for comparing methods and tolerances.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct Stats {
+    /// Steps kept.
+    pub steps_accepted: usize,
+    /// Steps tried and thrown away: error estimate too large, or a stage
+    /// where the model could not be evaluated. Always zero for fixed steps.
+    pub steps_rejected: usize,
+    /// Right-hand side evaluations: one call of
+    /// [`Lagrangian::mass_matrix_and_forcing`](crate::Lagrangian::mass_matrix_and_forcing)
+    /// plus one solve of `M q̈ = f`.
+    pub rhs_evals: usize,
+}
+
+impl<S: RealField + Copy, const N: usize> Trajectory<S, N> {
+    /// An empty trajectory with room for `samples` samples, so that
+    /// recording them never reallocates.
+    pub(crate) fn with_capacity(samples: usize) -> Self {
+        Self {
+            times: Vec::with_capacity(samples),
+            positions: Vec::with_capacity(samples),
+            velocities: Vec::with_capacity(samples),
+            stats: Stats::default(),
+        }
+    }
+
+    pub(crate) fn push(&mut self, t: S, q: SVector<S, N>, qdot: SVector<S, N>) {
+        self.times.push(t);
+        self.positions.push(q);
+        self.velocities.push(qdot);
+    }
+
+    pub(crate) fn set_stats(&mut self, stats: Stats) {
+        self.stats = stats;
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.times.len()
+    }
+
+    /// Whether there are no samples (none requested, or a failure before the
+    /// first one).
+    pub fn is_empty(&self) -> bool {
+        self.times.is_empty()
+    }
+
+    /// The sample times, equal to the requested ones.
+    pub fn times(&self) -> &[S] {
+        &self.times
+    }
+
+    /// `q` at each sample time.
+    pub fn positions(&self) -> &[SVector<S, N>] {
+        &self.positions
+    }
+
+    /// `q̇` at each sample time.
+    pub fn velocities(&self) -> &[SVector<S, N>] {
+        &self.velocities
+    }
+
+    /// The `i`-th sample, if there is one.
+    pub fn get(&self, i: usize) -> Option<Sample<S, N>> {
+        Some(Sample {
+            t: *self.times.get(i)?,
+            q: self.positions[i],
+            qdot: self.velocities[i],
+        })
+    }
+
+    /// The last sample: the final state of a successful integration.
+    pub fn last(&self) -> Option<Sample<S, N>> {
+        self.len().checked_sub(1).and_then(|i| self.get(i))
+    }
+
+    /// The samples in time order.
+    pub fn iter(&self) -> Samples<'_, S, N> {
+        Samples {
+            trajectory: self,
+            next: 0,
+        }
+    }
+
+    /// The work the integration did.
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+}
+
+impl<'a, S: RealField + Copy, const N: usize> IntoIterator for &'a Trajectory<S, N> {
+    type Item = Sample<S, N>;
+    type IntoIter = Samples<'a, S, N>;
+
+    fn into_iter(self) -> Self::IntoIter {
+        self.iter()
+    }
+}
+
+/// Iterator over the samples of a [`Trajectory`], from [`Trajectory::iter`].
+#[derive(Debug, Clone)]
+pub struct Samples<'a, S, const N: usize> {
+    trajectory: &'a Trajectory<S, N>,
+    next: usize,
+}
+
+impl<S: RealField + Copy, const N: usize> Iterator for Samples<'_, S, N> {
+    type Item = Sample<S, N>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        let sample = self.trajectory.get(self.next)?;
+        self.next += 1;
+        Some(sample)
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = self.trajectory.len() - self.next;
+        (left, Some(left))
+    }
+}
+
+impl<S: RealField + Copy, const N: usize> ExactSizeIterator for Samples<'_, S, N> {}
