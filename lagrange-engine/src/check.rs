@@ -16,7 +16,9 @@ pub fn potential_has_no_velocity(model: &mut Model) -> syn::Result<()> {
     };
     let vel = velocities[i];
     let ast = model.potential.ast.clone();
-    let range = model.locate(&ast, &|pool: &Pool, id: ExprId| pool.depends_on(id, vel));
+    let range = model.locate(&ast, &|pool: &mut Pool, id: ExprId| {
+        pool.depends_on(id, vel)
+    });
     Err(range.error(format!(
         "the potential energy depends on the velocity `dot({})`: V must be a function of the coordinates and `t` only \
          (velocity-dependent forces go in `forces:` or `dissipation:`)",
@@ -36,7 +38,15 @@ pub fn mass_matrix_is_regular(model: &mut Model, eq: &Equations) -> syn::Result<
                 .iter()
                 .position(|&v| model.pool.depends_on(m, v))
             {
-                return Err(model.kinetic.keyword_and_value().error(format!(
+                // Underline the smallest term whose ∂²/∂q̇_i∂q̇_j still holds q̇_k.
+                let (vi, vj, vk) = (s.velocities[i], s.velocities[j], s.velocities[k]);
+                let ast = model.kinetic.ast.clone();
+                let range = model.locate(&ast, &|pool: &mut Pool, id: ExprId| {
+                    let d = pool.diff(id, vi);
+                    let d = pool.diff(d, vj);
+                    pool.depends_on(d, vk)
+                });
+                return Err(range.error(format!(
                     "the kinetic energy is not quadratic in the velocities: ∂²T/∂dot({})∂dot({}) depends on `dot({})`, \
                      so the mass matrix would depend on the velocities",
                     model.coordinates[i], model.coordinates[j], model.coordinates[k]

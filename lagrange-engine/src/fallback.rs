@@ -18,11 +18,19 @@ pub struct Stub {
 
 impl Stub {
     pub fn of(def: &ModelDef) -> Self {
-        let mut dof = 0;
+        // Counted as lowering will count them once fixed: a duplicated name
+        // or `t` is the error, not an extra coordinate.
+        let mut coordinates: Vec<&Ident> = Vec::new();
         let mut parameters = Vec::new();
         for item in &def.items {
             match item {
-                Item::Coordinates { names, .. } => dof += names.len(),
+                Item::Coordinates { names, .. } => {
+                    for n in names {
+                        if !coordinates.contains(&n) && n != "t" {
+                            coordinates.push(n);
+                        }
+                    }
+                }
                 Item::Parameters { names, .. } => {
                     for n in names {
                         if !parameters.contains(n) && n != "t" {
@@ -37,7 +45,7 @@ impl Stub {
             attrs: def.attrs.clone(),
             vis: def.vis.clone(),
             name: def.name.clone(),
-            dof,
+            dof: coordinates.len(),
             parameters,
         }
     }

@@ -120,10 +120,10 @@ fn function_list() -> String {
 pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
     let mut coordinates: Vec<Ident> = Vec::new();
     let mut parameters: Vec<Ident> = Vec::new();
-    let mut declared: HashMap<String, Ident> = HashMap::new();
+    let mut declared: HashMap<String, &str> = HashMap::new();
     let mut coordinates_keyword = None;
 
-    let mut declare = |name: &Ident, what: &str| -> syn::Result<()> {
+    let mut declare = |name: &Ident, what: &'static str| -> syn::Result<()> {
         if name == "t" {
             return Err(syn::Error::new(
                 name.span(),
@@ -131,13 +131,19 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
             ));
         }
         if let Some(first) = declared.get(&name.to_string()) {
-            let _ = first;
+            let roles = if *first == what {
+                format!(" as a {what}")
+            } else {
+                format!(", as a {first} and as a {what}")
+            };
             return Err(syn::Error::new(
                 name.span(),
-                format!("`{name}` is declared twice: each coordinate, parameter and `let` needs its own name"),
+                format!(
+                    "`{name}` is declared twice{roles}: each coordinate, parameter and `let` needs its own name"
+                ),
             ));
         }
-        declared.insert(name.to_string(), name.clone());
+        declared.insert(name.to_string(), what);
         Ok(())
     };
 
@@ -466,10 +472,10 @@ impl Model {
 
     /// The smallest piece of `e` that is `bad`, descending from `e` (assumed
     /// bad) into its leftmost bad operand: the token to underline.
-    pub fn locate(&mut self, e: &Expr, bad: &dyn Fn(&Pool, ExprId) -> bool) -> SpanRange {
+    pub fn locate(&mut self, e: &Expr, bad: &dyn Fn(&mut Pool, ExprId) -> bool) -> SpanRange {
         for child in e.children() {
             if let Some(id) = self.lower_sub(child) {
-                if bad(&self.pool, id) {
+                if bad(&mut self.pool, id) {
                     return self.locate(child, bad);
                 }
             }

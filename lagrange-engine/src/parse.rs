@@ -49,7 +49,7 @@ pub fn parse(tokens: TokenStream) -> syn::Result<Parsed> {
         let mut items = Vec::new();
         let mut error: Option<syn::Error> = None;
         while !body.is_empty() {
-            match parse_item(&body) {
+            match parse_item(&body, &mut error) {
                 Ok(item) => items.push(item),
                 Err(e) => {
                     error.get_or_insert(e);
@@ -88,13 +88,15 @@ fn skip_past_semicolon(input: ParseStream) -> syn::Result<()> {
     })
 }
 
-fn parse_item(input: ParseStream) -> syn::Result<Item> {
+/// `error` takes a mistake the parser recovered from (a missing `;` before
+/// the next section), so that the section is kept and the stub complete.
+fn parse_item(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result<Item> {
     if input.peek(Token![let]) {
         input.parse::<Token![let]>()?;
         let name: Ident = input.parse()?;
         input.parse::<Token![=]>()?;
         let value = parse_expr(input)?;
-        expect_semicolon(input)?;
+        expect_semicolon(input, error)?;
         return Ok(Item::Let { name, value });
     }
     if !input.peek(syn::Ident) {
@@ -119,20 +121,20 @@ fn parse_item(input: ParseStream) -> syn::Result<Item> {
     input.parse::<Token![:]>()?;
     Ok(match section.as_str() {
         "coordinates" => Item::Coordinates {
-            names: parse_names(input)?,
+            names: parse_names(input, error)?,
             keyword,
         },
         "parameters" => Item::Parameters {
-            names: parse_names(input)?,
+            names: parse_names(input, error)?,
             keyword,
         },
         "forces" => Item::Forces {
-            entries: parse_forces(input)?,
+            entries: parse_forces(input, error)?,
             keyword,
         },
         _ => {
             let value = parse_expr(input)?;
-            expect_semicolon(input)?;
+            expect_semicolon(input, error)?;
             match section.as_str() {
                 "kinetic" => Item::Kinetic { keyword, value },
                 "potential" => Item::Potential { keyword, value },
@@ -142,9 +144,30 @@ fn parse_item(input: ParseStream) -> syn::Result<Item> {
     })
 }
 
-fn expect_semicolon(input: ParseStream) -> syn::Result<()> {
+/// A missing `;` right before the next section: recorded in `error`, and the
+/// parse goes on as if it were there.
+fn recover_missing_semicolon(input: ParseStream, error: &mut Option<syn::Error>) -> bool {
+    let next = if input.peek(Token![let]) {
+        "let".to_string()
+    } else if input.peek(syn::Ident) && input.peek2(Token![:]) {
+        match input.fork().parse::<Ident>() {
+            Ok(keyword) => format!("{keyword}:"),
+            Err(_) => return false,
+        }
+    } else {
+        return false;
+    };
+    error.get_or_insert(input.error(format!(
+        "expected `;` before `{next}`: each section ends with `;`"
+    )));
+    true
+}
+
+fn expect_semicolon(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result<()> {
     if input.peek(Token![;]) {
         input.parse::<Token![;]>()?;
+        Ok(())
+    } else if recover_missing_semicolon(input, error) {
         Ok(())
     } else if input.is_empty() {
         Err(input.error("expected `;` at the end of this section"))
@@ -153,7 +176,7 @@ fn expect_semicolon(input: ParseStream) -> syn::Result<()> {
     }
 }
 
-fn parse_names(input: ParseStream) -> syn::Result<Vec<Ident>> {
+fn parse_names(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result<Vec<Ident>> {
     let mut names = Vec::new();
     loop {
         if input.peek(Token![;]) && !names.is_empty() {
@@ -166,13 +189,18 @@ fn parse_names(input: ParseStream) -> syn::Result<Vec<Ident>> {
         } else if input.peek(Token![;]) {
             input.parse::<Token![;]>()?;
             return Ok(names);
+        } else if recover_missing_semicolon(input, error) {
+            return Ok(names);
         } else {
             return Err(input.error("expected `,` or `;` after a name"));
         }
     }
 }
 
-fn parse_forces(input: ParseStream) -> syn::Result<Vec<(Ident, Expr)>> {
+fn parse_forces(
+    input: ParseStream,
+    error: &mut Option<syn::Error>,
+) -> syn::Result<Vec<(Ident, Expr)>> {
     let mut entries = Vec::new();
     loop {
         if input.peek(Token![;]) && !entries.is_empty() {
@@ -192,6 +220,8 @@ fn parse_forces(input: ParseStream) -> syn::Result<Vec<(Ident, Expr)>> {
             input.parse::<Token![,]>()?;
         } else if input.peek(Token![;]) {
             input.parse::<Token![;]>()?;
+            return Ok(entries);
+        } else if recover_missing_semicolon(input, error) {
             return Ok(entries);
         } else {
             return Err(input.error("expected an operator, `,` or `;`"));
@@ -296,18 +326,39 @@ fn parse_postfix(input: ParseStream) -> syn::Result<Expr> {
 fn parse_args(input: ParseStream) -> syn::Result<(Vec<Expr>, proc_macro2::Span)> {
     let inner;
     let paren = parenthesized!(inner in input);
-    let mut args = Vec::new();
-    while !inner.is_empty() {
-        args.push(parse_expr(&inner)?);
-        if inner.is_empty() {
-            break;
+    let args = drain_on_error(&inner, |inner| {
+        let mut args = Vec::new();
+        while !inner.is_empty() {
+            args.push(parse_expr(inner)?);
+            if inner.is_empty() {
+                break;
+            }
+            if !inner.peek(Token![,]) {
+                return Err(inner.error("expected an operator, `,` or `)`"));
+            }
+            inner.parse::<Token![,]>()?;
         }
-        if !inner.peek(Token![,]) {
-            return Err(inner.error("expected an operator, `,` or `)`"));
-        }
-        inner.parse::<Token![,]>()?;
-    }
+        Ok(args)
+    })?;
     Ok((args, paren.span.close()))
+}
+
+/// Parses a delimited group; on error, consumes the rest of it. Tokens left
+/// in a group make syn fail the whole macro input with its own "unexpected
+/// token", which would replace our error and lose the stub.
+fn drain_on_error<T>(
+    inner: ParseStream,
+    f: impl FnOnce(ParseStream) -> syn::Result<T>,
+) -> syn::Result<T> {
+    f(inner).inspect_err(|_| {
+        let _ = inner.step(|cursor| {
+            let mut rest = *cursor;
+            while let Some((_, next)) = rest.token_tree() {
+                rest = next;
+            }
+            Ok(((), rest))
+        });
+    })
 }
 
 /// `primary := number | name | name '(' args ')' | '(' sum ')'`
@@ -336,15 +387,20 @@ fn parse_primary(input: ParseStream) -> syn::Result<Expr> {
     }
     if input.peek(syn::token::Paren) {
         let inner;
-        parenthesized!(inner in input);
+        let paren = parenthesized!(inner in input);
         if inner.is_empty() {
-            return Err(inner.error("expected an expression inside `()`"));
+            return Err(syn::Error::new(
+                paren.span.join(),
+                "empty parentheses: expected an expression inside `()`",
+            ));
         }
-        let e = parse_expr(&inner)?;
-        if !inner.is_empty() {
-            return Err(inner.error("expected an operator or `)`"));
-        }
-        return Ok(e);
+        return drain_on_error(&inner, |inner| {
+            let e = parse_expr(inner)?;
+            if !inner.is_empty() {
+                return Err(inner.error("expected an operator or `)`"));
+            }
+            Ok(e)
+        });
     }
     if input.peek(syn::Ident) {
         let name: Ident = input.parse()?;

@@ -1,0 +1,13 @@
+use lagrange::prelude::*;
+
+lagrangian! {
+    pub struct Oscillator {
+        coordinates: x;
+        parameters: m, k, g;
+        kinetic: m/2*dot(x)^2;
+        potential: k/2*x^2;
+        potential: m*g*x;
+    }
+}
+
+fn main() {}

@@ -1,0 +1,14 @@
+use lagrange::prelude::*;
+
+lagrangian! {
+    pub struct Pendulum {
+        coordinates: theta;
+        parameters: m, l, g, c;
+        let x = l*sin(theta);
+        kinetic: m/2*l^2*dot(theta)^2;
+        potential: -m*g*l*cos(theta);
+        forces: x = -c*dot(x);
+    }
+}
+
+fn main() {}

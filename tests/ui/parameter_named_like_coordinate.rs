@@ -1,0 +1,12 @@
+use lagrange::prelude::*;
+
+lagrangian! {
+    pub struct Oscillator {
+        coordinates: x;
+        parameters: m, k, x;
+        kinetic: m/2*dot(x)^2;
+        potential: k/2*x^2;
+    }
+}
+
+fn main() {}

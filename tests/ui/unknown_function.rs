@@ -1,0 +1,12 @@
+use lagrange::prelude::*;
+
+lagrangian! {
+    pub struct Pendulum {
+        coordinates: theta;
+        parameters: m, l, g;
+        kinetic: m/2*l^2*dot(theta)^2;
+        potential: -m*g*l*cosine(theta);
+    }
+}
+
+fn main() {}
