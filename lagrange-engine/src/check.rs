@@ -3,9 +3,38 @@
 //! not quadratic in the velocities, a coordinate without kinetic energy, a
 //! mass matrix that is singular at every state.
 
+use crate::ast::Expr;
 use crate::derive::Equations;
 use crate::expr::{ExprId, Pool};
 use crate::model::{Model, SymKind};
+
+/// Whether a non-finite constant (a division by zero, `ln(0)`...) is part of `id`.
+fn has_non_finite_constant(pool: &Pool, id: ExprId) -> bool {
+    pool.post_order(&[id])
+        .into_iter()
+        .any(|x| pool.as_num(x).is_some_and(|v| !v.is_finite()))
+}
+
+/// No section may fold to an infinite or undefined constant.
+pub fn constants_are_finite(model: &mut Model) -> syn::Result<()> {
+    let mut sections: Vec<Expr> = vec![model.kinetic.ast.clone(), model.potential.ast.clone()];
+    sections.extend(model.dissipation.as_ref().map(|d| d.ast.clone()));
+    sections.extend(model.forces.iter().flatten().map(|f| f.1.clone()));
+    for ast in sections {
+        let Some(id) = model.lower_section(&ast) else {
+            continue;
+        };
+        if has_non_finite_constant(&model.pool, id) {
+            let range = model.locate(&ast, &|pool: &mut Pool, id| {
+                has_non_finite_constant(pool, id)
+            });
+            return Err(range.error(
+                "this evaluates to an infinite or undefined constant (a division by zero, or a function outside its domain)",
+            ));
+        }
+    }
+    Ok(())
+}
 
 /// V must be a function of t and q alone.
 pub fn potential_has_no_velocity(model: &mut Model) -> syn::Result<()> {

@@ -149,6 +149,7 @@ pub fn derive_with_budget(input: TokenStream, budget: usize) -> syn::Result<Deri
 
 fn derive_model(def: ast::ModelDef, budget: usize) -> syn::Result<Derived> {
     let mut model = model::lower_with_pool(def, expr::Pool::with_budget(budget))?;
+    check::constants_are_finite(&mut model)?;
     check::potential_has_no_velocity(&mut model)?;
     let equations = derive::euler_lagrange(&mut model);
     model

@@ -470,6 +470,11 @@ impl Model {
         id
     }
 
+    /// The node of a whole section's expression.
+    pub fn lower_section(&mut self, e: &Expr) -> Option<ExprId> {
+        self.lower_sub(e)
+    }
+
     /// The smallest piece of `e` that is `bad`, descending from `e` (assumed
     /// bad) into its leftmost bad operand: the token to underline.
     pub fn locate(&mut self, e: &Expr, bad: &dyn Fn(&mut Pool, ExprId) -> bool) -> SpanRange {

@@ -73,6 +73,21 @@ pub fn parse(tokens: TokenStream) -> syn::Result<Parsed> {
     parser.parse2(tokens)
 }
 
+/// A name of the model: an identifier, not a raw one (`r#type`), since every
+/// name becomes a local variable of the generated code.
+fn plain_name(input: ParseStream) -> syn::Result<Ident> {
+    let name: Ident = input.parse()?;
+    if name.to_string().starts_with("r#") {
+        return Err(syn::Error::new(
+            name.span(),
+            format!(
+                "raw identifier `{name}`: model names become local variables, choose a name that is not a Rust keyword"
+            ),
+        ));
+    }
+    Ok(name)
+}
+
 fn skip_past_semicolon(input: ParseStream) -> syn::Result<()> {
     input.step(|cursor| {
         let mut rest = *cursor;
@@ -93,7 +108,7 @@ fn skip_past_semicolon(input: ParseStream) -> syn::Result<()> {
 fn parse_item(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result<Item> {
     if input.peek(Token![let]) {
         input.parse::<Token![let]>()?;
-        let name: Ident = input.parse()?;
+        let name: Ident = plain_name(input)?;
         input.parse::<Token![=]>()?;
         let value = parse_expr(input)?;
         expect_semicolon(input, error)?;
@@ -183,7 +198,7 @@ fn parse_names(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Resul
             input.parse::<Token![;]>()?;
             return Ok(names);
         }
-        names.push(input.parse::<Ident>()?);
+        names.push(plain_name(input)?);
         if input.peek(Token![,]) {
             input.parse::<Token![,]>()?;
         } else if input.peek(Token![;]) {
@@ -207,7 +222,7 @@ fn parse_forces(
             input.parse::<Token![;]>()?;
             return Ok(entries);
         }
-        let target: Ident = input.parse()?;
+        let target: Ident = plain_name(input)?;
         if !input.peek(Token![=]) {
             return Err(input.error(
                 "expected `=`: a force is written `coordinate = expression`, e.g. `x1 = -c*dot(x1)`",
@@ -403,7 +418,7 @@ fn parse_primary(input: ParseStream) -> syn::Result<Expr> {
         });
     }
     if input.peek(syn::Ident) {
-        let name: Ident = input.parse()?;
+        let name: Ident = plain_name(input)?;
         if input.peek(syn::token::Paren) {
             let (args, close) = parse_args(input)?;
             return Ok(Expr::Call {
