@@ -1,0 +1,79 @@
+//! The textbook double pendulum: derive, print the equations, simulate the
+//! chaotic case, and report how well each integrator keeps the energy.
+//!
+//! `cargo run --release --example double_pendulum`
+
+use lagrange::nalgebra::Vector2;
+use lagrange::prelude::*;
+
+lagrangian! {
+    /// The double pendulum, absolute angles from the downward vertical.
+    pub struct DoublePendulum {
+        coordinates: theta1, theta2;
+        parameters: m1, m2, l1, l2, g;
+        let x1 = l1*sin(theta1);
+        let y1 = -l1*cos(theta1);
+        let x2 = x1 + l2*sin(theta2);
+        let y2 = y1 - l2*cos(theta2);
+        kinetic: m1/2*(dot(x1)^2 + dot(y1)^2) + m2/2*(dot(x2)^2 + dot(y2)^2);
+        potential: m1*g*y1 + m2*g*y2;
+    }
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let pendulum = DoublePendulum::new(1.0, 1.0, 1.0, 1.0, 9.81);
+    println!("Derived at compile time (M q'' = f, with e_k shared subexpressions):\n");
+    println!("{}", DoublePendulum::<f64>::EQUATIONS);
+
+    // Released from rest at large angles: chaotic.
+    let (q0, qdot0) = (Vector2::new(2.0, 2.5), Vector2::zeros());
+    let e0 = pendulum.energy(0.0, &q0, &qdot0);
+    let times: Vec<f64> = (0..=20).map(|k| 0.5 * k as f64).collect();
+
+    let trajectory = Dopri5::new()
+        .rtol(1e-10)
+        .atol(1e-10)
+        .integrate(&pendulum, 0.0, q0, qdot0, &times)?;
+    println!("Dormand–Prince 5(4), rtol = atol = 1e-10:");
+    println!(
+        "{:>6} {:>12} {:>12} {:>12}",
+        "t", "theta1", "theta2", "E - E0"
+    );
+    for s in &trajectory {
+        let de = pendulum.energy(s.t, &s.q, &s.qdot) - e0;
+        println!(
+            "{:>6.1} {:>12.6} {:>12.6} {:>12.2e}",
+            s.t, s.q[0], s.q[1], de
+        );
+    }
+    println!("{:?}\n", trajectory.stats());
+
+    println!("Energy error at t = 10 by method (the flow conserves E = {e0:.6}):");
+    println!("{:<28} {:>12} {:>10}", "method", "|E - E0|", "rhs evals");
+    let end = |t: &Trajectory<f64, 2>| {
+        let s = t.last().unwrap();
+        (pendulum.energy(s.t, &s.q, &s.qdot) - e0).abs()
+    };
+    for tol in [1e-6, 1e-8, 1e-10, 1e-12] {
+        let t = Dopri5::new()
+            .rtol(tol)
+            .atol(tol)
+            .integrate(&pendulum, 0.0, q0, qdot0, &[10.0])?;
+        println!(
+            "{:<28} {:>12.2e} {:>10}",
+            format!("dopri5 tol {tol:.0e}"),
+            end(&t),
+            t.stats().rhs_evals
+        );
+    }
+    for h in [1e-2, 1e-3, 1e-4] {
+        let t = Rk4::new(h).integrate(&pendulum, 0.0, q0, qdot0, &[10.0])?;
+        println!(
+            "{:<28} {:>12.2e} {:>10}",
+            format!("rk4 h {h:.0e}"),
+            end(&t),
+            t.stats().rhs_evals
+        );
+    }
+    Ok(())
+}
