@@ -4,22 +4,9 @@
 //! `cargo bench --bench double_pendulum`
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use lagrange::models::DoublePendulum;
 use lagrange::nalgebra::{Matrix2, Vector2};
-use lagrange::prelude::*;
 use std::hint::black_box;
-
-lagrangian! {
-    pub struct DoublePendulum {
-        coordinates: theta1, theta2;
-        parameters: m1, m2, l1, l2, g;
-        let x1 = l1*sin(theta1);
-        let y1 = -l1*cos(theta1);
-        let x2 = x1 + l2*sin(theta2);
-        let y2 = y1 - l2*cos(theta2);
-        kinetic: m1/2*(dot(x1)^2 + dot(y1)^2) + m2/2*(dot(x2)^2 + dot(y2)^2);
-        potential: m1*g*y1 + m2*g*y2;
-    }
-}
 
 /// The textbook equations written by hand: one `sin_cos` of the angle
 /// difference, one `sin` per angle, shared products computed once.

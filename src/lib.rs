@@ -93,6 +93,8 @@ pub use lagrange_macros::lagrangian;
 pub use lagrange_runtime::*;
 pub use nalgebra;
 
+pub mod models;
+
 /// Everything a model and a simulation need: the macro, the [`Lagrangian`]
 /// trait, the integrators and their results.
 pub mod prelude {

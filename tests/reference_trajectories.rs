@@ -10,35 +10,10 @@
 //! `C · tol · growth · scale` with `C = 100`: ten times the measured factor,
 //! for a nonlinear problem. A wrong term in M or f gives O(1) errors.
 
+use lagrange::models::{DoublePendulum, TwoMassChain};
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
 use serde_json::Value;
-
-lagrangian! {
-    /// The damped two-mass chain, damping as generalized forces (as in the reference).
-    pub struct TwoMassChain {
-        coordinates: x1, x2;
-        parameters: m1, m2, k1, k2, k3, c1, c2, c3;
-        kinetic: m1/2*dot(x1)^2 + m2/2*dot(x2)^2;
-        potential: k1/2*x1^2 + k2/2*(x2 - x1)^2 + k3/2*x2^2;
-        forces: x1 = -(c1 + c2)*dot(x1) + c2*dot(x2),
-                x2 = c2*dot(x1) - (c2 + c3)*dot(x2);
-    }
-}
-
-lagrangian! {
-    /// The double pendulum, absolute angles from the downward vertical.
-    pub struct DoublePendulum {
-        coordinates: theta1, theta2;
-        parameters: m1, m2, l1, l2, g;
-        let x1 = l1*sin(theta1);
-        let y1 = -l1*cos(theta1);
-        let x2 = x1 + l2*sin(theta2);
-        let y2 = y1 - l2*cos(theta2);
-        kinetic: m1/2*(dot(x1)^2 + dot(y1)^2) + m2/2*(dot(x2)^2 + dot(y2)^2);
-        potential: m1*g*y1 + m2*g*y2;
-    }
-}
 
 struct Sample {
     t: f64,

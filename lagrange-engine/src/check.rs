@@ -158,10 +158,12 @@ fn numeric_rank(model: &Model, eq: &Equations, seed: u64) -> Option<usize> {
             continue;
         }
         a.swap(row, pivot);
-        for r in row + 1..n {
-            let factor = a[r][col] / a[row][col];
-            for c in col..n {
-                a[r][c] -= factor * a[row][c];
+        let (top, below) = a.split_at_mut(row + 1);
+        let pivot_row = &top[row];
+        for r in below.iter_mut() {
+            let factor = r[col] / pivot_row[col];
+            for (x, p) in r[col..].iter_mut().zip(&pivot_row[col..]) {
+                *x -= factor * p;
             }
         }
         rank += 1;

@@ -21,6 +21,7 @@ pub struct Equations {
     pub energy: ExprId,
 }
 
+#[allow(clippy::needless_range_loop)] // (i, j) index M, symmetric: the clearest form
 pub fn euler_lagrange(model: &mut Model) -> Equations {
     let n = model.dof();
     let s = model.symbols.clone();

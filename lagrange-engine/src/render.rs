@@ -165,12 +165,12 @@ pub fn render(model: &Model, eq: &Equations) -> String {
     }
     let c = &model.coordinates;
     for i in 0..n {
-        for j in i..n {
-            writeln!(out, "M[{}, {}] = {}", c[i], c[j], r.text(eq.mass[i][j], 0)).unwrap();
+        for (j, cj) in c.iter().enumerate().skip(i) {
+            writeln!(out, "M[{}, {cj}] = {}", c[i], r.text(eq.mass[i][j], 0)).unwrap();
         }
     }
-    for i in 0..n {
-        writeln!(out, "f[{}] = {}", c[i], r.text(eq.forcing[i], 0)).unwrap();
+    for (ci, &fi) in c.iter().zip(&eq.forcing) {
+        writeln!(out, "f[{ci}] = {}", r.text(fi, 0)).unwrap();
     }
     out
 }
