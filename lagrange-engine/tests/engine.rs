@@ -200,3 +200,87 @@ fn a_derivation_past_the_node_budget_is_an_error_naming_the_budget() {
     // The default budget is ample for it.
     assert!(lagrange_engine::derive(DOUBLE_PENDULUM.parse().unwrap()).is_ok());
 }
+
+const WITH_EVERY_SECTION: &str = r#"
+    pub struct Everything {
+        coordinates: x, theta;
+        parameters: m, l, k, c, g, w;
+        let px = x + l*sin(theta);
+        let py = -l*theta.cos();
+        kinetic: m/2*dot(x)^2 + m/2*(dot(px)^2 + dot(py)^2);
+        potential: k/2*x^2 + m*g*py + atan2(x, l)^-1*0;
+        dissipation: c/2*dot(x)^2;
+        forces: x = w*sin(t), theta = -c*dot(theta);
+    }
+"#;
+
+/// Every one-character deletion and every one-token swap of a model that
+/// uses every section: the engine must answer with items or a
+/// `compile_error!`, never a panic (a panic in a proc macro is an ICE-like
+/// message on the whole invocation, with no span on the mistake).
+#[test]
+fn no_edit_of_a_model_makes_the_engine_panic() {
+    let mut variants: Vec<String> = Vec::new();
+    for (i, _) in WITH_EVERY_SECTION.char_indices() {
+        let mut s = WITH_EVERY_SECTION.to_string();
+        s.remove(i);
+        variants.push(s);
+    }
+    let words = [
+        "dot(",
+        "^",
+        "-",
+        "*",
+        "/",
+        ";",
+        ",",
+        "t",
+        "theta",
+        "x",
+        "(",
+        ")",
+        "0",
+        "1e400",
+        "sqrt(-1)",
+        "ln(0)",
+        "dot(dot(x))",
+        "forces",
+        "kinetic",
+        "let",
+        "r#type",
+        "x.y",
+        ".sin()",
+        "^-",
+    ];
+    let tokens: Vec<&str> = WITH_EVERY_SECTION.split(' ').collect();
+    for k in 0..tokens.len() {
+        for w in words {
+            let mut t = tokens.clone();
+            t[k] = w;
+            variants.push(t.join(" "));
+        }
+    }
+    let (mut errors, mut items) = (0, 0);
+    for v in &variants {
+        let Ok(input) = v.parse::<proc_macro2::TokenStream>() else {
+            continue; // rustc's lexer rejects it before any macro runs
+        };
+        let out = std::panic::catch_unwind(|| lagrange_engine::expand(input).to_string());
+        let out = out.unwrap_or_else(|_| panic!("engine panicked on:\n{v}"));
+        assert!(
+            out.contains("compile_error") || out.contains("fn mass_matrix_and_forcing"),
+            "neither items nor an error for:\n{v}"
+        );
+        if out.contains("compile_error") {
+            errors += 1;
+        } else {
+            items += 1;
+        }
+    }
+    // Most edits break the model, some leave it valid (a deleted space): both
+    // paths must have been exercised for the test to mean anything.
+    assert!(
+        errors > 500 && items > 50,
+        "{errors} errors, {items} valid models"
+    );
+}
