@@ -85,6 +85,26 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         qdot: SVector<S, N>,
     },
 
+    /// The Newton iteration of an implicit method did not converge within
+    /// its iteration limit at a fixed step size `h` (adaptive methods shrink
+    /// the step instead): `h` is too large for the problem's nonlinearity.
+    #[error(
+        "Newton iteration did not converge in {iterations} iterations at t = {t:?} with step          h = {h:?} (q = {}, q̇ = {}); take a smaller step",
+        Row(.q), Row(.qdot)
+    )]
+    NewtonDivergence {
+        /// Time at the start of the failing step.
+        t: S,
+        /// The step size tried.
+        h: S,
+        /// The iteration limit that was reached.
+        iterations: usize,
+        /// Generalized coordinates at `t`.
+        q: SVector<S, N>,
+        /// Generalized velocities at `t`.
+        qdot: SVector<S, N>,
+    },
+
     /// The call itself was wrong; nothing was integrated.
     #[error("invalid input: {0}")]
     InvalidInput(InvalidInput<S>),
@@ -216,6 +236,17 @@ pub enum InvalidInput<S: RealField + Copy> {
     InvalidAbsoluteTolerance {
         /// The tolerance given.
         atol: S,
+    },
+
+    /// The method needs something of the model that it does not provide
+    /// (a hand-written [`Lagrangian`](crate::Lagrangian) without the
+    /// optional method; models from `lagrangian!` provide them all).
+    #[error("{method} needs `Lagrangian::{needs}`, which this model does not provide")]
+    ModelLacks {
+        /// The integrator.
+        method: &'static str,
+        /// The missing trait method.
+        needs: &'static str,
     },
 }
 

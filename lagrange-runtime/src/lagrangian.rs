@@ -97,6 +97,60 @@ pub trait Lagrangian<const N: usize> {
         self.kinetic_energy(t, q, qdot) + self.potential_energy(t, q)
     }
 
+    /// The exact Jacobians `(∂r/∂q, ∂r/∂q̇)` of the residual
+    /// `r(t, q, q̇, q̈) = M(t, q) q̈ − f(t, q, q̇)`, for the Newton iterations
+    /// of implicit methods. `None` (the default) makes them fall back to
+    /// finite differences of the acceleration. Models written with
+    /// `#[lagrange(jacobians)]` generate them symbolically.
+    #[allow(clippy::type_complexity)]
+    fn residual_jacobians(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+        qddot: &SVector<Self::Scalar, N>,
+    ) -> Option<(SMatrix<Self::Scalar, N, N>, SMatrix<Self::Scalar, N, N>)> {
+        let _ = (t, q, qdot, qddot);
+        None
+    }
+
+    /// The generalized momenta `p = ∂L/∂q̇`, if the model provides them
+    /// (generated models do). Variational integrators need them.
+    fn momentum(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> Option<SVector<Self::Scalar, N>> {
+        let _ = (t, q, qdot);
+        None
+    }
+
+    /// `∂L/∂q`, if the model provides it (generated models do). Variational
+    /// integrators need it.
+    fn lagrangian_gradient(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> Option<SVector<Self::Scalar, N>> {
+        let _ = (t, q, qdot);
+        None
+    }
+
+    /// The non-conservative generalized forces `Q − ∂R/∂q̇`, if the model
+    /// provides them (generated models do; all zero without `forces:` and
+    /// `dissipation:`). Variational integrators need them.
+    fn nonconservative_forces(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> Option<SVector<Self::Scalar, N>> {
+        let _ = (t, q, qdot);
+        None
+    }
+
     /// Whether every runtime parameter of the model is finite. Integrators
     /// reject a model with a NaN or infinite parameter before the first step.
     fn parameters_are_finite(&self) -> bool {

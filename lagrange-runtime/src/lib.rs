@@ -116,6 +116,7 @@
 
 pub mod error;
 pub mod integrators;
+pub mod jacobian;
 mod lagrangian;
 pub mod solve;
 mod trajectory;

@@ -48,6 +48,15 @@ pub struct Stats {
     /// [`Lagrangian::mass_matrix_and_forcing`](crate::Lagrangian::mass_matrix_and_forcing)
     /// plus one solve of `M q̈ = f`.
     pub rhs_evals: usize,
+    /// Evaluations of the Jacobians `∂q̈/∂q`, `∂q̈/∂q̇` (exact, or by finite
+    /// differences whose right-hand sides also count in `rhs_evals`).
+    /// Zero for explicit methods.
+    pub jacobian_evals: usize,
+    /// Solves of an implicit method's Newton system (the `M q̈ = f` solve of
+    /// each right-hand side is counted in `rhs_evals`, not here).
+    pub linear_solves: usize,
+    /// Newton iterations of implicit methods, over all steps.
+    pub newton_iterations: usize,
 }
 
 impl<S: RealField + Copy, const N: usize> Trajectory<S, N> {
