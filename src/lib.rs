@@ -56,6 +56,9 @@
 //! - `kinetic:` T and `potential:` V (required; V may be `0`),
 //!   `dissipation:` a Rayleigh function R(q, q̇), `forces: x = expr, ...`
 //!   non-conservative generalized forces on coordinates (may use t, q, q̇).
+//! - `#[lagrange(jacobians)]` on the struct: also generate the exact
+//!   Jacobians of the residual `M q̈ − f`, which implicit integrators use for
+//!   Newton's method (opt-in: compile time is paid only where it is used).
 //! - `+ - * /`, unary minus, `^` as power with mathematical precedence
 //!   (`-x^2` is −x², `a*b^2` is a·b²), real literals (`1/2` is 0.5), and
 //!   `sin cos tan asin acos atan atan2 sinh cosh tanh exp ln sqrt powi powf`,
@@ -70,7 +73,9 @@
 //! `S: RealField + Copy`, `f32` included) with the parameters as fields, and
 //! `DOF`, `COORDINATES`, `PARAMETERS`, `EQUATIONS` (the derived equations as
 //! text), `new`, `mass_matrix`, `forcing`, `mass_matrix_and_forcing`,
-//! `kinetic_energy`, `potential_energy`, `energy`; plus an implementation of
+//! `kinetic_energy`, `potential_energy`, `energy`, `momentum` (∂L/∂q̇),
+//! `lagrangian_gradient` (∂L/∂q), `nonconservative_forces` (Q − ∂R/∂q̇), and
+//! with `#[lagrange(jacobians)]` `residual_jacobians`; plus an implementation of
 //! [`Lagrangian`] so the integrators take it.
 //!
 //! ## Mistakes are compile errors that speak physics

@@ -49,11 +49,21 @@ impl ToTokens for SpanRange {
 
 /// `lagrangian! { #[attrs] vis struct Name { items } }`.
 pub struct ModelDef {
+    /// The user's attributes (docs, derives), passed through to the struct.
     pub attrs: Vec<Attribute>,
+    /// Options from `#[lagrange(...)]`, which is consumed, not passed on.
+    pub options: Options,
     pub vis: Visibility,
     pub name: Ident,
-    /// Where the closing brace is: "missing section" errors point at the name.
     pub items: Vec<Item>,
+}
+
+/// What a model asks the macro to generate beyond the defaults.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Options {
+    /// `#[lagrange(jacobians)]`: exact Jacobians of the residual
+    /// `M q̈ − f` for implicit integrators.
+    pub jacobians: bool,
 }
 
 pub enum Item {

@@ -8,17 +8,30 @@
 //! ```
 //!
 //! so that `M q̈ = f`. `M` is never inverted symbolically: the runtime solves.
+//! On request, the Jacobians of the residual `r = M q̈ − f` with respect to
+//! `q` and `q̇`, for the Newton iterations of implicit integrators.
 
 use crate::expr::{ExprId, Pool};
 use crate::model::Model;
 
+/// A matrix of expressions, row-major.
+pub type ExprMatrix = Vec<Vec<ExprId>>;
+
 /// The derived equations of motion.
 pub struct Equations {
     /// `M`, full and symmetric: `mass[i][j]` and `mass[j][i]` are one node.
-    pub mass: Vec<Vec<ExprId>>,
+    pub mass: ExprMatrix,
     pub forcing: Vec<ExprId>,
     /// `T + V`.
     pub energy: ExprId,
+    /// `p = ∂L/∂q̇`.
+    pub momenta: Vec<ExprId>,
+    /// `∂L/∂q`.
+    pub lagrangian_gradient: Vec<ExprId>,
+    /// `Q − ∂R/∂q̇`.
+    pub nonconservative: Vec<ExprId>,
+    /// `(∂r/∂q, ∂r/∂q̇)` of `r = M q̈ − f`, row-major, if the model asked.
+    pub jacobians: Option<(ExprMatrix, ExprMatrix)>,
 }
 
 #[allow(clippy::needless_range_loop)] // (i, j) index M, symmetric: the clearest form
@@ -33,6 +46,7 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         .iter()
         .map(|f| f.as_ref().map(|f| f.2))
         .collect();
+    let want_jacobians = model.options.jacobians;
     let pool = &mut model.pool;
 
     let lagrangian = pool.sub(t_kin, v_pot);
@@ -47,9 +61,26 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         }
     }
 
+    let lagrangian_gradient: Vec<ExprId> = s
+        .coordinates
+        .iter()
+        .map(|&q| pool.diff(lagrangian, q))
+        .collect();
+    let mut nonconservative = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut terms = Vec::new();
+        if let Some(r) = dissipation {
+            let dr = pool.diff(r, s.velocities[i]);
+            terms.push(pool.neg(dr));
+        }
+        if let Some(q) = forces[i] {
+            terms.push(q);
+        }
+        nonconservative.push(pool.add(&terms));
+    }
     let mut forcing = Vec::with_capacity(n);
     for i in 0..n {
-        let mut terms = vec![pool.diff(lagrangian, s.coordinates[i])];
+        let mut terms = vec![lagrangian_gradient[i], nonconservative[i]];
         for j in 0..n {
             if pool.depends_on(momenta[i], s.coordinates[j]) {
                 let d = pool.diff(momenta[i], s.coordinates[j]);
@@ -60,19 +91,39 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         }
         let dt = pool.diff(momenta[i], s.time);
         terms.push(pool.neg(dt));
-        if let Some(r) = dissipation {
-            let dr = pool.diff(r, s.velocities[i]);
-            terms.push(pool.neg(dr));
-        }
-        if let Some(q) = forces[i] {
-            terms.push(q);
-        }
         forcing.push(pool.add(&terms));
     }
     let energy = pool.add2(t_kin, v_pot);
+    let jacobians = want_jacobians.then(|| {
+        // r_i = Σ_j M_ij q̈_j − f_i, differentiated symbolically: the same
+        // DAG, so the Jacobians share their subexpressions with M and f.
+        let residual: Vec<ExprId> = (0..n)
+            .map(|i| {
+                let mut terms: Vec<ExprId> = (0..n)
+                    .map(|j| {
+                        let a = pool.sym(s.accelerations[j]);
+                        pool.mul2(mass[i][j], a)
+                    })
+                    .collect();
+                terms.push(pool.neg(forcing[i]));
+                pool.add(&terms)
+            })
+            .collect();
+        let block = |pool: &mut crate::expr::Pool, by: &[crate::expr::SymId]| -> ExprMatrix {
+            residual
+                .iter()
+                .map(|&r| by.iter().map(|&x| pool.diff(r, x)).collect())
+                .collect()
+        };
+        (block(pool, &s.coordinates), block(pool, &s.velocities))
+    });
     Equations {
         mass,
         forcing,
         energy,
+        momenta,
+        lagrangian_gradient,
+        nonconservative,
+        jacobians,
     }
 }

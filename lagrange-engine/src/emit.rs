@@ -32,7 +32,7 @@ struct Namer {
 
 impl Namer {
     fn new(model: &Model) -> Self {
-        let mut taken: HashSet<String> = ["t", "q", "qdot", "S", "self", "Self"]
+        let mut taken: HashSet<String> = ["t", "q", "qdot", "qddot", "S", "self", "Self"]
             .iter()
             .map(|s| s.to_string())
             .collect();
@@ -50,6 +50,9 @@ impl Namer {
                 SymKind::Time => format_ident!("t"),
                 SymKind::Coordinate(i) => model.coordinates[i].clone(),
                 SymKind::Parameter(p) => model.parameters[p].clone(),
+                SymKind::Acceleration(i) => {
+                    namer.fresh(&format!("{}_ddot", model.coordinates[i]), false)
+                }
                 SymKind::Velocity(i) => {
                     namer.fresh(&format!("{}_dot", model.coordinates[i]), false)
                 }
@@ -310,34 +313,40 @@ impl<'a> FnEmitter<'a> {
             }
         }
         let s = &model.symbols;
-        let pattern = |syms: &[SymId]| -> Option<(TokenStream, Vec<TokenStream>)> {
-            if !syms.iter().any(|x| used[x.0 as usize]) {
-                return None;
-            }
-            let names: Vec<TokenStream> = syms
-                .iter()
-                .map(|x| {
-                    if used[x.0 as usize] {
-                        let n = &self.namer.symbol[x.0 as usize];
-                        quote!(#n)
-                    } else {
-                        quote!(_)
-                    }
-                })
-                .collect();
-            Some((quote!([#(#names),*]), Vec::new()))
-        };
-        let mut out = TokenStream::new();
+        // Coordinates, velocities and accelerations are read from their
+        // vectors in one destructuring, so a coordinate may be named `q`.
+        let mut patterns: Vec<TokenStream> = Vec::new();
+        let mut sources: Vec<TokenStream> = Vec::new();
         let idx: Vec<Literal> = (0..s.coordinates.len())
             .map(Literal::usize_unsuffixed)
             .collect();
-        match (pattern(&s.coordinates), pattern(&s.velocities)) {
-            (Some((pq, _)), Some((pv, _))) => {
-                out.extend(quote!(let (#pq, #pv) = ([#(q[#idx]),*], [#(qdot[#idx]),*]);))
+        for (syms, source) in [
+            (&s.coordinates, quote!(q)),
+            (&s.velocities, quote!(qdot)),
+            (&s.accelerations, quote!(qddot)),
+        ] {
+            if !syms.iter().any(|x| used[x.0 as usize]) {
+                continue;
             }
-            (Some((pq, _)), None) => out.extend(quote!(let #pq = [#(q[#idx]),*];)),
-            (None, Some((pv, _))) => out.extend(quote!(let #pv = [#(qdot[#idx]),*];)),
-            (None, None) => {}
+            let names = syms.iter().map(|x| {
+                if used[x.0 as usize] {
+                    let n = &self.namer.symbol[x.0 as usize];
+                    quote!(#n)
+                } else {
+                    quote!(_)
+                }
+            });
+            patterns.push(quote!([#(#names),*]));
+            sources.push(quote!([#(#source[#idx]),*]));
+        }
+        let mut out = TokenStream::new();
+        match patterns.len() {
+            0 => {}
+            1 => {
+                let (p, v) = (&patterns[0], &sources[0]);
+                out.extend(quote!(let #p = #v;));
+            }
+            _ => out.extend(quote!(let (#(#patterns),*) = (#(#sources),*);)),
         }
         let params: Vec<&Ident> = s
             .parameters
@@ -414,6 +423,39 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
     let (v_body, v_out) = body(model, &namer, &[model.potential.value]);
     let (e_body, e_out) = body(model, &namer, &[eq.energy]);
     let (t_out, v_out, e_out) = (&t_out[0], &v_out[0], &e_out[0]);
+    let (p_body, p_out) = body(model, &namer, &eq.momenta);
+    let (g_body, g_out) = body(model, &namer, &eq.lagrangian_gradient);
+    let (nc_body, nc_out) = body(model, &namer, &eq.nonconservative);
+
+    // Opt-in: the residual Jacobians, column-major, ∂r/∂q then ∂r/∂q̇.
+    let (jacobian_fn, jacobian_impl) = match &eq.jacobians {
+        None => (TokenStream::new(), TokenStream::new()),
+        Some((jq, jv)) => {
+            let roots: Vec<ExprId> = [jq, jv]
+                .iter()
+                .flat_map(|b| (0..n).flat_map(move |k| (0..n).map(move |i| b[i][k])))
+                .collect();
+            let (j_body, j_out) = body(model, &namer, &roots);
+            let (jq_out, jv_out) = j_out.split_at(n * n);
+            (
+                quote! {
+                    /// The exact Jacobians `(∂r/∂q, ∂r/∂q̇)` of the residual
+                    /// `r = M(t, q) q̈ − f(t, q, q̇)`, for implicit integrators.
+                    #[inline]
+                    pub fn residual_jacobians(&self, t: S, q: &#vector, qdot: &#vector, qddot: &#vector) -> (#matrix, #matrix) {
+                        #j_body
+                        (#new_matrix(&[#(#jq_out),*]), #new_matrix(&[#(#jv_out),*]))
+                    }
+                },
+                quote! {
+                    #[inline]
+                    fn residual_jacobians(&self, t: S, q: &#vector, qdot: &#vector, qddot: &#vector) -> ::core::option::Option<(#matrix, #matrix)> {
+                        ::core::option::Option::Some(#name::residual_jacobians(self, t, q, qdot, qddot))
+                    }
+                },
+            )
+        }
+    };
 
     let coordinate_names: Vec<String> = model.coordinates.iter().map(|c| c.to_string()).collect();
     let parameter_names: Vec<String> = params.iter().map(|c| c.to_string()).collect();
@@ -514,6 +556,29 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
                 #e_body
                 #e_out
             }
+
+            /// The generalized momenta `p = ∂L/∂q̇`.
+            #[inline]
+            pub fn momentum(&self, t: S, q: &#vector, qdot: &#vector) -> #vector {
+                #p_body
+                #new_vector(&[#(#p_out),*])
+            }
+
+            /// `∂L/∂q`.
+            #[inline]
+            pub fn lagrangian_gradient(&self, t: S, q: &#vector, qdot: &#vector) -> #vector {
+                #g_body
+                #new_vector(&[#(#g_out),*])
+            }
+
+            /// The non-conservative generalized forces `Q − ∂R/∂q̇`.
+            #[inline]
+            pub fn nonconservative_forces(&self, t: S, q: &#vector, qdot: &#vector) -> #vector {
+                #nc_body
+                #new_vector(&[#(#nc_out),*])
+            }
+
+            #jacobian_fn
         }
 
         impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::Lagrangian<#n_lit> for #name<S> {
@@ -543,6 +608,19 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
             fn energy(&self, t: S, q: &#vector, qdot: &#vector) -> S {
                 #name::energy(self, t, q, qdot)
             }
+            #[inline]
+            fn momentum(&self, t: S, q: &#vector, qdot: &#vector) -> ::core::option::Option<#vector> {
+                ::core::option::Option::Some(#name::momentum(self, t, q, qdot))
+            }
+            #[inline]
+            fn lagrangian_gradient(&self, t: S, q: &#vector, qdot: &#vector) -> ::core::option::Option<#vector> {
+                ::core::option::Option::Some(#name::lagrangian_gradient(self, t, q, qdot))
+            }
+            #[inline]
+            fn nonconservative_forces(&self, t: S, q: &#vector, qdot: &#vector) -> ::core::option::Option<#vector> {
+                ::core::option::Option::Some(#name::nonconservative_forces(self, t, q, qdot))
+            }
+            #jacobian_impl
             #[inline]
             fn parameters_are_finite(&self) -> bool {
                 #finite

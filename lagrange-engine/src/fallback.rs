@@ -102,6 +102,10 @@ impl Stub {
                 pub fn kinetic_energy(&self, t: S, q: &#vector, qdot: &#vector) -> S { #stop }
                 pub fn potential_energy(&self, t: S, q: &#vector) -> S { #stop }
                 pub fn energy(&self, t: S, q: &#vector, qdot: &#vector) -> S { #stop }
+                pub fn momentum(&self, t: S, q: &#vector, qdot: &#vector) -> #vector { #stop }
+                pub fn lagrangian_gradient(&self, t: S, q: &#vector, qdot: &#vector) -> #vector { #stop }
+                pub fn nonconservative_forces(&self, t: S, q: &#vector, qdot: &#vector) -> #vector { #stop }
+                pub fn residual_jacobians(&self, t: S, q: &#vector, qdot: &#vector, qddot: &#vector) -> (#matrix, #matrix) { #stop }
             }
             #[allow(unused_variables, clippy::all)]
             impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::Lagrangian<#n> for #name<S> {

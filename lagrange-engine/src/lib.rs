@@ -73,6 +73,7 @@ impl Derived {
         v.extend_from_slice(q);
         v.extend_from_slice(qdot);
         v.extend_from_slice(params);
+        v.extend(std::iter::repeat_n(0.0, q.len())); // accelerations
         assert_eq!(
             v.len(),
             self.model.symbols.count(),

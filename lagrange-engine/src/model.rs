@@ -17,6 +17,8 @@ pub enum SymKind {
     Coordinate(usize),
     Velocity(usize),
     Parameter(usize),
+    /// Only in the residual `M q̈ − f` of the Jacobians.
+    Acceleration(usize),
 }
 
 /// The symbols of a model.
@@ -26,6 +28,7 @@ pub struct Symbols {
     pub coordinates: Vec<SymId>,
     pub velocities: Vec<SymId>,
     pub parameters: Vec<SymId>,
+    pub accelerations: Vec<SymId>,
 }
 
 impl Symbols {
@@ -36,11 +39,12 @@ impl Symbols {
             coordinates: (0..n).map(|i| id(1 + i)).collect(),
             velocities: (0..n).map(|i| id(1 + n + i)).collect(),
             parameters: (0..p).map(|k| id(1 + 2 * n + k)).collect(),
+            accelerations: (0..n).map(|i| id(1 + 2 * n + p + i)).collect(),
         }
     }
 
     pub fn count(&self) -> usize {
-        1 + 2 * self.coordinates.len() + self.parameters.len()
+        1 + 3 * self.coordinates.len() + self.parameters.len()
     }
 
     pub fn kind(&self, s: SymId) -> SymKind {
@@ -52,8 +56,10 @@ impl Symbols {
             SymKind::Coordinate(k - 1)
         } else if k <= 2 * n {
             SymKind::Velocity(k - 1 - n)
-        } else {
+        } else if k <= 2 * n + self.parameters.len() {
             SymKind::Parameter(k - 1 - 2 * n)
+        } else {
+            SymKind::Acceleration(k - 1 - 2 * n - self.parameters.len())
         }
     }
 }
@@ -68,6 +74,7 @@ pub struct Section {
 /// The lowered model.
 pub struct Model {
     pub attrs: Vec<Attribute>,
+    pub options: crate::ast::Options,
     pub vis: Visibility,
     pub name: Ident,
     pub coordinates: Vec<Ident>,
@@ -279,6 +286,7 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
 
     Ok(Model {
         attrs: def.attrs,
+        options: def.options,
         vis: def.vis,
         name: def.name,
         coordinates,

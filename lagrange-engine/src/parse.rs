@@ -11,7 +11,7 @@
 //! stub with the coordinates and parameters that were declared (one mistake,
 //! one error).
 
-use crate::ast::{BinOp, Expr, Item, ModelDef, SpanRange};
+use crate::ast::{BinOp, Expr, Item, ModelDef, Options, SpanRange};
 use proc_macro2::{TokenStream, TokenTree};
 use syn::parse::{ParseStream, Parser};
 use syn::{braced, parenthesized, Attribute, Ident, LitFloat, LitInt, Token, Visibility};
@@ -30,7 +30,8 @@ pub struct Parsed {
 /// header could be read.
 pub fn parse(tokens: TokenStream) -> syn::Result<Parsed> {
     let parser = |input: ParseStream| -> syn::Result<Parsed> {
-        let attrs = input.call(Attribute::parse_outer)?;
+        let mut attrs = input.call(Attribute::parse_outer)?;
+        let (options, options_error) = take_options(&mut attrs);
         let vis: Visibility = input.parse()?;
         if !input.peek(Token![struct]) {
             return Err(input.error(
@@ -47,7 +48,7 @@ pub fn parse(tokens: TokenStream) -> syn::Result<Parsed> {
         let body;
         braced!(body in input);
         let mut items = Vec::new();
-        let mut error: Option<syn::Error> = None;
+        let mut error: Option<syn::Error> = options_error;
         while !body.is_empty() {
             match parse_item(&body, &mut error) {
                 Ok(item) => items.push(item),
@@ -63,6 +64,7 @@ pub fn parse(tokens: TokenStream) -> syn::Result<Parsed> {
         Ok(Parsed {
             model: ModelDef {
                 attrs,
+                options,
                 vis,
                 name,
                 items,
@@ -71,6 +73,35 @@ pub fn parse(tokens: TokenStream) -> syn::Result<Parsed> {
         })
     };
     parser.parse2(tokens)
+}
+
+/// Removes the `#[lagrange(...)]` attributes and reads their options, with
+/// the first error met (the model is still parsed, for the stub).
+fn take_options(attrs: &mut Vec<Attribute>) -> (Options, Option<syn::Error>) {
+    let mut options = Options::default();
+    let mut result = Ok(());
+    attrs.retain(|attr| {
+        if !attr.path().is_ident("lagrange") {
+            return true;
+        }
+        let parsed = attr.parse_nested_meta(|meta| {
+            if meta.path.is_ident("jacobians") {
+                options.jacobians = true;
+                Ok(())
+            } else {
+                Err(meta.error(
+                    "unknown option: `#[lagrange(...)]` takes `jacobians` (exact residual Jacobians for implicit integrators)",
+                ))
+            }
+        });
+        if let Err(e) = parsed {
+            if result.is_ok() {
+                result = Err(e);
+            }
+        }
+        false
+    });
+    (options, result.err())
 }
 
 /// A name of the model: an identifier, not a raw one (`r#type`), since every

@@ -46,6 +46,7 @@ impl Renderer<'_> {
                     SymKind::Coordinate(i) => m.coordinates[i].to_string(),
                     SymKind::Velocity(i) => format!("dot({})", m.coordinates[i]),
                     SymKind::Parameter(k) => m.parameters[k].to_string(),
+                    SymKind::Acceleration(i) => format!("ddot({})", m.coordinates[i]),
                 };
                 (name, 2)
             }
