@@ -1,0 +1,244 @@
+//! The speed–accuracy trade, measured: every integrator on three problems,
+//! sweeping step sizes (fixed-step methods) or tolerances (adaptive ones),
+//! recording the error reached, the worst energy error, right-hand-side
+//! evaluations and wall time (median of several runs).
+//!
+//! `cargo run --release --example work_precision`
+//!
+//! Writes `docs/work_precision/work_precision.csv` and SVG plots beside it:
+//! per problem, error against wall time and against evaluations; and the
+//! energy error of a long Kepler run for a symplectic method, RK4 and
+//! Dormand–Prince.
+
+mod plot;
+mod systems;
+
+use lagrange::nalgebra::SVector;
+use lagrange::prelude::*;
+use std::time::Instant;
+use systems::Problem;
+
+/// One integrator with one setting.
+#[derive(Clone, Copy, Debug)]
+pub enum Method {
+    Rk4(f64),
+    Dopri5(f64),
+}
+
+impl Method {
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Rk4(_) => "rk4",
+            Method::Dopri5(_) => "dopri5",
+        }
+    }
+
+    /// The step size or the tolerance.
+    pub fn setting(self) -> f64 {
+        match self {
+            Method::Rk4(x) | Method::Dopri5(x) => x,
+        }
+    }
+
+    fn fixed_step(self) -> bool {
+        matches!(self, Method::Rk4(_))
+    }
+
+    pub fn integrate<L: Lagrangian<N, Scalar = f64>, const N: usize>(
+        self,
+        p: &Problem<L, N>,
+        times: &[f64],
+    ) -> IntegrationResult<f64, N> {
+        let (m, q, v) = (&p.model, p.q0, p.qdot0);
+        match self {
+            Method::Rk4(h) => Rk4::new(h)
+                .max_steps(usize::MAX)
+                .integrate(m, 0.0, q, v, times),
+            Method::Dopri5(tol) => Dopri5::new()
+                .rtol(tol)
+                .atol(tol)
+                .max_steps(10_000_000)
+                .integrate(m, 0.0, q, v, times),
+        }
+    }
+}
+
+use lagrange::IntegrationResult;
+
+/// Every method at every setting worth running on a problem.
+fn sweep(steps: &[f64]) -> Vec<Method> {
+    let tolerances: Vec<f64> = (3..=13).map(|k| 10f64.powi(-k)).collect();
+    let mut methods = Vec::new();
+    methods.extend(steps.iter().map(|&h| Method::Rk4(h)));
+    methods.extend(tolerances.iter().map(|&t| Method::Dopri5(t)));
+    methods
+}
+
+/// One row of the CSV.
+#[derive(Clone, Debug)]
+pub struct Run {
+    pub system: &'static str,
+    pub method: &'static str,
+    pub setting: f64,
+    pub error: f64,
+    pub energy_error: f64,
+    pub rhs_evals: usize,
+    pub wall_seconds: f64,
+}
+
+/// Runs one method on one problem: the error at the last sample (max norm
+/// over q and q̇), the worst relative energy error over the samples, and the
+/// median wall time of up to five runs (fewer when one run takes > 0.5 s).
+fn measure<L: Lagrangian<N, Scalar = f64>, const N: usize>(
+    p: &Problem<L, N>,
+    method: Method,
+) -> Result<Run, String> {
+    let end = *p.times.last().unwrap();
+    if method.fixed_step() && end / method.setting() > 3e6 {
+        return Err("skipped: more than 3e6 steps".into());
+    }
+    let mut seconds = Vec::new();
+    let mut trajectory = None;
+    for _ in 0..5 {
+        let start = Instant::now();
+        let result = method.integrate(p, &p.times);
+        seconds.push(start.elapsed().as_secs_f64());
+        trajectory = Some(result.map_err(|f| f.error.to_string())?);
+        if seconds.iter().sum::<f64>() > 0.5 {
+            break;
+        }
+    }
+    seconds.sort_by(f64::total_cmp);
+    let trajectory = trajectory.unwrap();
+    let last = trajectory.last().unwrap();
+    let (q, v) = &p.final_state;
+    let error = (last.q - q).amax().max((last.qdot - v).amax());
+    let e0 = p.model.energy(0.0, &p.q0, &p.qdot0).abs();
+    let energy_error = trajectory
+        .iter()
+        .zip(&p.energies)
+        .map(|(s, e)| (p.model.energy(s.t, &s.q, &s.qdot) - e).abs() / e0)
+        .fold(0.0, f64::max);
+    if !error.is_finite() {
+        return Err("non-finite result".into());
+    }
+    Ok(Run {
+        system: p.name,
+        method: method.name(),
+        setting: method.setting(),
+        error,
+        energy_error,
+        rhs_evals: trajectory.stats().rhs_evals,
+        wall_seconds: seconds[seconds.len() / 2],
+    })
+}
+
+fn study<L: Lagrangian<N, Scalar = f64>, const N: usize>(p: &Problem<L, N>, runs: &mut Vec<Run>) {
+    println!("\n{}", p.name);
+    println!(
+        "{:<18} {:>10} {:>10} {:>10} {:>10} {:>11}",
+        "method", "setting", "error", "energy", "rhs evals", "seconds"
+    );
+    for method in sweep(&p.steps) {
+        match measure(p, method) {
+            Ok(run) => {
+                println!(
+                    "{:<18} {:>10.2e} {:>10.2e} {:>10.2e} {:>10} {:>11.3e}",
+                    run.method,
+                    run.setting,
+                    run.error,
+                    run.energy_error,
+                    run.rhs_evals,
+                    run.wall_seconds
+                );
+                runs.push(run);
+            }
+            Err(why) => println!("{:<18} {:>10.2e} {why}", method.name(), method.setting()),
+        }
+    }
+}
+
+fn write_csv(path: &std::path::Path, runs: &[Run]) -> std::io::Result<()> {
+    let mut out = String::from("system,method,setting,error,energy_error,rhs_evals,wall_seconds\n");
+    for r in runs {
+        out.push_str(&format!(
+            "{},{},{:e},{:e},{:e},{},{:e}\n",
+            r.system, r.method, r.setting, r.error, r.energy_error, r.rhs_evals, r.wall_seconds
+        ));
+    }
+    std::fs::write(path, out)
+}
+
+/// Energy error against time over a long Kepler run (e = 0.6, 1000 orbits,
+/// h = T/500: 5e5 steps) for the methods that show the trade.
+fn long_run(dir: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
+    let e: f64 = 0.6;
+    let period = 2.0 * std::f64::consts::PI;
+    let model = systems::Kepler::new(1.0);
+    let q0 = SVector::<f64, 2>::new(1.0 - e, 0.0);
+    let v0 = SVector::<f64, 2>::new(0.0, ((1.0 + e) / (1.0 - e)).sqrt());
+    let e0 = model.energy(0.0, &q0, &v0);
+    let times: Vec<f64> = (1..=1000).map(|k| period * k as f64).collect();
+    let h = period / 500.0;
+    let mut curves: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    let mut add = |name: String, t: Trajectory<f64, 2>| {
+        let points = t
+            .iter()
+            .map(|s| {
+                (
+                    s.t / period,
+                    ((model.energy(s.t, &s.q, &s.qdot) - e0) / e0)
+                        .abs()
+                        .max(1e-17),
+                )
+            })
+            .collect();
+        println!("{name}: {:?}", t.stats());
+        curves.push((name, points));
+    };
+    add(
+        format!("rk4 h = T/500"),
+        Rk4::new(h)
+            .max_steps(usize::MAX)
+            .integrate(&model, 0.0, q0, v0, &times)?,
+    );
+    add(
+        "dopri5 tol 1e-8".into(),
+        Dopri5::new()
+            .rtol(1e-8)
+            .atol(1e-8)
+            .max_steps(10_000_000)
+            .integrate(&model, 0.0, q0, v0, &times)?,
+    );
+    plot::energy_over_time(&dir.join("energy_long_run.svg"), &curves)?;
+    Ok(())
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/work_precision");
+    std::fs::create_dir_all(&dir)?;
+    let mut runs = Vec::new();
+    study(&systems::double_pendulum(), &mut runs);
+    study(&systems::kepler(), &mut runs);
+    study(&systems::stiff_chain(), &mut runs);
+    write_csv(&dir.join("work_precision.csv"), &runs)?;
+    for system in ["double_pendulum", "kepler_e0.9", "stiff_chain_1e6"] {
+        let mine: Vec<&Run> = runs.iter().filter(|r| r.system == system).collect();
+        plot::work_precision(
+            &dir.join(format!("{system}_time.svg")),
+            system,
+            &mine,
+            plot::Work::Time,
+        )?;
+        plot::work_precision(
+            &dir.join(format!("{system}_evals.svg")),
+            system,
+            &mine,
+            plot::Work::Evals,
+        )?;
+    }
+    println!("\nLong run (energy error against time):");
+    long_run(&dir)?;
+    println!("\nWrote {}", dir.display());
+    Ok(())
+}
