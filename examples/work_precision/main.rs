@@ -197,7 +197,7 @@ fn long_run(dir: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
         curves.push((name, points));
     };
     add(
-        format!("rk4 h = T/500"),
+        "rk4 h = T/500".to_string(),
         Rk4::new(h)
             .max_steps(usize::MAX)
             .integrate(&model, 0.0, q0, v0, &times)?,
