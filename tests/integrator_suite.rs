@@ -1,0 +1,167 @@
+//! Every integrator on models derived by the macro: the observed order of
+//! each fixed-step method, the tolerance behaviour of each adaptive one, and
+//! the long-run energy behaviour that separates symplectic methods from the
+//! rest.
+
+use lagrange::models::DoublePendulum;
+use lagrange::nalgebra::Vector2;
+use lagrange::prelude::*;
+
+lagrangian! {
+    /// A unit mass around a unit central mass in polar coordinates: M(q) =
+    /// diag(1, r²) depends on q, so the Hamiltonian is not separable.
+    #[lagrange(jacobians)]
+    pub struct PolarKepler {
+        coordinates: r, phi;
+        parameters: mu;
+        kinetic: (dot(r)^2 + r^2*dot(phi)^2)/2;
+        potential: -mu/r;
+    }
+}
+
+/// The double pendulum at moderate amplitude: smooth and not chaotic over
+/// one second, so errors follow each method's asymptotic law.
+fn smooth_problem() -> (DoublePendulum, Vector2<f64>, Vector2<f64>) {
+    (
+        DoublePendulum::new(1.0, 0.7, 1.0, 0.8, 9.81),
+        Vector2::new(0.6, -0.4),
+        Vector2::new(0.0, 0.5),
+    )
+}
+
+fn final_state<I: Integrator<f64>>(method: &I, end: f64) -> (Vector2<f64>, Vector2<f64>) {
+    let (model, q0, v0) = smooth_problem();
+    let t = method.integrate(&model, 0.0, q0, v0, &[end]).unwrap();
+    let s = t.last().unwrap();
+    (s.q, s.qdot)
+}
+
+fn distance(a: &(Vector2<f64>, Vector2<f64>), b: &(Vector2<f64>, Vector2<f64>)) -> f64 {
+    (a.0 - b.0).amax().max((a.1 - b.1).amax())
+}
+
+/// Dopri5 at 1e-13: its global error (≈ 10·tol, see the reference tests)
+/// is far below the smallest error measured in the order fits (≳ 1e-10).
+fn reference(end: f64) -> (Vector2<f64>, Vector2<f64>) {
+    final_state(&Dopri5::new().rtol(1e-13).atol(1e-13), end)
+}
+
+fn sci(xs: &[f64]) -> String {
+    let parts: Vec<String> = xs.iter().map(|x| format!("{x:.2e}")).collect();
+    format!("[{}]", parts.join(", "))
+}
+
+/// Least-squares slope of log(error) against log(h).
+fn observed_order(hs: &[f64], errors: &[f64]) -> f64 {
+    let x: Vec<f64> = hs.iter().map(|h| h.ln()).collect();
+    let y: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxy: f64 = x.iter().zip(&y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
+    sxy / sxx
+}
+
+/// The order check: four halvings of `h` in the asymptotic range, where the
+/// error is far above round-off (checked) and the leading term dominates.
+/// "Within 0.2 of theory" is the acceptance bound.
+fn assert_order(
+    name: &str,
+    order: f64,
+    hs: &[f64],
+    run: impl Fn(f64) -> (Vector2<f64>, Vector2<f64>),
+) {
+    let end = 1.0;
+    let exact = reference(end);
+    let errors: Vec<f64> = hs.iter().map(|&h| distance(&run(h), &exact)).collect();
+    assert!(
+        errors.iter().all(|&e| e > 1e-11),
+        "{name}: errors {} reach round-off",
+        sci(&errors)
+    );
+    let p = observed_order(hs, &errors);
+    println!(
+        "{name}: observed order {p:.3} (theory {order}), errors {}",
+        sci(&errors)
+    );
+    assert!(
+        (p - order).abs() <= 0.2,
+        "{name}: observed order {p:.3}, theory {order}"
+    );
+}
+
+#[test]
+fn rk4_shows_fourth_order_on_a_derived_model() {
+    let hs = [0.01, 0.005, 0.0025, 0.00125];
+    assert_order("rk4", 4.0, &hs, |h| final_state(&Rk4::new(h), 1.0));
+}
+
+/// Adaptive methods: the error falls as the tolerance tightens, and stays
+/// within a small factor of it on a smooth problem. The factor (100) is the
+/// same as in the reference tests: error-per-step control keeps the global
+/// error of a non-chaotic problem within ≈ 10× of tol, with 10× margin.
+fn assert_tracks_tolerance<I: Integrator<f64>>(name: &str, make: impl Fn(f64) -> I) {
+    let exact = reference(1.0);
+    let tolerances = [1e-4, 1e-6, 1e-8, 1e-10];
+    let errors: Vec<f64> = tolerances
+        .iter()
+        .map(|&tol| distance(&final_state(&make(tol), 1.0), &exact))
+        .collect();
+    println!(
+        "{name}: errors {} at tolerances {}",
+        sci(&errors),
+        sci(&tolerances)
+    );
+    for (tol, e) in tolerances.iter().zip(&errors) {
+        assert!(*e <= 100.0 * tol, "{name}: error {e:.2e} at tol {tol:.0e}");
+    }
+    // Each 100× tighter tolerance buys at least 10× less error.
+    for w in errors.windows(2) {
+        assert!(
+            w[1] <= w[0] / 10.0,
+            "{name}: errors {} do not fall with the tolerance",
+            sci(&errors)
+        );
+    }
+}
+
+#[test]
+fn dopri5_error_tracks_its_tolerance() {
+    assert_tracks_tolerance("dopri5", |tol| Dopri5::new().rtol(tol).atol(tol));
+}
+
+/// Relative energy error of a Kepler orbit (e = 0.6, polar coordinates)
+/// sampled once per orbit; returns (worst over the first tenth of the run,
+/// worst over the last tenth).
+fn energy_error_early_and_late<I: Integrator<f64>>(method: &I, orbits: usize) -> (f64, f64) {
+    let e: f64 = 0.6;
+    let model = PolarKepler::new(1.0);
+    let q0 = Vector2::new(1.0 - e, 0.0);
+    let v0 = Vector2::new(0.0, ((1.0 + e) / (1.0 - e)).sqrt() / (1.0 - e));
+    let e0 = model.energy(0.0, &q0, &v0);
+    let period = 2.0 * std::f64::consts::PI;
+    let times: Vec<f64> = (1..=orbits).map(|k| period * k as f64).collect();
+    let t = method.integrate(&model, 0.0, q0, v0, &times).unwrap();
+    let errors: Vec<f64> = t
+        .iter()
+        .map(|s| ((model.energy(s.t, &s.q, &s.qdot) - e0) / e0).abs())
+        .collect();
+    let tenth = orbits / 10;
+    let worst = |xs: &[f64]| xs.iter().copied().fold(0.0, f64::max);
+    (worst(&errors[..tenth]), worst(&errors[orbits - tenth..]))
+}
+
+/// A method with secular drift has an energy error that grows in
+/// proportion to time: over a run ten times longer than its first tenth,
+/// the late error is ≈ 10× the early one (a ratio above 4 is drift, allowing
+/// for the oscillation within an orbit).
+#[test]
+fn rk4_and_dopri5_drift_in_energy_over_a_long_kepler_run() {
+    let period = 2.0 * std::f64::consts::PI;
+    let (early, late) = energy_error_early_and_late(&Rk4::new(period / 200.0), 500);
+    println!("rk4 energy error: first tenth {early:.2e}, last tenth {late:.2e}");
+    assert!(late > 4.0 * early, "rk4: {early:.2e} → {late:.2e}");
+    let (early, late) = energy_error_early_and_late(&Dopri5::new().rtol(1e-7).atol(1e-7), 500);
+    println!("dopri5 energy error: first tenth {early:.2e}, last tenth {late:.2e}");
+    assert!(late > 4.0 * early, "dopri5: {early:.2e} → {late:.2e}");
+}
