@@ -97,7 +97,8 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         t: S,
         /// The step size tried.
         h: S,
-        /// The iteration limit that was reached.
+        /// The iterations done: the limit, or fewer when the iterates ran
+        /// off to where the model is no longer finite.
         iterations: usize,
         /// Generalized coordinates at `t`.
         q: SVector<S, N>,
@@ -126,6 +127,13 @@ pub enum NonFiniteValue {
     MassMatrix,
     /// The forcing `f(t, q, q̇)` returned by the model.
     Forcing,
+    /// The momenta `p = ∂L/∂q̇` returned by the model, or carried by a
+    /// variational integrator after an overflow.
+    Momentum,
+    /// `∂L/∂q` returned by the model.
+    LagrangianGradient,
+    /// The non-conservative forces `Q − ∂R/∂q̇` returned by the model.
+    NonconservativeForces,
 }
 
 impl fmt::Display for NonFiniteValue {
@@ -134,6 +142,11 @@ impl fmt::Display for NonFiniteValue {
             Self::State => "the state is NaN or infinite",
             Self::MassMatrix => "the mass matrix M(t, q) returned by the model is NaN or infinite",
             Self::Forcing => "the forcing f(t, q, q̇) returned by the model is NaN or infinite",
+            Self::Momentum => "the momenta p = ∂L/∂q̇ are NaN or infinite",
+            Self::LagrangianGradient => "∂L/∂q returned by the model is NaN or infinite",
+            Self::NonconservativeForces => {
+                "the non-conservative forces Q - ∂R/∂q̇ returned by the model are NaN or infinite"
+            }
         })
     }
 }

@@ -71,8 +71,9 @@ pub fn solve_mass_matrix<S: RealField + Copy, const N: usize>(
 }
 
 /// Gaussian elimination with partial pivoting, on a stack copy. (nalgebra's
-/// `LU` needs a typenum bound that a generic `const N` cannot name.)
-fn lu_solve<S: RealField + Copy, const N: usize>(
+/// `LU` needs a typenum bound that a generic `const N` cannot name.) Also
+/// solves the non-symmetric Newton systems of implicit methods.
+pub(crate) fn lu_solve<S: RealField + Copy, const N: usize>(
     mut a: SMatrix<S, N, N>,
     mut b: SVector<S, N>,
 ) -> Result<SVector<S, N>, SolveError> {

@@ -46,11 +46,16 @@ pub struct Stats {
     pub steps_rejected: usize,
     /// Right-hand side evaluations: one call of
     /// [`Lagrangian::mass_matrix_and_forcing`](crate::Lagrangian::mass_matrix_and_forcing)
-    /// plus one solve of `M q̈ = f`.
+    /// plus one solve of `M q̈ = f`. For [`Variational`](crate::Variational),
+    /// which never forms `q̈`: evaluations of its discrete Euler–Lagrange
+    /// residual (`momentum`, `lagrangian_gradient` and
+    /// `nonconservative_forces` at one point), plus the conversions between
+    /// `q̇` and `p` at the start and at each sample.
     pub rhs_evals: usize,
     /// Evaluations of the Jacobians `∂q̈/∂q`, `∂q̈/∂q̇` (exact, or by finite
-    /// differences whose right-hand sides also count in `rhs_evals`).
-    /// Zero for explicit methods.
+    /// differences whose right-hand sides also count in `rhs_evals`), or of
+    /// [`Variational`](crate::Variational)'s residual Jacobian (by finite
+    /// differences, counted in `rhs_evals` too). Zero for explicit methods.
     pub jacobian_evals: usize,
     /// Solves of an implicit method's Newton system (the `M q̈ = f` solve of
     /// each right-hand side is counted in `rhs_evals`, not here).

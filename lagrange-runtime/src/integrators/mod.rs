@@ -2,7 +2,9 @@
 //!
 //! Each integrator advances the first-order system `y = (q, q̇)`,
 //! `ẏ = (q̇, q̈)` with `q̈` from [`acceleration`], and records the state at
-//! the requested sample times only.
+//! the requested sample times only. [`Variational`] is the exception: it
+//! advances `(q, p)` by the discrete Euler–Lagrange equations of the
+//! Lagrangian itself, and converts to `(q, q̇)` at the boundaries.
 //!
 //! Shared rules, so that methods can be swapped without surprises:
 //!
@@ -15,9 +17,11 @@
 
 mod dopri5;
 mod rk4;
+mod variational;
 
 pub use dopri5::Dopri5;
 pub use rk4::Rk4;
+pub use variational::Variational;
 
 use nalgebra::{ComplexField, RealField, SVector};
 

@@ -125,7 +125,7 @@ impl<S: RealField + Copy> Integrator<S> for Rk4<S> {
 /// The fewest equal steps no longer than `h` that cover `span`, forgiving a
 /// few ulps so that a span of exactly `10 h` in decimal takes 10 steps, not
 /// 11. Saturates at `usize::MAX`; the step budget stops it long before.
-fn steps_to_cover<S: RealField + Copy>(span: S, h: S) -> usize {
+pub(super) fn steps_to_cover<S: RealField + Copy>(span: S, h: S) -> usize {
     let ratio = span / h;
     let slack: S = nalgebra::convert(8.0);
     let steps = (ratio * (S::one() - slack * S::default_epsilon())).ceil();

@@ -129,3 +129,393 @@ pub fn max_error<S: RealField + Copy>(
         worst.max((s.q - q).amax()).max((s.qdot - qdot).amax())
     })
 }
+
+/// A bob of mass `m` on a rigid rod of length `l`, angle `θ` from the
+/// downward vertical: `L = ½ m l² θ̇² + m g l cos θ`. Provides the momentum,
+/// `∂L/∂q` and (zero) forces by hand, as `lagrangian!` would.
+pub struct Pendulum {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+impl Lagrangian<1> for Pendulum {
+    type Scalar = f64;
+    const COORDINATES: [&'static str; 1] = ["theta"];
+
+    fn mass_matrix(&self, _t: f64, _q: &Vector1<f64>) -> SMatrix<f64, 1, 1> {
+        SMatrix::<f64, 1, 1>::new(self.m * self.l * self.l)
+    }
+    fn forcing(&self, _t: f64, q: &Vector1<f64>, _qdot: &Vector1<f64>) -> Vector1<f64> {
+        Vector1::new(-self.m * self.g * self.l * q[0].sin())
+    }
+    fn kinetic_energy(&self, _t: f64, _q: &Vector1<f64>, qdot: &Vector1<f64>) -> f64 {
+        0.5 * self.m * self.l * self.l * qdot[0] * qdot[0]
+    }
+    fn potential_energy(&self, _t: f64, q: &Vector1<f64>) -> f64 {
+        -self.m * self.g * self.l * q[0].cos()
+    }
+    fn momentum(&self, _t: f64, _q: &Vector1<f64>, qdot: &Vector1<f64>) -> Option<Vector1<f64>> {
+        Some(Vector1::new(self.m * self.l * self.l * qdot[0]))
+    }
+    fn lagrangian_gradient(
+        &self,
+        _t: f64,
+        q: &Vector1<f64>,
+        _qdot: &Vector1<f64>,
+    ) -> Option<Vector1<f64>> {
+        Some(Vector1::new(-self.m * self.g * self.l * q[0].sin()))
+    }
+    fn nonconservative_forces(
+        &self,
+        _t: f64,
+        _q: &Vector1<f64>,
+        _qdot: &Vector1<f64>,
+    ) -> Option<Vector1<f64>> {
+        Some(Vector1::zeros())
+    }
+}
+
+/// A planet around a fixed sun in polar coordinates `(r, φ)`:
+/// `L = ½ m (ṙ² + r² φ̇²) + m μ / r`. `M = diag(m, m r²)` depends on `q`, and
+/// `φ` is cyclic, so `p_φ = m r² φ̇` (angular momentum) is conserved.
+pub struct PolarKepler {
+    pub m: f64,
+    pub mu: f64,
+}
+
+impl PolarKepler {
+    /// The conjugate momentum of `φ`.
+    pub fn angular_momentum(&self, q: &Vector2<f64>, qdot: &Vector2<f64>) -> f64 {
+        self.m * q[0] * q[0] * qdot[1]
+    }
+}
+
+impl Lagrangian<2> for PolarKepler {
+    type Scalar = f64;
+    const COORDINATES: [&'static str; 2] = ["r", "phi"];
+
+    fn mass_matrix(&self, _t: f64, q: &Vector2<f64>) -> Matrix2<f64> {
+        Matrix2::new(self.m, 0.0, 0.0, self.m * q[0] * q[0])
+    }
+    fn forcing(&self, _t: f64, q: &Vector2<f64>, qdot: &Vector2<f64>) -> Vector2<f64> {
+        let (r, rdot, phidot) = (q[0], qdot[0], qdot[1]);
+        Vector2::new(
+            self.m * r * phidot * phidot - self.m * self.mu / (r * r),
+            -2.0 * self.m * r * rdot * phidot,
+        )
+    }
+    fn kinetic_energy(&self, _t: f64, q: &Vector2<f64>, qdot: &Vector2<f64>) -> f64 {
+        0.5 * self.m * (qdot[0] * qdot[0] + q[0] * q[0] * qdot[1] * qdot[1])
+    }
+    fn potential_energy(&self, _t: f64, q: &Vector2<f64>) -> f64 {
+        -self.m * self.mu / q[0]
+    }
+    fn momentum(&self, _t: f64, q: &Vector2<f64>, qdot: &Vector2<f64>) -> Option<Vector2<f64>> {
+        Some(Vector2::new(
+            self.m * qdot[0],
+            self.m * q[0] * q[0] * qdot[1],
+        ))
+    }
+    fn lagrangian_gradient(
+        &self,
+        _t: f64,
+        q: &Vector2<f64>,
+        qdot: &Vector2<f64>,
+    ) -> Option<Vector2<f64>> {
+        let (r, phidot) = (q[0], qdot[1]);
+        Some(Vector2::new(
+            self.m * r * phidot * phidot - self.m * self.mu / (r * r),
+            0.0,
+        ))
+    }
+    fn nonconservative_forces(
+        &self,
+        _t: f64,
+        _q: &Vector2<f64>,
+        _qdot: &Vector2<f64>,
+    ) -> Option<Vector2<f64>> {
+        Some(Vector2::zeros())
+    }
+}
+
+/// The same planet in Cartesian coordinates: `L = ½ m |q̇|² + m μ / |q|`.
+/// No coordinate is cyclic; angular momentum comes from the rotational
+/// symmetry of `L` as a whole.
+pub struct CartesianKepler {
+    pub m: f64,
+    pub mu: f64,
+}
+
+impl CartesianKepler {
+    /// `m (x ẏ − y ẋ)`.
+    pub fn angular_momentum(&self, q: &Vector2<f64>, qdot: &Vector2<f64>) -> f64 {
+        self.m * (q[0] * qdot[1] - q[1] * qdot[0])
+    }
+    fn pull(&self, q: &Vector2<f64>) -> Vector2<f64> {
+        let r = q.norm();
+        q * (-self.m * self.mu / (r * r * r))
+    }
+}
+
+impl Lagrangian<2> for CartesianKepler {
+    type Scalar = f64;
+    const COORDINATES: [&'static str; 2] = ["x", "y"];
+
+    fn mass_matrix(&self, _t: f64, _q: &Vector2<f64>) -> Matrix2<f64> {
+        Matrix2::identity() * self.m
+    }
+    fn forcing(&self, _t: f64, q: &Vector2<f64>, _qdot: &Vector2<f64>) -> Vector2<f64> {
+        self.pull(q)
+    }
+    fn kinetic_energy(&self, _t: f64, _q: &Vector2<f64>, qdot: &Vector2<f64>) -> f64 {
+        0.5 * self.m * qdot.norm_squared()
+    }
+    fn potential_energy(&self, _t: f64, q: &Vector2<f64>) -> f64 {
+        -self.m * self.mu / q.norm()
+    }
+    fn momentum(&self, _t: f64, _q: &Vector2<f64>, qdot: &Vector2<f64>) -> Option<Vector2<f64>> {
+        Some(qdot * self.m)
+    }
+    fn lagrangian_gradient(
+        &self,
+        _t: f64,
+        q: &Vector2<f64>,
+        _qdot: &Vector2<f64>,
+    ) -> Option<Vector2<f64>> {
+        Some(self.pull(q))
+    }
+    fn nonconservative_forces(
+        &self,
+        _t: f64,
+        _q: &Vector2<f64>,
+        _qdot: &Vector2<f64>,
+    ) -> Option<Vector2<f64>> {
+        Some(Vector2::zeros())
+    }
+}
+
+/// A mass on a spring with a dashpot: `L = ½ m ẋ² − ½ k x²`, Rayleigh
+/// dissipation `R = ½ c ẋ²`, so `Q − ∂R/∂ẋ = −c ẋ`. Underdamped for
+/// `c² < 4 m k`, with a closed-form energy.
+pub struct DampedOscillator {
+    pub m: f64,
+    pub k: f64,
+    pub c: f64,
+}
+
+impl DampedOscillator {
+    /// The exact energy at `t` from `(x0, ẋ0)` at `t = 0` (underdamped).
+    pub fn exact_energy(&self, t: f64, x0: f64, v0: f64) -> f64 {
+        let gamma = self.c / (2.0 * self.m);
+        let omega = (self.k / self.m - gamma * gamma).sqrt();
+        let (a, b) = (x0, (v0 + gamma * x0) / omega);
+        let (s, c) = (omega * t).sin_cos();
+        let decay = (-gamma * t).exp();
+        let x = decay * (a * c + b * s);
+        let v = decay * ((b * omega - gamma * a) * c - (a * omega + gamma * b) * s);
+        0.5 * self.m * v * v + 0.5 * self.k * x * x
+    }
+}
+
+impl Lagrangian<1> for DampedOscillator {
+    type Scalar = f64;
+    const COORDINATES: [&'static str; 1] = ["x"];
+
+    fn mass_matrix(&self, _t: f64, _q: &Vector1<f64>) -> SMatrix<f64, 1, 1> {
+        SMatrix::<f64, 1, 1>::new(self.m)
+    }
+    fn forcing(&self, _t: f64, q: &Vector1<f64>, qdot: &Vector1<f64>) -> Vector1<f64> {
+        Vector1::new(-self.k * q[0] - self.c * qdot[0])
+    }
+    fn kinetic_energy(&self, _t: f64, _q: &Vector1<f64>, qdot: &Vector1<f64>) -> f64 {
+        0.5 * self.m * qdot[0] * qdot[0]
+    }
+    fn potential_energy(&self, _t: f64, q: &Vector1<f64>) -> f64 {
+        0.5 * self.k * q[0] * q[0]
+    }
+    fn momentum(&self, _t: f64, _q: &Vector1<f64>, qdot: &Vector1<f64>) -> Option<Vector1<f64>> {
+        Some(qdot * self.m)
+    }
+    fn lagrangian_gradient(
+        &self,
+        _t: f64,
+        q: &Vector1<f64>,
+        _qdot: &Vector1<f64>,
+    ) -> Option<Vector1<f64>> {
+        Some(q * -self.k)
+    }
+    fn nonconservative_forces(
+        &self,
+        _t: f64,
+        _q: &Vector1<f64>,
+        qdot: &Vector1<f64>,
+    ) -> Option<Vector1<f64>> {
+        Some(qdot * -self.c)
+    }
+}
+
+/// `q̈ = e^q` (`L = ½ q̇² + e^q`): pushed ever harder the further it goes.
+/// For a step `h` the discrete Euler–Lagrange residual
+/// `r(v) = p − v + (h/2) e^{q + h v/2}` is convex in `v` with minimum
+/// `p + (2/h)(1 + ln(h²/4) + q)`, positive for a large enough `h`: then the
+/// discrete equations have no solution at all.
+pub struct ExponentialWell;
+
+impl Lagrangian<1> for ExponentialWell {
+    type Scalar = f64;
+    const COORDINATES: [&'static str; 1] = ["q"];
+
+    fn mass_matrix(&self, _t: f64, _q: &Vector1<f64>) -> SMatrix<f64, 1, 1> {
+        SMatrix::<f64, 1, 1>::new(1.0)
+    }
+    fn forcing(&self, _t: f64, q: &Vector1<f64>, _qdot: &Vector1<f64>) -> Vector1<f64> {
+        Vector1::new(q[0].exp())
+    }
+    fn kinetic_energy(&self, _t: f64, _q: &Vector1<f64>, qdot: &Vector1<f64>) -> f64 {
+        0.5 * qdot[0] * qdot[0]
+    }
+    fn potential_energy(&self, _t: f64, q: &Vector1<f64>) -> f64 {
+        -q[0].exp()
+    }
+    fn momentum(&self, _t: f64, _q: &Vector1<f64>, qdot: &Vector1<f64>) -> Option<Vector1<f64>> {
+        Some(*qdot)
+    }
+    fn lagrangian_gradient(
+        &self,
+        _t: f64,
+        q: &Vector1<f64>,
+        _qdot: &Vector1<f64>,
+    ) -> Option<Vector1<f64>> {
+        Some(Vector1::new(q[0].exp()))
+    }
+    fn nonconservative_forces(
+        &self,
+        _t: f64,
+        _q: &Vector1<f64>,
+        _qdot: &Vector1<f64>,
+    ) -> Option<Vector1<f64>> {
+        Some(Vector1::zeros())
+    }
+}
+
+/// `inner` with some of the optional variational methods hidden, as a
+/// hand-written model that skipped them would be.
+pub struct Without<M> {
+    pub inner: M,
+    pub lacks_momentum: bool,
+    pub lacks_gradient: bool,
+    pub lacks_forces: bool,
+}
+
+impl<M: Lagrangian<N>, const N: usize> Lagrangian<N> for Without<M> {
+    type Scalar = M::Scalar;
+    const COORDINATES: [&'static str; N] = M::COORDINATES;
+
+    fn mass_matrix(&self, t: M::Scalar, q: &SVector<M::Scalar, N>) -> SMatrix<M::Scalar, N, N> {
+        self.inner.mass_matrix(t, q)
+    }
+    fn forcing(
+        &self,
+        t: M::Scalar,
+        q: &SVector<M::Scalar, N>,
+        qdot: &SVector<M::Scalar, N>,
+    ) -> SVector<M::Scalar, N> {
+        self.inner.forcing(t, q, qdot)
+    }
+    fn kinetic_energy(
+        &self,
+        t: M::Scalar,
+        q: &SVector<M::Scalar, N>,
+        qdot: &SVector<M::Scalar, N>,
+    ) -> M::Scalar {
+        self.inner.kinetic_energy(t, q, qdot)
+    }
+    fn potential_energy(&self, t: M::Scalar, q: &SVector<M::Scalar, N>) -> M::Scalar {
+        self.inner.potential_energy(t, q)
+    }
+    fn momentum(
+        &self,
+        t: M::Scalar,
+        q: &SVector<M::Scalar, N>,
+        qdot: &SVector<M::Scalar, N>,
+    ) -> Option<SVector<M::Scalar, N>> {
+        self.inner
+            .momentum(t, q, qdot)
+            .filter(|_| !self.lacks_momentum)
+    }
+    fn lagrangian_gradient(
+        &self,
+        t: M::Scalar,
+        q: &SVector<M::Scalar, N>,
+        qdot: &SVector<M::Scalar, N>,
+    ) -> Option<SVector<M::Scalar, N>> {
+        self.inner
+            .lagrangian_gradient(t, q, qdot)
+            .filter(|_| !self.lacks_gradient)
+    }
+    fn nonconservative_forces(
+        &self,
+        t: M::Scalar,
+        q: &SVector<M::Scalar, N>,
+        qdot: &SVector<M::Scalar, N>,
+    ) -> Option<SVector<M::Scalar, N>> {
+        self.inner
+            .nonconservative_forces(t, q, qdot)
+            .filter(|_| !self.lacks_forces)
+    }
+}
+
+/// A unit spring shaken by a force in the Lagrangian itself:
+/// `L = ½ ẋ² − ½ x² + F x cos(Ω t)`, explicitly time dependent.
+pub struct DrivenOscillator {
+    pub force: f64,
+    pub omega: f64,
+}
+
+impl DrivenOscillator {
+    /// The exact `(x, ẋ)` at `t` from rest at the origin (`Ω ≠ 1`).
+    pub fn exact(&self, t: f64) -> (f64, f64) {
+        let a = self.force / (1.0 - self.omega * self.omega);
+        let x = a * ((self.omega * t).cos() - t.cos());
+        let v = a * (t.sin() - self.omega * (self.omega * t).sin());
+        (x, v)
+    }
+}
+
+impl Lagrangian<1> for DrivenOscillator {
+    type Scalar = f64;
+    const COORDINATES: [&'static str; 1] = ["x"];
+
+    fn mass_matrix(&self, _t: f64, _q: &Vector1<f64>) -> SMatrix<f64, 1, 1> {
+        SMatrix::<f64, 1, 1>::new(1.0)
+    }
+    fn forcing(&self, t: f64, q: &Vector1<f64>, _qdot: &Vector1<f64>) -> Vector1<f64> {
+        Vector1::new(-q[0] + self.force * (self.omega * t).cos())
+    }
+    fn kinetic_energy(&self, _t: f64, _q: &Vector1<f64>, qdot: &Vector1<f64>) -> f64 {
+        0.5 * qdot[0] * qdot[0]
+    }
+    fn potential_energy(&self, t: f64, q: &Vector1<f64>) -> f64 {
+        0.5 * q[0] * q[0] - self.force * q[0] * (self.omega * t).cos()
+    }
+    fn momentum(&self, _t: f64, _q: &Vector1<f64>, qdot: &Vector1<f64>) -> Option<Vector1<f64>> {
+        Some(*qdot)
+    }
+    fn lagrangian_gradient(
+        &self,
+        t: f64,
+        q: &Vector1<f64>,
+        _qdot: &Vector1<f64>,
+    ) -> Option<Vector1<f64>> {
+        Some(Vector1::new(-q[0] + self.force * (self.omega * t).cos()))
+    }
+    fn nonconservative_forces(
+        &self,
+        _t: f64,
+        _q: &Vector1<f64>,
+        _qdot: &Vector1<f64>,
+    ) -> Option<Vector1<f64>> {
+        Some(Vector1::zeros())
+    }
+}
