@@ -89,7 +89,7 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
     /// its iteration limit at a fixed step size `h` (adaptive methods shrink
     /// the step instead): `h` is too large for the problem's nonlinearity.
     #[error(
-        "Newton iteration did not converge in {iterations} iterations at t = {t:?} with step          h = {h:?} (q = {}, q̇ = {}); take a smaller step",
+        "Newton iteration did not converge in {iterations} iterations at t = {t:?} with step h = {h:?} (q = {}, q̇ = {}); take a smaller step",
         Row(.q), Row(.qdot)
     )]
     NewtonDivergence {
