@@ -165,3 +165,28 @@ fn rk4_and_dopri5_drift_in_energy_over_a_long_kepler_run() {
     println!("dopri5 energy error: first tenth {early:.2e}, last tenth {late:.2e}");
     assert!(late > 4.0 * early, "dopri5: {early:.2e} → {late:.2e}");
 }
+
+#[test]
+fn variational_shows_second_order_on_a_derived_model() {
+    let hs = [0.02, 0.01, 0.005, 0.0025];
+    assert_order("variational", 2.0, &hs, |h| {
+        final_state(&Variational::new(h), 1.0)
+    });
+}
+
+/// A method without drift keeps the worst energy error of the last tenth of
+/// the run at the level of the first tenth: bounded oscillation (a ratio
+/// below 2; drift would give ≈ 10).
+fn assert_no_drift<I: Integrator<f64>>(name: &str, method: &I) {
+    let (early, late) = energy_error_early_and_late(method, 500);
+    println!("{name} energy error: first tenth {early:.2e}, last tenth {late:.2e}");
+    assert!(late < 2.0 * early, "{name}: {early:.2e} → {late:.2e}");
+}
+
+#[test]
+fn variational_energy_error_stays_bounded_over_a_long_kepler_run() {
+    assert_no_drift(
+        "variational",
+        &Variational::new(2.0 * std::f64::consts::PI / 200.0),
+    );
+}

@@ -22,6 +22,7 @@ use systems::Problem;
 #[derive(Clone, Copy, Debug)]
 pub enum Method {
     Rk4(f64),
+    Variational(f64),
     Dopri5(f64),
 }
 
@@ -29,6 +30,7 @@ impl Method {
     pub fn name(self) -> &'static str {
         match self {
             Method::Rk4(_) => "rk4",
+            Method::Variational(_) => "variational",
             Method::Dopri5(_) => "dopri5",
         }
     }
@@ -36,12 +38,12 @@ impl Method {
     /// The step size or the tolerance.
     pub fn setting(self) -> f64 {
         match self {
-            Method::Rk4(x) | Method::Dopri5(x) => x,
+            Method::Rk4(x) | Method::Variational(x) | Method::Dopri5(x) => x,
         }
     }
 
     fn fixed_step(self) -> bool {
-        matches!(self, Method::Rk4(_))
+        matches!(self, Method::Rk4(_) | Method::Variational(_))
     }
 
     pub fn integrate<L: Lagrangian<N, Scalar = f64>, const N: usize>(
@@ -70,6 +72,7 @@ fn sweep(steps: &[f64]) -> Vec<Method> {
     let tolerances: Vec<f64> = (3..=13).map(|k| 10f64.powi(-k)).collect();
     let mut methods = Vec::new();
     methods.extend(steps.iter().map(|&h| Method::Rk4(h)));
+    methods.extend(steps.iter().map(|&h| Method::Variational(h)));
     methods.extend(tolerances.iter().map(|&t| Method::Dopri5(t)));
     methods
 }
@@ -199,6 +202,12 @@ fn long_run(dir: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
     add(
         "rk4 h = T/500".to_string(),
         Rk4::new(h)
+            .max_steps(usize::MAX)
+            .integrate(&model, 0.0, q0, v0, &times)?,
+    );
+    add(
+        "variational h = T/500".to_string(),
+        Variational::new(h)
             .max_steps(usize::MAX)
             .integrate(&model, 0.0, q0, v0, &times)?,
     );
