@@ -194,39 +194,55 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     }
 }
 
-/// `(q, q̇)`.
+/// `(q, q̇)`, as a one-step method returns it.
 pub(crate) type State<S, const N: usize> = (SVector<S, N>, SVector<S, N>);
 
-/// Drives a one-step method with a fixed step through every sample time of
-/// `rec`, landing on each exactly instead of interpolating.
+/// The loop every fixed-step method shares, so that they all land on the
+/// sample times the same way and only differ in `step`.
 ///
-/// Each interval between consecutive sample times is cut into the fewest
-/// equal steps no longer than `h`, so when the sample spacing is a multiple
-/// of `h` every step is exactly `h`. `step(rec, t, q, q̇, h)` advances one
-/// step of size `h` from `t` and counts its own work in `rec.stats`; the
-/// driver counts the steps and enforces `max_steps`.
-pub(crate) fn fixed_steps<'a, S: RealField + Copy, const N: usize>(
-    mut rec: Recorder<'a, S, N>,
-    (t0, q0, qdot0): (S, SVector<S, N>, SVector<S, N>),
+/// Sample times are hit exactly, not interpolated: each interval between
+/// consecutive sample times is cut into the fewest equal steps no longer than
+/// `h`. `step(rec, model, t, q, q̇, h)` advances one step, evaluating the
+/// model through `rec` so that its work is counted; its error ends the
+/// integration with the samples so far. Every step counts against
+/// `max_steps`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fixed_step<S, L, const N: usize, F>(
+    model: &L,
     h: S,
     max_steps: usize,
-    mut step: impl FnMut(
-        &mut Recorder<'a, S, N>,
+    t0: S,
+    q0: SVector<S, N>,
+    qdot0: SVector<S, N>,
+    times: &[S],
+    mut step: F,
+) -> IntegrationResult<S, N>
+where
+    S: RealField + Copy,
+    L: Lagrangian<N, Scalar = S>,
+    F: FnMut(
+        &mut Recorder<'_, S, N>,
+        &L,
         S,
         &SVector<S, N>,
         &SVector<S, N>,
         S,
     ) -> Result<State<S, N>, IntegrationError<S, N>>,
-) -> IntegrationResult<S, N> {
+{
+    if !(h.is_finite() && h > S::zero()) {
+        return Err(invalid(InvalidInput::InvalidStepSize { h }));
+    }
+    let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
     let (mut t, mut q, mut qdot) = (t0, q0, qdot0);
+
     while let Some(target) = rec.pending() {
         let (start, span) = (t, target - t);
-        let steps = steps_to_cover(span, h);
-        let size = span / nalgebra::convert::<f64, S>(steps as f64);
-        if start + size == start {
+        let steps = steps_to_cover(start, target, h);
+        let step_size = span / nalgebra::convert::<f64, S>(steps as f64);
+        if start + step_size == start {
             let error = IntegrationError::StepSizeUnderflow {
                 t,
-                h: size,
+                h: step_size,
                 q,
                 qdot,
             };
@@ -247,9 +263,9 @@ pub(crate) fn fixed_steps<'a, S: RealField + Copy, const N: usize>(
             let t_next = if k == steps {
                 target
             } else {
-                start + size * nalgebra::convert::<f64, S>(k as f64)
+                start + step_size * nalgebra::convert::<f64, S>(k as f64)
             };
-            match step(&mut rec, t, &q, &qdot, t_next - t) {
+            match step(&mut rec, model, t, &q, &qdot, t_next - t) {
                 Ok((q_next, qdot_next)) => (q, qdot) = (q_next, qdot_next),
                 Err(error) => return Err(rec.fail(error)),
             }
@@ -270,15 +286,21 @@ pub(crate) fn fixed_steps<'a, S: RealField + Copy, const N: usize>(
     Ok(rec.finish())
 }
 
-/// The fewest equal steps no longer than `h` that cover `span`, forgiving a
-/// few ulps so that a span of exactly `10 h` in decimal takes 10 steps, not
-/// 11. Saturates at `usize::MAX`; the step budget stops it long before.
-fn steps_to_cover<S: RealField + Copy>(span: S, h: S) -> usize {
-    let ratio = span / h;
-    let slack: S = nalgebra::convert(8.0);
-    let steps = (ratio * (S::one() - slack * S::default_epsilon())).ceil();
+/// The fewest equal steps no longer than `h` that cover `[start, target]`,
+/// forgiving the rounding of the sample times themselves: a span of exactly
+/// `10 h` in decimal takes 10 steps, not 11, and samples `i h` apart by one
+/// step still take one step each late in a run, where `i h` carries rounding
+/// of a few ulps of `t` (at `t = 100`, ~1e-14 — far more than an ulp of `h`).
+/// A step may so exceed `h` by `8 ε (|t| + span)`, which no method notices.
+/// Saturates at `usize::MAX`; the step budget stops it long before.
+fn steps_to_cover<S: RealField + Copy>(start: S, target: S, h: S) -> usize {
+    let span = target - start;
+    let eight_ulps = nalgebra::convert::<f64, S>(8.0) * S::default_epsilon();
+    let forgiven = eight_ulps * (span + start.abs().max(target.abs()));
+    let steps = ((span - forgiven) / h).ceil();
     let steps: f64 = nalgebra::try_convert(steps).unwrap_or(f64::MAX);
-    // `as` saturates; a span of zero never reaches here.
+    // `as` saturates (and sends negatives to 0); a span of zero never
+    // reaches here.
     (steps as usize).max(1)
 }
 

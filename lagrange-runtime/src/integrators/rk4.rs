@@ -2,8 +2,8 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::{fixed_steps, invalid, Integrator, Recorder, State};
-use crate::{IntegrationError, IntegrationResult, InvalidInput, Lagrangian};
+use super::{fixed_step, Integrator, Recorder, State};
+use crate::{IntegrationError, IntegrationResult, Lagrangian};
 
 /// Classic RK4 with a fixed step `h`: four right-hand sides per step,
 /// global error `O(h⁴)`, no error control.
@@ -62,18 +62,8 @@ impl<S: RealField + Copy> Integrator<S> for Rk4<S> {
     where
         L: Lagrangian<N, Scalar = S>,
     {
-        let h = self.h;
-        if !(h.is_finite() && h > S::zero()) {
-            return Err(invalid(InvalidInput::InvalidStepSize { h }));
-        }
-        let rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
-        fixed_steps(
-            rec,
-            (t0, q0, qdot0),
-            h,
-            self.max_steps,
-            |rec, t, q, qdot, h| rk4_step(rec, model, t, q, qdot, h),
-        )
+        let (h, max_steps) = (self.h, self.max_steps);
+        fixed_step(model, h, max_steps, t0, q0, qdot0, times, rk4_step)
     }
 }
 
