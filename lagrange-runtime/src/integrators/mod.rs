@@ -12,11 +12,69 @@
 //! - Integration runs forward from `t0` to the last sample time. Samples
 //!   equal to `t0` are the initial state, unchanged.
 //! - A failure returns the samples computed so far in [`Failure`].
+//!
+//! # Implicit methods: symmetric, and when symplectic
+//!
+//! [`ImplicitMidpoint`] and [`GaussLegendre`] are the Gauss collocation
+//! methods applied to `y = (q, q̇)`, the only variables every model has.
+//! For any model they are:
+//!
+//! - **symmetric**: stepping with `h` then `−h` returns to the start, so
+//!   their error expansions have only even powers of `h`;
+//! - **reversible** when the model is: if `T` is quadratic in `q̇` and nothing
+//!   depends on `t` (no dissipation, no driving), `(q, q̇) ↦ (q, −q̇)`
+//!   reverses the motion, and a symmetric Runge–Kutta method inherits that
+//!   exactly (Hairer, Lubich & Wanner, *Geometric Numerical Integration*,
+//!   Thm. V.1.5): run forward, flip `q̇`, run again, and you are back at the
+//!   start to round-off;
+//! - **conservative of quadratic invariants** of `(q, q̇)`, to round-off: the
+//!   angular momentum `m (x ẏ − y ẋ)` of a particle in a central field in
+//!   Cartesian coordinates, say.
+//!
+//! Whether they are *symplectic* depends on the mass matrix:
+//!
+//! - **Constant `M`**: `p = M q̇` is a linear change of variables, Runge–Kutta
+//!   methods commute with those, so each step is exactly the Gauss step in
+//!   canonical `(q, p)`, which is symplectic: the energy error stays bounded
+//!   over exponentially long times.
+//! - **`M(q)`**, most models: `p = M(q) q̇` is nonlinear and the step in
+//!   `(q, q̇)` is not the Gauss step in `(q, p)`. The argument that makes Gauss
+//!   methods symplectic covers 2-forms with constant coefficients in the
+//!   variables they are applied to; the form the flow preserves here,
+//!   `Σ dqᵢ ∧ d(M(q) q̇)ᵢ`, has not, and in general it is not preserved.
+//!   What still holds is reversibility, and for reversible, integrable or
+//!   nearly integrable models reversible methods show no energy drift over
+//!   long times (same book, ch. XI). Measured (`tests/implicit_geometry.rs`):
+//!   a pendulum on a free cart, `M(θ)`, over 10⁵ steps of `h = 0.05`
+//!   (~3300 swings) keeps a bounded energy error, midpoint 3·10⁻², Gauss-2
+//!   2·10⁻⁴, Gauss-3 4·10⁻⁶ of `|E| ≈ 3.5`, with a fitted drift over the run
+//!   below 2·10⁻⁴ of that error, while RK4 at the same step loses 1.9.
+//!   Chaotic or non-reversible models (friction, gyroscopic or driven
+//!   terms) have no such guarantee. A method that is symplectic for `M(q)`
+//!   must be written in `(q, p)`, with [`Lagrangian::momentum`].
+//!
+//! Each step solves the stage equations, `2 N s` unknowns, by simplified
+//! Newton: one Jacobian of `q̈` per step (exact with
+//! [`Lagrangian::residual_jacobians`], else `2 N` extra right-hand sides of
+//! forward differences), one LU factorization, and `s` right-hand sides per
+//! iteration, typically 3–7 iterations from a guess extrapolated from the
+//! previous step. The iteration stops when the correction is below `10 ε`
+//! of the state's size, so the properties above hold to round-off, not to
+//! a solver tolerance; if it diverges, or has not converged in
+//! `max_iterations`, the step fails with
+//! [`NewtonDivergence`](IntegrationError::NewtonDivergence): take a smaller
+//! step.
 
+mod dense_lu;
 mod dopri5;
+mod gauss_legendre;
+mod implicit_midpoint;
+mod implicit_rk;
 mod rk4;
 
 pub use dopri5::Dopri5;
+pub use gauss_legendre::GaussLegendre;
+pub use implicit_midpoint::ImplicitMidpoint;
 pub use rk4::Rk4;
 
 use nalgebra::{ComplexField, RealField, SVector};
