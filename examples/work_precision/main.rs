@@ -18,10 +18,14 @@ use lagrange::prelude::*;
 use std::time::Instant;
 use systems::Problem;
 
-/// One integrator with one setting.
+/// One integrator with one setting: a step size for the fixed-step methods,
+/// a tolerance (rtol = atol) for the adaptive ones.
 #[derive(Clone, Copy, Debug)]
 pub enum Method {
     Rk4(f64),
+    ImplicitMidpoint(f64),
+    Gauss4(f64),
+    Gauss6(f64),
     Variational(f64),
     Dopri5(f64),
 }
@@ -30,6 +34,9 @@ impl Method {
     pub fn name(self) -> &'static str {
         match self {
             Method::Rk4(_) => "rk4",
+            Method::ImplicitMidpoint(_) => "implicit_midpoint",
+            Method::Gauss4(_) => "gauss_legendre_2",
+            Method::Gauss6(_) => "gauss_legendre_3",
             Method::Variational(_) => "variational",
             Method::Dopri5(_) => "dopri5",
         }
@@ -38,12 +45,17 @@ impl Method {
     /// The step size or the tolerance.
     pub fn setting(self) -> f64 {
         match self {
-            Method::Rk4(x) | Method::Variational(x) | Method::Dopri5(x) => x,
+            Method::Rk4(x)
+            | Method::ImplicitMidpoint(x)
+            | Method::Gauss4(x)
+            | Method::Gauss6(x)
+            | Method::Variational(x)
+            | Method::Dopri5(x) => x,
         }
     }
 
     fn fixed_step(self) -> bool {
-        matches!(self, Method::Rk4(_) | Method::Variational(_))
+        !matches!(self, Method::Dopri5(_))
     }
 
     pub fn integrate<L: Lagrangian<N, Scalar = f64>, const N: usize>(
@@ -52,9 +64,20 @@ impl Method {
         times: &[f64],
     ) -> IntegrationResult<f64, N> {
         let (m, q, v) = (&p.model, p.q0, p.qdot0);
+        let budget = usize::MAX;
         match self {
-            Method::Rk4(h) => Rk4::new(h)
-                .max_steps(usize::MAX)
+            Method::Rk4(h) => Rk4::new(h).max_steps(budget).integrate(m, 0.0, q, v, times),
+            Method::ImplicitMidpoint(h) => ImplicitMidpoint::new(h)
+                .max_steps(budget)
+                .integrate(m, 0.0, q, v, times),
+            Method::Gauss4(h) => GaussLegendre::two_stage(h)
+                .max_steps(budget)
+                .integrate(m, 0.0, q, v, times),
+            Method::Gauss6(h) => GaussLegendre::three_stage(h)
+                .max_steps(budget)
+                .integrate(m, 0.0, q, v, times),
+            Method::Variational(h) => Variational::new(h)
+                .max_steps(budget)
                 .integrate(m, 0.0, q, v, times),
             Method::Dopri5(tol) => Dopri5::new()
                 .rtol(tol)
@@ -70,10 +93,21 @@ use lagrange::IntegrationResult;
 /// Every method at every setting worth running on a problem.
 fn sweep(steps: &[f64]) -> Vec<Method> {
     let tolerances: Vec<f64> = (3..=13).map(|k| 10f64.powi(-k)).collect();
+    let fixed: [fn(f64) -> Method; 5] = [
+        Method::Rk4,
+        Method::ImplicitMidpoint,
+        Method::Gauss4,
+        Method::Gauss6,
+        Method::Variational,
+    ];
+    let adaptive: [fn(f64) -> Method; 1] = [Method::Dopri5];
     let mut methods = Vec::new();
-    methods.extend(steps.iter().map(|&h| Method::Rk4(h)));
-    methods.extend(steps.iter().map(|&h| Method::Variational(h)));
-    methods.extend(tolerances.iter().map(|&t| Method::Dopri5(t)));
+    for make in fixed {
+        methods.extend(steps.iter().map(|&h| make(h)));
+    }
+    for make in adaptive {
+        methods.extend(tolerances.iter().map(|&t| make(t)));
+    }
     methods
 }
 

@@ -89,7 +89,8 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
     /// its iteration limit at a fixed step size `h` (adaptive methods shrink
     /// the step instead): `h` is too large for the problem's nonlinearity.
     #[error(
-        "Newton iteration did not converge in {iterations} iterations at t = {t:?} with step h = {h:?} (q = {}, q̇ = {}); take a smaller step",
+        "Newton iteration did not converge in {iterations} iterations at t = {t:?} with step \
+         h = {h:?} (q = {}, q̇ = {}); take a smaller step",
         Row(.q), Row(.qdot)
     )]
     NewtonDivergence {
@@ -97,8 +98,9 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         t: S,
         /// The step size tried.
         h: S,
-        /// The iterations done: the limit, or fewer when the iterates ran
-        /// off to where the model is no longer finite.
+        /// Iterations done in the failing step: the limit, or fewer when
+        /// the corrections grew (the iteration was diverging); 0 when the
+        /// Newton matrix was singular before the first.
         iterations: usize,
         /// Generalized coordinates at `t`.
         q: SVector<S, N>,

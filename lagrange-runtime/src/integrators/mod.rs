@@ -14,12 +14,70 @@
 //! - Integration runs forward from `t0` to the last sample time. Samples
 //!   equal to `t0` are the initial state, unchanged.
 //! - A failure returns the samples computed so far in [`Failure`].
+//!
+//! # Implicit methods: symmetric, and when symplectic
+//!
+//! [`ImplicitMidpoint`] and [`GaussLegendre`] are the Gauss collocation
+//! methods applied to `y = (q, q̇)`, the only variables every model has.
+//! For any model they are:
+//!
+//! - **symmetric**: stepping with `h` then `−h` returns to the start, so
+//!   their error expansions have only even powers of `h`;
+//! - **reversible** when the model is: if `T` is quadratic in `q̇` and nothing
+//!   depends on `t` (no dissipation, no driving), `(q, q̇) ↦ (q, −q̇)`
+//!   reverses the motion, and a symmetric Runge–Kutta method inherits that
+//!   exactly (Hairer, Lubich & Wanner, *Geometric Numerical Integration*,
+//!   Thm. V.1.5): run forward, flip `q̇`, run again, and you are back at the
+//!   start to round-off;
+//! - **conservative of quadratic invariants** of `(q, q̇)`, to round-off: the
+//!   angular momentum `m (x ẏ − y ẋ)` of a particle in a central field in
+//!   Cartesian coordinates, say.
+//!
+//! Whether they are *symplectic* depends on the mass matrix:
+//!
+//! - **Constant `M`**: `p = M q̇` is a linear change of variables, Runge–Kutta
+//!   methods commute with those, so each step is exactly the Gauss step in
+//!   canonical `(q, p)`, which is symplectic: the energy error stays bounded
+//!   over exponentially long times.
+//! - **`M(q)`**, most models: `p = M(q) q̇` is nonlinear and the step in
+//!   `(q, q̇)` is not the Gauss step in `(q, p)`. The argument that makes Gauss
+//!   methods symplectic covers 2-forms with constant coefficients in the
+//!   variables they are applied to; the form the flow preserves here,
+//!   `Σ dqᵢ ∧ d(M(q) q̇)ᵢ`, has not, and in general it is not preserved.
+//!   What still holds is reversibility, and for reversible, integrable or
+//!   nearly integrable models reversible methods show no energy drift over
+//!   long times (same book, ch. XI). Measured (`tests/implicit_geometry.rs`):
+//!   a pendulum on a free cart, `M(θ)`, over 10⁵ steps of `h = 0.05`
+//!   (~3300 swings) keeps a bounded energy error, midpoint 3·10⁻², Gauss-2
+//!   2·10⁻⁴, Gauss-3 4·10⁻⁶ of `|E| ≈ 3.5`, with a fitted drift over the run
+//!   below 2·10⁻⁴ of that error, while RK4 at the same step loses 1.9.
+//!   Chaotic or non-reversible models (friction, gyroscopic or driven
+//!   terms) have no such guarantee. A method that is symplectic for `M(q)`
+//!   must be written in `(q, p)`, with [`Lagrangian::momentum`].
+//!
+//! Each step solves the stage equations, `2 N s` unknowns, by simplified
+//! Newton: one Jacobian of `q̈` per step (exact with
+//! [`Lagrangian::residual_jacobians`], else `2 N` extra right-hand sides of
+//! forward differences), one LU factorization, and `s` right-hand sides per
+//! iteration, typically 3–7 iterations from a guess extrapolated from the
+//! previous step. The iteration stops when the correction is below `10 ε`
+//! of the state's size, so the properties above hold to round-off, not to
+//! a solver tolerance; if it diverges, or has not converged in
+//! `max_iterations`, the step fails with
+//! [`NewtonDivergence`](IntegrationError::NewtonDivergence): take a smaller
+//! step.
 
+mod dense_lu;
 mod dopri5;
+mod gauss_legendre;
+mod implicit_midpoint;
+mod implicit_rk;
 mod rk4;
 mod variational;
 
 pub use dopri5::Dopri5;
+pub use gauss_legendre::GaussLegendre;
+pub use implicit_midpoint::ImplicitMidpoint;
 pub use rk4::Rk4;
 pub use variational::Variational;
 
@@ -27,7 +85,8 @@ use nalgebra::{ComplexField, RealField, SVector};
 
 use crate::solve::acceleration;
 use crate::{
-    Failure, IntegrationError, IntegrationResult, InvalidInput, Lagrangian, Stats, Trajectory,
+    Failure, IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue, Stats,
+    Trajectory,
 };
 
 /// A method that integrates a [`Lagrangian`] model and samples it at
@@ -195,6 +254,116 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     pub(crate) fn fail(self, error: IntegrationError<S, N>) -> Box<Failure<S, N>> {
         Failure::boxed(error, self.finish())
     }
+}
+
+/// `(q, q̇)`, as a one-step method returns it.
+pub(crate) type State<S, const N: usize> = (SVector<S, N>, SVector<S, N>);
+
+/// The loop every fixed-step method shares, so that they all land on the
+/// sample times the same way and only differ in `step`.
+///
+/// Sample times are hit exactly, not interpolated: each interval between
+/// consecutive sample times is cut into the fewest equal steps no longer than
+/// `h`. `step(rec, model, t, q, q̇, h)` advances one step, evaluating the
+/// model through `rec` so that its work is counted; its error ends the
+/// integration with the samples so far. Every step counts against
+/// `max_steps`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fixed_step<S, L, const N: usize, F>(
+    model: &L,
+    h: S,
+    max_steps: usize,
+    t0: S,
+    q0: SVector<S, N>,
+    qdot0: SVector<S, N>,
+    times: &[S],
+    mut step: F,
+) -> IntegrationResult<S, N>
+where
+    S: RealField + Copy,
+    L: Lagrangian<N, Scalar = S>,
+    F: FnMut(
+        &mut Recorder<'_, S, N>,
+        &L,
+        S,
+        &SVector<S, N>,
+        &SVector<S, N>,
+        S,
+    ) -> Result<State<S, N>, IntegrationError<S, N>>,
+{
+    if !(h.is_finite() && h > S::zero()) {
+        return Err(invalid(InvalidInput::InvalidStepSize { h }));
+    }
+    let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
+    let (mut t, mut q, mut qdot) = (t0, q0, qdot0);
+
+    while let Some(target) = rec.pending() {
+        let (start, span) = (t, target - t);
+        let steps = steps_to_cover(start, target, h);
+        let step_size = span / nalgebra::convert::<f64, S>(steps as f64);
+        if start + step_size == start {
+            let error = IntegrationError::StepSizeUnderflow {
+                t,
+                h: step_size,
+                q,
+                qdot,
+            };
+            return Err(rec.fail(error));
+        }
+        for k in 1..=steps {
+            if rec.stats.steps_accepted >= max_steps {
+                let error = IntegrationError::TooManySteps {
+                    t,
+                    max_steps,
+                    q,
+                    qdot,
+                };
+                return Err(rec.fail(error));
+            }
+            // Positions from the interval start, so rounding does not
+            // accumulate in t and the last step lands on the target.
+            let t_next = if k == steps {
+                target
+            } else {
+                start + step_size * nalgebra::convert::<f64, S>(k as f64)
+            };
+            match step(&mut rec, model, t, &q, &qdot, t_next - t) {
+                Ok((q_next, qdot_next)) => (q, qdot) = (q_next, qdot_next),
+                Err(error) => return Err(rec.fail(error)),
+            }
+            t = t_next;
+            rec.stats.steps_accepted += 1;
+        }
+        // The last step's state is not evaluated by the model, so check it
+        // here rather than record a NaN.
+        if !(q.iter().chain(qdot.iter()).all(|x| x.is_finite())) {
+            let value = NonFiniteValue::State;
+            let error = IntegrationError::NonFiniteState { t, q, qdot, value };
+            return Err(rec.fail(error));
+        }
+        while rec.pending() == Some(target) {
+            rec.record(target, q, qdot);
+        }
+    }
+    Ok(rec.finish())
+}
+
+/// The fewest equal steps no longer than `h` that cover `[start, target]`,
+/// forgiving the rounding of the sample times themselves: a span of exactly
+/// `10 h` in decimal takes 10 steps, not 11, and samples `i h` apart by one
+/// step still take one step each late in a run, where `i h` carries rounding
+/// of a few ulps of `t` (at `t = 100`, ~1e-14 — far more than an ulp of `h`).
+/// A step may so exceed `h` by `8 ε (|t| + span)`, which no method notices.
+/// Saturates at `usize::MAX`; the step budget stops it long before.
+pub(super) fn steps_to_cover<S: RealField + Copy>(start: S, target: S, h: S) -> usize {
+    let span = target - start;
+    let eight_ulps = nalgebra::convert::<f64, S>(8.0) * S::default_epsilon();
+    let forgiven = eight_ulps * (span + start.abs().max(target.abs()));
+    let steps = ((span - forgiven) / h).ceil();
+    let steps: f64 = nalgebra::try_convert(steps).unwrap_or(f64::MAX);
+    // `as` saturates (and sends negatives to 0); a span of zero never
+    // reaches here.
+    (steps as usize).max(1)
 }
 
 /// A failure before any work: empty trajectory.

@@ -28,7 +28,7 @@
 
 use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
-use super::rk4::steps_to_cover;
+use super::steps_to_cover;
 use super::{invalid, Integrator, Recorder};
 use crate::solve::{lu_solve, solve_mass_matrix, SolveError};
 use crate::{
@@ -185,7 +185,7 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
         let mut velocities = VelocityHistory::new(t0, qdot0);
         while let Some(target) = rec.pending() {
             let (start, span) = (t, target - t);
-            let steps = steps_to_cover(span, h);
+            let steps = steps_to_cover(start, target, h);
             let step = span / nalgebra::convert::<f64, S>(steps as f64);
             if start + step == start {
                 let underflow = |qdot| IntegrationError::StepSizeUnderflow {

@@ -46,6 +46,177 @@ impl<S: RealField + Copy> Lagrangian<2> for CoupledOscillator<S> {
     }
 }
 
+/// A pendulum (bob `m_p`, rod `l`) hanging from a cart (`m_c`) that slides
+/// freely along `x`; `θ` from the downward vertical. The mass matrix
+///
+/// ```text
+/// M(θ) = [[m_c + m_p,     m_p l cos θ],
+///         [m_p l cos θ,   m_p l²     ]]
+/// ```
+///
+/// depends on the configuration, so the Hamiltonian is not separable.
+/// `T` is quadratic in `q̇` and nothing depends on `t`: the system is
+/// reversible under `q̇ → −q̇` and conserves energy; `x` is cyclic, so it is
+/// integrable (one degree of freedom once `p_x` is fixed).
+///
+/// With `exact_jacobians` it provides `residual_jacobians`, derived by hand.
+pub struct CartPole {
+    pub m_cart: f64,
+    pub m_bob: f64,
+    pub l: f64,
+    pub g: f64,
+    pub exact_jacobians: bool,
+}
+
+impl CartPole {
+    /// Unit masses and rod, Earth's gravity.
+    pub fn new(exact_jacobians: bool) -> Self {
+        Self {
+            m_cart: 1.0,
+            m_bob: 1.0,
+            l: 1.0,
+            g: 9.81,
+            exact_jacobians,
+        }
+    }
+}
+
+impl Lagrangian<2> for CartPole {
+    type Scalar = f64;
+    const COORDINATES: [&'static str; 2] = ["x", "theta"];
+
+    fn mass_matrix(&self, _t: f64, q: &Vector2<f64>) -> Matrix2<f64> {
+        let coupling = self.m_bob * self.l * q[1].cos();
+        Matrix2::new(
+            self.m_cart + self.m_bob,
+            coupling,
+            coupling,
+            self.m_bob * self.l * self.l,
+        )
+    }
+    fn forcing(&self, _t: f64, q: &Vector2<f64>, qdot: &Vector2<f64>) -> Vector2<f64> {
+        let (s, ml) = (q[1].sin(), self.m_bob * self.l);
+        Vector2::new(ml * s * qdot[1] * qdot[1], -ml * self.g * s)
+    }
+    fn kinetic_energy(&self, t: f64, q: &Vector2<f64>, qdot: &Vector2<f64>) -> f64 {
+        0.5 * (qdot.transpose() * self.mass_matrix(t, q) * qdot)[0]
+    }
+    fn potential_energy(&self, _t: f64, q: &Vector2<f64>) -> f64 {
+        -self.m_bob * self.g * self.l * q[1].cos()
+    }
+    /// `r = M q̈ − f`: only `θ` and `θ̇` appear in it.
+    fn residual_jacobians(
+        &self,
+        _t: f64,
+        q: &Vector2<f64>,
+        qdot: &Vector2<f64>,
+        qddot: &Vector2<f64>,
+    ) -> Option<(Matrix2<f64>, Matrix2<f64>)> {
+        if !self.exact_jacobians {
+            return None;
+        }
+        let ((s, c), ml) = (q[1].sin_cos(), self.m_bob * self.l);
+        let dr_dtheta = Vector2::new(
+            -ml * s * qddot[1] - ml * c * qdot[1] * qdot[1],
+            -ml * s * qddot[0] + ml * self.g * c,
+        );
+        let dr_dq = Matrix2::from_columns(&[Vector2::zeros(), dr_dtheta]);
+        let dr_dthetadot = Vector2::new(-2.0 * ml * s * qdot[1], 0.0);
+        let dr_dqdot = Matrix2::from_columns(&[Vector2::zeros(), dr_dthetadot]);
+        Some((dr_dq, dr_dqdot))
+    }
+}
+
+/// A planet of unit mass around a fixed sun, `V = −μ / r`, in Cartesian
+/// coordinates: `M = I` is constant, and the angular momentum
+/// `x ẏ − y ẋ` is a quadratic invariant of `(q, q̇)`.
+pub struct Kepler {
+    pub mu: f64,
+}
+
+impl Kepler {
+    /// The start at perihelion of the orbit with eccentricity `e` and
+    /// semi-major axis 1 (period `2π / √μ`).
+    pub fn perihelion(&self, e: f64) -> (Vector2<f64>, Vector2<f64>) {
+        let speed = (self.mu * (1.0 + e) / (1.0 - e)).sqrt();
+        (Vector2::new(1.0 - e, 0.0), Vector2::new(0.0, speed))
+    }
+
+    pub fn angular_momentum(q: &Vector2<f64>, qdot: &Vector2<f64>) -> f64 {
+        q[0] * qdot[1] - q[1] * qdot[0]
+    }
+}
+
+impl Lagrangian<2> for Kepler {
+    type Scalar = f64;
+    const COORDINATES: [&'static str; 2] = ["x", "y"];
+
+    fn mass_matrix(&self, _t: f64, _q: &Vector2<f64>) -> Matrix2<f64> {
+        Matrix2::identity()
+    }
+    fn forcing(&self, _t: f64, q: &Vector2<f64>, _qdot: &Vector2<f64>) -> Vector2<f64> {
+        -q * (self.mu / q.norm().powi(3))
+    }
+    fn kinetic_energy(&self, _t: f64, _q: &Vector2<f64>, qdot: &Vector2<f64>) -> f64 {
+        0.5 * qdot.norm_squared()
+    }
+    fn potential_energy(&self, _t: f64, q: &Vector2<f64>) -> f64 {
+        -self.mu / q.norm()
+    }
+}
+
+/// The implicit methods, so that a test can run all of them by name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Implicit {
+    Midpoint,
+    GaussTwo,
+    GaussThree,
+}
+
+impl Implicit {
+    pub const ALL: [Implicit; 3] = [Implicit::Midpoint, Implicit::GaussTwo, Implicit::GaussThree];
+
+    /// Stages `s`: right-hand sides per Newton iteration.
+    pub fn stages(self) -> usize {
+        match self {
+            Implicit::Midpoint => 1,
+            Implicit::GaussTwo => 2,
+            Implicit::GaussThree => 3,
+        }
+    }
+
+    /// The order `2 s`.
+    pub fn order(self) -> usize {
+        2 * self.stages()
+    }
+
+    /// Integrates from `t = 0` with step `h`.
+    pub fn integrate<L, S, const N: usize>(
+        self,
+        h: S,
+        model: &L,
+        q0: SVector<S, N>,
+        qdot0: SVector<S, N>,
+        times: &[S],
+    ) -> lagrange_runtime::IntegrationResult<S, N>
+    where
+        S: RealField + Copy,
+        L: Lagrangian<N, Scalar = S>,
+    {
+        use lagrange_runtime::{GaussLegendre, ImplicitMidpoint, Integrator};
+        let t0 = S::zero();
+        match self {
+            Implicit::Midpoint => ImplicitMidpoint::new(h).integrate(model, t0, q0, qdot0, times),
+            Implicit::GaussTwo => {
+                GaussLegendre::two_stage(h).integrate(model, t0, q0, qdot0, times)
+            }
+            Implicit::GaussThree => {
+                GaussLegendre::three_stage(h).integrate(model, t0, q0, qdot0, times)
+            }
+        }
+    }
+}
+
 /// Two unit springs; the second mass vanishes at `t_s` (its row of `M`
 /// becomes zero), so `M q̈ = f` stops determining `ÿ` there.
 pub struct InertiaVanishes {

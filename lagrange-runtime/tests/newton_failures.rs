@@ -1,0 +1,131 @@
+//! How the implicit methods fail: a step too large for Newton is
+//! `NewtonDivergence` with the samples before it, never a NaN; a model that
+//! breaks is still the model's error, not Newton's.
+
+mod models;
+
+use lagrange_runtime::nalgebra::{Vector1, Vector2};
+use lagrange_runtime::prelude::*;
+use lagrange_runtime::{InvalidInput, NonFiniteValue};
+use models::{BlowUp, CartPole, ForcingBreaksDown, Implicit};
+
+#[test]
+fn blow_up_ends_in_newton_divergence_with_the_samples_before_it() {
+    // q = 1 / (1 − t): as q grows, q̈ = 2 q³ stiffens until the stage
+    // equations have no solution near the start. For the midpoint rule the
+    // stage u = q + Z_q solves (h²/2) u³ − u + q + h q̇ / 2 = 0, which has a
+    // positive root only while q + h q̇ / 2 ≤ (2/3)^{3/2} / h ≈ 5.4 at
+    // h = 0.1, i.e. up to t ≈ 0.75; the Gauss methods fail a step later.
+    let times: Vec<f64> = (1..=10).map(|i| 0.2 * i as f64).collect();
+    for method in Implicit::ALL {
+        let failure = method
+            .integrate(0.1, &BlowUp, Vector1::new(1.0), Vector1::new(1.0), &times)
+            .unwrap_err();
+        let IntegrationError::NewtonDivergence {
+            t,
+            h,
+            iterations,
+            q,
+            qdot,
+        } = failure.error
+        else {
+            panic!(
+                "{method:?}: expected Newton divergence, got {}",
+                failure.error
+            );
+        };
+        // Before the pole, at the start of a step of the requested size,
+        // in a finite state.
+        assert!(t < 1.0, "{method:?}: t = {t}");
+        assert!((h - 0.1).abs() < 1e-15, "{method:?}: h = {h}");
+        assert!((1..=20).contains(&iterations), "{method:?}: {iterations}");
+        assert!(q[0].is_finite() && qdot[0].is_finite() && q[0] > 1.0);
+        // The samples it passed, all finite.
+        let kept = &failure.trajectory;
+        assert!(!kept.is_empty(), "{method:?}: no samples kept");
+        assert_eq!(kept.times(), &times[..kept.len()]);
+        assert!(kept.times().iter().all(|&s| s <= t));
+        for s in kept {
+            assert!(s.q[0].is_finite() && s.qdot[0].is_finite());
+        }
+        let stats = kept.stats();
+        assert_eq!(stats.linear_solves, stats.newton_iterations);
+        // One Jacobian per accepted step, then the failing step's own and
+        // the fresh one it tried at its stages before giving up.
+        assert_eq!(stats.jacobian_evals, stats.steps_accepted + 2, "{stats:?}");
+    }
+}
+
+#[test]
+fn iteration_limit_is_newton_divergence_with_that_many_iterations() {
+    // Two iterations cannot take the first step's Euler guess, O(h²) off,
+    // down to 10 ε on a nonlinear model.
+    let (q0, qdot0) = (Vector2::new(0.0, 1.2), Vector2::new(0.3, 0.0));
+    let failure = GaussLegendre::three_stage(0.05)
+        .max_iterations(2)
+        .integrate(&CartPole::new(true), 0.0, q0, qdot0, &[1.0])
+        .unwrap_err();
+    assert_eq!(
+        failure.error,
+        IntegrationError::NewtonDivergence {
+            t: 0.0,
+            h: 0.05,
+            iterations: 2,
+            q: q0,
+            qdot: qdot0
+        }
+    );
+    assert!(failure.trajectory.is_empty());
+    assert_eq!(failure.trajectory.stats().newton_iterations, 2);
+    let message = failure.to_string();
+    assert!(
+        message.starts_with(
+            "Newton iteration did not converge in 2 iterations at t = 0.0 with step h = 0.05"
+        ),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_model_that_breaks_inside_a_step_is_the_models_error() {
+    // The forcing turns NaN after t* = 0.53, inside the step 0.5 → 0.6:
+    // the first evaluation of a stage past t* finds it, at the starting
+    // guess, which is close to the trajectory, so it is reported as the
+    // model's error at that stage, not as a Newton failure.
+    let t_star = 0.53;
+    let model = ForcingBreaksDown { t_star };
+    for method in Implicit::ALL {
+        let failure = method
+            .integrate(
+                0.1,
+                &model,
+                Vector1::new(1.0),
+                Vector1::new(0.0),
+                &[0.5, 1.0],
+            )
+            .unwrap_err();
+        let IntegrationError::NonFiniteState { t, value, .. } = failure.error else {
+            panic!("{method:?}: expected a NaN forcing, got {}", failure.error);
+        };
+        assert_eq!(value, NonFiniteValue::Forcing);
+        assert!(t > t_star && t < 0.6, "{method:?}: t = {t}");
+        assert_eq!(failure.trajectory.times(), &[0.5]);
+    }
+}
+
+#[test]
+fn invalid_step_sizes_are_refused_before_any_work() {
+    let (q0, qdot0) = (Vector2::new(0.0, 1.2), Vector2::new(0.3, 0.0));
+    for h in [0.0, -0.1, f64::INFINITY] {
+        for method in Implicit::ALL {
+            let failure = method
+                .integrate(h, &CartPole::new(true), q0, qdot0, &[1.0])
+                .unwrap_err();
+            assert_eq!(
+                failure.error,
+                IntegrationError::InvalidInput(InvalidInput::InvalidStepSize { h })
+            );
+            assert_eq!(failure.trajectory.stats().rhs_evals, 0);
+        }
+    }
+}
