@@ -23,7 +23,8 @@ use nalgebra::{ComplexField, RealField, SVector};
 
 use crate::solve::acceleration;
 use crate::{
-    Failure, IntegrationError, IntegrationResult, InvalidInput, Lagrangian, Stats, Trajectory,
+    Failure, IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue, Stats,
+    Trajectory,
 };
 
 /// A method that integrates a [`Lagrangian`] model and samples it at
@@ -191,6 +192,110 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     pub(crate) fn fail(self, error: IntegrationError<S, N>) -> Box<Failure<S, N>> {
         Failure::boxed(error, self.finish())
     }
+}
+
+/// `(q, q̇)`, as a one-step method returns it.
+pub(crate) type State<S, const N: usize> = (SVector<S, N>, SVector<S, N>);
+
+/// The loop every fixed-step method shares, so that they all land on the
+/// sample times the same way and only differ in `step`.
+///
+/// Sample times are hit exactly, not interpolated: each interval between
+/// consecutive sample times is cut into the fewest equal steps no longer than
+/// `h`. `step(rec, model, t, q, q̇, h)` advances one step, evaluating the
+/// model through `rec` so that its work is counted; its error ends the
+/// integration with the samples so far. Every step counts against
+/// `max_steps`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fixed_step<S, L, const N: usize, F>(
+    model: &L,
+    h: S,
+    max_steps: usize,
+    t0: S,
+    q0: SVector<S, N>,
+    qdot0: SVector<S, N>,
+    times: &[S],
+    mut step: F,
+) -> IntegrationResult<S, N>
+where
+    S: RealField + Copy,
+    L: Lagrangian<N, Scalar = S>,
+    F: FnMut(
+        &mut Recorder<'_, S, N>,
+        &L,
+        S,
+        &SVector<S, N>,
+        &SVector<S, N>,
+        S,
+    ) -> Result<State<S, N>, IntegrationError<S, N>>,
+{
+    if !(h.is_finite() && h > S::zero()) {
+        return Err(invalid(InvalidInput::InvalidStepSize { h }));
+    }
+    let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
+    let (mut t, mut q, mut qdot) = (t0, q0, qdot0);
+
+    while let Some(target) = rec.pending() {
+        let (start, span) = (t, target - t);
+        let steps = steps_to_cover(span, h);
+        let step_size = span / nalgebra::convert::<f64, S>(steps as f64);
+        if start + step_size == start {
+            let error = IntegrationError::StepSizeUnderflow {
+                t,
+                h: step_size,
+                q,
+                qdot,
+            };
+            return Err(rec.fail(error));
+        }
+        for k in 1..=steps {
+            if rec.stats.steps_accepted >= max_steps {
+                let error = IntegrationError::TooManySteps {
+                    t,
+                    max_steps,
+                    q,
+                    qdot,
+                };
+                return Err(rec.fail(error));
+            }
+            // Positions from the interval start, so rounding does not
+            // accumulate in t and the last step lands on the target.
+            let t_next = if k == steps {
+                target
+            } else {
+                start + step_size * nalgebra::convert::<f64, S>(k as f64)
+            };
+            match step(&mut rec, model, t, &q, &qdot, t_next - t) {
+                Ok((q_next, qdot_next)) => (q, qdot) = (q_next, qdot_next),
+                Err(error) => return Err(rec.fail(error)),
+            }
+            t = t_next;
+            rec.stats.steps_accepted += 1;
+        }
+        // The last step's state is not evaluated by the model, so check it
+        // here rather than record a NaN.
+        if !(q.iter().chain(qdot.iter()).all(|x| x.is_finite())) {
+            let value = NonFiniteValue::State;
+            let error = IntegrationError::NonFiniteState { t, q, qdot, value };
+            return Err(rec.fail(error));
+        }
+        while rec.pending() == Some(target) {
+            rec.record(target, q, qdot);
+        }
+    }
+    Ok(rec.finish())
+}
+
+/// The fewest equal steps no longer than `h` that cover `span`, forgiving a
+/// few ulps so that a span of exactly `10 h` in decimal takes 10 steps, not
+/// 11. Saturates at `usize::MAX`; the step budget stops it long before.
+fn steps_to_cover<S: RealField + Copy>(span: S, h: S) -> usize {
+    let ratio = span / h;
+    let slack: S = nalgebra::convert(8.0);
+    let steps = (ratio * (S::one() - slack * S::default_epsilon())).ceil();
+    let steps: f64 = nalgebra::try_convert(steps).unwrap_or(f64::MAX);
+    // `as` saturates; a span of zero never reaches here.
+    (steps as usize).max(1)
 }
 
 /// A failure before any work: empty trajectory.

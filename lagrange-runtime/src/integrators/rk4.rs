@@ -2,8 +2,8 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::{invalid, Integrator, Recorder};
-use crate::{IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue};
+use super::{fixed_step, Integrator, Recorder, State};
+use crate::{IntegrationError, IntegrationResult, Lagrangian};
 
 /// Classic RK4 with a fixed step `h`: four right-hand sides per step,
 /// global error `O(h⁴)`, no error control.
@@ -62,80 +62,10 @@ impl<S: RealField + Copy> Integrator<S> for Rk4<S> {
     where
         L: Lagrangian<N, Scalar = S>,
     {
-        let h = self.h;
-        if !(h.is_finite() && h > S::zero()) {
-            return Err(invalid(InvalidInput::InvalidStepSize { h }));
-        }
-        let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
-        let (mut t, mut q, mut qdot) = (t0, q0, qdot0);
-
-        while let Some(target) = rec.pending() {
-            let (start, span) = (t, target - t);
-            let steps = steps_to_cover(span, h);
-            let step = span / nalgebra::convert::<f64, S>(steps as f64);
-            if start + step == start {
-                let error = IntegrationError::StepSizeUnderflow {
-                    t,
-                    h: step,
-                    q,
-                    qdot,
-                };
-                return Err(rec.fail(error));
-            }
-            for k in 1..=steps {
-                if rec.stats.steps_accepted >= self.max_steps {
-                    let max_steps = self.max_steps;
-                    let error = IntegrationError::TooManySteps {
-                        t,
-                        max_steps,
-                        q,
-                        qdot,
-                    };
-                    return Err(rec.fail(error));
-                }
-                // Positions from the interval start, so rounding does not
-                // accumulate in t and the last step lands on the target.
-                let t_next = if k == steps {
-                    target
-                } else {
-                    start + step * nalgebra::convert::<f64, S>(k as f64)
-                };
-                match rk4_step(&mut rec, model, t, &q, &qdot, t_next - t) {
-                    Ok((q_next, qdot_next)) => (q, qdot) = (q_next, qdot_next),
-                    Err(error) => return Err(rec.fail(error)),
-                }
-                t = t_next;
-                rec.stats.steps_accepted += 1;
-            }
-            // The last step's state is not evaluated by the model, so check it
-            // here rather than record a NaN.
-            if !(q.iter().chain(qdot.iter()).all(|x| x.is_finite())) {
-                let value = NonFiniteValue::State;
-                let error = IntegrationError::NonFiniteState { t, q, qdot, value };
-                return Err(rec.fail(error));
-            }
-            while rec.pending() == Some(target) {
-                rec.record(target, q, qdot);
-            }
-        }
-        Ok(rec.finish())
+        let (h, max_steps) = (self.h, self.max_steps);
+        fixed_step(model, h, max_steps, t0, q0, qdot0, times, rk4_step)
     }
 }
-
-/// The fewest equal steps no longer than `h` that cover `span`, forgiving a
-/// few ulps so that a span of exactly `10 h` in decimal takes 10 steps, not
-/// 11. Saturates at `usize::MAX`; the step budget stops it long before.
-fn steps_to_cover<S: RealField + Copy>(span: S, h: S) -> usize {
-    let ratio = span / h;
-    let slack: S = nalgebra::convert(8.0);
-    let steps = (ratio * (S::one() - slack * S::default_epsilon())).ceil();
-    let steps: f64 = nalgebra::try_convert(steps).unwrap_or(f64::MAX);
-    // `as` saturates; a span of zero never reaches here.
-    (steps as usize).max(1)
-}
-
-/// `(q, q̇)`.
-type State<S, const N: usize> = (SVector<S, N>, SVector<S, N>);
 
 /// One RK4 step for `y = (q, q̇)`, `ẏ = (q̇, q̈)`.
 fn rk4_step<L: Lagrangian<N>, const N: usize>(
