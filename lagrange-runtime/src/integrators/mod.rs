@@ -237,7 +237,7 @@ where
 
     while let Some(target) = rec.pending() {
         let (start, span) = (t, target - t);
-        let steps = steps_to_cover(span, h);
+        let steps = steps_to_cover(start, target, h);
         let step_size = span / nalgebra::convert::<f64, S>(steps as f64);
         if start + step_size == start {
             let error = IntegrationError::StepSizeUnderflow {
@@ -286,15 +286,21 @@ where
     Ok(rec.finish())
 }
 
-/// The fewest equal steps no longer than `h` that cover `span`, forgiving a
-/// few ulps so that a span of exactly `10 h` in decimal takes 10 steps, not
-/// 11. Saturates at `usize::MAX`; the step budget stops it long before.
-fn steps_to_cover<S: RealField + Copy>(span: S, h: S) -> usize {
-    let ratio = span / h;
-    let slack: S = nalgebra::convert(8.0);
-    let steps = (ratio * (S::one() - slack * S::default_epsilon())).ceil();
+/// The fewest equal steps no longer than `h` that cover `[start, target]`,
+/// forgiving the rounding of the sample times themselves: a span of exactly
+/// `10 h` in decimal takes 10 steps, not 11, and samples `i h` apart by one
+/// step still take one step each late in a run, where `i h` carries rounding
+/// of a few ulps of `t` (at `t = 100`, ~1e-14 — far more than an ulp of `h`).
+/// A step may so exceed `h` by `8 ε (|t| + span)`, which no method notices.
+/// Saturates at `usize::MAX`; the step budget stops it long before.
+fn steps_to_cover<S: RealField + Copy>(start: S, target: S, h: S) -> usize {
+    let span = target - start;
+    let eight_ulps = nalgebra::convert::<f64, S>(8.0) * S::default_epsilon();
+    let forgiven = eight_ulps * (span + start.abs().max(target.abs()));
+    let steps = ((span - forgiven) / h).ceil();
     let steps: f64 = nalgebra::try_convert(steps).unwrap_or(f64::MAX);
-    // `as` saturates; a span of zero never reaches here.
+    // `as` saturates (and sends negatives to 0); a span of zero never
+    // reaches here.
     (steps as usize).max(1)
 }
 
