@@ -269,3 +269,60 @@ fn messages_say_what_happened_when_and_in_which_state() {
         "{failure}"
     );
 }
+
+/// What the Euler methods share with RK4 through the fixed-step driver: bad
+/// step sizes refused, the failing evaluation reported with the samples
+/// before it, the step budget enforced.
+fn fails_like_rk4<I: Integrator<f64>>(new: impl Fn(f64) -> I, budget: impl Fn(I, usize) -> I) {
+    let model = InertiaVanishes { t_s: 1.0 };
+    let (q0, qdot0) = (Vector2::new(1.0, 1.0), Vector2::zeros());
+    for h in [0.0, -0.1, f64::NAN] {
+        let failure = new(h)
+            .integrate(&model, 0.0, q0, qdot0, &[1.0])
+            .unwrap_err();
+        assert!(
+            matches!(
+                failure.error,
+                IntegrationError::InvalidInput(InvalidInput::InvalidStepSize { .. })
+            ),
+            "{}",
+            failure.error
+        );
+        assert_eq!(failure.trajectory.stats().rhs_evals, 0);
+    }
+
+    let times = [0.25, 0.5, 0.75, 1.5];
+    let failure = new(0.1)
+        .integrate(&model, 0.0, q0, qdot0, &times)
+        .unwrap_err();
+    let IntegrationError::SingularMassMatrix { t, .. } = failure.error else {
+        panic!("expected a singular mass matrix, got {}", failure.error);
+    };
+    // 0.75 → 1.5 in 8 steps of 0.09375; both methods evaluate at step starts
+    // only, and 0.75 + 3 · 0.09375 = 1.03125 is the first one past t_s.
+    assert_eq!(t, 1.03125);
+    assert_eq!(failure.trajectory.times(), &times[..3]);
+
+    let times = [0.1, 0.2, 0.3, 100.0];
+    let failure = budget(new(0.01), 25)
+        .integrate(&model, 0.0, q0, qdot0, &times)
+        .unwrap_err();
+    let IntegrationError::TooManySteps { t, max_steps, .. } = failure.error else {
+        panic!("expected too many steps, got {}", failure.error);
+    };
+    assert_eq!(max_steps, 25);
+    // 25 steps of 0.01 (to rounding of the sample spacing).
+    assert!((t - 0.25).abs() < 1e-15, "t = {t}");
+    assert_eq!(failure.trajectory.times(), &times[..2]);
+    assert_eq!(failure.trajectory.stats().steps_accepted, 25);
+}
+
+#[test]
+fn explicit_euler_fails_like_rk4() {
+    fails_like_rk4(ExplicitEuler::new, ExplicitEuler::max_steps);
+}
+
+#[test]
+fn symplectic_euler_fails_like_rk4() {
+    fails_like_rk4(SymplecticEuler::new, SymplecticEuler::max_steps);
+}

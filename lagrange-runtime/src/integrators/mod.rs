@@ -14,10 +14,14 @@
 //! - A failure returns the samples computed so far in [`Failure`].
 
 mod dopri5;
+mod euler;
 mod rk4;
+mod symplectic_euler;
 
 pub use dopri5::Dopri5;
+pub use euler::ExplicitEuler;
 pub use rk4::Rk4;
+pub use symplectic_euler::SymplecticEuler;
 
 use nalgebra::{ComplexField, RealField, SVector};
 
