@@ -122,7 +122,7 @@ pub mod solve;
 mod trajectory;
 
 pub use error::{Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue};
-pub use integrators::{integrate, Dopri5, ExplicitEuler, Integrator, Rk4, SymplecticEuler};
+pub use integrators::{integrate, Dop853, Dopri5, ExplicitEuler, Integrator, Rk4, SymplecticEuler};
 pub use lagrangian::Lagrangian;
 pub use nalgebra;
 pub use trajectory::{Sample, Samples, Stats, Trajectory};
@@ -130,7 +130,7 @@ pub use trajectory::{Sample, Samples, Stats, Trajectory};
 /// The names a simulation needs: `use lagrange_runtime::prelude::*;`.
 pub mod prelude {
     pub use crate::{
-        integrate, Dopri5, ExplicitEuler, Failure, IntegrationError, Integrator, Lagrangian, Rk4,
-        SymplecticEuler, Trajectory,
+        integrate, Dop853, Dopri5, ExplicitEuler, Failure, IntegrationError, Integrator,
+        Lagrangian, Rk4, SymplecticEuler, Trajectory,
     };
 }

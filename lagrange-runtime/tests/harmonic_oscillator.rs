@@ -177,7 +177,10 @@ fn samples_at_the_start_time_are_the_initial_state() {
     let times = [0.0, 0.0, 1.0, 1.0];
     for trajectory in [
         Dopri5::new().integrate(&model, 0.0, q0, qdot0, &times),
+        Dop853::new().integrate(&model, 0.0, q0, qdot0, &times),
         Rk4::new(0.1).integrate(&model, 0.0, q0, qdot0, &times),
+        ExplicitEuler::new(0.1).integrate(&model, 0.0, q0, qdot0, &times),
+        SymplecticEuler::new(0.1).integrate(&model, 0.0, q0, qdot0, &times),
     ] {
         let trajectory = trajectory.unwrap();
         assert_eq!(trajectory.times(), &times);
@@ -192,9 +195,14 @@ fn samples_at_the_start_time_are_the_initial_state() {
 fn no_sample_times_means_no_work() {
     let model = CoupledOscillator { omega: OMEGA };
     let (q0, qdot0) = start();
-    let trajectory = integrate(&model, 0.0, q0, qdot0, &[]).unwrap();
-    assert!(trajectory.is_empty());
-    assert_eq!(trajectory.stats().rhs_evals, 0);
+    for trajectory in [
+        integrate(&model, 0.0, q0, qdot0, &[]),
+        Dop853::new().integrate(&model, 0.0, q0, qdot0, &[]),
+    ] {
+        let trajectory = trajectory.unwrap();
+        assert!(trajectory.is_empty());
+        assert_eq!(trajectory.stats().rhs_evals, 0);
+    }
 }
 
 #[test]

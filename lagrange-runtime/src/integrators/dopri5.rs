@@ -7,8 +7,8 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::{initial_step, invalid, Integrator, Recorder};
-use crate::{IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue};
+use super::{check_tolerances, initial_step, invalid, Integrator, Recorder};
+use crate::{IntegrationError, IntegrationResult, Lagrangian, NonFiniteValue};
 
 /// Dormand–Prince 5(4) with adaptive steps: the default method.
 ///
@@ -71,18 +71,6 @@ impl<S: RealField + Copy> Dopri5<S> {
         self.max_steps = max_steps;
         self
     }
-
-    fn validate(&self) -> Result<(), InvalidInput<S>> {
-        let (rtol, atol) = (self.rtol, self.atol);
-        let min = nalgebra::convert::<f64, S>(10.0) * S::default_epsilon();
-        if !(rtol.is_finite() && rtol >= min) {
-            return Err(InvalidInput::InvalidRelativeTolerance { rtol, min });
-        }
-        if !(atol.is_finite() && atol > S::zero()) {
-            return Err(InvalidInput::InvalidAbsoluteTolerance { atol });
-        }
-        Ok(())
-    }
 }
 
 impl<S: RealField + Copy> Default for Dopri5<S> {
@@ -112,7 +100,7 @@ impl<S: RealField + Copy> Integrator<S> for Dopri5<S> {
     where
         L: Lagrangian<N, Scalar = S>,
     {
-        self.validate().map_err(invalid)?;
+        check_tolerances(self.rtol, self.atol).map_err(invalid)?;
         let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
         let (Some(_), Some(t_end)) = (rec.pending(), rec.end()) else {
             return Ok(rec.finish());

@@ -13,14 +13,14 @@
 //!   equal to `t0` are the initial state, unchanged.
 //! - A failure returns the samples computed so far in [`Failure`].
 
-// Read by the DOP853 integrator in the next step; checked by its tests now.
-#[cfg_attr(not(test), allow(dead_code))]
+mod dop853;
 mod dop853_tableau;
 mod dopri5;
 mod euler;
 mod rk4;
 mod symplectic_euler;
 
+pub use dop853::Dop853;
 pub use dopri5::Dopri5;
 pub use euler::ExplicitEuler;
 pub use rk4::Rk4;
@@ -309,6 +309,22 @@ fn steps_to_cover<S: RealField + Copy>(start: S, target: S, h: S) -> usize {
     // `as` saturates (and sends negatives to 0); a span of zero never
     // reaches here.
     (steps as usize).max(1)
+}
+
+/// The tolerances an adaptive method can honour: `rtol` at least `10 ε` of
+/// the scalar type, `atol` positive, both finite.
+pub(crate) fn check_tolerances<S: RealField + Copy>(
+    rtol: S,
+    atol: S,
+) -> Result<(), InvalidInput<S>> {
+    let min = nalgebra::convert::<f64, S>(10.0) * S::default_epsilon();
+    if !(rtol.is_finite() && rtol >= min) {
+        return Err(InvalidInput::InvalidRelativeTolerance { rtol, min });
+    }
+    if !(atol.is_finite() && atol > S::zero()) {
+        return Err(InvalidInput::InvalidAbsoluteTolerance { atol });
+    }
+    Ok(())
 }
 
 /// Hairer's `hinit`, shared by the adaptive methods: a first step for which
