@@ -20,7 +20,7 @@ fn samples() -> Vec<f64> {
     (1..=10).map(|i| 0.2 * i as f64).collect()
 }
 
-/// Five halvings from 1e-3: up to 32 000 steps, all in the asymptotic range
+/// Four halvings from 1e-3: up to 32 000 steps, all in the asymptotic range
 /// (see the tolerance argument below).
 const STEP_SIZES: [f64; 5] = [1e-3, 5e-4, 2.5e-4, 1.25e-4, 6.25e-5];
 

@@ -250,7 +250,6 @@ impl<S: RealField + Copy> Dop853<S> {
     /// new state if the error test passes, and three more for the dense
     /// output if a sample lies inside the step. A failing evaluation, or an
     /// overflow in the error estimate, is an error, which rejects the step.
-    #[allow(clippy::type_complexity)]
     fn attempt<L: Lagrangian<N, Scalar = S>, const N: usize>(
         &self,
         tab: &Tableau<S>,

@@ -12,6 +12,10 @@
 //! - Integration runs forward from `t0` to the last sample time. Samples
 //!   equal to `t0` are the initial state, unchanged.
 //! - A failure returns the samples computed so far in [`Failure`].
+//!
+//! Fixed-step methods supply one step to a shared driver that lands on the
+//! sample times; adaptive methods share Hairer's initial step guess and the
+//! tolerance checks.
 
 mod dop853;
 mod dop853_tableau;
