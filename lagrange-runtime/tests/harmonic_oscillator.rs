@@ -60,6 +60,20 @@ fn rk4_steps_are_exactly_h_when_samples_are_multiples_of_it() {
 }
 
 #[test]
+fn fixed_steps_take_one_step_per_sample_spaced_h_apart_even_late_in_a_run() {
+    let model = CoupledOscillator { omega: OMEGA };
+    let (q0, qdot0) = start();
+    // i · 0.01 carries rounding of a few ulps of t, ~1e-14 at t = 100: a
+    // thousand times an ulp of h. Forgiving only ulps of h would give most
+    // intervals a second, sliver step.
+    let times: Vec<f64> = (1..=10_000).map(|i| 0.01 * i as f64).collect();
+    let trajectory = Rk4::new(0.01)
+        .integrate(&model, 0.0, q0, qdot0, &times)
+        .unwrap();
+    assert_eq!(trajectory.stats().steps_accepted, 10_000);
+}
+
+#[test]
 fn dopri5_error_is_a_small_multiple_of_the_tolerance() {
     let model = CoupledOscillator { omega: OMEGA };
     let (q0, qdot0) = start();
@@ -163,7 +177,10 @@ fn samples_at_the_start_time_are_the_initial_state() {
     let times = [0.0, 0.0, 1.0, 1.0];
     for trajectory in [
         Dopri5::new().integrate(&model, 0.0, q0, qdot0, &times),
+        Dop853::new().integrate(&model, 0.0, q0, qdot0, &times),
         Rk4::new(0.1).integrate(&model, 0.0, q0, qdot0, &times),
+        ExplicitEuler::new(0.1).integrate(&model, 0.0, q0, qdot0, &times),
+        SymplecticEuler::new(0.1).integrate(&model, 0.0, q0, qdot0, &times),
     ] {
         let trajectory = trajectory.unwrap();
         assert_eq!(trajectory.times(), &times);
@@ -178,9 +195,14 @@ fn samples_at_the_start_time_are_the_initial_state() {
 fn no_sample_times_means_no_work() {
     let model = CoupledOscillator { omega: OMEGA };
     let (q0, qdot0) = start();
-    let trajectory = integrate(&model, 0.0, q0, qdot0, &[]).unwrap();
-    assert!(trajectory.is_empty());
-    assert_eq!(trajectory.stats().rhs_evals, 0);
+    for trajectory in [
+        integrate(&model, 0.0, q0, qdot0, &[]),
+        Dop853::new().integrate(&model, 0.0, q0, qdot0, &[]),
+    ] {
+        let trajectory = trajectory.unwrap();
+        assert!(trajectory.is_empty());
+        assert_eq!(trajectory.stats().rhs_evals, 0);
+    }
 }
 
 #[test]

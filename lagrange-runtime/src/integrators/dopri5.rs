@@ -7,8 +7,8 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::{invalid, Integrator, Recorder};
-use crate::{IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue};
+use super::{check_tolerances, initial_step, invalid, Integrator, Recorder};
+use crate::{IntegrationError, IntegrationResult, Lagrangian, NonFiniteValue};
 
 /// Dormand–Prince 5(4) with adaptive steps: the default method.
 ///
@@ -71,18 +71,6 @@ impl<S: RealField + Copy> Dopri5<S> {
         self.max_steps = max_steps;
         self
     }
-
-    fn validate(&self) -> Result<(), InvalidInput<S>> {
-        let (rtol, atol) = (self.rtol, self.atol);
-        let min = nalgebra::convert::<f64, S>(10.0) * S::default_epsilon();
-        if !(rtol.is_finite() && rtol >= min) {
-            return Err(InvalidInput::InvalidRelativeTolerance { rtol, min });
-        }
-        if !(atol.is_finite() && atol > S::zero()) {
-            return Err(InvalidInput::InvalidAbsoluteTolerance { atol });
-        }
-        Ok(())
-    }
 }
 
 impl<S: RealField + Copy> Default for Dopri5<S> {
@@ -112,7 +100,7 @@ impl<S: RealField + Copy> Integrator<S> for Dopri5<S> {
     where
         L: Lagrangian<N, Scalar = S>,
     {
-        self.validate().map_err(invalid)?;
+        check_tolerances(self.rtol, self.atol).map_err(invalid)?;
         let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
         let (Some(_), Some(t_end)) = (rec.pending(), rec.end()) else {
             return Ok(rec.finish());
@@ -130,7 +118,9 @@ impl<S: RealField + Copy> Integrator<S> for Dopri5<S> {
             Err(error) => return Err(rec.fail(error)),
         };
         let h_max = t_end - t0;
-        let mut h = self.initial_step(&mut rec, model, t, &q, &qdot, &qddot, h_max);
+        let (rtol, atol) = (self.rtol, self.atol);
+        let start = (t, &q, &qdot, &qddot);
+        let mut h = initial_step(&mut rec, model, start, h_max, rtol, atol, 5);
 
         let mut err_old = c(1e-4);
         let mut rejected_last = false;
@@ -232,61 +222,6 @@ impl<S: RealField + Copy> Integrator<S> for Dopri5<S> {
 }
 
 impl<S: RealField + Copy> Dopri5<S> {
-    /// Hairer's `hinit`: a step for which an explicit Euler step would meet
-    /// the tolerance, from estimates of the first and second derivative.
-    #[allow(clippy::too_many_arguments)]
-    fn initial_step<L: Lagrangian<N, Scalar = S>, const N: usize>(
-        &self,
-        rec: &mut Recorder<'_, S, N>,
-        model: &L,
-        t: S,
-        q: &SVector<S, N>,
-        qdot: &SVector<S, N>,
-        qddot: &SVector<S, N>,
-        h_max: S,
-    ) -> S {
-        let c = |x: f64| -> S { nalgebra::convert(x) };
-        let scale = |y: S| self.atol + self.rtol * y.abs();
-        let y = q.iter().chain(qdot.iter());
-        let f0 = qdot.iter().chain(qddot.iter());
-        let dny = y
-            .clone()
-            .fold(S::zero(), |s, &y| s + (y / scale(y)).powi(2));
-        let dnf = f0
-            .zip(y.clone())
-            .fold(S::zero(), |s, (&f, &y)| s + (f / scale(y)).powi(2));
-        let h0 = if dnf <= c(1e-10) || dny <= c(1e-10) {
-            c(1e-6)
-        } else {
-            (dny / dnf).sqrt() * c(0.01)
-        };
-        let h0 = h0.min(h_max);
-
-        // One explicit Euler step estimates the second derivative.
-        let (q1, qdot1) = (q + qdot * h0, qdot + qddot * h0);
-        let Ok(qddot1) = rec.rhs(model, t + h0, &q1, &qdot1) else {
-            // The model breaks down there; let the step control find out.
-            return h0;
-        };
-        let f1 = qdot1.iter().chain(qddot1.iter());
-        let f0 = qdot.iter().chain(qddot.iter());
-        let der2 = f1
-            .zip(f0)
-            .zip(y)
-            .fold(S::zero(), |s, ((&f1, &f0), &y)| {
-                s + ((f1 - f0) / scale(y)).powi(2)
-            })
-            .sqrt()
-            / h0;
-        let der12 = der2.max(dnf.sqrt());
-        let h1 = if der12 <= c(1e-15) {
-            c(1e-6).max(h0 * c(1e-3))
-        } else {
-            (c(0.01) / der12).powf(c(0.2))
-        };
-        (h0 * c(100.0)).min(h1).min(h_max)
-    }
-
     /// RMS over `q` and `q̇` of the embedded error relative to
     /// `atol + rtol max(|y_old|, |y_new|)`.
     fn error_norm<const N: usize>(

@@ -66,19 +66,30 @@
 //! `max_iterations`, the step fails with
 //! [`NewtonDivergence`](IntegrationError::NewtonDivergence): take a smaller
 //! step.
+//!
+//! Fixed-step methods supply one step to a shared driver that lands on the
+//! sample times; adaptive methods share Hairer's initial step guess and the
+//! tolerance checks.
 
 mod dense_lu;
+mod dop853;
+mod dop853_tableau;
 mod dopri5;
+mod euler;
 mod gauss_legendre;
 mod implicit_midpoint;
 mod implicit_rk;
 mod rk4;
+mod symplectic_euler;
 mod variational;
 
+pub use dop853::Dop853;
 pub use dopri5::Dopri5;
+pub use euler::ExplicitEuler;
 pub use gauss_legendre::GaussLegendre;
 pub use implicit_midpoint::ImplicitMidpoint;
 pub use rk4::Rk4;
+pub use symplectic_euler::SymplecticEuler;
 pub use variational::Variational;
 
 use nalgebra::{ComplexField, RealField, SVector};
@@ -364,6 +375,82 @@ pub(super) fn steps_to_cover<S: RealField + Copy>(start: S, target: S, h: S) -> 
     // `as` saturates (and sends negatives to 0); a span of zero never
     // reaches here.
     (steps as usize).max(1)
+}
+
+/// The tolerances an adaptive method can honour: `rtol` at least `10 ε` of
+/// the scalar type, `atol` positive, both finite.
+pub(crate) fn check_tolerances<S: RealField + Copy>(
+    rtol: S,
+    atol: S,
+) -> Result<(), InvalidInput<S>> {
+    let min = nalgebra::convert::<f64, S>(10.0) * S::default_epsilon();
+    if !(rtol.is_finite() && rtol >= min) {
+        return Err(InvalidInput::InvalidRelativeTolerance { rtol, min });
+    }
+    if !(atol.is_finite() && atol > S::zero()) {
+        return Err(InvalidInput::InvalidAbsoluteTolerance { atol });
+    }
+    Ok(())
+}
+
+/// Hairer's `hinit`, shared by the adaptive methods: a first step for which
+/// a method of order `order` would roughly meet the tolerance, from
+/// estimates of the first and second derivative at `start = (t, q, q̇, q̈)`.
+/// Costs one right-hand side (an explicit Euler probe).
+pub(crate) fn initial_step<S, L, const N: usize>(
+    rec: &mut Recorder<'_, S, N>,
+    model: &L,
+    (t, q, qdot, qddot): (S, &SVector<S, N>, &SVector<S, N>, &SVector<S, N>),
+    h_max: S,
+    rtol: S,
+    atol: S,
+    order: u8,
+) -> S
+where
+    S: RealField + Copy,
+    L: Lagrangian<N, Scalar = S>,
+{
+    let c = |x: f64| -> S { nalgebra::convert(x) };
+    let scale = |y: S| atol + rtol * y.abs();
+    let y = q.iter().chain(qdot.iter());
+    let f0 = qdot.iter().chain(qddot.iter());
+    let dny = y
+        .clone()
+        .fold(S::zero(), |s, &y| s + (y / scale(y)).powi(2));
+    let dnf = f0
+        .zip(y.clone())
+        .fold(S::zero(), |s, (&f, &y)| s + (f / scale(y)).powi(2));
+    let h0 = if dnf <= c(1e-10) || dny <= c(1e-10) {
+        c(1e-6)
+    } else {
+        (dny / dnf).sqrt() * c(0.01)
+    };
+    let h0 = h0.min(h_max);
+
+    // One explicit Euler step estimates the second derivative.
+    let (q1, qdot1) = (q + qdot * h0, qdot + qddot * h0);
+    let Ok(qddot1) = rec.rhs(model, t + h0, &q1, &qdot1) else {
+        // The model breaks down there; let the step control find out.
+        return h0;
+    };
+    let f1 = qdot1.iter().chain(qddot1.iter());
+    let f0 = qdot.iter().chain(qddot.iter());
+    let der2 = f1
+        .zip(f0)
+        .zip(y)
+        .fold(S::zero(), |s, ((&f1, &f0), &y)| {
+            s + ((f1 - f0) / scale(y)).powi(2)
+        })
+        .sqrt()
+        / h0;
+    // h1 such that h1^order · max(|f0|, |f'|) = 0.01.
+    let der12 = der2.max(dnf.sqrt());
+    let h1 = if der12 <= c(1e-15) {
+        c(1e-6).max(h0 * c(1e-3))
+    } else {
+        (c(0.01) / der12).powf(c(1.0 / f64::from(order)))
+    };
+    (h0 * c(100.0)).min(h1).min(h_max)
 }
 
 /// A failure before any work: empty trajectory.

@@ -690,3 +690,82 @@ impl Lagrangian<1> for DrivenOscillator {
         Some(Vector1::zeros())
     }
 }
+
+/// A double pendulum (point masses `m1`, `m2` on massless rods `l1`, `l2`,
+/// angles from the downward vertical): smooth, nonlinear, with a
+/// configuration-dependent mass matrix
+/// `M = [[(m1+m2) l1², m2 l1 l2 cos Δ], [m2 l1 l2 cos Δ, m2 l2²]]`, `Δ = θ1 - θ2`,
+/// and velocity-dependent forcing. No closed form: tests compare against a
+/// tight adaptive reference.
+pub struct DoublePendulum {
+    pub m1: f64,
+    pub m2: f64,
+    pub l1: f64,
+    pub l2: f64,
+    pub g: f64,
+}
+
+impl DoublePendulum {
+    /// Unit masses and rods, Earth gravity.
+    pub fn unit() -> Self {
+        Self {
+            m1: 1.0,
+            m2: 1.0,
+            l1: 1.0,
+            l2: 1.0,
+            g: 9.81,
+        }
+    }
+}
+
+impl Lagrangian<2> for DoublePendulum {
+    type Scalar = f64;
+    const COORDINATES: [&'static str; 2] = ["theta1", "theta2"];
+
+    fn mass_matrix(&self, _t: f64, q: &Vector2<f64>) -> Matrix2<f64> {
+        let coupling = self.m2 * self.l1 * self.l2 * (q[0] - q[1]).cos();
+        Matrix2::new(
+            (self.m1 + self.m2) * self.l1 * self.l1,
+            coupling,
+            coupling,
+            self.m2 * self.l2 * self.l2,
+        )
+    }
+    fn forcing(&self, _t: f64, q: &Vector2<f64>, qdot: &Vector2<f64>) -> Vector2<f64> {
+        let s = self.m2 * self.l1 * self.l2 * (q[0] - q[1]).sin();
+        Vector2::new(
+            -s * qdot[1] * qdot[1] - (self.m1 + self.m2) * self.g * self.l1 * q[0].sin(),
+            s * qdot[0] * qdot[0] - self.m2 * self.g * self.l2 * q[1].sin(),
+        )
+    }
+    fn kinetic_energy(&self, t: f64, q: &Vector2<f64>, qdot: &Vector2<f64>) -> f64 {
+        0.5 * (qdot.transpose() * self.mass_matrix(t, q) * qdot)[0]
+    }
+    fn potential_energy(&self, _t: f64, q: &Vector2<f64>) -> f64 {
+        -(self.m1 + self.m2) * self.g * self.l1 * q[0].cos()
+            - self.m2 * self.g * self.l2 * q[1].cos()
+    }
+}
+
+/// Largest `|a - b|` (max norm over `q` and `q̇`) between two trajectories
+/// sampled at the same times.
+pub fn max_difference<const N: usize>(
+    a: &lagrange_runtime::Trajectory<f64, N>,
+    b: &lagrange_runtime::Trajectory<f64, N>,
+) -> f64 {
+    assert_eq!(a.times(), b.times());
+    a.iter().zip(b).fold(0.0, |worst, (a, b)| {
+        worst.max((a.q - b.q).amax()).max((a.qdot - b.qdot).amax())
+    })
+}
+
+/// Least-squares slope of `log error` against `log h`: the observed order
+/// of convergence over all the step sizes at once.
+pub fn observed_order(hs: &[f64], errors: &[f64]) -> f64 {
+    let (x, y): (Vec<f64>, Vec<f64>) = hs.iter().zip(errors).map(|(h, e)| (h.ln(), e.ln())).unzip();
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxy: f64 = x.iter().zip(&y).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = x.iter().map(|x| (x - mx) * (x - mx)).sum();
+    sxy / sxx
+}

@@ -1,0 +1,88 @@
+//! The explicit (forward) Euler method with a fixed step.
+
+use nalgebra::{RealField, SVector};
+
+use super::{fixed_step, Integrator, Recorder, State};
+use crate::{IntegrationError, IntegrationResult, Lagrangian};
+
+/// Explicit Euler with a fixed step `h`: one right-hand side per step,
+/// global error `O(h)`, no error control.
+///
+/// The baseline the other methods are measured against, and rarely the
+/// right choice: on an undamped oscillator it multiplies the energy by
+/// `1 + h² ω²` every step, so a long run spirals outwards. Use it to check a
+/// model cheaply, or as the reference point of a convergence study;
+/// [`SymplecticEuler`](crate::SymplecticEuler) costs the same and does not
+/// drift, [`Rk4`](crate::Rk4) and [`Dopri5`](crate::Dopri5) are far more
+/// accurate per evaluation.
+///
+/// Sample times are hit exactly, as with [`Rk4`](crate::Rk4): each interval
+/// between consecutive sample times is cut into the fewest equal steps no
+/// longer than `h`.
+///
+/// ```
+/// use lagrange_runtime::ExplicitEuler;
+///
+/// let euler = ExplicitEuler::new(1e-4).max_steps(1_000_000);
+/// # let _: ExplicitEuler<f64> = euler;
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExplicitEuler<S> {
+    h: S,
+    max_steps: usize,
+}
+
+impl<S: RealField + Copy> ExplicitEuler<S> {
+    /// Explicit Euler with step `h` and a budget of 10 000 000 steps.
+    ///
+    /// `h` is checked when integrating: it must be positive and finite.
+    pub fn new(h: S) -> Self {
+        Self {
+            h,
+            max_steps: 10_000_000,
+        }
+    }
+
+    /// The step budget; exceeding it is
+    /// [`TooManySteps`](IntegrationError::TooManySteps), so a step size that
+    /// is far too small fails instead of running for hours.
+    pub fn max_steps(mut self, max_steps: usize) -> Self {
+        self.max_steps = max_steps;
+        self
+    }
+
+    /// The step size.
+    pub fn step_size(&self) -> S {
+        self.h
+    }
+}
+
+impl<S: RealField + Copy> Integrator<S> for ExplicitEuler<S> {
+    fn integrate<L, const N: usize>(
+        &self,
+        model: &L,
+        t0: S,
+        q0: SVector<S, N>,
+        qdot0: SVector<S, N>,
+        times: &[S],
+    ) -> IntegrationResult<S, N>
+    where
+        L: Lagrangian<N, Scalar = S>,
+    {
+        let (h, max_steps) = (self.h, self.max_steps);
+        fixed_step(model, h, max_steps, t0, q0, qdot0, times, euler_step)
+    }
+}
+
+/// `q ← q + h q̇`, `q̇ ← q̇ + h q̈`, both from the state at `t`.
+fn euler_step<L: Lagrangian<N>, const N: usize>(
+    rec: &mut Recorder<'_, L::Scalar, N>,
+    model: &L,
+    t: L::Scalar,
+    q: &SVector<L::Scalar, N>,
+    qdot: &SVector<L::Scalar, N>,
+    h: L::Scalar,
+) -> Result<State<L::Scalar, N>, IntegrationError<L::Scalar, N>> {
+    let qddot = rec.rhs(model, t, q, qdot)?;
+    Ok((q + qdot * h, qdot + qddot * h))
+}
