@@ -289,3 +289,19 @@ fn symmetric_methods_show_no_energy_drift_with_a_position_dependent_mass_matrix(
     assert_no_drift("gauss-legendre 3", &GaussLegendre::three_stage(h));
     assert_no_drift("variational", &Variational::new(h));
 }
+
+#[test]
+fn euler_methods_show_first_order_on_a_derived_model() {
+    let hs = [0.002, 0.001, 0.0005, 0.00025];
+    assert_order("explicit euler", 1.0, &hs, |h| {
+        final_state(&ExplicitEuler::new(h), 1.0)
+    });
+    assert_order("symplectic euler", 1.0, &hs, |h| {
+        final_state(&SymplecticEuler::new(h), 1.0)
+    });
+}
+
+#[test]
+fn dop853_error_tracks_its_tolerance() {
+    assert_tracks_tolerance("dop853", |tol| Dop853::new().rtol(tol).atol(tol));
+}

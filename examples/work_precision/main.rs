@@ -22,40 +22,49 @@ use systems::Problem;
 /// a tolerance (rtol = atol) for the adaptive ones.
 #[derive(Clone, Copy, Debug)]
 pub enum Method {
+    Euler(f64),
+    SymplecticEuler(f64),
     Rk4(f64),
     ImplicitMidpoint(f64),
     Gauss4(f64),
     Gauss6(f64),
     Variational(f64),
     Dopri5(f64),
+    Dop853(f64),
 }
 
 impl Method {
     pub fn name(self) -> &'static str {
         match self {
+            Method::Euler(_) => "explicit_euler",
+            Method::SymplecticEuler(_) => "symplectic_euler",
             Method::Rk4(_) => "rk4",
             Method::ImplicitMidpoint(_) => "implicit_midpoint",
             Method::Gauss4(_) => "gauss_legendre_2",
             Method::Gauss6(_) => "gauss_legendre_3",
             Method::Variational(_) => "variational",
             Method::Dopri5(_) => "dopri5",
+            Method::Dop853(_) => "dop853",
         }
     }
 
     /// The step size or the tolerance.
     pub fn setting(self) -> f64 {
         match self {
-            Method::Rk4(x)
+            Method::Euler(x)
+            | Method::SymplecticEuler(x)
+            | Method::Rk4(x)
             | Method::ImplicitMidpoint(x)
             | Method::Gauss4(x)
             | Method::Gauss6(x)
             | Method::Variational(x)
-            | Method::Dopri5(x) => x,
+            | Method::Dopri5(x)
+            | Method::Dop853(x) => x,
         }
     }
 
     fn fixed_step(self) -> bool {
-        !matches!(self, Method::Dopri5(_))
+        !matches!(self, Method::Dopri5(_) | Method::Dop853(_))
     }
 
     pub fn integrate<L: Lagrangian<N, Scalar = f64>, const N: usize>(
@@ -66,6 +75,12 @@ impl Method {
         let (m, q, v) = (&p.model, p.q0, p.qdot0);
         let budget = usize::MAX;
         match self {
+            Method::Euler(h) => ExplicitEuler::new(h)
+                .max_steps(budget)
+                .integrate(m, 0.0, q, v, times),
+            Method::SymplecticEuler(h) => SymplecticEuler::new(h)
+                .max_steps(budget)
+                .integrate(m, 0.0, q, v, times),
             Method::Rk4(h) => Rk4::new(h).max_steps(budget).integrate(m, 0.0, q, v, times),
             Method::ImplicitMidpoint(h) => ImplicitMidpoint::new(h)
                 .max_steps(budget)
@@ -84,6 +99,11 @@ impl Method {
                 .atol(tol)
                 .max_steps(10_000_000)
                 .integrate(m, 0.0, q, v, times),
+            Method::Dop853(tol) => Dop853::new()
+                .rtol(tol)
+                .atol(tol)
+                .max_steps(10_000_000)
+                .integrate(m, 0.0, q, v, times),
         }
     }
 }
@@ -93,14 +113,16 @@ use lagrange::IntegrationResult;
 /// Every method at every setting worth running on a problem.
 fn sweep(steps: &[f64]) -> Vec<Method> {
     let tolerances: Vec<f64> = (3..=13).map(|k| 10f64.powi(-k)).collect();
-    let fixed: [fn(f64) -> Method; 5] = [
+    let fixed: [fn(f64) -> Method; 7] = [
+        Method::Euler,
+        Method::SymplecticEuler,
         Method::Rk4,
         Method::ImplicitMidpoint,
         Method::Gauss4,
         Method::Gauss6,
         Method::Variational,
     ];
-    let adaptive: [fn(f64) -> Method; 1] = [Method::Dopri5];
+    let adaptive: [fn(f64) -> Method; 2] = [Method::Dopri5, Method::Dop853];
     let mut methods = Vec::new();
     for make in fixed {
         methods.extend(steps.iter().map(|&h| make(h)));
