@@ -125,10 +125,14 @@ fn assert_tracks_tolerance<I: Integrator<f64>>(name: &str, make: impl Fn(f64) ->
     for (tol, e) in tolerances.iter().zip(&errors) {
         assert!(*e <= 100.0 * tol, "{name}: error {e:.2e} at tol {tol:.0e}");
     }
-    // Each 100× tighter tolerance buys at least 10× less error.
+    // Each 100× tighter tolerance buys at least 3× less error: enough to
+    // catch a stall, loose enough for a high-order method at loose
+    // tolerances, whose error is not yet proportional to tol (DOP853 gains
+    // 7× from 1e-4 to 1e-6, 700× from 1e-6 to 1e-8); the bound above keeps
+    // the error tied to tol overall.
     for w in errors.windows(2) {
         assert!(
-            w[1] <= w[0] / 10.0,
+            w[1] <= w[0] / 3.0,
             "{name}: errors {} do not fall with the tolerance",
             sci(&errors)
         );
