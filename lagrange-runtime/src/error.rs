@@ -126,6 +126,9 @@ pub enum NonFiniteValue {
     MassMatrix,
     /// The forcing `f(t, q, q̇)` returned by the model.
     Forcing,
+    /// The Jacobians `∂q̈/∂q`, `∂q̈/∂q̇` an implicit method needs (from the
+    /// model's exact residual Jacobians, or overflowing finite differences).
+    Jacobian,
 }
 
 impl fmt::Display for NonFiniteValue {
@@ -134,6 +137,7 @@ impl fmt::Display for NonFiniteValue {
             Self::State => "the state is NaN or infinite",
             Self::MassMatrix => "the mass matrix M(t, q) returned by the model is NaN or infinite",
             Self::Forcing => "the forcing f(t, q, q̇) returned by the model is NaN or infinite",
+            Self::Jacobian => "the Jacobians ∂q̈/∂q, ∂q̈/∂q̇ are NaN or infinite",
         })
     }
 }
