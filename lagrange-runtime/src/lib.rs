@@ -101,12 +101,33 @@
 //! println!("{failure}"); // mass matrix is singular at t = 0 (q = [0.5], q̇ = [0]): ...
 //! ```
 //!
+//! # Choosing a method
+//!
+//! | Method | Kind | Order | Work per step | For |
+//! |---|---|---|---|---|
+//! | [`Rk4`] | fixed step, explicit | 4 | 4 right-hand sides | reproducible steps, comparisons |
+//! | [`Dopri5`] | adaptive, explicit (the default) | 5 | 6 right-hand sides | smooth, non-stiff models |
+//! | [`Radau5`] | adaptive, implicit, L-stable | 5 | 3 right-hand sides per Newton iteration (1–2 typical); Jacobians and two `N × N` LUs when needed | stiff models: hard springs, strong dampers |
+//!
+//! A model is stiff when it has motions much faster than the ones of
+//! interest, like a hard spring vibrating while the system slowly swings:
+//! an explicit method must resolve the vibration just to stay stable, an
+//! L-stable one damps it and steps at the pace of the swing. On a two-mass
+//! chain with a stiffness ratio of 10⁶, `Radau5` needs ~200× fewer
+//! right-hand sides than `Dopri5` for the same tolerance. On non-stiff
+//! models both work with similar numbers of right-hand sides; `Dopri5` does
+//! no linear algebra (`O(N³)` per LU for `Radau5`) and its dense output is
+//! more accurate between steps.
+//!
 //! # Map of the crate
 //!
 //! - [`Lagrangian`]: the contract a model fulfils.
 //! - [`solve`]: `q̈` from `M q̈ = f`, on the stack, singular cases caught.
 //! - [`integrators`]: the [`Integrator`] trait and one file per method:
-//!   [`Rk4`] (fixed step), [`Dopri5`] (adaptive, the default).
+//!   [`Rk4`] (fixed step), [`Dopri5`] (adaptive, the default), [`Radau5`]
+//!   (adaptive, implicit, for stiff models).
+//! - [`jacobian`]: `∂q̈/∂q` and `∂q̈/∂q̇` for implicit methods, exact or by
+//!   finite differences.
 //! - [`Trajectory`]: the samples and the [`Stats`] of the work done.
 //! - [`error`]: [`IntegrationError`], [`InvalidInput`], [`Failure`].
 //!
@@ -122,7 +143,7 @@ pub mod solve;
 mod trajectory;
 
 pub use error::{Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue};
-pub use integrators::{integrate, Dopri5, Integrator, Rk4};
+pub use integrators::{integrate, Dopri5, Integrator, Radau5, Rk4};
 pub use lagrangian::Lagrangian;
 pub use nalgebra;
 pub use trajectory::{Sample, Samples, Stats, Trajectory};
@@ -130,6 +151,7 @@ pub use trajectory::{Sample, Samples, Stats, Trajectory};
 /// The names a simulation needs: `use lagrange_runtime::prelude::*;`.
 pub mod prelude {
     pub use crate::{
-        integrate, Dopri5, Failure, IntegrationError, Integrator, Lagrangian, Rk4, Trajectory,
+        integrate, Dopri5, Failure, IntegrationError, Integrator, Lagrangian, Radau5, Rk4,
+        Trajectory,
     };
 }

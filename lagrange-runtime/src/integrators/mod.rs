@@ -14,9 +14,13 @@
 //! - A failure returns the samples computed so far in [`Failure`].
 
 mod dopri5;
+mod lu;
+mod radau5;
 mod rk4;
+mod second_order;
 
 pub use dopri5::Dopri5;
+pub use radau5::Radau5;
 pub use rk4::Rk4;
 
 use nalgebra::{ComplexField, RealField, SVector};
