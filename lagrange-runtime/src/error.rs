@@ -136,6 +136,9 @@ pub enum NonFiniteValue {
     LagrangianGradient,
     /// The non-conservative forces `Q − ∂R/∂q̇` returned by the model.
     NonconservativeForces,
+    /// The Jacobians `∂q̈/∂q`, `∂q̈/∂q̇` an implicit method needs (from the
+    /// model's exact residual Jacobians, or overflowing finite differences).
+    Jacobian,
 }
 
 impl fmt::Display for NonFiniteValue {
@@ -149,6 +152,7 @@ impl fmt::Display for NonFiniteValue {
             Self::NonconservativeForces => {
                 "the non-conservative forces Q - ∂R/∂q̇ returned by the model are NaN or infinite"
             }
+            Self::Jacobian => "the Jacobians ∂q̈/∂q, ∂q̈/∂q̇ are NaN or infinite",
         })
     }
 }

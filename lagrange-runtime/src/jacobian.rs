@@ -8,8 +8,8 @@
 
 use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
-use crate::solve::{acceleration, solve_mass_matrix};
-use crate::{IntegrationError, Lagrangian, Stats};
+use crate::solve::{acceleration, solve_mass_matrix, SolveError};
+use crate::{IntegrationError, Lagrangian, NonFiniteValue, Stats};
 
 /// `(∂q̈/∂q, ∂q̈/∂q̇)` at `(t, q, q̇)`, where `qddot` is `q̈` there.
 #[allow(clippy::type_complexity)]
@@ -27,11 +27,14 @@ pub fn acceleration_jacobians<L: Lagrangian<N>, const N: usize>(
         let mut out = [SMatrix::<L::Scalar, N, N>::zeros(); 2];
         for (block, j) in out.iter_mut().zip([jq, jv]) {
             for k in 0..N {
-                let col = solve_mass_matrix(&m, &(-j.column(k).into_owned())).map_err(|_| {
-                    IntegrationError::SingularMassMatrix {
-                        t,
-                        q: *q,
-                        qdot: *qdot,
+                let col = solve_mass_matrix(&m, &(-j.column(k).into_owned())).map_err(|err| {
+                    let (q, qdot) = (*q, *qdot);
+                    let non_finite = |value| IntegrationError::NonFiniteState { t, q, qdot, value };
+                    match err {
+                        SolveError::Singular => IntegrationError::SingularMassMatrix { t, q, qdot },
+                        SolveError::NonFiniteMassMatrix => non_finite(NonFiniteValue::MassMatrix),
+                        // The right-hand side here is the model's Jacobian.
+                        SolveError::NonFiniteForcing => non_finite(NonFiniteValue::Jacobian),
                     }
                 })?;
                 block.set_column(k, &col);

@@ -80,6 +80,7 @@
 //! | [`ImplicitMidpoint`] | 2 | fixed step, implicit, symmetric | a Jacobian, an LU of order `2N`, 3–7 Newton iterations of 1 | Long runs without energy drift, cheapest implicit. |
 //! | [`GaussLegendre`] | 4 or 6 | fixed step, implicit, symmetric | a Jacobian, an LU of order `2Ns`, 3–7 Newton iterations of `s` | Long runs without energy drift, accurately. |
 //! | [`Variational`] | 2 | fixed step, implicit, symplectic in `(q, p)` for any `M(q)` | one `N × N` Newton solve per step | Exact discrete momentum maps (discrete Noether) and no energy drift, from the same Lagrangian. |
+//! | [`Radau5`] | 5 | adaptive, implicit, L-stable, dense output of order 3 | 3 per Newton iteration (1–2 typical); Jacobians and two `N × N` LUs when needed | Stiff models: hard springs beside soft ones, strong damping ([below](#stiff-models)). |
 //!
 //! The implicit Runge–Kutta methods are symmetric and conserve quadratic
 //! invariants; they are symplectic for a constant mass matrix, and for
@@ -142,6 +143,18 @@
 //! long runs where qualitative behaviour matters more than the digits of one
 //! sample: orbits, rigid bodies, molecular chains.
 //!
+//! # Stiff models
+//!
+//! A model is stiff when it has motions much faster than the ones of
+//! interest, like a hard spring vibrating while the system slowly swings:
+//! an explicit method must resolve the vibration just to stay stable, an
+//! L-stable one damps it and steps at the pace of the swing. On a two-mass
+//! chain with a stiffness ratio of 10⁶, `Radau5` needs ~200× fewer
+//! right-hand sides than `Dopri5` for the same tolerance. On non-stiff
+//! models both work with similar numbers of right-hand sides; `Dopri5` does
+//! no linear algebra (`O(N³)` per LU for `Radau5`) and its dense output is
+//! more accurate between steps.
+//!
 //! # Map of the crate
 //!
 //! - [`Lagrangian`]: the contract a model fulfils.
@@ -150,7 +163,8 @@
 //!   [`ExplicitEuler`], [`SymplecticEuler`] and [`Rk4`] (fixed step),
 //!   [`Dopri5`] (adaptive, the default) and [`Dop853`] (adaptive, high
 //!   order), [`ImplicitMidpoint`] and [`GaussLegendre`] (implicit, fixed
-//!   step), [`Variational`] (fixed step, structure preserving).
+//!   step), [`Variational`] (fixed step, structure preserving), [`Radau5`]
+//!   (adaptive, implicit, L-stable, for stiff models).
 //! - [`jacobian`]: `∂q̈/∂q` and `∂q̈/∂q̇` for the implicit methods' Newton
 //!   iterations.
 //! - [`Trajectory`]: the samples and the [`Stats`] of the work done.
@@ -169,8 +183,8 @@ mod trajectory;
 
 pub use error::{Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue};
 pub use integrators::{
-    integrate, Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, Integrator, Rk4,
-    SymplecticEuler, Variational,
+    integrate, Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, Integrator, Radau5,
+    Rk4, SymplecticEuler, Variational,
 };
 pub use lagrangian::Lagrangian;
 pub use nalgebra;
@@ -180,6 +194,7 @@ pub use trajectory::{Sample, Samples, Stats, Trajectory};
 pub mod prelude {
     pub use crate::{
         integrate, Dop853, Dopri5, ExplicitEuler, Failure, GaussLegendre, ImplicitMidpoint,
-        IntegrationError, Integrator, Lagrangian, Rk4, SymplecticEuler, Trajectory, Variational,
+        IntegrationError, Integrator, Lagrangian, Radau5, Rk4, SymplecticEuler, Trajectory,
+        Variational,
     };
 }

@@ -20,7 +20,7 @@
 
 use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
-use super::dense_lu::DenseLu;
+use super::lu::Lu;
 use super::{fixed_step, Recorder, State};
 use crate::jacobian::acceleration_jacobians;
 use crate::{IntegrationError, IntegrationResult, Lagrangian};
@@ -111,8 +111,7 @@ struct StageSolver<'t, S: RealField + Copy, const N: usize> {
     /// The residual, then the Newton correction in its place.
     delta: DVector<S>,
     /// `I − h A ⊗ J`, then its LU factors.
-    newton: DMatrix<S>,
-    lu: DenseLu,
+    lu: Lu<S>,
 }
 
 impl<'t, S: RealField + Copy, const N: usize> StageSolver<'t, S, N> {
@@ -126,8 +125,7 @@ impl<'t, S: RealField + Copy, const N: usize> StageSolver<'t, S, N> {
             h_prev: None,
             f: DVector::zeros(dim),
             delta: DVector::zeros(dim),
-            newton: DMatrix::zeros(dim, dim),
-            lu: DenseLu::new(dim),
+            lu: Lu::new(dim),
         }
     }
 
@@ -173,7 +171,7 @@ impl<'t, S: RealField + Copy, const N: usize> StageSolver<'t, S, N> {
                 });
             }
             self.residual(h);
-            self.lu.solve(&self.newton, &mut self.delta);
+            self.lu.solve_in_place(&mut self.delta);
             rec.stats.linear_solves += 1;
             rec.stats.newton_iterations += 1;
             if !self.delta.iter().all(|x| x.is_finite()) {
@@ -214,7 +212,7 @@ impl<'t, S: RealField + Copy, const N: usize> StageSolver<'t, S, N> {
     /// `false` if it is singular.
     fn factor(&mut self, h: S, jq: &SMatrix<S, N, N>, jv: &SMatrix<S, N, N>) -> bool {
         let a = &self.tableau.a;
-        let newton = &mut self.newton;
+        let newton = self.lu.matrix_mut();
         newton.fill_with_identity();
         for i in 0..a.nrows() {
             for j in 0..a.ncols() {
@@ -229,7 +227,7 @@ impl<'t, S: RealField + Copy, const N: usize> StageSolver<'t, S, N> {
                 }
             }
         }
-        self.lu.factor(newton)
+        self.lu.factor().is_ok()
     }
 
     /// Evaluates the Jacobian again at the mean of the current stages, where

@@ -71,7 +71,6 @@
 //! sample times; adaptive methods share Hairer's initial step guess and the
 //! tolerance checks.
 
-mod dense_lu;
 mod dop853;
 mod dop853_tableau;
 mod dopri5;
@@ -79,7 +78,10 @@ mod euler;
 mod gauss_legendre;
 mod implicit_midpoint;
 mod implicit_rk;
+mod lu;
+mod radau5;
 mod rk4;
+mod second_order;
 mod symplectic_euler;
 mod variational;
 
@@ -88,6 +90,7 @@ pub use dopri5::Dopri5;
 pub use euler::ExplicitEuler;
 pub use gauss_legendre::GaussLegendre;
 pub use implicit_midpoint::ImplicitMidpoint;
+pub use radau5::Radau5;
 pub use rk4::Rk4;
 pub use symplectic_euler::SymplecticEuler;
 pub use variational::Variational;
