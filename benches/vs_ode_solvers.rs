@@ -41,10 +41,8 @@ fn model() -> DoublePendulum {
     DoublePendulum::new(1.0, 1.0, 1.0, 1.0, 9.81)
 }
 
-fn ours(tol: f64) -> (State, usize) {
-    let t = Dopri5::new()
-        .rtol(tol)
-        .atol(tol)
+fn ours<I: Integrator<f64>>(method: I) -> (State, usize) {
+    let t = method
         .integrate(
             &model(),
             0.0,
@@ -58,6 +56,40 @@ fn ours(tol: f64) -> (State, usize) {
         State::new(s.q[0], s.q[1], s.qdot[0], s.qdot[1]),
         t.stats().rhs_evals,
     )
+}
+
+fn ours_dopri5(tol: f64) -> (State, usize) {
+    ours(Dopri5::new().rtol(tol).atol(tol))
+}
+
+fn ours_dop853(tol: f64) -> (State, usize) {
+    ours(Dop853::new().rtol(tol).atol(tol))
+}
+
+/// Their DOP853 with its defaults (Hairer's), sparse output as for Dopri5.
+fn theirs_dop853(tol: f64) -> (State, usize) {
+    let y0 = State::new(2.0, 2.5, 0.0, 0.0);
+    let mut stepper = ode_solvers::Dop853::from_param(
+        FirstOrder(model()),
+        0.0,
+        T_END,
+        T_END,
+        y0,
+        tol,
+        tol,
+        0.9,
+        0.0,
+        0.333,
+        6.0,
+        T_END,
+        0.0,
+        100_000,
+        1000,
+        ode_solvers::dop_shared::OutputType::Sparse,
+    );
+    let stats = stepper.integrate().unwrap();
+    assert_eq!(*stepper.x_out().last().unwrap(), T_END);
+    (*stepper.y_out().last().unwrap(), stats.num_eval as usize)
 }
 
 fn theirs(tol: f64) -> (State, usize) {
@@ -97,30 +129,37 @@ fn error(y: &State) -> f64 {
 }
 
 fn bench(c: &mut Criterion) {
-    println!("\nDopri5 on the double pendulum to t = 2, same tolerance rtol = atol:");
-    println!(
-        "{:>8} {:>14} {:>10} {:>14} {:>10}",
-        "tol", "lagrange error", "evals", "ode_solvers", "evals"
-    );
-    for tol in [1e-6, 1e-8, 1e-10, 1e-12] {
-        let (a, na) = ours(tol);
-        let (b, nb) = theirs(tol);
+    type Run = fn(f64) -> (State, usize);
+    let pairs: [(&str, Run, Run); 2] = [
+        ("dopri5", ours_dopri5, theirs),
+        ("dop853", ours_dop853, theirs_dop853),
+    ];
+    for (name, mine, other) in pairs {
+        println!("\n{name} on the double pendulum to t = 2, same tolerance rtol = atol:");
         println!(
-            "{tol:>8.0e} {:>14.2e} {na:>10} {:>14.2e} {nb:>10}",
-            error(&a),
-            error(&b)
+            "{:>8} {:>14} {:>10} {:>14} {:>10}",
+            "tol", "lagrange error", "evals", "ode_solvers", "evals"
         );
+        for tol in [1e-6, 1e-8, 1e-10, 1e-12] {
+            let (a, na) = mine(tol);
+            let (b, nb) = other(tol);
+            println!(
+                "{tol:>8.0e} {:>14.2e} {na:>10} {:>14.2e} {nb:>10}",
+                error(&a),
+                error(&b)
+            );
+        }
+        let mut group = c.benchmark_group(format!("{name}_double_pendulum_t2"));
+        for tol in [1e-8, 1e-12] {
+            group.bench_function(format!("lagrange_tol_{tol:.0e}"), |b| {
+                b.iter(|| mine(black_box(tol)))
+            });
+            group.bench_function(format!("ode_solvers_tol_{tol:.0e}"), |b| {
+                b.iter(|| other(black_box(tol)))
+            });
+        }
+        group.finish();
     }
-    let mut group = c.benchmark_group("dopri5_double_pendulum_t2");
-    for tol in [1e-8, 1e-12] {
-        group.bench_function(format!("lagrange_tol_{tol:.0e}"), |b| {
-            b.iter(|| ours(black_box(tol)))
-        });
-        group.bench_function(format!("ode_solvers_tol_{tol:.0e}"), |b| {
-            b.iter(|| theirs(black_box(tol)))
-        });
-    }
-    group.finish();
 }
 
 criterion_group!(benches, bench);

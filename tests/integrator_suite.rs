@@ -309,3 +309,8 @@ fn euler_methods_show_first_order_on_a_derived_model() {
 fn dop853_error_tracks_its_tolerance() {
     assert_tracks_tolerance("dop853", |tol| Dop853::new().rtol(tol).atol(tol));
 }
+
+#[test]
+fn radau5_error_tracks_its_tolerance() {
+    assert_tracks_tolerance("radau5", |tol| Radau5::new().rtol(tol).atol(tol));
+}

@@ -31,6 +31,7 @@ pub enum Method {
     Variational(f64),
     Dopri5(f64),
     Dop853(f64),
+    Radau5(f64),
 }
 
 impl Method {
@@ -45,6 +46,7 @@ impl Method {
             Method::Variational(_) => "variational",
             Method::Dopri5(_) => "dopri5",
             Method::Dop853(_) => "dop853",
+            Method::Radau5(_) => "radau5",
         }
     }
 
@@ -59,12 +61,16 @@ impl Method {
             | Method::Gauss6(x)
             | Method::Variational(x)
             | Method::Dopri5(x)
-            | Method::Dop853(x) => x,
+            | Method::Dop853(x)
+            | Method::Radau5(x) => x,
         }
     }
 
     fn fixed_step(self) -> bool {
-        !matches!(self, Method::Dopri5(_) | Method::Dop853(_))
+        !matches!(
+            self,
+            Method::Dopri5(_) | Method::Dop853(_) | Method::Radau5(_)
+        )
     }
 
     pub fn integrate<L: Lagrangian<N, Scalar = f64>, const N: usize>(
@@ -104,6 +110,11 @@ impl Method {
                 .atol(tol)
                 .max_steps(10_000_000)
                 .integrate(m, 0.0, q, v, times),
+            Method::Radau5(tol) => Radau5::new()
+                .rtol(tol)
+                .atol(tol)
+                .max_steps(10_000_000)
+                .integrate(m, 0.0, q, v, times),
         }
     }
 }
@@ -122,7 +133,7 @@ fn sweep(steps: &[f64]) -> Vec<Method> {
         Method::Gauss6,
         Method::Variational,
     ];
-    let adaptive: [fn(f64) -> Method; 2] = [Method::Dopri5, Method::Dop853];
+    let adaptive: [fn(f64) -> Method; 3] = [Method::Dopri5, Method::Dop853, Method::Radau5];
     let mut methods = Vec::new();
     for make in fixed {
         methods.extend(steps.iter().map(|&h| make(h)));
