@@ -7,6 +7,8 @@ use crate::lagrangian;
 lagrangian! {
     /// The double pendulum: point masses `m1`, `m2` on massless rods `l1`,
     /// `l2`, angles `theta1`, `theta2` from the downward vertical, gravity `g`.
+    /// With exact Jacobians, for the implicit integrators.
+    #[lagrange(jacobians)]
     pub struct DoublePendulum {
         coordinates: theta1, theta2;
         parameters: m1, m2, l1, l2, g;
@@ -22,7 +24,8 @@ lagrangian! {
 lagrangian! {
     /// The damped two-mass chain: wall – k1 – m1 – k2 – m2 – k3 – wall, with
     /// dampers c1, c2, c3 beside the springs, their forces written as
-    /// generalized forces (the textbook's `Q`).
+    /// generalized forces (the textbook's `Q`). With exact Jacobians.
+    #[lagrange(jacobians)]
     pub struct TwoMassChain {
         coordinates: x1, x2;
         parameters: m1, m2, k1, k2, k3, c1, c2, c3;

@@ -111,7 +111,7 @@ pub fn energy_over_time(
     root.fill(&WHITE)?;
     let mut chart = ChartBuilder::on(&root)
         .caption(
-            "Kepler e = 0.6: energy error over 1000 orbits",
+            "Kepler e = 0.6: worst energy error per orbit, 1000 orbits",
             ("sans-serif", 22),
         )
         .margin(12)

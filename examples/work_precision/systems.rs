@@ -6,6 +6,7 @@ use lagrange::prelude::*;
 
 lagrangian! {
     /// A unit-mass body around a unit central mass (μ = 1), Cartesian.
+    #[lagrange(jacobians)]
     pub struct Kepler {
         coordinates: x, y;
         parameters: mu;
