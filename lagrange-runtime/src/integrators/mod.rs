@@ -310,6 +310,7 @@ where
     }
     let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
     let (mut t, mut q, mut qdot) = (t0, q0, qdot0);
+    let mut growth = GrowthGuard::new(&q0, &qdot0);
 
     while let Some(target) = rec.pending() {
         let (start, span) = (t, target - t);
@@ -347,6 +348,16 @@ where
             }
             t = t_next;
             rec.stats.steps_accepted += 1;
+            if let Some(steps) = growth.unstable(&q, &qdot) {
+                let error = IntegrationError::Unstable {
+                    t,
+                    h: step_size,
+                    steps,
+                    q,
+                    qdot,
+                };
+                return Err(rec.fail(error));
+            }
         }
         // The last step's state is not evaluated by the model, so check it
         // here rather than record a NaN.
@@ -360,6 +371,54 @@ where
         }
     }
     Ok(rec.finish())
+}
+
+/// Watches a fixed-step run for step-size instability: the state's size
+/// (largest component of `q`, `q̇`) more than doubling on each of
+/// [`GrowthGuard::STEPS`] consecutive steps while above 1000× its starting
+/// scale. Geometric growth of 2× per step means `|R(hλ)| > 2`: the step is
+/// amplifying a mode it cannot resolve, and the state is on its way to
+/// infinity (or to finite garbage) within a few dozen steps.
+struct GrowthGuard<S> {
+    floor: S,
+    last: S,
+    run: usize,
+}
+
+impl<S: RealField + Copy> GrowthGuard<S> {
+    const STEPS: usize = 8;
+
+    fn new<const N: usize>(q: &SVector<S, N>, qdot: &SVector<S, N>) -> Self {
+        let size = Self::size(q, qdot);
+        Self {
+            floor: nalgebra::convert::<f64, S>(1000.0) * size.max(S::one()),
+            last: size,
+            run: 0,
+        }
+    }
+
+    fn size<const N: usize>(q: &SVector<S, N>, qdot: &SVector<S, N>) -> S {
+        q.iter()
+            .chain(qdot.iter())
+            .fold(S::zero(), |m, x| m.max(x.abs()))
+    }
+
+    /// `Some(steps)` once the growth has lasted long enough to stop.
+    fn unstable<const N: usize>(
+        &mut self,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) -> Option<usize> {
+        let size = Self::size(q, qdot);
+        let two = nalgebra::convert::<f64, S>(2.0);
+        self.run = if size > two * self.last {
+            self.run + 1
+        } else {
+            0
+        };
+        self.last = size;
+        (self.run >= Self::STEPS && size > self.floor).then_some(self.run)
+    }
 }
 
 /// The fewest equal steps no longer than `h` that cover `[start, target]`,
