@@ -9,8 +9,8 @@
 //!
 //! The figures (for STABILITY.md):
 //! `cargo test --release --test extremes_long_runs -- --nocapture` (a few
-//! seconds). Every integrator at 10⁶ steps (about half a minute on two
-//! cores) is ignored in CI:
+//! seconds). Every integrator at 10⁶ steps (about twenty seconds) is
+//! ignored in CI:
 //! `cargo test --release --test extremes_long_runs -- --ignored --nocapture`.
 
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -315,7 +315,7 @@ fn a_million_explicit_steps_allocate_no_more_than_ten_thousand() {
 
 /// Every integrator at 10⁶ steps (or, adaptive, about as many) against 10⁴.
 #[test]
-#[ignore = "10⁶ steps of every integrator, about half a minute; run with --ignored"]
+#[ignore = "10⁶ steps of every integrator, about twenty seconds; run with --ignored"]
 fn no_integrator_allocates_per_step_over_a_million_steps() {
     for (method, exact) in ALL {
         assert_same_memory_for_more_steps(method, exact, 50, 5000);
