@@ -347,10 +347,16 @@ impl<S: RealField + Copy, const N: usize> Stages<S, N> {
         self.qdot[0] = self.qdot[12];
     }
 
-    /// `(Σ w_j k_q[j], Σ w_j k_q̇[j])` over the nonzero weights.
+    /// `(Σ w_j k_q[j], Σ w_j k_q̇[j])` over the nonzero weights, in stage
+    /// order.
     fn sum(&self, weights: &Weights<S>) -> (SVector<S, N>, SVector<S, N>) {
         let (mut sq, mut sqdot) = (SVector::<S, N>::zeros(), SVector::<S, N>::zeros());
-        for (j, w) in weights.terms() {
+        let mut left = weights.nonzero;
+        while left != 0 {
+            // The lowest stage left; `& 15` (a no-op) spares the bounds checks.
+            let j = left.trailing_zeros() as usize & 15;
+            left &= left - 1;
+            let w = weights.w[j];
             sq += self.q[j] * w;
             sqdot += self.qdot[j] * w;
         }
@@ -378,17 +384,6 @@ impl<S: RealField + Copy> Weights<S> {
             }
         }
         Self { w, nonzero }
-    }
-
-    /// `(j, w_j)` for the nonzero `w_j`, in stage order.
-    fn terms(&self) -> impl Iterator<Item = (usize, S)> + '_ {
-        let mut bits = self.nonzero;
-        std::iter::from_fn(move || {
-            // 16 once no bit is left.
-            let j = bits.trailing_zeros() as usize;
-            bits &= bits.wrapping_sub(1);
-            (j < 16).then(|| (j, self.w[j]))
-        })
     }
 }
 
