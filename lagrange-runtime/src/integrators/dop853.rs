@@ -139,7 +139,7 @@ impl<S: RealField + Copy> Integrator<S> for Dop853<S> {
         let underflow = c(10.0) * S::default_epsilon();
 
         let (mut t, mut q, mut qdot) = (t0, q0, qdot0);
-        let mut qddot = match rec.rhs(model, t, &q, &qdot) {
+        let qddot = match rec.rhs(model, t, &q, &qdot) {
             Ok(a) => a,
             Err(error) => return Err(rec.fail(error)),
         };
@@ -147,6 +147,9 @@ impl<S: RealField + Copy> Integrator<S> for Dop853<S> {
         let (rtol, atol) = (self.rtol, self.atol);
         let start = (t, &q, &qdot, &qddot);
         let mut h = initial_step(&mut rec, model, start, h_max, rtol, atol, 8);
+        // One set of slopes for the whole integration, overwritten by each
+        // attempt: nothing of this size is copied per step.
+        let mut k = Stages::new(&qdot, &qddot);
 
         let mut err_old = c(1e-4);
         let mut rejected_last = false;
@@ -181,9 +184,9 @@ impl<S: RealField + Copy> Integrator<S> for Dop853<S> {
             }
             let t_new = if last { t_end } else { t + h };
 
-            let outcome = self.attempt(&tab, &mut rec, model, (t, t_new, h), (&q, &qdot, &qddot));
-            let (step, err, dense) = match outcome {
-                Ok(Outcome::Accepted { step, err, dense }) => (step, err, dense),
+            let outcome = self.attempt(&tab, &mut rec, model, &mut k, (t, t_new, h), (&q, &qdot));
+            let (step, err) = match outcome {
+                Ok(Outcome::Accepted { step, err }) => (step, err),
                 Ok(Outcome::Rejected { err }) => {
                     rec.stats.steps_rejected += 1;
                     rejected_last = true;
@@ -212,19 +215,24 @@ impl<S: RealField + Copy> Integrator<S> for Dop853<S> {
             rejected_last = false;
             stage_failure = None;
 
+            // A sample strictly inside the step made `attempt` evaluate
+            // stages 14–16; the continuous extension is built from them once.
+            let mut dense = None;
             while let Some(ts) = rec.pending().filter(|&ts| ts <= t_new) {
-                match &dense {
-                    Some(dense) if ts < t_new => {
-                        let (qs, qdots) = dense.at((ts - t) / h);
-                        rec.record(ts, qs, qdots);
-                    }
-                    _ => rec.record(ts, step.q, step.qdot),
+                if ts < t_new {
+                    let dense =
+                        dense.get_or_insert_with(|| Dense::new(&tab, h, (&q, &qdot), &step, &k));
+                    let (qs, qdots) = dense.at((ts - t) / h);
+                    rec.record(ts, qs, qdots);
+                } else {
+                    rec.record(ts, step.q, step.qdot);
                 }
             }
             if last {
                 return Ok(rec.finish());
             }
-            (t, q, qdot, qddot) = (t_new, step.q, step.qdot, step.k.qdot[12]);
+            (t, q, qdot) = (t_new, step.q, step.qdot);
+            k.first_same_as_last();
             h = h_new;
         }
     }
@@ -235,30 +243,28 @@ enum Outcome<S, const N: usize> {
     /// The error estimate `err` exceeds the tolerance.
     Rejected { err: S },
     /// The step passed the error test, stage 13 (`f` at the new state) is
-    /// filled in, and so is the continuous extension if a sample lies
-    /// strictly inside the step.
-    Accepted {
-        step: Step<S, N>,
-        err: S,
-        dense: Option<Dense<S, N>>,
-    },
+    /// filled in, and so are stages 14–16 of the continuous extension if a
+    /// sample lies strictly inside the step.
+    Accepted { step: Step<S, N>, err: S },
 }
 
 impl<S: RealField + Copy> Dop853<S> {
-    /// Attempts a step of size `h` from `(t, q, q̇)` with `q̈` known there,
-    /// to `t_new`: eleven right-hand sides for the stages, one more at the
-    /// new state if the error test passes, and three more for the dense
-    /// output if a sample lies inside the step. A failing evaluation, or an
-    /// overflow in the error estimate, is an error, which rejects the step.
+    /// Attempts a step of size `h` from `(t, q, q̇)`, with `q̈` there in
+    /// stage 1 of `k`, to `t_new`: eleven right-hand sides for the stages,
+    /// one more at the new state if the error test passes, and three more
+    /// for the dense output if a sample lies inside the step. A failing
+    /// evaluation, or an overflow in the error estimate, is an error, which
+    /// rejects the step.
     fn attempt<L: Lagrangian<N, Scalar = S>, const N: usize>(
         &self,
         tab: &Tableau<S>,
         rec: &mut Recorder<'_, S, N>,
         model: &L,
+        k: &mut Stages<S, N>,
         (t, t_new, h): (S, S, S),
-        (q, qdot, qddot): (&SVector<S, N>, &SVector<S, N>, &SVector<S, N>),
+        (q, qdot): (&SVector<S, N>, &SVector<S, N>),
     ) -> Result<Outcome<S, N>, IntegrationError<S, N>> {
-        let mut step = tab.step(rec, model, (t, h), (q, qdot, qddot))?;
+        let step = tab.step(rec, model, (t, h), (q, qdot), k)?;
         let err = self.error_norm(h, q, qdot, &step);
         if !err.is_finite() {
             // Finite stages, infinite error: an overflow in the sums.
@@ -275,15 +281,12 @@ impl<S: RealField + Copy> Dop853<S> {
         // f at the new state: stage 13 of the dense output, and the next
         // step's first stage. Evaluating it here, before accepting, means a
         // model that breaks down at the new state rejects the step.
-        step.k.qdot[12] = rec.rhs(model, t_new, &step.q, &step.qdot)?;
-        step.k.q[12] = step.qdot;
-        let inside = rec.pending().is_some_and(|ts| ts < t_new);
-        let dense = if inside {
-            Some(tab.dense(rec, model, (t, h), (q, qdot), &mut step)?)
-        } else {
-            None
-        };
-        Ok(Outcome::Accepted { step, err, dense })
+        k.qdot[12] = rec.rhs(model, t_new, &step.q, &step.qdot)?;
+        k.q[12] = step.qdot;
+        if rec.pending().is_some_and(|ts| ts < t_new) {
+            tab.stages(rec, model, (t, h), (q, qdot), 13..16, k)?;
+        }
+        Ok(Outcome::Accepted { step, err })
     }
 
     /// Hairer's blended estimate: with `err5`, `err3` the RMS of the fifth-
@@ -297,17 +300,18 @@ impl<S: RealField + Copy> Dop853<S> {
         qdot: &SVector<S, N>,
         step: &Step<S, N>,
     ) -> S {
-        let old = q.iter().chain(qdot.iter());
-        let new = step.q.iter().chain(step.qdot.iter());
-        let err5 = step.err5.0.iter().chain(step.err5.1.iter());
-        let err3 = step.err3.0.iter().chain(step.err3.1.iter());
-        let (sum5, sum3) = old.zip(new).zip(err5.zip(err3)).fold(
-            (S::zero(), S::zero()),
-            |(s5, s3), ((y0, y1), (e5, e3))| {
-                let sk = self.atol + self.rtol * y0.abs().max(y1.abs());
-                (s5 + (*e5 / sk).powi(2), s3 + (*e3 / sk).powi(2))
-            },
-        );
+        let (mut sum5, mut sum3) = (S::zero(), S::zero());
+        let parts = [
+            (q, &step.q, &step.err5.0, &step.err3.0),
+            (qdot, &step.qdot, &step.err5.1, &step.err3.1),
+        ];
+        for (y0, y1, e5, e3) in parts {
+            for i in 0..N {
+                let sk = self.atol + self.rtol * y0[i].abs().max(y1[i].abs());
+                sum5 += (e5[i] / sk).powi(2);
+                sum3 += (e3[i] / sk).powi(2);
+            }
+        }
         let mut deno = sum5 + nalgebra::convert::<f64, S>(0.01) * sum3;
         if deno <= S::zero() {
             deno = S::one();
@@ -327,57 +331,94 @@ struct Stages<S, const N: usize> {
 }
 
 impl<S: RealField + Copy, const N: usize> Stages<S, N> {
-    /// `(Σ w_j k_q[j], Σ w_j k_q̇[j])` over the weights given, skipping zeros.
-    fn sum(&self, weights: &[S]) -> (SVector<S, N>, SVector<S, N>) {
+    /// Stage 1 is `f` at the start, `(q̇, q̈)`; the others are filled by the
+    /// step before anything reads them.
+    fn new(qdot: &SVector<S, N>, qddot: &SVector<S, N>) -> Self {
+        Self {
+            q: [*qdot; 16],
+            qdot: [*qddot; 16],
+        }
+    }
+
+    /// After an accepted step, its stage 13 (`f` at the new state) is the
+    /// next step's stage 1: first same as last.
+    fn first_same_as_last(&mut self) {
+        self.q[0] = self.q[12];
+        self.qdot[0] = self.qdot[12];
+    }
+
+    /// `(Σ w_j k_q[j], Σ w_j k_q̇[j])` over the nonzero weights, in stage
+    /// order.
+    fn sum(&self, weights: &Weights<S>) -> (SVector<S, N>, SVector<S, N>) {
         let (mut sq, mut sqdot) = (SVector::<S, N>::zeros(), SVector::<S, N>::zeros());
-        for ((&w, kq), kqdot) in weights.iter().zip(&self.q).zip(&self.qdot) {
-            if w != S::zero() {
-                sq += kq * w;
-                sqdot += kqdot * w;
-            }
+        let mut left = weights.nonzero;
+        while left != 0 {
+            // The lowest stage left; `& 15` (a no-op) spares the bounds checks.
+            let j = left.trailing_zeros() as usize & 15;
+            left &= left - 1;
+            let w = weights.w[j];
+            sq += self.q[j] * w;
+            sqdot += self.qdot[j] * w;
         }
         (sq, sqdot)
     }
 }
 
-/// One attempted step: the eighth-order solution, both error estimates (per
-/// unit step, as in Hairer's code, for `q` and `q̇`), and the stages.
+/// Weights `w_j` of a sum over the stages, with the zeros of the tableau
+/// (a third of it) marked once, when the tableau is built, so that each
+/// step does only the products the method needs.
+struct Weights<S> {
+    w: [S; 16],
+    /// Bit `j` is set where `w_j` is nonzero.
+    nonzero: u16,
+}
+
+impl<S: RealField + Copy> Weights<S> {
+    fn new(weights: &[f64]) -> Self {
+        let mut w = [S::zero(); 16];
+        let mut nonzero = 0;
+        for (j, (w, &x)) in w.iter_mut().zip(weights).enumerate() {
+            *w = nalgebra::convert(x);
+            if *w != S::zero() {
+                nonzero |= 1 << j;
+            }
+        }
+        Self { w, nonzero }
+    }
+}
+
+/// One attempted step: the eighth-order solution and both error estimates
+/// (per unit step, as in Hairer's code, for `q` and `q̇`). Its stages stay
+/// in the [`Stages`] it was computed in.
 struct Step<S, const N: usize> {
     q: SVector<S, N>,
     qdot: SVector<S, N>,
     err5: (SVector<S, N>, SVector<S, N>),
     err3: (SVector<S, N>, SVector<S, N>),
-    k: Stages<S, N>,
 }
 
 /// The DOP853 coefficients in the working precision.
 struct Tableau<S> {
-    /// All 16 rows, zero-padded; row 13 is `b`.
-    a: [[S; 16]; 16],
+    /// All 16 rows; row 13 is `b`.
+    a: [Weights<S>; 16],
     c: [S; 16],
-    b: [S; 12],
-    er: [S; 12],
+    b: Weights<S>,
+    er: Weights<S>,
     /// `b − bhh`: eighth- minus third-order weights.
-    e3: [S; 12],
-    d: [[S; 16]; 4],
+    e3: Weights<S>,
+    d: [Weights<S>; 4],
 }
 
 impl<S: RealField + Copy> Tableau<S> {
     fn new() -> Self {
-        let c = |x: &f64| -> S { nalgebra::convert(*x) };
-        let mut a = [[S::zero(); 16]; 16];
-        for (row, coefficients) in a.iter_mut().zip(tableau::A) {
-            for (a, x) in row.iter_mut().zip(coefficients) {
-                *a = c(x);
-            }
-        }
+        let e3: [f64; 12] = std::array::from_fn(|i| tableau::B[i] - tableau::BHH[i]);
         Self {
-            a,
-            c: tableau::C.each_ref().map(c),
-            b: tableau::B.each_ref().map(c),
-            er: tableau::ER.each_ref().map(c),
-            e3: std::array::from_fn(|i| c(&(tableau::B[i] - tableau::BHH[i]))),
-            d: tableau::D.map(|row| row.each_ref().map(c)),
+            a: tableau::A.map(Weights::new),
+            c: tableau::C.map(nalgebra::convert),
+            b: Weights::new(&tableau::B),
+            er: Weights::new(&tableau::ER),
+            e3: Weights::new(&e3),
+            d: tableau::D.each_ref().map(|row| Weights::new(row)),
         }
     }
 
@@ -393,7 +434,7 @@ impl<S: RealField + Copy> Tableau<S> {
         k: &mut Stages<S, N>,
     ) -> Result<(), IntegrationError<S, N>> {
         for i in range {
-            let (dq, dqdot) = k.sum(&self.a[i][..i]);
+            let (dq, dqdot) = k.sum(&self.a[i]);
             let (qi, qdoti) = (q + dq * h, qdot + dqdot * h);
             k.qdot[i] = rec.rhs(model, t + self.c[i] * h, &qi, &qdoti)?;
             k.q[i] = qdoti;
@@ -401,60 +442,24 @@ impl<S: RealField + Copy> Tableau<S> {
         Ok(())
     }
 
-    /// Stages 2–12 of a step of size `h` from `(t, q, q̇)` with `q̈` known
-    /// there (eleven right-hand sides), the solution and the estimates.
+    /// Stages 2–12 of a step of size `h` from `(t, q, q̇)`, with stage 1
+    /// already in `k` (eleven right-hand sides), the solution and the
+    /// estimates.
     fn step<L: Lagrangian<N, Scalar = S>, const N: usize>(
         &self,
         rec: &mut Recorder<'_, S, N>,
         model: &L,
         (t, h): (S, S),
-        (q, qdot, qddot): (&SVector<S, N>, &SVector<S, N>, &SVector<S, N>),
+        (q, qdot): (&SVector<S, N>, &SVector<S, N>),
+        k: &mut Stages<S, N>,
     ) -> Result<Step<S, N>, IntegrationError<S, N>> {
-        let mut k = Stages {
-            q: [*qdot; 16],
-            qdot: [*qddot; 16],
-        };
-        self.stages(rec, model, (t, h), (q, qdot), 1..12, &mut k)?;
+        self.stages(rec, model, (t, h), (q, qdot), 1..12, k)?;
         let (dq, dqdot) = k.sum(&self.b);
         Ok(Step {
             q: q + dq * h,
             qdot: qdot + dqdot * h,
             err5: k.sum(&self.er),
             err3: k.sum(&self.e3),
-            k,
-        })
-    }
-
-    /// The continuous extension of a step whose stage 13 is filled in:
-    /// stages 14–16 (three right-hand sides), then Hairer's coefficients
-    /// `r₁…r₈` for `q` and `q̇`.
-    fn dense<L: Lagrangian<N, Scalar = S>, const N: usize>(
-        &self,
-        rec: &mut Recorder<'_, S, N>,
-        model: &L,
-        (t, h): (S, S),
-        (q, qdot): (&SVector<S, N>, &SVector<S, N>),
-        step: &mut Step<S, N>,
-    ) -> Result<Dense<S, N>, IntegrationError<S, N>> {
-        self.stages(rec, model, (t, h), (q, qdot), 13..16, &mut step.k)?;
-        let high = self.d.each_ref().map(|d| step.k.sum(d));
-        let coefficients = |y0: &SVector<S, N>,
-                            y1: &SVector<S, N>,
-                            k: &[SVector<S, N>; 16],
-                            r: [&SVector<S, N>; 4]| {
-            let diff = y1 - y0;
-            let bspl = k[0] * h - diff;
-            let r4 = diff - k[12] * h - bspl;
-            [*y0, diff, bspl, r4, r[0] * h, r[1] * h, r[2] * h, r[3] * h]
-        };
-        Ok(Dense {
-            q: coefficients(q, &step.q, &step.k.q, high.each_ref().map(|r| &r.0)),
-            qdot: coefficients(
-                qdot,
-                &step.qdot,
-                &step.k.qdot,
-                high.each_ref().map(|r| &r.1),
-            ),
         })
     }
 }
@@ -467,6 +472,31 @@ struct Dense<S, const N: usize> {
 }
 
 impl<S: RealField + Copy, const N: usize> Dense<S, N> {
+    /// Hairer's coefficients `r₁…r₈` for `q` and `q̇`, from a step whose
+    /// stages 13–16 are filled in.
+    fn new(
+        tab: &Tableau<S>,
+        h: S,
+        (q, qdot): (&SVector<S, N>, &SVector<S, N>),
+        step: &Step<S, N>,
+        k: &Stages<S, N>,
+    ) -> Self {
+        let high = tab.d.each_ref().map(|d| k.sum(d));
+        let coefficients = |y0: &SVector<S, N>,
+                            y1: &SVector<S, N>,
+                            k: &[SVector<S, N>; 16],
+                            r: [&SVector<S, N>; 4]| {
+            let diff = y1 - y0;
+            let bspl = k[0] * h - diff;
+            let r4 = diff - k[12] * h - bspl;
+            [*y0, diff, bspl, r4, r[0] * h, r[1] * h, r[2] * h, r[3] * h]
+        };
+        Self {
+            q: coefficients(q, &step.q, &k.q, high.each_ref().map(|r| &r.0)),
+            qdot: coefficients(qdot, &step.qdot, &k.qdot, high.each_ref().map(|r| &r.1)),
+        }
+    }
+
     fn at(&self, theta: S) -> (SVector<S, N>, SVector<S, N>) {
         let eval = |r: &[SVector<S, N>; 8]| {
             let s1 = S::one() - theta;
@@ -525,13 +555,15 @@ mod tests {
         let (mut t, mut mid) = (0.0, (q, qdot));
         for _ in 0..steps {
             let qddot = rec.rhs(&model, t, &q, &qdot).unwrap();
-            let mut step = tab
-                .step(&mut rec, &model, (t, h), (&q, &qdot, &qddot))
+            let mut k = Stages::new(&qdot, &qddot);
+            let step = tab
+                .step(&mut rec, &model, (t, h), (&q, &qdot), &mut k)
                 .unwrap();
-            step.k.qdot[12] = rec.rhs(&model, t + h, &step.q, &step.qdot).unwrap();
-            step.k.q[12] = step.qdot;
-            let dense = tab.dense(&mut rec, &model, (t, h), (&q, &qdot), &mut step);
-            mid = dense.unwrap().at(0.5);
+            k.qdot[12] = rec.rhs(&model, t + h, &step.q, &step.qdot).unwrap();
+            k.q[12] = step.qdot;
+            tab.stages(&mut rec, &model, (t, h), (&q, &qdot), 13..16, &mut k)
+                .unwrap();
+            mid = Dense::new(&tab, h, (&q, &qdot), &step, &k).at(0.5);
             (q, qdot, t) = (step.q, step.qdot, t + h);
         }
         ((q, qdot), mid)

@@ -230,13 +230,17 @@ impl<S: RealField + Copy> Dopri5<S> {
         qdot: &SVector<S, N>,
         step: &Step<S, N>,
     ) -> S {
-        let old = q.iter().chain(qdot.iter());
-        let new = step.q.iter().chain(step.qdot.iter());
-        let err = step.err_q.iter().chain(step.err_qdot.iter());
-        let sum = old.zip(new).zip(err).fold(S::zero(), |s, ((y0, y1), e)| {
-            let sk = self.atol + self.rtol * y0.abs().max(y1.abs());
-            s + (*e / sk).powi(2)
-        });
+        let mut sum = S::zero();
+        let parts = [
+            (q, &step.q, &step.err_q),
+            (qdot, &step.qdot, &step.err_qdot),
+        ];
+        for (y0, y1, e) in parts {
+            for i in 0..N {
+                let sk = self.atol + self.rtol * y0[i].abs().max(y1[i].abs());
+                sum += (e[i] / sk).powi(2);
+            }
+        }
         let n: S = nalgebra::convert((2 * N).max(1) as f64);
         (sum / n).sqrt()
     }
