@@ -109,17 +109,17 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
     },
 
     /// A fixed-step method is beyond its stability limit: far past its
-    /// starting size, the state kept growing geometrically while changing by
-    /// about its own size each step (more than 2× per step, or turning or
-    /// flipping sign from one step to the next). No resolved motion does
-    /// that, so this is the step size amplifying a fast mode it cannot
-    /// resolve: a stiff model. Stopped before the state overflows to
+    /// starting size, the state kept growing geometrically in a mode the
+    /// step does not resolve (by more than 2× per step; or turning, flipping
+    /// sign or moving against its own velocity from one step to the next).
+    /// No resolved motion does that, so this is the step size amplifying a
+    /// fast mode: a stiff model. Stopped before the state overflows to
     /// infinity or turns into finite garbage.
     #[error(
         "unstable at t = {t:?} with step h = {h:?} (q = {}, q̇ = {}): the state grew \
-         geometrically for {steps} steps, changing by about its own size each step; h is \
-         beyond this method's stability limit (a stiff model: take a smaller step, or an \
-         implicit method such as Radau5)",
+         geometrically for {steps} steps in a mode the step does not resolve; h is beyond \
+         this method's stability limit (a stiff model: take a smaller step, or an implicit \
+         method such as Radau5)",
         Row(.q), Row(.qdot)
     )]
     Unstable {

@@ -6,7 +6,7 @@ mod models;
 use lagrange_runtime::nalgebra::{Vector1, Vector2};
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::IntegrationResult;
-use models::{BlowUp, StiffChain};
+use models::{BlowUp, DampedOscillator, StiffChain};
 
 /// RK4's stability interval on the imaginary axis is |hω| ≤ 2.83; the stiff
 /// chain's fast mode has ω = √(2·10⁶) ≈ 1414, so h = 0.01 (hω ≈ 14) is far
@@ -139,4 +139,31 @@ fn rough_but_bounded_and_smooth_but_growing_are_no_false_alarms() {
         .unwrap();
     let q = blow_up.last().unwrap().q[0];
     assert!((q * (1.0 - 0.99995) - 1.0).abs() < 1e-6, "q = {q}");
+}
+
+/// A stiff damper instead of a stiff spring: `ẍ = −x − 1000 ẋ` decays at
+/// rate λ ≈ −1000, and RK4 is stable for `hλ ≥ −2.785` on the negative real
+/// axis. 1 % beyond, `R(hλ) = 1.02`: the mode grows by 2 % per step without
+/// turning, smooth in `x` alone, but it moves against its own velocity
+/// (`Δx ≈ +0.02 x` where `h ẋ ≈ −2.8 x`). Before the guard compared the two,
+/// RK4 returned `Ok` with `x ≈ 1e49` at t = 10.
+#[test]
+fn rk4_just_beyond_its_limit_on_a_stiff_damper_stops_too() {
+    let honey = DampedOscillator {
+        m: 1.0,
+        k: 1.0,
+        c: 1000.0,
+    };
+    let lambda = (1000.0 + (1000.0f64.powi(2) - 4.0).sqrt()) / 2.0;
+    let times: Vec<f64> = (1..=10).map(|k| k as f64).collect();
+    let failure = Rk4::new(1.01 * 2.785 / lambda)
+        .integrate(&honey, 0.0, Vector1::new(1.0), Vector1::new(0.0), &times)
+        .unwrap_err();
+    let IntegrationError::Unstable { t, q, qdot, .. } = failure.error else {
+        panic!("expected Unstable, got {}", failure.error);
+    };
+    assert!(t < 10.0);
+    assert!(q[0].abs().max(qdot[0].abs()) < 1e12, "q = {q}, q̇ = {qdot}");
+    let kept = failure.trajectory.len();
+    assert_eq!(failure.trajectory.times(), &times[..kept]);
 }

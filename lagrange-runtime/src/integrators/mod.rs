@@ -342,14 +342,14 @@ where
             } else {
                 start + step_size * nalgebra::convert::<f64, S>(k as f64)
             };
-            let before = (q, qdot);
-            match step(&mut rec, model, t, &q, &qdot, t_next - t) {
+            let (before, dt) = ((q, qdot), t_next - t);
+            match step(&mut rec, model, t, &q, &qdot, dt) {
                 Ok((q_next, qdot_next)) => (q, qdot) = (q_next, qdot_next),
                 Err(error) => return Err(rec.fail(error)),
             }
             t = t_next;
             rec.stats.steps_accepted += 1;
-            if let Some(steps) = growth.unstable(before, (&q, &qdot)) {
+            if let Some(steps) = growth.unstable(before, (&q, &qdot), dt) {
                 let error = IntegrationError::Unstable {
                     t,
                     h: step_size,
@@ -383,14 +383,20 @@ where
 ///   [`GrowthGuard::STEPS`] consecutive steps, `|R(hλ)| > 2`. A resolved
 ///   motion would need `λ h > 0.69` per step for that, where no method is
 ///   accurate.
-/// - **unresolved growth**: the state changes by at least half its size per
-///   step (a running mean over about [`GrowthGuard::STEPS`] steps) and grows
-///   [`GrowthGuard::FOLD`]-fold while it does. Such a state turns by 30° or
-///   more per step, or flips sign: a mode with fewer than a dozen steps per
-///   period. This is how an oscillation just beyond the stability limit
-///   grows (RK4 at `hω = 1.01 · 2√2` gains 7 % per step while turning by
-///   106°), too slowly for the first signature: it would otherwise run on
-///   into finite garbage or an overflow.
+/// - **unresolved growth**: the step is unresolved (a running mean over
+///   about [`GrowthGuard::STEPS`] steps of the measure below is at least ½)
+///   and the state grows [`GrowthGuard::FOLD`]-fold meanwhile. A step is
+///   unresolved when the state changes by a sizable fraction of itself (it
+///   turns by 30° or more, or flips sign: fewer than a dozen steps per
+///   period), or when `Δq` disagrees with the trapezoidal rule on `q̇`,
+///   `(h/2)(q̇ₙ + q̇ₙ₊₁)`, by as much as they measure themselves: a resolved
+///   step agrees to `O(h²ω²)`, a mode that decays at rate `λ` in the model
+///   but grows in the method (`R(hλ) > 1` for `hλ` past the limit on the
+///   negative real axis, a stiff damper) does not agree at all. This is how
+///   a mode just beyond the stability limit grows: RK4 at `hω = 1.01 · 2√2`
+///   gains 7 % per step while turning by 106°, and at `hλ = −1.01 · 2.785`
+///   2 % per step without turning. Too slow for the first signature, it
+///   would otherwise run on into finite garbage or an overflow.
 ///
 /// Growth that is smooth and slower than 2× per step (a physical
 /// instability, or explicit Euler's slow energy gain at small `hω`) is not
@@ -399,7 +405,7 @@ struct GrowthGuard<S> {
     floor: S,
     last: S,
     run: usize,
-    /// Running mean of the change per step relative to the size.
+    /// Running mean of how unresolved the steps are.
     roughness: S,
     /// Size and steps since an unresolved, above-floor stretch began.
     stretch: Option<(S, usize)>,
@@ -426,24 +432,31 @@ impl<S: RealField + Copy> GrowthGuard<S> {
             .fold(S::zero(), |m, x| m.max(x.abs()))
     }
 
-    /// After a step from `before` to `after`: `Some(steps)` once either
-    /// signature has lasted long enough to stop, `steps` being how long.
+    /// After a step of length `h` from `before` to `after`: `Some(steps)`
+    /// once either signature has lasted long enough to stop, `steps` being
+    /// how long.
     fn unstable<const N: usize>(
         &mut self,
         before: State<S, N>,
         after: (&SVector<S, N>, &SVector<S, N>),
+        h: S,
     ) -> Option<usize> {
         let c = |x: f64| -> S { nalgebra::convert(x) };
         let size = Self::size(after.0, after.1);
-        let change = Self::size(&(after.0 - before.0), &(after.1 - before.1));
-        let scale = size.max(self.last);
-        let ratio = if scale > S::zero() {
-            change / scale
-        } else {
-            S::zero()
+        let ratio = |part: S, whole: S| {
+            if whole > S::zero() {
+                part / whole
+            } else {
+                S::zero()
+            }
         };
+        let change = Self::size(&(after.0 - before.0), &(after.1 - before.1));
+        let dq = after.0 - before.0;
+        let trapezoid = (before.1 + after.1) * (h / c(2.0));
+        let disagreement = ratio((dq - trapezoid).amax(), dq.amax() + trapezoid.amax());
+        let unresolved = ratio(change, size.max(self.last)).max(disagreement);
         let steps = c(Self::STEPS as f64);
-        self.roughness += (ratio - self.roughness) / steps;
+        self.roughness += (unresolved - self.roughness) / steps;
         self.run = if size > c(2.0) * self.last {
             self.run + 1
         } else {
