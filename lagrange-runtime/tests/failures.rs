@@ -5,8 +5,8 @@ mod models;
 
 use lagrange_runtime::nalgebra::{SVector, Vector1, Vector2};
 use lagrange_runtime::prelude::*;
-use lagrange_runtime::{InvalidInput, NonFiniteValue};
-use models::{BlowUp, CoupledOscillator, ForcingBreaksDown, InertiaVanishes};
+use lagrange_runtime::{IntegrationResult, InvalidInput, NonFiniteValue};
+use models::{BlowUp, CoupledOscillator, DampedOscillator, ForcingBreaksDown, InertiaVanishes};
 use std::mem::discriminant;
 
 /// The Dopri5 retry (shrinking h by 5× after a failed stage) closes in on a
@@ -436,4 +436,58 @@ fn dop853_exhausted_step_budget_keeps_the_samples_so_far() {
     let kept = failure.trajectory.times();
     assert!(!kept.is_empty() && kept.len() < times.len());
     assert!(kept.iter().all(|&s| s <= t) && times[kept.len()] > t);
+}
+
+/// `t0 = 1e20` with `h = 1`: `t + h == t`, so no step of `h` can be taken.
+/// The fixed-step methods must say so (`StepSizeUnderflow` with `t = 1e20`,
+/// before any step) rather than merge the 98 304 steps to the next sample
+/// (1e20 + 98 304, the nearest double to 1e20 + 1e5) into one: forgiving 8
+/// ulps of `t` (1.8e5) for the rounding of sample times used to leave a
+/// single step of 98 304, from which RK4 returned `Ok` with x ≈ 4e18.
+/// Where `h` does advance `t` but only by a few ulps (`h = 1e5`, ulp 16 384),
+/// the sample is still reached in 10 steps, not 9 of 1.1 h.
+#[test]
+fn a_step_that_does_not_advance_time_is_step_size_underflow() {
+    let model = DampedOscillator {
+        m: 1.0,
+        k: 1.0,
+        c: 0.0,
+    };
+    let (q0, qdot0) = (Vector1::new(1.0), Vector1::zeros());
+    let (t0, end) = (1e20, 1e20 + 1e5);
+    let fixed: [(&str, IntegrationResult<f64, 1>); 3] = [
+        (
+            "RK4",
+            Rk4::new(1.0).integrate(&model, t0, q0, qdot0, &[end]),
+        ),
+        (
+            "ImplicitMidpoint",
+            ImplicitMidpoint::new(1.0).integrate(&model, t0, q0, qdot0, &[end]),
+        ),
+        (
+            "Variational",
+            Variational::new(1.0).integrate(&model, t0, q0, qdot0, &[end]),
+        ),
+    ];
+    for (name, run) in fixed {
+        let failure = run.expect_err(name);
+        let IntegrationError::StepSizeUnderflow { t, h, q, .. } = failure.error else {
+            panic!(
+                "{name}: expected step size underflow, got {}",
+                failure.error
+            );
+        };
+        assert_eq!((t, h, q), (t0, 1.0, q0), "{name}");
+        assert_eq!(failure.trajectory.stats().steps_accepted, 0, "{name}");
+    }
+
+    let free = DampedOscillator {
+        m: 1.0,
+        k: 0.0,
+        c: 0.0,
+    };
+    let run = Rk4::new(1e5)
+        .integrate(&free, t0, q0, qdot0, &[1e20 + 1e6])
+        .unwrap();
+    assert_eq!(run.stats().steps_accepted, 10);
 }

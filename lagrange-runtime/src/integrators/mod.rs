@@ -485,12 +485,16 @@ impl<S: RealField + Copy> GrowthGuard<S> {
 /// `10 h` in decimal takes 10 steps, not 11, and samples `i h` apart by one
 /// step still take one step each late in a run, where `i h` carries rounding
 /// of a few ulps of `t` (at `t = 100`, ~1e-14 — far more than an ulp of `h`).
-/// A step may so exceed `h` by `8 ε (|t| + span)`, which no method notices.
-/// Saturates at `usize::MAX`; the step budget stops it long before.
+/// A step may so exceed `h` by `8 ε (|t| + span)`, which no method notices,
+/// and never by more than `h / 8`: where `h` is within a few ulps of `t`
+/// (`t = 1e20`, `h = 1`), forgiving 8 ulps would merge all the steps into
+/// one giant one, where the callers should see that `h` no longer advances
+/// `t`. Saturates at `usize::MAX`; the step budget stops it long before.
 pub(super) fn steps_to_cover<S: RealField + Copy>(start: S, target: S, h: S) -> usize {
     let span = target - start;
     let eight_ulps = nalgebra::convert::<f64, S>(8.0) * S::default_epsilon();
-    let forgiven = eight_ulps * (span + start.abs().max(target.abs()));
+    let forgiven = (eight_ulps * (span + start.abs().max(target.abs())))
+        .min(h / nalgebra::convert::<f64, S>(8.0));
     let steps = ((span - forgiven) / h).ceil();
     let steps: f64 = nalgebra::try_convert(steps).unwrap_or(f64::MAX);
     // `as` saturates (and sends negatives to 0); a span of zero never
