@@ -550,7 +550,17 @@ where
     } else {
         (dny / dnf).sqrt() * c(0.01)
     };
-    let h0 = h0.min(h_max);
+    // A sum of squares that overflowed (a tiny atol makes f / atol huge)
+    // leaves no estimate, only 0 or NaN: take RADAU5's default first step,
+    // as Radau5 does, and let the step control adapt it.
+    let fallback = |h: S| {
+        if h.is_finite() && h > S::zero() {
+            h
+        } else {
+            c(1e-6)
+        }
+    };
+    let h0 = fallback(h0).min(h_max);
 
     // One explicit Euler step estimates the second derivative.
     let (q1, qdot1) = (q + qdot * h0, qdot + qddot * h0);
@@ -575,7 +585,12 @@ where
     } else {
         (c(0.01) / der12).powf(c(1.0 / f64::from(order)))
     };
-    (h0 * c(100.0)).min(h1).min(h_max)
+    let h = (h0 * c(100.0)).min(h1).min(h_max);
+    if h.is_finite() && h > S::zero() {
+        h
+    } else {
+        h0
+    }
 }
 
 /// A failure before any work: empty trajectory.
