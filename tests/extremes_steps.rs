@@ -27,8 +27,8 @@ lagrangian! {
 
 lagrangian! {
     /// `M = [[2, 1], [1, 2]]`, `V = x² + x y + y²`: `q̈ = −q` exactly, but
-    /// `y` released from 0 stays at rounding level (~1e-17), not at 0,
-    /// because every acceleration comes out of solving with `M`.
+    /// `y` released from 0 does not stay at 0: every acceleration comes out
+    /// of solving with `M`, which leaves rounding (~1e-17) in `ÿ`.
     #[lagrange(jacobians)]
     pub struct Coupled {
         coordinates: x, y;
