@@ -450,8 +450,8 @@ impl<S: RealField + Copy> GrowthGuard<S> {
                 S::zero()
             }
         };
-        let change = Self::size(&(after.0 - before.0), &(after.1 - before.1));
         let dq = after.0 - before.0;
+        let change = Self::size(&dq, &(after.1 - before.1));
         let trapezoid = (before.1 + after.1) * (h / c(2.0));
         let disagreement = ratio((dq - trapezoid).amax(), dq.amax() + trapezoid.amax());
         let unresolved = ratio(change, size.max(self.last)).max(disagreement);
@@ -553,14 +553,12 @@ where
     // A sum of squares that overflowed (a tiny atol makes f / atol huge)
     // leaves no estimate, only 0 or NaN: take RADAU5's default first step,
     // as Radau5 does, and let the step control adapt it.
-    let fallback = |h: S| {
-        if h.is_finite() && h > S::zero() {
-            h
-        } else {
-            c(1e-6)
-        }
+    let h0 = if h0.is_finite() && h0 > S::zero() {
+        h0
+    } else {
+        c(1e-6)
     };
-    let h0 = fallback(h0).min(h_max);
+    let h0 = h0.min(h_max);
 
     // One explicit Euler step estimates the second derivative.
     let (q1, qdot1) = (q + qdot * h0, qdot + qddot * h0);
