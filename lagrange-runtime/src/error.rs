@@ -108,16 +108,18 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         qdot: SVector<S, N>,
     },
 
-    /// A fixed-step method is beyond its stability limit: the state grew by
-    /// more than 2× on each of several consecutive steps, far past its
-    /// starting size. No resolved motion grows that fast per step (it would
-    /// need `λ h > 0.69`, where no method is accurate), so this is the step
-    /// size amplifying a fast mode: a stiff model. Stopped before the state
-    /// overflows to infinity.
+    /// A fixed-step method is beyond its stability limit: far past its
+    /// starting size, the state kept growing geometrically in a mode the
+    /// step does not resolve (by more than 2× per step; or turning, flipping
+    /// sign or moving against its own velocity from one step to the next).
+    /// No resolved motion does that, so this is the step size amplifying a
+    /// fast mode: a stiff model. Stopped before the state overflows to
+    /// infinity or turns into finite garbage.
     #[error(
-        "unstable at t = {t:?} with step h = {h:?} (q = {}, q̇ = {}): the state grew by more \
-         than 2x per step for {steps} steps; h is beyond this method's stability limit \
-         (a stiff model: take a smaller step, or an implicit method such as Radau5)",
+        "unstable at t = {t:?} with step h = {h:?} (q = {}, q̇ = {}): the state grew \
+         geometrically for {steps} steps in a mode the step does not resolve; h is beyond \
+         this method's stability limit (a stiff model: take a smaller step, or an implicit \
+         method such as Radau5)",
         Row(.q), Row(.qdot)
     )]
     Unstable {
@@ -125,7 +127,7 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         t: S,
         /// The step size.
         h: S,
-        /// Consecutive steps of growth that triggered the stop.
+        /// Steps of growth that triggered the stop.
         steps: usize,
         /// Generalized coordinates at `t`.
         q: SVector<S, N>,

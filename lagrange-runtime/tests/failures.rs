@@ -5,8 +5,8 @@ mod models;
 
 use lagrange_runtime::nalgebra::{SVector, Vector1, Vector2};
 use lagrange_runtime::prelude::*;
-use lagrange_runtime::{InvalidInput, NonFiniteValue};
-use models::{BlowUp, CoupledOscillator, ForcingBreaksDown, InertiaVanishes};
+use lagrange_runtime::{IntegrationResult, InvalidInput, NonFiniteValue};
+use models::{BlowUp, CoupledOscillator, DampedOscillator, ForcingBreaksDown, InertiaVanishes};
 use std::mem::discriminant;
 
 /// The Dopri5 retry (shrinking h by 5× after a failed stage) closes in on a
@@ -123,9 +123,12 @@ fn impossibly_tight_tolerance_is_refused_up_front() {
 }
 
 #[test]
-fn unreachable_absolute_tolerance_ends_in_step_size_underflow_not_a_hang() {
-    // y stays at rounding level (~1e-17) and atol = 1e-300 asks it to be
-    // exact: every step is rejected until h underflows at t = 0.
+fn unreachable_absolute_tolerance_ends_in_a_clean_error_not_a_hang() {
+    // y stays near rounding level (~1e-28) and atol = 1e-300 asks it to be
+    // right to ~1e-42: steps of ~1e-11 manage that, so the run crawls until
+    // its budget of 100 000 steps ends it near t = 1e-6. (While the first
+    // step guess overflowed to h = 0, it stopped at t = 0 having tried
+    // nothing, with "step size underflow".)
     let model = CoupledOscillator { omega: 2.0 };
     let (q0, qdot0) = (Vector2::new(1.0, 0.0), Vector2::zeros());
     let failure = Dopri5::new()
@@ -133,11 +136,10 @@ fn unreachable_absolute_tolerance_ends_in_step_size_underflow_not_a_hang() {
         .atol(1e-300)
         .integrate(&model, 0.0, q0, qdot0, &[1.0])
         .unwrap_err();
-    assert!(
-        matches!(failure.error, IntegrationError::StepSizeUnderflow { .. }),
-        "{}",
-        failure.error
-    );
+    let IntegrationError::TooManySteps { t, .. } = failure.error else {
+        panic!("expected too many steps, got {}", failure.error);
+    };
+    assert!(t > 0.0 && t < 1e-3, "t = {t}");
 }
 
 #[test]
@@ -403,7 +405,7 @@ fn dop853_fails_where_and_how_dopri5_does() {
     let failure = fails_like_dopri5((1e-14, 1e-300), &oscillator, start, &[1.0]);
     assert!(matches!(
         failure.error,
-        IntegrationError::StepSizeUnderflow { .. }
+        IntegrationError::TooManySteps { .. }
     ));
     let failure = fails_like_dopri5((1e-20, 1e-10), &oscillator, start, &[1.0]);
     assert!(matches!(
@@ -436,4 +438,109 @@ fn dop853_exhausted_step_budget_keeps_the_samples_so_far() {
     let kept = failure.trajectory.times();
     assert!(!kept.is_empty() && kept.len() < times.len());
     assert!(kept.iter().all(|&s| s <= t) && times[kept.len()] > t);
+}
+
+/// `t0 = 1e20` with `h = 1`: `t + h == t`, so no step of `h` can be taken.
+/// The fixed-step methods must say so (`StepSizeUnderflow` with `t = 1e20`,
+/// before any step) rather than merge the 98 304 steps to the next sample
+/// (1e20 + 98 304, the nearest double to 1e20 + 1e5) into one: forgiving 8
+/// ulps of `t` (1.8e5) for the rounding of sample times used to leave a
+/// single step of 98 304, from which RK4 returned `Ok` with x ≈ 4e18.
+/// Where `h` does advance `t` but only by a few ulps (`h = 1e5`, ulp 16 384),
+/// the sample is still reached in 10 steps, not 9 of 1.1 h.
+#[test]
+fn a_step_that_does_not_advance_time_is_step_size_underflow() {
+    let model = DampedOscillator {
+        m: 1.0,
+        k: 1.0,
+        c: 0.0,
+    };
+    let (q0, qdot0) = (Vector1::new(1.0), Vector1::zeros());
+    let (t0, end) = (1e20, 1e20 + 1e5);
+    let fixed: [(&str, IntegrationResult<f64, 1>); 3] = [
+        (
+            "RK4",
+            Rk4::new(1.0).integrate(&model, t0, q0, qdot0, &[end]),
+        ),
+        (
+            "ImplicitMidpoint",
+            ImplicitMidpoint::new(1.0).integrate(&model, t0, q0, qdot0, &[end]),
+        ),
+        (
+            "Variational",
+            Variational::new(1.0).integrate(&model, t0, q0, qdot0, &[end]),
+        ),
+    ];
+    for (name, run) in fixed {
+        let failure = run.expect_err(name);
+        let IntegrationError::StepSizeUnderflow { t, h, q, .. } = failure.error else {
+            panic!(
+                "{name}: expected step size underflow, got {}",
+                failure.error
+            );
+        };
+        assert_eq!((t, h, q), (t0, 1.0, q0), "{name}");
+        assert_eq!(failure.trajectory.stats().steps_accepted, 0, "{name}");
+    }
+
+    let free = DampedOscillator {
+        m: 1.0,
+        k: 0.0,
+        c: 0.0,
+    };
+    let run = Rk4::new(1e5)
+        .integrate(&free, t0, q0, qdot0, &[1e20 + 1e6])
+        .unwrap();
+    assert_eq!(run.stats().steps_accepted, 10);
+}
+
+/// A perfectly integrable motion at a tiny scale, `x = 1e-100 cos t`, with
+/// an absolute tolerance tinier still (1e-300): `q̈ / atol` at the start is
+/// 1e200, and the sums of squares in Hairer's first-step guess overflow. They
+/// used to give h = 0, so Dopri5 and DOP853 stopped at t = 0 with "step size
+/// underflow, h = 0" before trying a step, where Radau5 (which falls back to
+/// RADAU5's default first step) integrated it. Now they fall back alike and
+/// meet the tolerance: relative error ~rtol after 1.6 periods, 10 rtol
+/// allowed.
+#[test]
+fn a_tiny_motion_with_a_tinier_absolute_tolerance_is_integrated() {
+    let model = DampedOscillator {
+        m: 1.0,
+        k: 1.0,
+        c: 0.0,
+    };
+    let (x0, v0) = (Vector1::new(1e-100), Vector1::zeros());
+    let rtol = 1e-8;
+    let runs: [(&str, IntegrationResult<f64, 1>); 3] = [
+        (
+            "Dopri5",
+            Dopri5::new()
+                .rtol(rtol)
+                .atol(1e-300)
+                .integrate(&model, 0.0, x0, v0, &[10.0]),
+        ),
+        (
+            "Dop853",
+            Dop853::new()
+                .rtol(rtol)
+                .atol(1e-300)
+                .integrate(&model, 0.0, x0, v0, &[10.0]),
+        ),
+        (
+            "Radau5",
+            Radau5::new()
+                .rtol(rtol)
+                .atol(1e-300)
+                .integrate(&model, 0.0, x0, v0, &[10.0]),
+        ),
+    ];
+    for (name, run) in runs {
+        let run = run.unwrap_or_else(|f| panic!("{name}: {f}"));
+        let x = run.last().unwrap().q[0];
+        let exact = 1e-100 * 10f64.cos();
+        assert!(
+            ((x - exact) / exact).abs() < 10.0 * rtol,
+            "{name}: x = {x:e}"
+        );
+    }
 }

@@ -342,13 +342,14 @@ where
             } else {
                 start + step_size * nalgebra::convert::<f64, S>(k as f64)
             };
-            match step(&mut rec, model, t, &q, &qdot, t_next - t) {
+            let (before, dt) = ((q, qdot), t_next - t);
+            match step(&mut rec, model, t, &q, &qdot, dt) {
                 Ok((q_next, qdot_next)) => (q, qdot) = (q_next, qdot_next),
                 Err(error) => return Err(rec.fail(error)),
             }
             t = t_next;
             rec.stats.steps_accepted += 1;
-            if let Some(steps) = growth.unstable(&q, &qdot) {
+            if let Some(steps) = growth.unstable(before, (&q, &qdot), dt) {
                 let error = IntegrationError::Unstable {
                     t,
                     h: step_size,
@@ -373,20 +374,46 @@ where
     Ok(rec.finish())
 }
 
-/// Watches a fixed-step run for step-size instability: the state's size
-/// (largest component of `q`, `q̇`) more than doubling on each of
-/// [`GrowthGuard::STEPS`] consecutive steps while above 1000× its starting
-/// scale. Geometric growth of 2× per step means `|R(hλ)| > 2`: the step is
-/// amplifying a mode it cannot resolve, and the state is on its way to
-/// infinity (or to finite garbage) within a few dozen steps.
+/// Watches a fixed-step run for step-size instability, by two signatures of
+/// a mode that the step amplifies but cannot resolve. Both only count once
+/// the state's size (largest component of `q`, `q̇`) is above 1000× its
+/// starting scale, far beyond anything the start explains:
+///
+/// - **fast growth**: the size more than doubles on each of
+///   [`GrowthGuard::STEPS`] consecutive steps, `|R(hλ)| > 2`. A resolved
+///   motion would need `λ h > 0.69` per step for that, where no method is
+///   accurate.
+/// - **unresolved growth**: the step is unresolved (a running mean over
+///   about [`GrowthGuard::STEPS`] steps of the measure below is at least ½)
+///   and the state grows [`GrowthGuard::FOLD`]-fold meanwhile. A step is
+///   unresolved when the state changes by a sizable fraction of itself (it
+///   turns by 30° or more, or flips sign: fewer than a dozen steps per
+///   period), or when `Δq` disagrees with the trapezoidal rule on `q̇`,
+///   `(h/2)(q̇ₙ + q̇ₙ₊₁)`, by as much as they measure themselves: a resolved
+///   step agrees to `O(h²ω²)`, a mode that decays at rate `λ` in the model
+///   but grows in the method (`R(hλ) > 1` for `hλ` past the limit on the
+///   negative real axis, a stiff damper) does not agree at all. This is how
+///   a mode just beyond the stability limit grows: RK4 at `hω = 1.01 · 2√2`
+///   gains 7 % per step while turning by 106°, and at `hλ = −1.01 · 2.785`
+///   2 % per step without turning. Too slow for the first signature, it
+///   would otherwise run on into finite garbage or an overflow.
+///
+/// Growth that is smooth and slower than 2× per step (a physical
+/// instability, or explicit Euler's slow energy gain at small `hω`) is not
+/// an instability of the step and is left alone.
 struct GrowthGuard<S> {
     floor: S,
     last: S,
     run: usize,
+    /// Running mean of how unresolved the steps are.
+    roughness: S,
+    /// Size and steps since an unresolved, above-floor stretch began.
+    stretch: Option<(S, usize)>,
 }
 
 impl<S: RealField + Copy> GrowthGuard<S> {
     const STEPS: usize = 8;
+    const FOLD: f64 = 8.0;
 
     fn new<const N: usize>(q: &SVector<S, N>, qdot: &SVector<S, N>) -> Self {
         let size = Self::size(q, qdot);
@@ -394,6 +421,8 @@ impl<S: RealField + Copy> GrowthGuard<S> {
             floor: nalgebra::convert::<f64, S>(1000.0) * size.max(S::one()),
             last: size,
             run: 0,
+            roughness: S::zero(),
+            stretch: None,
         }
     }
 
@@ -403,21 +432,51 @@ impl<S: RealField + Copy> GrowthGuard<S> {
             .fold(S::zero(), |m, x| m.max(x.abs()))
     }
 
-    /// `Some(steps)` once the growth has lasted long enough to stop.
+    /// After a step of length `h` from `before` to `after`: `Some(steps)`
+    /// once either signature has lasted long enough to stop, `steps` being
+    /// how long.
     fn unstable<const N: usize>(
         &mut self,
-        q: &SVector<S, N>,
-        qdot: &SVector<S, N>,
+        before: State<S, N>,
+        after: (&SVector<S, N>, &SVector<S, N>),
+        h: S,
     ) -> Option<usize> {
-        let size = Self::size(q, qdot);
-        let two = nalgebra::convert::<f64, S>(2.0);
-        self.run = if size > two * self.last {
+        let c = |x: f64| -> S { nalgebra::convert(x) };
+        let size = Self::size(after.0, after.1);
+        let ratio = |part: S, whole: S| {
+            if whole > S::zero() {
+                part / whole
+            } else {
+                S::zero()
+            }
+        };
+        let dq = after.0 - before.0;
+        let change = Self::size(&dq, &(after.1 - before.1));
+        let trapezoid = (before.1 + after.1) * (h / c(2.0));
+        let disagreement = ratio((dq - trapezoid).amax(), dq.amax() + trapezoid.amax());
+        let unresolved = ratio(change, size.max(self.last)).max(disagreement);
+        let steps = c(Self::STEPS as f64);
+        self.roughness += (unresolved - self.roughness) / steps;
+        self.run = if size > c(2.0) * self.last {
             self.run + 1
         } else {
             0
         };
         self.last = size;
-        (self.run >= Self::STEPS && size > self.floor).then_some(self.run)
+        if size <= self.floor {
+            self.stretch = None;
+            return None;
+        }
+        if self.run >= Self::STEPS {
+            return Some(self.run);
+        }
+        if self.roughness < c(0.5) {
+            self.stretch = None;
+            return None;
+        }
+        let (start, steps) = self.stretch.get_or_insert((size, 0));
+        *steps += 1;
+        (size >= c(Self::FOLD) * *start).then_some(*steps)
     }
 }
 
@@ -426,12 +485,16 @@ impl<S: RealField + Copy> GrowthGuard<S> {
 /// `10 h` in decimal takes 10 steps, not 11, and samples `i h` apart by one
 /// step still take one step each late in a run, where `i h` carries rounding
 /// of a few ulps of `t` (at `t = 100`, ~1e-14 — far more than an ulp of `h`).
-/// A step may so exceed `h` by `8 ε (|t| + span)`, which no method notices.
-/// Saturates at `usize::MAX`; the step budget stops it long before.
+/// A step may so exceed `h` by `8 ε (|t| + span)`, which no method notices,
+/// and never by more than `h / 8`: where `h` is within a few ulps of `t`
+/// (`t = 1e20`, `h = 1`), forgiving 8 ulps would merge all the steps into
+/// one giant one, where the callers should see that `h` no longer advances
+/// `t`. Saturates at `usize::MAX`; the step budget stops it long before.
 pub(super) fn steps_to_cover<S: RealField + Copy>(start: S, target: S, h: S) -> usize {
     let span = target - start;
     let eight_ulps = nalgebra::convert::<f64, S>(8.0) * S::default_epsilon();
-    let forgiven = eight_ulps * (span + start.abs().max(target.abs()));
+    let forgiven = (eight_ulps * (span + start.abs().max(target.abs())))
+        .min(h / nalgebra::convert::<f64, S>(8.0));
     let steps = ((span - forgiven) / h).ceil();
     let steps: f64 = nalgebra::try_convert(steps).unwrap_or(f64::MAX);
     // `as` saturates (and sends negatives to 0); a span of zero never
@@ -487,6 +550,14 @@ where
     } else {
         (dny / dnf).sqrt() * c(0.01)
     };
+    // A sum of squares that overflowed (a tiny atol makes f / atol huge)
+    // leaves no estimate, only 0 or NaN: take RADAU5's default first step,
+    // as Radau5 does, and let the step control adapt it.
+    let h0 = if h0.is_finite() && h0 > S::zero() {
+        h0
+    } else {
+        c(1e-6)
+    };
     let h0 = h0.min(h_max);
 
     // One explicit Euler step estimates the second derivative.
@@ -512,7 +583,12 @@ where
     } else {
         (c(0.01) / der12).powf(c(1.0 / f64::from(order)))
     };
-    (h0 * c(100.0)).min(h1).min(h_max)
+    let h = (h0 * c(100.0)).min(h1).min(h_max);
+    if h.is_finite() && h > S::zero() {
+        h
+    } else {
+        h0
+    }
 }
 
 /// A failure before any work: empty trajectory.
