@@ -109,15 +109,16 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
     },
 
     /// A fixed-step method is beyond its stability limit: the state grew by
-    /// more than 2× on each of several consecutive steps, far past its
-    /// starting size. No resolved motion grows that fast per step (it would
-    /// need `λ h > 0.69`, where no method is accurate), so this is the step
-    /// size amplifying a fast mode: a stiff model. Stopped before the state
-    /// overflows to infinity.
+    /// more than 2× on each of consecutive steps, by more than 256× over
+    /// them, far past its starting size. No resolved motion grows that fast
+    /// per step (it would need `λ h > 0.69`, where no method is accurate), so
+    /// this is the step size amplifying a fast mode: a stiff model. Stopped
+    /// before the state overflows to infinity.
     #[error(
         "unstable at t = {t:?} with step h = {h:?} (q = {}, q̇ = {}): the state grew by more \
-         than 2x per step for {steps} steps; h is beyond this method's stability limit \
-         (a stiff model: take a smaller step, or an implicit method such as Radau5)",
+         than 2x per step for {steps} steps, over 256x in all; h is beyond this method's \
+         stability limit (a stiff model: take a smaller step, or an implicit method such as \
+         Radau5)",
         Row(.q), Row(.qdot)
     )]
     Unstable {
@@ -125,7 +126,9 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         t: S,
         /// The step size.
         h: S,
-        /// Consecutive steps of growth that triggered the stop.
+        /// Consecutive steps of more than 2× growth, 256× or more in all,
+        /// that triggered the stop: 8 at the least alarming, 1 when a
+        /// single step blew the state up.
         steps: usize,
         /// Generalized coordinates at `t`.
         q: SVector<S, N>,

@@ -374,15 +374,23 @@ where
 }
 
 /// Watches a fixed-step run for step-size instability: the state's size
-/// (largest component of `q`, `q̇`) more than doubling on each of
-/// [`GrowthGuard::STEPS`] consecutive steps while above 1000× its starting
-/// scale. Geometric growth of 2× per step means `|R(hλ)| > 2`: the step is
-/// amplifying a mode it cannot resolve, and the state is on its way to
+/// (largest component of `q`, `q̇`) more than doubling on each of a run of
+/// consecutive steps, by more than `2^STEPS` over the run, while above 1000×
+/// its starting scale. Growth of 2× per step means `|R(hλ)| > 2`: the step
+/// is amplifying a mode it cannot resolve, and the state is on its way to
 /// infinity (or to finite garbage) within a few dozen steps.
+///
+/// The total, not the run's length, decides: [`GrowthGuard::STEPS`] steps of
+/// barely 2× take `STEPS` steps, but a mode that was small beside the rest
+/// of the state (a kink between a light and a heavy body, say) shows in the
+/// state's size only in its last few steps before overflow, growing 100× or
+/// more per step, and must be stopped there.
 struct GrowthGuard<S> {
     floor: S,
     last: S,
     run: usize,
+    /// The size before the current run of growing steps.
+    run_start: S,
 }
 
 impl<S: RealField + Copy> GrowthGuard<S> {
@@ -394,6 +402,7 @@ impl<S: RealField + Copy> GrowthGuard<S> {
             floor: nalgebra::convert::<f64, S>(1000.0) * size.max(S::one()),
             last: size,
             run: 0,
+            run_start: size,
         }
     }
 
@@ -411,13 +420,19 @@ impl<S: RealField + Copy> GrowthGuard<S> {
     ) -> Option<usize> {
         let size = Self::size(q, qdot);
         let two = nalgebra::convert::<f64, S>(2.0);
-        self.run = if size > two * self.last {
-            self.run + 1
+        if size > two * self.last {
+            if self.run == 0 {
+                self.run_start = self.last;
+            }
+            self.run += 1;
         } else {
-            0
-        };
+            self.run = 0;
+        }
         self.last = size;
-        (self.run >= Self::STEPS && size > self.floor).then_some(self.run)
+        // Each step of the run more than doubled the size, so a run of STEPS
+        // steps has grown by more than 2^STEPS too.
+        let total = two.powi(Self::STEPS as i32) * self.run_start;
+        (self.run > 0 && size > total && size > self.floor).then_some(self.run)
     }
 }
 
@@ -563,4 +578,55 @@ fn validate<L: Lagrangian<N>, const N: usize>(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::Vector1;
+
+    use super::GrowthGuard;
+
+    /// Feeds the guard a state of each size in turn (as `q`, with `q̇ = 0`)
+    /// and returns the step (1-based) at which it stops the run, if any.
+    fn stops_at(start: f64, sizes: &[f64]) -> Option<(usize, usize)> {
+        let zero = Vector1::new(0.0);
+        let mut guard = GrowthGuard::new(&Vector1::new(start), &zero);
+        sizes.iter().enumerate().find_map(|(k, &size)| {
+            guard
+                .unstable(&Vector1::new(size), &zero)
+                .map(|run| (k + 1, run))
+        })
+    }
+
+    #[test]
+    fn eight_doublings_past_the_floor_stop_the_run() {
+        // Already near the floor (1000× the start), then 2.1× per step:
+        // 2.1^8 = 378 is the first power past 2^8.
+        let mut sizes = vec![500.0, 500.0];
+        sizes.extend((1..=12).map(|k| 500.0 * 2.1f64.powi(k)));
+        assert_eq!(stops_at(1.0, &sizes), Some((10, 8)));
+    }
+
+    #[test]
+    fn growth_just_below_two_per_step_is_never_stopped() {
+        let sizes: Vec<f64> = (1..=60).map(|k| 1.9f64.powi(k)).collect();
+        assert_eq!(stops_at(1.0, &sizes), None);
+    }
+
+    /// A fast mode hidden under a larger slow motion shows in the state's
+    /// size only when it overtakes it, then grows by orders of magnitude per
+    /// step: stopped as soon as the total passes 256×, not after eight steps
+    /// (by which time it would have overflowed).
+    #[test]
+    fn a_blow_up_faster_than_geometric_is_stopped_within_steps() {
+        let sizes = [0.5, 0.5, 0.5, 5.0, 1e4, 1e86, f64::INFINITY];
+        assert_eq!(stops_at(0.5, &sizes), Some((5, 2)));
+    }
+
+    #[test]
+    fn a_single_jump_below_the_floor_is_no_alarm() {
+        // 300× in one step, but still below 1000× the starting scale: a
+        // fast transient, not yet a blow-up.
+        assert_eq!(stops_at(1.0, &[1.0, 300.0, 300.0, 280.0]), None);
+    }
 }
