@@ -188,9 +188,11 @@ impl<'t, S: RealField + Copy, const N: usize> StageSolver<'t, S, N> {
             if rate < S::one() && norm * rate / (S::one() - rate) <= tolerance {
                 return Ok(self.finish(q, v, h));
             }
-            // A correction that no longer shrinks but is below the noise
-            // of evaluating the residual: more iterations would only stir it.
-            if rate >= S::one() && norm <= newton_noise_floor(model, t, q) {
+            // A correction that no longer shrinks fast but is below the
+            // noise of evaluating the residual: more iterations cannot make
+            // the stages more accurate than the accelerations they are made
+            // of, and would only stir the noise.
+            if rate >= slow && norm <= newton_noise_floor(model, t, q) {
                 return Ok(self.finish(q, v, h));
             }
             if rate >= slow && !refreshed {
