@@ -62,8 +62,13 @@
 //! iteration, typically 3–7 iterations from a guess extrapolated from the
 //! previous step. The iteration stops when the correction is below `10 ε`
 //! of the state's size, so the properties above hold to round-off, not to
-//! a solver tolerance; if it diverges, or has not converged in
-//! `max_iterations`, the step fails with
+//! a solver tolerance; or, once it no longer contracts fast, when the
+//! correction is below the noise of evaluating the equations,
+//! `ε (1000 + 10 N κ)` with `κ` the pivot ratio of `M`
+//! ([`pivot_ratio`]): an ill-conditioned mass
+//! matrix (a light body beside a heavy one) makes the accelerations, and so
+//! the corrections, only that accurate. If it diverges, or has not
+//! converged in `max_iterations`, the step fails with
 //! [`NewtonDivergence`](IntegrationError::NewtonDivergence): take a smaller
 //! step.
 //!
