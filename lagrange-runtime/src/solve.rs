@@ -144,6 +144,26 @@ pub fn acceleration<L: Lagrangian<N>, const N: usize>(
     })
 }
 
+/// How much solving `M x = b` may amplify rounding: the ratio of the
+/// largest to the smallest pivot of `M`'s Cholesky factorization, the
+/// quantity [`solve_mass_matrix`] refuses above `1 / (N ε)`. It is the
+/// condition number of `M` within a small factor (exactly `m₁₁² / det M`
+/// for `N = 2`). `None` when `M` is not positive definite.
+///
+/// ```
+/// use lagrange_runtime::solve::pivot_ratio;
+/// use nalgebra::Matrix2;
+///
+/// // A light bob beside a heavy one: pivots 1 and 1e-6.
+/// let m = Matrix2::new(1.0, 0.0, 0.0, 1e-6);
+/// assert_eq!(pivot_ratio(&m), Some(1e6));
+/// ```
+pub fn pivot_ratio<S: RealField + Copy, const N: usize>(m: &SMatrix<S, N, N>) -> Option<S> {
+    let chol = m.cholesky()?;
+    let pivots = chol.l_dirty().diagonal().map(|l| l * l);
+    Some(pivots.max() / pivots.min())
+}
+
 fn all_finite<'a, S: RealField + Copy>(mut values: impl Iterator<Item = &'a S>) -> bool {
     values.all(|x| x.is_finite())
 }

@@ -21,7 +21,7 @@
 use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::lu::Lu;
-use super::{fixed_step, Recorder, State};
+use super::{fixed_step, newton_noise_floor, Recorder, State};
 use crate::jacobian::acceleration_jacobians;
 use crate::{IntegrationError, IntegrationResult, Lagrangian};
 
@@ -85,10 +85,6 @@ pub(crate) fn integrate<S: RealField + Copy, L: Lagrangian<N, Scalar = S>, const
 /// rounding of `y` itself, so symmetry and quadratic invariants hold to
 /// round-off rather than to a solver tolerance.
 const TOLERANCE: f64 = 10.0;
-
-/// A correction that no longer shrinks but is below `ROUNDOFF · ε` is the
-/// noise of evaluating the residual: more iterations would only stir it.
-const ROUNDOFF: f64 = 1000.0;
 
 /// A contraction rate above this means the Jacobian from the step start no
 /// longer describes the stages well: evaluate it again, once per step.
@@ -156,7 +152,7 @@ impl<'t, S: RealField + Copy, const N: usize> StageSolver<'t, S, N> {
         }
         self.starting_guess(h, v, &a0);
 
-        let (tolerance, roundoff, slow) = thresholds::<S>();
+        let (tolerance, slow) = thresholds::<S>();
         let mut previous_norm: Option<S> = None;
         let mut refreshed = false;
         for iteration in 1..=self.max_iterations {
@@ -192,7 +188,11 @@ impl<'t, S: RealField + Copy, const N: usize> StageSolver<'t, S, N> {
             if rate < S::one() && norm * rate / (S::one() - rate) <= tolerance {
                 return Ok(self.finish(q, v, h));
             }
-            if rate >= S::one() && norm <= roundoff {
+            // A correction that no longer shrinks fast but is below the
+            // noise of evaluating the residual: more iterations cannot make
+            // the stages more accurate than the accelerations they are made
+            // of, and would only stir the noise.
+            if rate >= slow && norm <= newton_noise_floor(model, t, q) {
                 return Ok(self.finish(q, v, h));
             }
             if rate >= slow && !refreshed {
@@ -382,14 +382,10 @@ impl<'t, S: RealField + Copy, const N: usize> StageSolver<'t, S, N> {
     }
 }
 
-/// `(TOLERANCE ε, ROUNDOFF ε, SLOW)` in the model's scalar type.
-fn thresholds<S: RealField + Copy>() -> (S, S, S) {
+/// `(TOLERANCE ε, SLOW)` in the model's scalar type.
+fn thresholds<S: RealField + Copy>() -> (S, S) {
     let eps = S::default_epsilon();
-    (
-        eps * nalgebra::convert(TOLERANCE),
-        eps * nalgebra::convert(ROUNDOFF),
-        nalgebra::convert(SLOW),
-    )
+    (eps * nalgebra::convert(TOLERANCE), nalgebra::convert(SLOW))
 }
 
 #[cfg(test)]

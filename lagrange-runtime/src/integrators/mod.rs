@@ -62,8 +62,13 @@
 //! iteration, typically 3–7 iterations from a guess extrapolated from the
 //! previous step. The iteration stops when the correction is below `10 ε`
 //! of the state's size, so the properties above hold to round-off, not to
-//! a solver tolerance; if it diverges, or has not converged in
-//! `max_iterations`, the step fails with
+//! a solver tolerance; or, once it no longer contracts fast, when the
+//! correction is below the noise of evaluating the equations,
+//! `ε (1000 + 10 N κ)` with `κ` the pivot ratio of `M`
+//! ([`pivot_ratio`]): an ill-conditioned mass
+//! matrix (a light body beside a heavy one) makes the accelerations, and so
+//! the corrections, only that accurate. If it diverges, or has not
+//! converged in `max_iterations`, the step fails with
 //! [`NewtonDivergence`](IntegrationError::NewtonDivergence): take a smaller
 //! step.
 //!
@@ -97,7 +102,7 @@ pub use variational::Variational;
 
 use nalgebra::{ComplexField, RealField, SVector};
 
-use crate::solve::acceleration;
+use crate::solve::{acceleration, pivot_ratio};
 use crate::{
     Failure, IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue, Stats,
     Trajectory,
@@ -379,10 +384,14 @@ where
 /// the state's size (largest component of `q`, `q̇`) is above 1000× its
 /// starting scale, far beyond anything the start explains:
 ///
-/// - **fast growth**: the size more than doubles on each of
-///   [`GrowthGuard::STEPS`] consecutive steps, `|R(hλ)| > 2`. A resolved
-///   motion would need `λ h > 0.69` per step for that, where no method is
-///   accurate.
+/// - **fast growth**: the size more than doubles on each step of a run,
+///   `|R(hλ)| > 2`, until it exceeds the largest size seen before the run by
+///   `2^STEPS`. A resolved motion
+///   would need `λ h > 0.69` per step for that, where no method is
+///   accurate. The total, not the run's length, decides: a mode that was
+///   small beside the rest of the state (a kink between a light and a heavy
+///   body) shows in the state's size only in its last steps before
+///   overflow, growing 100× or more per step, and is stopped there.
 /// - **unresolved growth**: the step is unresolved (a running mean over
 ///   about [`GrowthGuard::STEPS`] steps of the measure below is at least ½)
 ///   and the state grows [`GrowthGuard::FOLD`]-fold meanwhile. A step is
@@ -405,6 +414,10 @@ struct GrowthGuard<S> {
     floor: S,
     last: S,
     run: usize,
+    /// The largest size seen so far, and as it was when the current run of
+    /// doubling steps began.
+    peak: S,
+    run_peak: S,
     /// Running mean of how unresolved the steps are.
     roughness: S,
     /// Size and steps since an unresolved, above-floor stretch began.
@@ -421,6 +434,8 @@ impl<S: RealField + Copy> GrowthGuard<S> {
             floor: nalgebra::convert::<f64, S>(1000.0) * size.max(S::one()),
             last: size,
             run: 0,
+            peak: size,
+            run_peak: size,
             roughness: S::zero(),
             stretch: None,
         }
@@ -457,17 +472,27 @@ impl<S: RealField + Copy> GrowthGuard<S> {
         let unresolved = ratio(change, size.max(self.last)).max(disagreement);
         let steps = c(Self::STEPS as f64);
         self.roughness += (unresolved - self.roughness) / steps;
-        self.run = if size > c(2.0) * self.last {
-            self.run + 1
+        if size > c(2.0) * self.last {
+            if self.run == 0 {
+                self.run_peak = self.peak;
+            }
+            self.run += 1;
         } else {
-            0
-        };
+            self.run = 0;
+        }
         self.last = size;
+        self.peak = self.peak.max(size);
         if size <= self.floor {
             self.stretch = None;
             return None;
         }
-        if self.run >= Self::STEPS {
+        // The run must carry the size 2^STEPS past the largest size seen
+        // before it (the envelope), not merely past where it started: the
+        // size max(|q|, |q̇|) dips when the larger component crosses zero,
+        // and a resolved oscillation climbing back out of such a dip must not
+        // look like a blow-up. At least two steps: a single jump is the first
+        // step from rest of a stiff spring (q̇ goes from 0 to ω q).
+        if self.run >= 2 && size > c(2f64.powi(Self::STEPS as i32)) * self.run_peak {
             return Some(self.run);
         }
         if self.roughness < c(0.5) {
@@ -639,4 +664,96 @@ fn validate<L: Lagrangian<N>, const N: usize>(
         }
     }
     Ok(())
+}
+
+/// Below this size relative to the state, a Newton correction that no
+/// longer shrinks is the noise of evaluating the equations, and the iterate
+/// is as converged as the arithmetic allows: `ε (1000 + 10 N κ)` at
+/// `(t, q)`. The 1000 ε is the evaluation of the model itself (sums with
+/// cancellation); `10 N κ ε` is what the solve `M q̈ = f` adds, whose
+/// relative error grows with `κ`, the pivot ratio of `M` (its condition
+/// number, see [`pivot_ratio`]): a light body beside a heavy one
+/// (`κ = 10⁶`) makes the accelerations, and so the corrections, noisy at
+/// ~10⁻¹¹, where a floor of 1000 ε would call a converged step divergent.
+pub(crate) fn newton_noise_floor<S, L, const N: usize>(model: &L, t: S, q: &SVector<S, N>) -> S
+where
+    S: RealField + Copy,
+    L: Lagrangian<N, Scalar = S>,
+{
+    let c = |x: f64| -> S { nalgebra::convert(x) };
+    let kappa = pivot_ratio(&model.mass_matrix(t, q))
+        .filter(|kappa| kappa.is_finite())
+        .unwrap_or(S::one());
+    S::default_epsilon() * (c(1000.0) + c(10.0 * N as f64) * kappa)
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::Vector1;
+
+    use super::GrowthGuard;
+
+    /// Feeds the guard a state of each size in turn (as `q`, unit steps;
+    /// `q̇` consistent with smooth exponential growth between samples when
+    /// `smooth`, else zero) and returns the step (1-based) at which it stops
+    /// the run, if any.
+    fn stops(start: f64, sizes: &[f64], smooth: bool) -> Option<(usize, usize)> {
+        let velocity = |prev: f64, next: f64| {
+            if smooth && prev > 0.0 && next.is_finite() && next > 0.0 {
+                next * (next / prev).ln()
+            } else {
+                0.0
+            }
+        };
+        let mut guard = GrowthGuard::new(&Vector1::new(start), &Vector1::new(0.0));
+        let mut before = (Vector1::new(start), Vector1::new(0.0));
+        sizes.iter().enumerate().find_map(|(k, &size)| {
+            let after = (
+                Vector1::new(size),
+                Vector1::new(velocity(before.0[0], size)),
+            );
+            let stop = guard.unstable(before, (&after.0, &after.1), 1.0);
+            before = after;
+            stop.map(|run| (k + 1, run))
+        })
+    }
+
+    fn stops_at(start: f64, sizes: &[f64]) -> Option<(usize, usize)> {
+        stops(start, sizes, true)
+    }
+
+    #[test]
+    fn eight_doublings_past_the_floor_stop_the_run() {
+        // Already near the floor (1000× the start), then 2.1× per step:
+        // 2.1^8 = 378 is the first power past 2^8.
+        let mut sizes = vec![500.0, 500.0];
+        sizes.extend((1..=12).map(|k| 500.0 * 2.1f64.powi(k)));
+        let stop = stops(1.0, &sizes, false);
+        assert!(matches!(stop, Some((k, _)) if k <= 10), "{stop:?}");
+    }
+
+    /// A fast mode hidden under a larger slow motion shows in the state's
+    /// size only when it overtakes it, then grows by orders of magnitude per
+    /// step: stopped as soon as the total passes 256×, not after eight steps
+    /// (by which time it would have overflowed).
+    #[test]
+    fn a_blow_up_faster_than_geometric_is_stopped_within_steps() {
+        let sizes = [0.5, 0.5, 0.5, 5.0, 1e4, 1e86, f64::INFINITY];
+        assert_eq!(stops_at(0.5, &sizes), Some((5, 2)));
+    }
+
+    #[test]
+    fn a_single_jump_below_the_floor_is_no_alarm() {
+        // 300× in one step, but still below 1000× the starting scale: a
+        // fast transient, not yet a blow-up.
+        assert_eq!(stops(1.0, &[1.0, 300.0, 300.0, 280.0], false), None);
+    }
+
+    #[test]
+    fn slow_smooth_growth_is_never_stopped() {
+        // 10 % per step, resolved (the velocity matches the growth): a
+        // physical instability, not the step's.
+        let sizes: Vec<f64> = (1..=200).map(|k| 1.1f64.powi(k)).collect();
+        assert_eq!(stops_at(1.0, &sizes), None);
+    }
 }

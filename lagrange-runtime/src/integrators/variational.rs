@@ -29,7 +29,7 @@
 use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use super::steps_to_cover;
-use super::{invalid, Integrator, Recorder};
+use super::{invalid, newton_noise_floor, Integrator, Recorder};
 use crate::solve::{lu_solve, solve_mass_matrix, SolveError};
 use crate::{
     Failure, IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue, Stats,
@@ -300,7 +300,9 @@ impl<S: RealField + Copy> Variational<S> {
     /// velocities: either the correction itself is that small, or the
     /// contraction `θ` of the last two makes the remaining error
     /// `θ/(1 − θ) |Δv̄|` that small (Hairer & Wanner, IV.8). Tighter is
-    /// rounding noise.
+    /// rounding noise; and a correction that stops contracting (`θ > ½`)
+    /// below [`newton_noise_floor`] of the velocities is that noise (an
+    /// ill-conditioned `M` puts it far above `10 ε`), so it stops there too.
     fn solve<L: Lagrangian<N, Scalar = S>, const N: usize>(
         &self,
         stats: &mut Stats,
@@ -347,6 +349,11 @@ impl<S: RealField + Copy> Variational<S> {
                 return Ok((v, rate));
             }
             if theta.is_some_and(|theta| theta > c(0.5)) {
+                // Not contracting any more, but below the noise of
+                // evaluating the residual: as converged as it gets.
+                if size <= newton_noise_floor(del.model, del.t_mid, &del.q) * scale {
+                    return Ok((v, rate));
+                }
                 jacobian = None;
             }
             previous = Some(size);
