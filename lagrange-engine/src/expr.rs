@@ -224,11 +224,6 @@ impl Pool {
             .is_some_and(|w| w & (1 << (s.0 % 64)) != 0)
     }
 
-    /// Whether `id` depends on any symbol in `set`.
-    pub fn depends_on_any(&self, id: ExprId, set: &[SymId]) -> bool {
-        set.iter().any(|&s| self.depends_on(id, s))
-    }
-
     /// The constant value of a `Num` node.
     pub fn as_num(&self, id: ExprId) -> Option<f64> {
         match self.nodes[id.index()] {

@@ -12,7 +12,7 @@
 use nalgebra::{RealField, SVector};
 
 use super::dop853_tableau as tableau;
-use super::{check_tolerances, initial_step, invalid, Integrator, Recorder};
+use super::{check_tolerances, default_tolerance, initial_step, invalid, Integrator, Recorder};
 use crate::{IntegrationError, IntegrationResult, Lagrangian, NonFiniteValue};
 
 /// Dormand–Prince 8(5,3) with adaptive steps: the method for tight
@@ -67,8 +67,7 @@ impl<S: RealField + Copy> Dop853<S> {
     /// for scalar types with fewer digits (`1.2e-5` for `f32`), and a budget
     /// of 100 000 steps (DOP853's `NMAX`).
     pub fn new() -> Self {
-        let tol = nalgebra::convert::<f64, S>(1e-8)
-            .max(nalgebra::convert::<f64, S>(100.0) * S::default_epsilon());
+        let tol = default_tolerance::<S>();
         Self {
             rtol: tol,
             atol: tol,

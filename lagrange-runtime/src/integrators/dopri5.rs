@@ -7,7 +7,7 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::{check_tolerances, initial_step, invalid, Integrator, Recorder};
+use super::{check_tolerances, default_tolerance, initial_step, invalid, Integrator, Recorder};
 use crate::{IntegrationError, IntegrationResult, Lagrangian, NonFiniteValue};
 
 /// Dormand–Prince 5(4) with adaptive steps: the default method.
@@ -44,8 +44,7 @@ impl<S: RealField + Copy> Dopri5<S> {
     /// with fewer digits (`1.2e-5` for `f32`), and a budget of 100 000 steps
     /// (DOPRI5's `NMAX`).
     pub fn new() -> Self {
-        let tol = nalgebra::convert::<f64, S>(1e-8)
-            .max(nalgebra::convert::<f64, S>(100.0) * S::default_epsilon());
+        let tol = default_tolerance::<S>();
         Self {
             rtol: tol,
             atol: tol,

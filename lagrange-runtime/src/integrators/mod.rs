@@ -527,6 +527,12 @@ pub(super) fn steps_to_cover<S: RealField + Copy>(start: S, target: S, h: S) -> 
     (steps as usize).max(1)
 }
 
+/// The adaptive methods' default `rtol = atol`: `1e-8`, raised to `100 ε`
+/// for scalar types with fewer digits (`1.2e-5` for `f32`).
+pub(crate) fn default_tolerance<S: RealField + Copy>() -> S {
+    nalgebra::convert::<f64, S>(1e-8).max(nalgebra::convert::<f64, S>(100.0) * S::default_epsilon())
+}
+
 /// The tolerances an adaptive method can honour: `rtol` at least `10 ε` of
 /// the scalar type, `atol` positive, both finite.
 pub(crate) fn check_tolerances<S: RealField + Copy>(

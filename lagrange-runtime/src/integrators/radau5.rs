@@ -18,7 +18,7 @@ use nalgebra::{Complex, DMatrix, DVector, RealField, SVector};
 
 use super::lu::{Lu, Singular};
 use super::second_order::{factor_block, solve_block};
-use super::{invalid, Integrator, Recorder};
+use super::{default_tolerance, invalid, Integrator, Recorder};
 use crate::jacobian::acceleration_jacobians;
 use crate::{IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue};
 use coefficients::Coefficients;
@@ -125,8 +125,7 @@ impl<S: RealField + Copy> Radau5<S> {
     /// raised to `100 ε` for scalar types with fewer digits, and RADAU5's
     /// budget of 100 000 steps.
     pub fn new() -> Self {
-        let tol = nalgebra::convert::<f64, S>(1e-8)
-            .max(nalgebra::convert::<f64, S>(100.0) * S::default_epsilon());
+        let tol = default_tolerance::<S>();
         Self {
             rtol: tol,
             atol: tol,
