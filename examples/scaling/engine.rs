@@ -1,0 +1,101 @@
+//! The engine's side, outside rustc: how long `lagrangian!`'s expansion
+//! takes (with the engine built in release, as this example is), and how
+//! many operations the generated `M` and `f` perform.
+
+use lagrange_engine::cse::OpCount;
+use lagrange_engine::expr::DEFAULT_NODE_BUDGET;
+use proc_macro2::TokenStream;
+use std::time::{Duration, Instant};
+
+/// What the engine did with one model.
+#[derive(Clone, Debug)]
+pub struct EngineStats {
+    /// `lagrange_engine::expand`, tokens in, tokens out: what the macro runs.
+    pub expand: Duration,
+    /// `derive`: parse, lower, check, differentiate.
+    pub derive: Duration,
+    /// `Derived::tokens`: schedule the shared nodes and emit the items.
+    pub emit: Duration,
+    /// Repetitions behind each median.
+    pub reps: usize,
+    /// Expression nodes in the pool (the budget counts these).
+    pub nodes: usize,
+    /// Operations of `M` (upper triangle) and `f`, as emitted with sharing.
+    pub shared: OpCount,
+    /// The same without any sharing: what a tree would cost.
+    pub tree: OpCount,
+    /// Size of the emitted items, as text.
+    pub code_bytes: usize,
+}
+
+/// The engine's verdict on a model it would not derive.
+#[derive(Clone, Debug)]
+pub struct EngineFailure {
+    pub over_budget: bool,
+    pub message: String,
+}
+
+/// Median of a few repetitions: five for quick models, fewer once one
+/// expansion takes more than about a second.
+pub fn measure(source: &str) -> Result<EngineStats, EngineFailure> {
+    let tokens: TokenStream = source.parse().expect("generated model source lexes");
+    let derived = lagrange_engine::derive(tokens.clone()).map_err(|e| {
+        let message = e.to_string();
+        EngineFailure {
+            over_budget: message.contains("budget"),
+            message,
+        }
+    })?;
+    let (shared, tree) = derived.op_counts();
+    let nodes = derived.model.pool.len();
+    drop(derived);
+
+    let mut expand = Vec::new();
+    let mut derive = Vec::new();
+    let mut emit = Vec::new();
+    let mut code_bytes = 0;
+    let mut spent = Duration::ZERO;
+    while expand.len() < 5 && (expand.len() < 3 || spent < Duration::from_secs(3)) {
+        let input = tokens.clone();
+        let start = Instant::now();
+        let out = lagrange_engine::expand(input);
+        let e = start.elapsed();
+        code_bytes = out.to_string().len();
+        expand.push(e);
+
+        let input = tokens.clone();
+        let start = Instant::now();
+        let derived = lagrange_engine::derive(input).expect("derived once already");
+        let d = start.elapsed();
+        let start = Instant::now();
+        let out = derived.tokens();
+        let m = start.elapsed();
+        drop(out);
+        derive.push(d);
+        emit.push(m);
+
+        spent += e + d + m;
+        if spent > Duration::from_secs(20) {
+            break;
+        }
+    }
+    Ok(EngineStats {
+        reps: expand.len(),
+        expand: median(&mut expand),
+        derive: median(&mut derive),
+        emit: median(&mut emit),
+        nodes,
+        shared,
+        tree,
+        code_bytes,
+    })
+}
+
+pub fn node_budget() -> usize {
+    DEFAULT_NODE_BUDGET
+}
+
+pub fn median(xs: &mut [Duration]) -> Duration {
+    xs.sort();
+    xs[xs.len() / 2]
+}
