@@ -2,7 +2,7 @@
 //! takes (with the engine built in release, as this example is), and how
 //! many operations the generated `M` and `f` perform.
 
-use lagrange_engine::cse::OpCount;
+use lagrange_engine::cse::{self, OpCount};
 use lagrange_engine::expr::DEFAULT_NODE_BUDGET;
 use proc_macro2::TokenStream;
 use std::time::{Duration, Instant};
@@ -22,6 +22,10 @@ pub struct EngineStats {
     pub nodes: usize,
     /// Operations of `M` (upper triangle) and `f`, as emitted with sharing.
     pub shared: OpCount,
+    /// Of which `M` alone (sharing only within `M`).
+    pub shared_mass: OpCount,
+    /// Of which `f` alone (sharing only within `f`).
+    pub shared_forcing: OpCount,
     /// The same without any sharing: what a tree would cost.
     pub tree: OpCount,
     /// Size of the emitted items, as text.
@@ -47,6 +51,13 @@ pub fn measure(source: &str) -> Result<EngineStats, EngineFailure> {
         }
     })?;
     let (shared, tree) = derived.op_counts();
+    let n = derived.model.dof();
+    let mass: Vec<_> = (0..n)
+        .flat_map(|i| (i..n).map(move |j| (i, j)))
+        .map(|(i, j)| derived.equations.mass[i][j])
+        .collect();
+    let shared_mass = cse::shared_ops(&derived.model.pool, &mass);
+    let shared_forcing = cse::shared_ops(&derived.model.pool, &derived.equations.forcing);
     let nodes = derived.model.pool.len();
     drop(derived);
 
@@ -86,6 +97,8 @@ pub fn measure(source: &str) -> Result<EngineStats, EngineFailure> {
         emit: median(&mut emit),
         nodes,
         shared,
+        shared_mass,
+        shared_forcing,
         tree,
         code_bytes,
     })

@@ -11,7 +11,8 @@
 //! exponents and the project's targets, into the marked section of
 //! `BENCHMARKS.md`.
 //!
-//! Options: `--max N` (largest chain, default 20), `--scalar` (the model
+//! Options: `--max N` (largest chain, default 20), `--only 5,10,20` (just
+//! these), `--scalar` (the model
 //! written out, `theta0, theta1, ...`, instead of the indexed DSL),
 //! `--engine-only` (no builds), `--no-ad`, `--no-write` (leave
 //! `BENCHMARKS.md` alone), `--timeout S` (per build, default 600).
@@ -31,6 +32,7 @@ use std::time::{Duration, Instant};
 
 struct Options {
     max: usize,
+    only: Option<Vec<usize>>,
     form: Form,
     builds: bool,
     ad: bool,
@@ -42,6 +44,7 @@ impl Options {
     fn parse() -> Result<Self, String> {
         let mut o = Options {
             max: 20,
+            only: None,
             form: Form::Indexed,
             builds: true,
             ad: true,
@@ -58,6 +61,11 @@ impl Options {
             match a.as_str() {
                 "--max" => o.max = number("--max")? as usize,
                 "--timeout" => o.timeout = Duration::from_secs(number("--timeout")?),
+                "--only" => {
+                    let list = args.next().unwrap_or_default();
+                    let ns: Result<Vec<usize>, _> = list.split(',').map(str::parse).collect();
+                    o.only = Some(ns.map_err(|_| "--only needs a list like 5,10,20")?);
+                }
                 "--scalar" => o.form = Form::Scalar,
                 "--engine-only" => o.builds = false,
                 "--no-ad" => o.ad = false,
@@ -65,7 +73,7 @@ impl Options {
                 "--help" | "-h" => {
                     return Err(
                         "usage: cargo run --release --example scaling -- \
-                         [--max N] [--scalar] [--engine-only] [--no-ad] [--no-write] [--timeout S]"
+                         [--max N | --only N,N,..] [--scalar] [--engine-only] [--no-ad] [--no-write] [--timeout S]"
                             .into(),
                     )
                 }
@@ -79,6 +87,9 @@ impl Options {
     }
 
     fn chain_lengths(&self) -> Vec<usize> {
+        if let Some(only) = &self.only {
+            return only.clone();
+        }
         (1..=self.max.min(20))
             .chain([25, 30].into_iter().filter(|&n| n <= self.max))
             .collect()
@@ -86,7 +97,10 @@ impl Options {
 
     fn describe(&self) -> String {
         let mut s = String::new();
-        if self.max != 20 {
+        if let Some(only) = &self.only {
+            let list: Vec<String> = only.iter().map(usize::to_string).collect();
+            write!(s, " --only {}", list.join(",")).unwrap();
+        } else if self.max != 20 {
             write!(s, " --max {}", self.max).unwrap();
         }
         if self.form == Form::Scalar {
@@ -162,13 +176,17 @@ fn run(options: &Options) -> Result<(), String> {
     if options.builds {
         let crates = Crates::new(repo, options.timeout);
         println!("\nwarm-up: the dependencies, built once into target/scaling/target ...");
+        let was_cold = !crates.target_exists();
         let first = crates.write(1, options.form).map_err(|e| e.to_string())?;
         let t = crates.build(&first, &[])?;
-        println!(
-            "  cold build (dependencies included): {:.1} s",
-            t.as_secs_f64()
-        );
-        cold = Some(t);
+        crates.check(&first, &[])?;
+        let what = if was_cold {
+            "cold, dependencies included"
+        } else {
+            "dependencies already built"
+        };
+        println!("  warm-up build: {:.1} s ({what})", t.as_secs_f64());
+        cold = was_cold.then_some(t);
 
         println!("\nper chain (build: lib + timing binary, after touching the model):");
         for row in rows.iter_mut() {
@@ -180,8 +198,9 @@ fn run(options: &Options) -> Result<(), String> {
             match &result {
                 Ok(b) => {
                     print!(
-                        "  N = {:>2}: build {:>6.2} s, M+f {:>9.1} ns",
+                        "  N = {:>2}: check {:>6.2} s, build {:>6.2} s, M+f {:>9.1} ns",
                         row.n,
+                        b.check.as_secs_f64(),
                         b.build.as_secs_f64(),
                         b.gen_ns
                     );
@@ -241,7 +260,7 @@ fn run(options: &Options) -> Result<(), String> {
     if let Some(t) = cold {
         writeln!(
             section,
-            "\nThe warm-up build (all dependencies of a model crate, cold, N = 1): {:.1} s.",
+            "\nThe warm-up build (cold: all dependencies of a model crate, and N = 1): {:.1} s.",
             t.as_secs_f64()
         )
         .unwrap();
@@ -270,6 +289,8 @@ fn run(options: &Options) -> Result<(), String> {
 /// builds and runs the AD comparison.
 fn build_and_time(crates: &Crates, n: usize, options: &Options) -> Result<BuildStats, String> {
     let krate = crates.write(n, options.form).map_err(|e| e.to_string())?;
+    let check = crates.check(&krate, &[krate.eval_bin()])?;
+    crates.touch(&krate).map_err(|e| e.to_string())?;
     let build = crates.build(&krate, &[krate.eval_bin()])?;
     let values = crates.run(&krate.eval_bin())?;
     let gen_ns = get(&values, "gen_ns")?;
@@ -285,7 +306,12 @@ fn build_and_time(crates: &Crates, n: usize, options: &Options) -> Result<BuildS
     } else {
         None
     };
-    Ok(BuildStats { build, gen_ns, ad })
+    Ok(BuildStats {
+        check,
+        build,
+        gen_ns,
+        ad,
+    })
 }
 
 fn get(values: &std::collections::HashMap<String, f64>, key: &str) -> Result<f64, String> {
@@ -305,8 +331,10 @@ work split in two.
 - **nodes**: expression nodes in the engine's hash-consed pool (the node budget counts \
 these). **code**: the emitted items as text.
 - **ops, shared**: arithmetic operations and function calls of `M` (upper triangle) and `f` \
-as emitted, every shared subexpression computed once (`Derived::op_counts`). **ops, tree**: \
-the same expressions evaluated as trees, without any sharing.
+as emitted, every shared subexpression computed once (`Derived::op_counts`). **of which \
+M / f**: the same for `M` alone and `f` alone (each with its own sharing, so the two add up to \
+a little more than the total). **ops, tree**: the same expressions evaluated as trees, \
+without any sharing.
 - **build**: wall time of `cargo build --release` of a crate holding only the model (its lib) \
 and a small timing binary, after touching the model, its dependencies already built: macro \
 expansion inside rustc, type checking and codegen of the generated code. Cargo builds proc \
