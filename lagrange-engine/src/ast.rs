@@ -66,17 +66,46 @@ pub struct Options {
     pub jacobians: bool,
 }
 
+/// A declared name, scalar or indexed: `x` or `theta[N]`.
+pub struct Decl {
+    pub name: Ident,
+    /// The length expression of `name[len]`, evaluated against the `const`s.
+    pub len: Option<Expr>,
+}
+
+/// `var in lo..hi` or `var in lo..=hi`.
+#[derive(Clone, Debug)]
+pub struct IndexRange {
+    pub var: Ident,
+    pub lo: Box<Expr>,
+    pub hi: Box<Expr>,
+    pub inclusive: bool,
+    pub range: SpanRange,
+}
+
 pub enum Item {
+    /// `const N = 6;`: a compile-time integer, for sizes and indices.
+    Const {
+        name: Ident,
+        value: Expr,
+    },
     Coordinates {
         keyword: Ident,
-        names: Vec<Ident>,
+        names: Vec<Decl>,
     },
     Parameters {
         keyword: Ident,
-        names: Vec<Ident>,
+        names: Vec<Decl>,
+    },
+    /// `constants: g = 9.81;`: values folded into the generated code.
+    Constants {
+        keyword: Ident,
+        entries: Vec<(Ident, Expr)>,
     },
     Let {
         name: Ident,
+        /// `let x[i in 0..N] = ...`
+        index: Option<IndexRange>,
         value: Expr,
     },
     Kinetic {
@@ -91,9 +120,11 @@ pub enum Item {
         keyword: Ident,
         value: Expr,
     },
+    /// Targets are names (`x`) or elements (`x[N-1]`): a coordinate or a
+    /// `let` position.
     Forces {
         keyword: Ident,
-        entries: Vec<(Ident, Expr)>,
+        entries: Vec<(Expr, Expr)>,
     },
 }
 
@@ -129,6 +160,18 @@ pub enum Expr {
         range: SpanRange,
         args: Vec<Expr>,
     },
+    /// `x[i - 1]`: an element of an indexed coordinate, parameter or `let`.
+    Index {
+        base: Ident,
+        index: Box<Expr>,
+        range: SpanRange,
+    },
+    /// `sum(j in a..b, body)`, unrolled at compile time.
+    Sum {
+        index: IndexRange,
+        body: Box<Expr>,
+        range: SpanRange,
+    },
 }
 
 impl Expr {
@@ -136,16 +179,20 @@ impl Expr {
         match self {
             Expr::Num { span, .. } => SpanRange::single(*span),
             Expr::Name(id) => SpanRange::single(id.span()),
-            Expr::Neg { range, .. } | Expr::Binary { range, .. } | Expr::Call { range, .. } => {
-                *range
-            }
+            Expr::Neg { range, .. }
+            | Expr::Binary { range, .. }
+            | Expr::Call { range, .. }
+            | Expr::Index { range, .. }
+            | Expr::Sum { range, .. } => *range,
         }
     }
 
-    /// Direct subexpressions, left to right.
+    /// Direct real-valued subexpressions, left to right (an index is an
+    /// integer, not one of them; a sum's body is, under its index).
     pub fn children(&self) -> Vec<&Expr> {
         match self {
-            Expr::Num { .. } | Expr::Name(_) => Vec::new(),
+            Expr::Num { .. } | Expr::Name(_) | Expr::Index { .. } => Vec::new(),
+            Expr::Sum { body, .. } => vec![body],
             Expr::Neg { inner, .. } => vec![inner],
             Expr::Binary { lhs, rhs, .. } => vec![lhs, rhs],
             Expr::Call { args, .. } => args.iter().collect(),

@@ -19,7 +19,7 @@ fn has_non_finite_constant(pool: &Pool, id: ExprId) -> bool {
 pub fn constants_are_finite(model: &mut Model) -> syn::Result<()> {
     let mut sections: Vec<Expr> = vec![model.kinetic.ast.clone(), model.potential.ast.clone()];
     sections.extend(model.dissipation.as_ref().map(|d| d.ast.clone()));
-    sections.extend(model.forces.iter().flatten().map(|f| f.1.clone()));
+    sections.extend(model.forces.iter().map(|f| f.ast.clone()));
     for ast in sections {
         let Some(id) = model.lower_section(&ast) else {
             continue;

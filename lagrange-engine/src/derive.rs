@@ -5,6 +5,7 @@
 //! ```text
 //! M_ij = ∂p_i/∂q̇_j
 //! f_i  = ∂L/∂q_i − Σ_j (∂p_i/∂q_j) q̇_j − ∂p_i/∂t − ∂R/∂q̇_i + Q_i
+//! Q_i  = Σ_forces F · ∂p/∂q_i     (virtual work of F along the position p)
 //! ```
 //!
 //! so that `M q̈ = f`. `M` is never inverted symbolically: the runtime solves.
@@ -41,11 +42,8 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
     let t_kin = model.kinetic.value;
     let v_pot = model.potential.value;
     let dissipation = model.dissipation.as_ref().map(|d| d.value);
-    let forces: Vec<Option<ExprId>> = model
-        .forces
-        .iter()
-        .map(|f| f.as_ref().map(|f| f.2))
-        .collect();
+    let forces: Vec<(ExprId, ExprId)> =
+        model.forces.iter().map(|f| (f.position, f.value)).collect();
     let want_jacobians = model.options.jacobians;
     let pool = &mut model.pool;
 
@@ -73,8 +71,12 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
             let dr = pool.diff(r, s.velocities[i]);
             terms.push(pool.neg(dr));
         }
-        if let Some(q) = forces[i] {
-            terms.push(q);
+        // Virtual work: a force F along the position p does F·∂p/∂q_i.
+        for &(position, force) in &forces {
+            if pool.depends_on(position, s.coordinates[i]) {
+                let dp = pool.diff(position, s.coordinates[i]);
+                terms.push(pool.mul2(force, dp));
+            }
         }
         nonconservative.push(pool.add(&terms));
     }

@@ -8,7 +8,7 @@
 use crate::cse::{expands_to_product, schedule, Schedule};
 use crate::derive::Equations;
 use crate::expr::{ExprId, Node, Pool, SymId};
-use crate::model::{Model, SymKind};
+use crate::model::{Model, Scalar, SymKind};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::{HashMap, HashSet};
@@ -36,8 +36,10 @@ impl Namer {
             .iter()
             .map(|s| s.to_string())
             .collect();
+        // The user's scalar names are kept as they are; elements of indexed
+        // names become `theta_0`, `theta_1`, ... (renamed if that is taken).
         for n in model.coordinates.iter().chain(&model.parameters) {
-            taken.insert(n.to_string());
+            taken.insert(n.name.to_string());
         }
         let mut namer = Namer {
             taken,
@@ -45,17 +47,27 @@ impl Namer {
         };
         let s = &model.symbols;
         let mut symbol = Vec::with_capacity(s.count());
+        let local = |namer: &mut Namer, x: &Scalar| match x.index {
+            None => x.name.clone(),
+            Some(k) => namer.fresh(&format!("{}_{k}", x.name), false),
+        };
+        let coordinates: Vec<Ident> = model
+            .coordinates
+            .iter()
+            .map(|c| local(&mut namer, c))
+            .collect();
+        let parameters: Vec<Ident> = model
+            .parameters
+            .iter()
+            .map(|p| local(&mut namer, p))
+            .collect();
         for k in 0..s.count() {
             symbol.push(match s.kind(SymId(k as u32)) {
                 SymKind::Time => format_ident!("t"),
-                SymKind::Coordinate(i) => model.coordinates[i].clone(),
-                SymKind::Parameter(p) => model.parameters[p].clone(),
-                SymKind::Acceleration(i) => {
-                    namer.fresh(&format!("{}_ddot", model.coordinates[i]), false)
-                }
-                SymKind::Velocity(i) => {
-                    namer.fresh(&format!("{}_dot", model.coordinates[i]), false)
-                }
+                SymKind::Coordinate(i) => coordinates[i].clone(),
+                SymKind::Parameter(p) => parameters[p].clone(),
+                SymKind::Acceleration(i) => namer.fresh(&format!("{}_ddot", coordinates[i]), false),
+                SymKind::Velocity(i) => namer.fresh(&format!("{}_dot", coordinates[i]), false),
             });
         }
         namer.symbol = symbol;
@@ -348,12 +360,34 @@ impl<'a> FnEmitter<'a> {
             }
             _ => out.extend(quote!(let (#(#patterns),*) = (#(#sources),*);)),
         }
-        let params: Vec<&Ident> = s
-            .parameters
-            .iter()
-            .filter(|x| used[x.0 as usize])
-            .map(|x| &self.namer.symbol[x.0 as usize])
-            .collect();
+        // Parameters: one destructuring of `self`, scalar fields by name,
+        // array fields by element pattern (`m: [m_0, _, m_2]`).
+        let mut params: Vec<TokenStream> = Vec::new();
+        let mut k = 0;
+        for field in &model.fields {
+            let len = field.len.unwrap_or(1);
+            let syms = &s.parameters[k..k + len];
+            k += len;
+            if !syms.iter().any(|x| used[x.0 as usize]) {
+                continue;
+            }
+            let names: Vec<TokenStream> = syms
+                .iter()
+                .map(|x| {
+                    if used[x.0 as usize] {
+                        let n = &self.namer.symbol[x.0 as usize];
+                        quote!(#n)
+                    } else {
+                        quote!(_)
+                    }
+                })
+                .collect();
+            let f = &field.name;
+            params.push(match field.len {
+                None => quote!(#f),
+                Some(_) => quote!(#f: [#(#names),*]),
+            });
+        }
         if !params.is_empty() {
             out.extend(quote!(let Self { #(#params,)* .. } = *self;));
         }
@@ -401,7 +435,18 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
     let name = &model.name;
     let vis = &model.vis;
     let attrs = &model.attrs;
-    let params = &model.parameters;
+    let fields = &model.fields;
+    let params: Vec<&Ident> = fields.iter().map(|f| &f.name).collect();
+    let param_types: Vec<TokenStream> = fields
+        .iter()
+        .map(|f| match f.len {
+            None => quote!(S),
+            Some(len) => {
+                let len = Literal::usize_unsuffixed(len);
+                quote!([S; #len])
+            }
+        })
+        .collect();
     let n_lit = Literal::usize_unsuffixed(n);
     let vector = quote!(#na::SVector<S, #n_lit>);
     let matrix = quote!(#na::SMatrix<S, #n_lit, #n_lit>);
@@ -425,7 +470,35 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
     let (t_out, v_out, e_out) = (&t_out[0], &v_out[0], &e_out[0]);
     let (p_body, p_out) = body(model, &namer, &eq.momenta);
     let (g_body, g_out) = body(model, &namer, &eq.lagrangian_gradient);
-    let (nc_body, nc_out) = body(model, &namer, &eq.nonconservative);
+    // Only a model with forces or dissipation has non-conservative forces;
+    // a conservative one says so and emits no code for them.
+    let conservative = model.forces.is_empty() && model.dissipation.is_none();
+    let (nonconservative_fn, nonconservative_impl) = if conservative {
+        (
+            TokenStream::new(),
+            quote! {
+                const CONSERVATIVE: bool = true;
+            },
+        )
+    } else {
+        let (nc_body, nc_out) = body(model, &namer, &eq.nonconservative);
+        (
+            quote! {
+                /// The non-conservative generalized forces `Q − ∂R/∂q̇`.
+                #[inline]
+                pub fn nonconservative_forces(&self, t: S, q: &#vector, qdot: &#vector) -> #vector {
+                    #nc_body
+                    #new_vector(&[#(#nc_out),*])
+                }
+            },
+            quote! {
+                #[inline]
+                fn nonconservative_forces(&self, t: S, q: &#vector, qdot: &#vector) -> ::core::option::Option<#vector> {
+                    ::core::option::Option::Some(#name::nonconservative_forces(self, t, q, qdot))
+                }
+            },
+        )
+    };
 
     // Opt-in: the residual Jacobians, column-major, ∂r/∂q then ∂r/∂q̇.
     let (jacobian_fn, jacobian_impl) = match &eq.jacobians {
@@ -460,6 +533,14 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
     let coordinate_names: Vec<String> = model.coordinates.iter().map(|c| c.to_string()).collect();
     let parameter_names: Vec<String> = params.iter().map(|c| c.to_string()).collect();
     let p_lit = Literal::usize_unsuffixed(params.len());
+    let parameter_docs: Vec<String> = model
+        .fields
+        .iter()
+        .map(|f| match f.len {
+            None => format!("`{}`", f.name),
+            Some(len) => format!("`{}: [S; {len}]`", f.name),
+        })
+        .collect();
 
     let (fields, constructor) = if params.is_empty() {
         (
@@ -470,21 +551,28 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
         )
     } else {
         (
-            quote!({ #(pub #params: S,)* }),
+            quote!({ #(pub #params: #param_types,)* }),
             quote!(Self { #(#params,)* }),
         )
     };
     let finite = if params.is_empty() {
         quote!(true)
     } else {
-        quote!(#(#na::ComplexField::is_finite(&self.#params))&&*)
+        let checks = model.fields.iter().map(|f| {
+            let n = &f.name;
+            match f.len {
+                None => quote!(#na::ComplexField::is_finite(&self.#n)),
+                Some(_) => quote!(self.#n.iter().all(#na::ComplexField::is_finite)),
+            }
+        });
+        quote!(#(#checks)&&*)
     };
     let new_doc = format!(
         "A `{name}` with the given parameters ({}).",
         if params.is_empty() {
             "none".to_string()
         } else {
-            parameter_names.join(", ")
+            parameter_docs.join(", ")
         }
     );
     let equations_doc =
@@ -501,14 +589,16 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
             pub const DOF: usize = #n_lit;
             /// Names of the generalized coordinates, in the order of `q`.
             pub const COORDINATES: [&'static str; #n_lit] = [#(#coordinate_names),*];
-            /// Names of the runtime parameters, in declaration order.
+            /// Names of the runtime parameters (the struct's fields; an
+            /// indexed parameter `m[N]` is one field `m: [S; N]`), in
+            /// declaration order.
             pub const PARAMETERS: [&'static str; #p_lit] = [#(#parameter_names),*];
             #[doc = #equations_doc]
             pub const EQUATIONS: &'static str = #equations_text;
 
             #[doc = #new_doc]
             #[inline]
-            pub const fn new(#(#params: S),*) -> Self {
+            pub const fn new(#(#params: #param_types),*) -> Self {
                 #constructor
             }
 
@@ -571,12 +661,7 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
                 #new_vector(&[#(#g_out),*])
             }
 
-            /// The non-conservative generalized forces `Q − ∂R/∂q̇`.
-            #[inline]
-            pub fn nonconservative_forces(&self, t: S, q: &#vector, qdot: &#vector) -> #vector {
-                #nc_body
-                #new_vector(&[#(#nc_out),*])
-            }
+            #nonconservative_fn
 
             #jacobian_fn
         }
@@ -616,10 +701,7 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
             fn lagrangian_gradient(&self, t: S, q: &#vector, qdot: &#vector) -> ::core::option::Option<#vector> {
                 ::core::option::Option::Some(#name::lagrangian_gradient(self, t, q, qdot))
             }
-            #[inline]
-            fn nonconservative_forces(&self, t: S, q: &#vector, qdot: &#vector) -> ::core::option::Option<#vector> {
-                ::core::option::Option::Some(#name::nonconservative_forces(self, t, q, qdot))
-            }
+            #nonconservative_impl
             #jacobian_impl
             #[inline]
             fn parameters_are_finite(&self) -> bool {

@@ -2,7 +2,8 @@
 //! code using the model (constructing it, calling `mass_matrix`, integrating
 //! it) raises no second wave of errors. One mistake, one error.
 
-use crate::ast::{Item, ModelDef};
+use crate::ast::ModelDef;
+use crate::model::{declared_shape, Field};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 use syn::{Attribute, Ident, Visibility};
@@ -13,40 +14,18 @@ pub struct Stub {
     vis: Visibility,
     name: Ident,
     dof: usize,
-    parameters: Vec<Ident>,
+    fields: Vec<Field>,
 }
 
 impl Stub {
     pub fn of(def: &ModelDef) -> Self {
-        // Counted as lowering will count them once fixed: a duplicated name
-        // or `t` is the error, not an extra coordinate.
-        let mut coordinates: Vec<&Ident> = Vec::new();
-        let mut parameters = Vec::new();
-        for item in &def.items {
-            match item {
-                Item::Coordinates { names, .. } => {
-                    for n in names {
-                        if !coordinates.contains(&n) && n != "t" {
-                            coordinates.push(n);
-                        }
-                    }
-                }
-                Item::Parameters { names, .. } => {
-                    for n in names {
-                        if !parameters.contains(n) && n != "t" {
-                            parameters.push(n.clone());
-                        }
-                    }
-                }
-                _ => {}
-            }
-        }
+        let (dof, fields) = declared_shape(def);
         Stub {
             attrs: def.attrs.clone(),
             vis: def.vis.clone(),
             name: def.name.clone(),
-            dof: coordinates.len(),
-            parameters,
+            dof,
+            fields,
         }
     }
 
@@ -57,12 +36,23 @@ impl Stub {
             vis,
             name,
             dof,
-            parameters: params,
+            fields,
         } = self;
+        let params: Vec<&Ident> = fields.iter().map(|f| &f.name).collect();
+        let types: Vec<TokenStream> = fields
+            .iter()
+            .map(|f| match f.len {
+                None => quote!(S),
+                Some(len) => {
+                    let len = Literal::usize_unsuffixed(len);
+                    quote!([S; #len])
+                }
+            })
+            .collect();
         let fields = if params.is_empty() {
             quote!({ _scalar: ::core::marker::PhantomData<S> })
         } else {
-            quote!({ #(pub #params: S,)* })
+            quote!({ #(pub #params: #types,)* })
         };
         let constructor = if params.is_empty() {
             quote!(Self {
@@ -95,7 +85,7 @@ impl Stub {
                 pub const DOF: usize = #n;
                 pub const COORDINATES: [&'static str; #n] = [#(#names),*];
                 pub const EQUATIONS: &'static str = "";
-                pub const fn new(#(#params: S),*) -> Self { #constructor }
+                pub const fn new(#(#params: #types),*) -> Self { #constructor }
                 pub fn mass_matrix(&self, t: S, q: &#vector) -> #matrix { #stop }
                 pub fn forcing(&self, t: S, q: &#vector, qdot: &#vector) -> #vector { #stop }
                 pub fn mass_matrix_and_forcing(&self, t: S, q: &#vector, qdot: &#vector) -> (#matrix, #vector) { #stop }

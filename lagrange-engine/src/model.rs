@@ -3,7 +3,7 @@
 //! (unknown or duplicated names, misplaced sections); the physics is checked
 //! in [`check`](crate::check).
 
-use crate::ast::{BinOp, Expr, Item, ModelDef, SpanRange};
+use crate::ast::{BinOp, Expr, IndexRange, Item, ModelDef, SpanRange};
 use crate::expr::{ExprId, Func, Pool, SymId};
 use std::collections::HashMap;
 use syn::{Attribute, Ident, Visibility};
@@ -64,10 +64,51 @@ impl Symbols {
     }
 }
 
-/// A section's expression with the tokens it came from.
+/// A section's expression with the tokens it came from. A section written
+/// more than once is their sum: `ast` is then the `+` of the parts.
 pub struct Section {
     pub keyword: Ident,
     pub ast: Expr,
+    pub value: ExprId,
+}
+
+/// One scalar of the model: a name, or one element of an indexed name.
+#[derive(Clone, Debug)]
+pub struct Scalar {
+    pub name: Ident,
+    pub index: Option<usize>,
+}
+
+impl Scalar {
+    pub fn span(&self) -> proc_macro2::Span {
+        self.name.span()
+    }
+}
+
+impl std::fmt::Display for Scalar {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.index {
+            None => write!(f, "{}", self.name),
+            Some(k) => write!(f, "{}[{k}]", self.name),
+        }
+    }
+}
+
+/// A runtime parameter as the struct holds it: `m: S` or `m: [S; len]`.
+#[derive(Clone, Debug)]
+pub struct Field {
+    pub name: Ident,
+    pub len: Option<usize>,
+}
+
+/// A force: `value` acts along the position `position` (a coordinate or a
+/// `let`), contributing `value · ∂position/∂q_i` to each `Q_i`.
+pub struct Force {
+    /// The target as resolved: `x`, `theta[0]`.
+    pub label: String,
+    pub target: Expr,
+    pub ast: Expr,
+    pub position: ExprId,
     pub value: ExprId,
 }
 
@@ -77,23 +118,44 @@ pub struct Model {
     pub options: crate::ast::Options,
     pub vis: Visibility,
     pub name: Ident,
-    pub coordinates: Vec<Ident>,
-    pub parameters: Vec<Ident>,
+    pub coordinates: Vec<Scalar>,
+    /// The parameters, one scalar each, in the order of the symbols.
+    pub parameters: Vec<Scalar>,
+    /// The parameters as struct fields, in declaration order.
+    pub fields: Vec<Field>,
     pub symbols: Symbols,
     pub kinetic: Section,
     pub potential: Section,
     pub dissipation: Option<Section>,
-    /// The generalized force on each coordinate, if any.
-    pub forces: Vec<Option<(Ident, Expr, ExprId)>>,
+    pub forces: Vec<Force>,
     pub pool: Pool,
-    lets: HashMap<String, ExprId>,
+    scope: HashMap<String, Binding>,
 }
 
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 enum Binding {
     Symbol(SymId),
     Let(ExprId),
+    /// A `const` (a compile-time integer).
+    Const(i64),
+    /// An indexed name; its elements are bound as `name[k]`, `k` in `lo..hi`.
+    Array {
+        lo: i64,
+        hi: i64,
+        role: Role,
+    },
 }
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Role {
+    Coordinate,
+    Parameter,
+    Let,
+}
+
+/// The most elements an index range or an indexed name may have: sums are
+/// unrolled at compile time, and a size this large is a typo, not a model.
+pub const MAX_RANGE: i64 = 10_000;
 
 /// The functions the DSL knows, with their arity.
 pub const FUNCTIONS: &[(&str, usize)] = &[
@@ -125,11 +187,7 @@ fn function_list() -> String {
 
 /// Lowers a parsed model. The first error met is returned.
 pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
-    let mut coordinates: Vec<Ident> = Vec::new();
-    let mut parameters: Vec<Ident> = Vec::new();
     let mut declared: HashMap<String, &str> = HashMap::new();
-    let mut coordinates_keyword = None;
-
     let mut declare = |name: &Ident, what: &'static str| -> syn::Result<()> {
         if name == "t" {
             return Err(syn::Error::new(
@@ -146,7 +204,7 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
             return Err(syn::Error::new(
                 name.span(),
                 format!(
-                    "`{name}` is declared twice{roles}: each coordinate, parameter and `let` needs its own name"
+                    "`{name}` is declared twice{roles}: each coordinate, parameter, constant and `let` needs its own name"
                 ),
             ));
         }
@@ -154,20 +212,72 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
         Ok(())
     };
 
-    // Declarations first: coordinates and parameters may be listed anywhere.
+    // `const`s first, in order: sizes and indices anywhere may use them.
+    let mut cx = Lowering {
+        pool,
+        symbols: Symbols::new(0, 0),
+        names: HashMap::new(),
+        pending_lets: Vec::new(),
+        env: Vec::new(),
+        model: def.name.clone(),
+    };
+    for item in &def.items {
+        if let Item::Const { name, value } = item {
+            declare(name, "`const`")?;
+            let v = cx.int(value)?;
+            cx.names.insert(name.to_string(), Binding::Const(v));
+        }
+    }
+
+    // Declarations next: coordinates and parameters may be listed anywhere.
+    let mut coordinates: Vec<Scalar> = Vec::new();
+    let mut parameters: Vec<Scalar> = Vec::new();
+    let mut fields: Vec<Field> = Vec::new();
+    let mut arrays: Vec<(String, Binding)> = Vec::new();
     for item in &def.items {
         match item {
-            Item::Coordinates { keyword, names } => {
-                coordinates_keyword.get_or_insert_with(|| keyword.clone());
-                for n in names {
-                    declare(n, "coordinate")?;
-                    coordinates.push(n.clone());
+            Item::Coordinates { names, .. } | Item::Parameters { names, .. } => {
+                let (role, what, out) = match item {
+                    Item::Coordinates { .. } => (Role::Coordinate, "coordinate", &mut coordinates),
+                    _ => (Role::Parameter, "parameter", &mut parameters),
+                };
+                for d in names {
+                    declare(&d.name, what)?;
+                    let len = match &d.len {
+                        None => None,
+                        Some(e) => Some(cx.length(e)?),
+                    };
+                    match len {
+                        None => out.push(Scalar {
+                            name: d.name.clone(),
+                            index: None,
+                        }),
+                        Some(len) => {
+                            arrays.push((
+                                d.name.to_string(),
+                                Binding::Array {
+                                    lo: 0,
+                                    hi: len as i64,
+                                    role,
+                                },
+                            ));
+                            out.extend((0..len).map(|k| Scalar {
+                                name: d.name.clone(),
+                                index: Some(k),
+                            }));
+                        }
+                    }
+                    if role == Role::Parameter {
+                        fields.push(Field {
+                            name: d.name.clone(),
+                            len,
+                        });
+                    }
                 }
             }
-            Item::Parameters { names, .. } => {
-                for n in names {
-                    declare(n, "parameter")?;
-                    parameters.push(n.clone());
+            Item::Constants { entries, .. } => {
+                for (n, _) in entries {
+                    declare(n, "constant")?;
                 }
             }
             Item::Let { name, .. } => declare(name, "`let`")?,
@@ -185,78 +295,99 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
     }
 
     let symbols = Symbols::new(coordinates.len(), parameters.len());
-    let mut names: HashMap<String, Binding> = HashMap::new();
-    names.insert("t".into(), Binding::Symbol(symbols.time));
+    cx.symbols = symbols.clone();
+    cx.names.insert("t".into(), Binding::Symbol(symbols.time));
     for (i, c) in coordinates.iter().enumerate() {
-        names.insert(c.to_string(), Binding::Symbol(symbols.coordinates[i]));
+        cx.names
+            .insert(c.to_string(), Binding::Symbol(symbols.coordinates[i]));
     }
     for (k, p) in parameters.iter().enumerate() {
-        names.insert(p.to_string(), Binding::Symbol(symbols.parameters[k]));
+        cx.names
+            .insert(p.to_string(), Binding::Symbol(symbols.parameters[k]));
     }
-    let mut cx = Lowering {
-        pool,
-        symbols: symbols.clone(),
-        names,
-        pending_lets: def
-            .items
-            .iter()
-            .filter_map(|i| match i {
-                Item::Let { name, .. } => Some(name.to_string()),
-                _ => None,
-            })
-            .collect(),
-    };
+    cx.names.extend(arrays);
+    cx.pending_lets = def
+        .items
+        .iter()
+        .filter_map(|i| match i {
+            Item::Let { name, .. } => Some(name.to_string()),
+            _ => None,
+        })
+        .collect();
 
-    let mut lets = HashMap::new();
+    // Constants, in order: each must fold to a number.
     for item in &def.items {
-        if let Item::Let { name, value } = item {
-            let id = cx.lower(value)?;
+        if let Item::Constants { entries, .. } = item {
+            for (name, value) in entries {
+                let id = cx.lower(value)?;
+                if cx.pool.as_num(id).is_none() {
+                    return Err(value.range().error(format!(
+                        "constant `{name}` is not a number: a constant may use numbers, `const`s and the constants before it \
+                         (declare values that change at run time with `parameters: {name};`)"
+                    )));
+                }
+                cx.names.insert(name.to_string(), Binding::Let(id));
+            }
+        }
+    }
+
+    // `let`s, in order: each may use the ones above it.
+    for item in &def.items {
+        if let Item::Let { name, index, value } = item {
+            match index {
+                None => {
+                    let id = cx.lower(value)?;
+                    cx.names.insert(name.to_string(), Binding::Let(id));
+                }
+                Some(range) => {
+                    let (lo, hi) = cx.range(range)?;
+                    cx.names.insert(
+                        name.to_string(),
+                        Binding::Array {
+                            lo,
+                            hi,
+                            role: Role::Let,
+                        },
+                    );
+                    for k in lo..hi {
+                        cx.env.push((range.var.to_string(), k));
+                        let id = cx.lower(value);
+                        cx.env.pop();
+                        cx.names.insert(format!("{name}[{k}]"), Binding::Let(id?));
+                    }
+                }
+            }
             cx.pending_lets.retain(|n| n != &name.to_string());
-            cx.names.insert(name.to_string(), Binding::Let(id));
-            lets.insert(name.to_string(), id);
         }
     }
 
     let mut kinetic = None;
     let mut potential = None;
     let mut dissipation = None;
-    let mut forces: Vec<Option<(Ident, Expr, ExprId)>> = vec![None; coordinates.len()];
+    let mut forces: Vec<Force> = Vec::new();
     for item in def.items {
         match item {
-            Item::Kinetic { keyword, value } => {
-                set_once(&mut kinetic, &mut cx, keyword, value)?;
-            }
-            Item::Potential { keyword, value } => {
-                set_once(&mut potential, &mut cx, keyword, value)?;
-            }
+            Item::Kinetic { keyword, value } => add_to(&mut kinetic, &mut cx, keyword, value)?,
+            Item::Potential { keyword, value } => add_to(&mut potential, &mut cx, keyword, value)?,
             Item::Dissipation { keyword, value } => {
-                set_once(&mut dissipation, &mut cx, keyword, value)?;
+                add_to(&mut dissipation, &mut cx, keyword, value)?
             }
             Item::Forces { entries, .. } => {
                 for (target, value) in entries {
-                    let Some(i) = coordinates.iter().position(|c| *c == target) else {
-                        let what = match cx.names.get(&target.to_string()) {
-                            Some(Binding::Let(_)) => "a `let` quantity",
-                            Some(Binding::Symbol(s)) if *s == symbols.time => "time",
-                            Some(Binding::Symbol(_)) => "a parameter",
-                            None => "not declared",
-                        };
-                        return Err(syn::Error::new(
-                            target.span(),
-                            format!(
-                                "force on `{target}`, which is not a coordinate ({what}): generalized forces act on coordinates, one of {}",
-                                list(&coordinates)
-                            ),
-                        ));
-                    };
-                    if forces[i].is_some() {
-                        return Err(syn::Error::new(
-                            target.span(),
-                            format!("a second force on `{target}`: write the sum of the forces in one entry"),
-                        ));
+                    let (label, position) = cx.force_target(&target)?;
+                    if forces.iter().any(|f| f.label == label) {
+                        return Err(target.range().error(format!(
+                            "a second force on `{label}`: write the sum of the forces in one entry"
+                        )));
                     }
                     let id = cx.lower(&value)?;
-                    forces[i] = Some((target, value, id));
+                    forces.push(Force {
+                        label,
+                        target,
+                        ast: value,
+                        position,
+                        value: id,
+                    });
                 }
             }
             _ => {}
@@ -291,14 +422,63 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
         name: def.name,
         coordinates,
         parameters,
+        fields,
         symbols,
         kinetic,
         potential,
         dissipation,
         forces,
         pool: cx.pool,
-        lets,
+        scope: cx.names,
     })
+}
+
+/// For the stub of a model with an error: its number of coordinates and
+/// its parameter fields, counted as lowering will count them once the error
+/// is fixed (a duplicated name or `t` is the error, not an extra one; a size
+/// that cannot be evaluated counts as one).
+pub fn declared_shape(def: &ModelDef) -> (usize, Vec<Field>) {
+    let mut cx = Lowering {
+        pool: Pool::default(),
+        symbols: Symbols::new(0, 0),
+        names: HashMap::new(),
+        pending_lets: Vec::new(),
+        env: Vec::new(),
+        model: def.name.clone(),
+    };
+    for item in &def.items {
+        if let Item::Const { name, value } = item {
+            if let Ok(v) = cx.int(value) {
+                cx.names
+                    .entry(name.to_string())
+                    .or_insert(Binding::Const(v));
+            }
+        }
+    }
+    let mut seen: Vec<String> = vec!["t".into()];
+    let mut dof = 0;
+    let mut fields = Vec::new();
+    for item in &def.items {
+        let (Item::Coordinates { names, .. } | Item::Parameters { names, .. }) = item else {
+            continue;
+        };
+        for d in names {
+            if seen.contains(&d.name.to_string()) {
+                continue;
+            }
+            seen.push(d.name.to_string());
+            let len = d.len.as_ref().map(|e| cx.length(e).unwrap_or(1));
+            if matches!(item, Item::Coordinates { .. }) {
+                dof += len.unwrap_or(1);
+            } else {
+                fields.push(Field {
+                    name: d.name.clone(),
+                    len,
+                });
+            }
+        }
+    }
+    (dof, fields)
 }
 
 pub fn budget_error(name: &Ident, budget: usize) -> syn::Error {
@@ -311,31 +491,30 @@ pub fn budget_error(name: &Ident, budget: usize) -> syn::Error {
     )
 }
 
-fn list(names: &[Ident]) -> String {
-    names
-        .iter()
-        .map(|n| format!("`{n}`"))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
-fn set_once(
+/// Lowers a section; a section written again adds to the first.
+fn add_to(
     slot: &mut Option<Section>,
     cx: &mut Lowering,
     keyword: Ident,
     ast: Expr,
 ) -> syn::Result<()> {
-    if slot.is_some() {
-        return Err(syn::Error::new(
-            keyword.span(),
-            format!("a second `{keyword}:` section: a model has one, write the sum in it"),
-        ));
-    }
     let value = cx.lower(&ast)?;
-    *slot = Some(Section {
-        keyword,
-        ast,
-        value,
+    *slot = Some(match slot.take() {
+        None => Section {
+            keyword,
+            ast,
+            value,
+        },
+        Some(first) => Section {
+            value: cx.pool.add2(first.value, value),
+            ast: Expr::Binary {
+                op: BinOp::Add,
+                range: first.ast.range().to(ast.range()),
+                lhs: Box::new(first.ast),
+                rhs: Box::new(ast),
+            },
+            keyword: first.keyword,
+        },
     });
     Ok(())
 }
@@ -345,17 +524,65 @@ struct Lowering {
     symbols: Symbols,
     names: HashMap<String, Binding>,
     pending_lets: Vec<String>,
+    /// The index variables in scope, innermost last.
+    env: Vec<(String, i64)>,
+    model: Ident,
 }
 
 impl Lowering {
     fn lower(&mut self, e: &Expr) -> syn::Result<ExprId> {
         Ok(match e {
             Expr::Num { value, .. } => self.pool.num(*value),
-            Expr::Name(name) => match self.names.get(&name.to_string()) {
-                Some(Binding::Symbol(s)) => self.pool.sym(*s),
-                Some(Binding::Let(id)) => *id,
-                None => return Err(self.unknown_name(name)),
+            Expr::Name(name) => {
+                let s = name.to_string();
+                if let Some(&(_, k)) = self.env.iter().rev().find(|(v, _)| *v == s) {
+                    return Ok(self.pool.num(k as f64));
+                }
+                match self.names.get(&s) {
+                    Some(Binding::Symbol(s)) => self.pool.sym(*s),
+                    Some(Binding::Let(id)) => *id,
+                    Some(Binding::Const(v)) => self.pool.num(*v as f64),
+                    Some(Binding::Array { lo, hi, role }) => {
+                        let role = match role {
+                            Role::Coordinate => "an indexed coordinate",
+                            Role::Parameter => "an indexed parameter",
+                            Role::Let => "an indexed `let`",
+                        };
+                        let example = if self.env.is_empty() {
+                            format!("`{s}[{lo}]`")
+                        } else {
+                            format!("`{s}[{}]`", self.env[self.env.len() - 1].0)
+                        };
+                        return Err(syn::Error::new(
+                            name.span(),
+                            format!(
+                                "`{s}` is {role} (`{s}[{lo}]` to `{s}[{}]`): write one element, e.g. {example}",
+                                hi - 1
+                            ),
+                        ));
+                    }
+                    None => return Err(self.unknown_name(name)),
+                }
+            }
+            Expr::Index { base, index, .. } => match self.element(base, index)? {
+                Binding::Symbol(s) => self.pool.sym(s),
+                Binding::Let(id) => id,
+                _ => unreachable!("elements are symbols or lets"),
             },
+            Expr::Sum { index, body, .. } => {
+                let (lo, hi) = self.range(index)?;
+                let mut terms = Vec::new();
+                for k in lo..hi {
+                    self.env.push((index.var.to_string(), k));
+                    let term = self.lower(body);
+                    self.env.pop();
+                    terms.push(term?);
+                    self.pool
+                        .check_budget()
+                        .map_err(|b| budget_error(&self.model, b.budget))?;
+                }
+                self.pool.add(&terms)
+            }
             Expr::Neg { inner, .. } => {
                 let x = self.lower(inner)?;
                 self.pool.neg(x)
@@ -375,15 +602,197 @@ impl Lowering {
         })
     }
 
+    /// The binding of `base[index]`, with the index checked against its range.
+    fn element(&mut self, base: &Ident, index: &Expr) -> syn::Result<Binding> {
+        let s = base.to_string();
+        let (lo, hi) = match self.names.get(&s) {
+            Some(Binding::Array { lo, hi, .. }) => (*lo, *hi),
+            Some(Binding::Const(_)) => {
+                return Err(syn::Error::new(
+                    base.span(),
+                    format!("`{s}` is a `const`, not indexed: write `{s}`"),
+                ))
+            }
+            Some(_) => {
+                return Err(syn::Error::new(
+                    base.span(),
+                    format!("`{s}` is not indexed: write `{s}` (declare `{s}[N]` to index it)"),
+                ))
+            }
+            None => return Err(self.unknown_name(base)),
+        };
+        let k = self.int(index)?;
+        if k < lo || k >= hi {
+            return Err(index.range().error(format!(
+                "index {k} is out of range: `{s}` has elements `{s}[{lo}]` to `{s}[{}]`",
+                hi - 1
+            )));
+        }
+        match self.names.get(&format!("{s}[{k}]")) {
+            Some(b) => Ok(*b),
+            // An indexed `let` using its own later elements.
+            None => Err(index.range().error(format!(
+                "`{s}[{k}]` is used before it is defined: an element of a `let` may only use the elements before it"
+            ))),
+        }
+    }
+
+    /// The force target `x` or `x[k]`: its label and its position.
+    fn force_target(&mut self, target: &Expr) -> syn::Result<(String, ExprId)> {
+        let (label, binding) = match target {
+            Expr::Name(name) => {
+                let s = name.to_string();
+                match self.names.get(&s) {
+                    Some(b) => (s, *b),
+                    None => return Err(self.unknown_name(name)),
+                }
+            }
+            Expr::Index { base, index, .. } => {
+                let b = self.element(base, index)?;
+                let k = self.int(index)?;
+                (format!("{base}[{k}]"), b)
+            }
+            _ => unreachable!("the parser reads force targets as names or elements"),
+        };
+        let not_a_position = |what: &str| {
+            target.range().error(format!(
+                "force on `{label}`, which is {what}: a force acts on a coordinate or along a position \
+                 (a `let` of the coordinates), e.g. `x = F` or `x[N-1] = F`"
+            ))
+        };
+        let position = match binding {
+            Binding::Symbol(s) if s == self.symbols.time => return Err(not_a_position("time")),
+            Binding::Symbol(s) => match self.symbols.kind(s) {
+                SymKind::Coordinate(_) => self.pool.sym(s),
+                _ => return Err(not_a_position("a parameter")),
+            },
+            Binding::Const(_) => return Err(not_a_position("a `const`")),
+            Binding::Array { .. } => {
+                return Err(target.range().error(format!(
+                    "`{label}` is indexed: apply the force to one element, e.g. `{label}[0] = F`"
+                )))
+            }
+            Binding::Let(id) => id,
+        };
+        let s = &self.symbols;
+        if s.velocities
+            .iter()
+            .any(|&v| self.pool.depends_on(position, v))
+        {
+            return Err(not_a_position("not a position (it holds a velocity)"));
+        }
+        if !s
+            .coordinates
+            .iter()
+            .any(|&q| self.pool.depends_on(position, q))
+        {
+            return Err(not_a_position(
+                "a constant or a parameter (it depends on no coordinate, so the force does no virtual work)",
+            ));
+        }
+        Ok((label, position))
+    }
+
+    /// `lo..hi` (or `lo..=hi`) as a half-open integer range.
+    fn range(&mut self, r: &IndexRange) -> syn::Result<(i64, i64)> {
+        let lo = self.int(&r.lo)?;
+        let hi = self.int(&r.hi)?;
+        let hi = if r.inclusive {
+            hi.saturating_add(1)
+        } else {
+            hi
+        };
+        if hi.saturating_sub(lo) > MAX_RANGE {
+            return Err(r.range.error(format!(
+                "this range has {} elements, more than the limit of {MAX_RANGE}: sums and indexed names are unrolled at compile time",
+                hi.saturating_sub(lo)
+            )));
+        }
+        Ok((lo, hi.max(lo)))
+    }
+
+    /// The length of `name[len]`.
+    fn length(&mut self, e: &Expr) -> syn::Result<usize> {
+        let n = self.int(e)?;
+        if n < 1 {
+            return Err(e.range().error(format!(
+                "length {n}: an indexed name needs at least one element"
+            )));
+        }
+        if n > MAX_RANGE {
+            return Err(e.range().error(format!(
+                "length {n} is more than the limit of {MAX_RANGE}: every element is unrolled at compile time"
+            )));
+        }
+        Ok(n as usize)
+    }
+
+    /// An index or a size: integer arithmetic on integers, `const`s and
+    /// index variables.
+    fn int(&self, e: &Expr) -> syn::Result<i64> {
+        let overflow = || e.range().error("index arithmetic overflows");
+        match e {
+            Expr::Num { value, .. } => {
+                if value.fract() == 0.0 && value.abs() <= MAX_RANGE as f64 * 1e6 {
+                    Ok(*value as i64)
+                } else {
+                    Err(e.range().error(format!(
+                        "`{value}` is not an integer: indices and sizes are integers"
+                    )))
+                }
+            }
+            Expr::Name(name) => {
+                let s = name.to_string();
+                if let Some(&(_, k)) = self.env.iter().rev().find(|(v, _)| *v == s) {
+                    return Ok(k);
+                }
+                match self.names.get(&s) {
+                    Some(Binding::Const(v)) => Ok(*v),
+                    Some(_) => Err(syn::Error::new(
+                        name.span(),
+                        format!(
+                            "`{s}` is not a compile-time integer: indices and sizes use integers, `const`s and index variables"
+                        ),
+                    )),
+                    None => Err(syn::Error::new(
+                        name.span(),
+                        format!(
+                            "unknown name `{s}` in an index: declare it with `const {s} = ...;` or bind it in a range (`{s} in 0..N`)"
+                        ),
+                    )),
+                }
+            }
+            Expr::Neg { inner, .. } => self.int(inner)?.checked_neg().ok_or_else(overflow),
+            Expr::Binary { op, lhs, rhs, .. } => {
+                let (a, b) = (self.int(lhs)?, self.int(rhs)?);
+                match op {
+                    BinOp::Add => a.checked_add(b).ok_or_else(overflow),
+                    BinOp::Sub => a.checked_sub(b).ok_or_else(overflow),
+                    BinOp::Mul => a.checked_mul(b).ok_or_else(overflow),
+                    BinOp::Div if b != 0 && a % b == 0 => Ok(a / b),
+                    BinOp::Div => Err(e.range().error(format!(
+                        "{a}/{b} is not an integer: index arithmetic is exact"
+                    ))),
+                    BinOp::Pow => Err(e
+                        .range()
+                        .error("index arithmetic has `+`, `-`, `*` and exact `/`, not `^`")),
+                }
+            }
+            _ => Err(e.range().error(
+                "an index or a size must be integer arithmetic on integers, `const`s and index variables",
+            )),
+        }
+    }
+
     fn unknown_name(&self, name: &Ident) -> syn::Error {
         let s = name.to_string();
         let msg = if self.pending_lets.contains(&s) {
             format!("`{s}` is used before its `let`: a `let` may only use the ones above it")
-        } else if FUNCTIONS.iter().any(|(f, _)| *f == s) {
+        } else if FUNCTIONS.iter().any(|(f, _)| *f == s) || s == "sum" {
             format!("`{s}` is a function: call it, e.g. `{s}(x)` or `x.{s}()`")
         } else {
             format!(
-                "unknown name `{s}`: not a coordinate, a parameter, a `let` or `t` (declare parameters with `parameters: {s};`)"
+                "unknown name `{s}`: not a coordinate, a parameter, a constant, a `let` or `t` (declare parameters with `parameters: {s};`)"
             )
         };
         syn::Error::new(name.span(), msg)
@@ -453,43 +862,68 @@ impl Lowering {
 }
 
 impl Model {
-    /// Re-lowers `e` (a subexpression of a section) to find its node; the
-    /// pool returns the existing nodes, so this is cheap and side-effect free.
-    fn lower_sub(&mut self, e: &Expr) -> Option<ExprId> {
-        let mut names: HashMap<String, Binding> = HashMap::new();
-        names.insert("t".into(), Binding::Symbol(self.symbols.time));
-        for (i, c) in self.coordinates.iter().enumerate() {
-            names.insert(c.to_string(), Binding::Symbol(self.symbols.coordinates[i]));
-        }
-        for (k, p) in self.parameters.iter().enumerate() {
-            names.insert(p.to_string(), Binding::Symbol(self.symbols.parameters[k]));
-        }
-        for (n, &id) in &self.lets {
-            names.insert(n.clone(), Binding::Let(id));
-        }
-        let mut cx = Lowering {
-            pool: std::mem::take(&mut self.pool),
-            symbols: self.symbols.clone(),
-            names,
-            pending_lets: Vec::new(),
-        };
+    /// Re-lowers `e` (a subexpression of a section, under the index values
+    /// `env`) to find its node; the pool returns the existing nodes, so this
+    /// is cheap and side-effect free.
+    fn lower_sub(&mut self, e: &Expr, env: &[(String, i64)]) -> Option<ExprId> {
+        let mut cx = self.lowering(env);
         let id = cx.lower(e).ok();
         self.pool = cx.pool;
         id
     }
 
+    fn lowering(&mut self, env: &[(String, i64)]) -> Lowering {
+        Lowering {
+            pool: std::mem::take(&mut self.pool),
+            symbols: self.symbols.clone(),
+            names: self.scope.clone(),
+            pending_lets: Vec::new(),
+            env: env.to_vec(),
+            model: self.name.clone(),
+        }
+    }
+
     /// The node of a whole section's expression.
     pub fn lower_section(&mut self, e: &Expr) -> Option<ExprId> {
-        self.lower_sub(e)
+        self.lower_sub(e, &[])
     }
 
     /// The smallest piece of `e` that is `bad`, descending from `e` (assumed
-    /// bad) into its leftmost bad operand: the token to underline.
+    /// bad) into its leftmost bad operand: the token to underline. Inside a
+    /// sum, into the first term that is bad.
     pub fn locate(&mut self, e: &Expr, bad: &dyn Fn(&mut Pool, ExprId) -> bool) -> SpanRange {
+        self.locate_in(e, &mut Vec::new(), bad)
+    }
+
+    fn locate_in(
+        &mut self,
+        e: &Expr,
+        env: &mut Vec<(String, i64)>,
+        bad: &dyn Fn(&mut Pool, ExprId) -> bool,
+    ) -> SpanRange {
+        if let Expr::Sum { index, body, .. } = e {
+            let mut cx = self.lowering(env);
+            let range = cx.range(index);
+            self.pool = cx.pool;
+            if let Ok((lo, hi)) = range {
+                for k in lo..hi {
+                    env.push((index.var.to_string(), k));
+                    if let Some(id) = self.lower_sub(body, env) {
+                        if bad(&mut self.pool, id) {
+                            let r = self.locate_in(body, env, bad);
+                            env.pop();
+                            return r;
+                        }
+                    }
+                    env.pop();
+                }
+            }
+            return e.range();
+        }
         for child in e.children() {
-            if let Some(id) = self.lower_sub(child) {
+            if let Some(id) = self.lower_sub(child, env) {
                 if bad(&mut self.pool, id) {
-                    return self.locate(child, bad);
+                    return self.locate_in(child, env, bad);
                 }
             }
         }

@@ -11,14 +11,17 @@
 //! stub with the coordinates and parameters that were declared (one mistake,
 //! one error).
 
-use crate::ast::{BinOp, Expr, Item, ModelDef, Options, SpanRange};
+use crate::ast::{BinOp, Decl, Expr, IndexRange, Item, ModelDef, Options, SpanRange};
 use proc_macro2::{TokenStream, TokenTree};
 use syn::parse::{ParseStream, Parser};
-use syn::{braced, parenthesized, Attribute, Ident, LitFloat, LitInt, Token, Visibility};
+use syn::{
+    braced, bracketed, parenthesized, Attribute, Ident, LitFloat, LitInt, Token, Visibility,
+};
 
 /// The sections a model may contain, for error messages.
 pub const SECTIONS: &str =
-    "`coordinates:`, `parameters:`, `let`, `kinetic:`, `potential:`, `dissipation:` or `forces:`";
+    "`const`, `coordinates:`, `parameters:`, `constants:`, `let`, `kinetic:`, \
+     `potential:`, `dissipation:` or `forces:`";
 
 /// A parsed model and the first error met inside its body, if any.
 pub struct Parsed {
@@ -140,10 +143,39 @@ fn parse_item(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result
     if input.peek(Token![let]) {
         input.parse::<Token![let]>()?;
         let name: Ident = plain_name(input)?;
+        let index = if input.peek(syn::token::Bracket) {
+            let inner;
+            bracketed!(inner in input);
+            Some(drain_on_error(&inner, |inner| {
+                let range = parse_index_range(inner)?;
+                if !inner.is_empty() {
+                    return Err(inner.error("expected `]` after the range"));
+                }
+                Ok(range)
+            })?)
+        } else {
+            None
+        };
+        if !input.peek(Token![=]) {
+            return Err(input.error(
+                "expected `=`: a `let` is written `let x = expression;` or `let x[i in 0..N] = expression;`",
+            ));
+        }
         input.parse::<Token![=]>()?;
         let value = parse_expr(input)?;
         expect_semicolon(input, error)?;
-        return Ok(Item::Let { name, value });
+        return Ok(Item::Let { name, index, value });
+    }
+    if input.peek(Token![const]) {
+        input.parse::<Token![const]>()?;
+        let name: Ident = plain_name(input)?;
+        if !input.peek(Token![=]) {
+            return Err(input.error("expected `=`: a compile-time size is written `const N = 6;`"));
+        }
+        input.parse::<Token![=]>()?;
+        let value = parse_expr(input)?;
+        expect_semicolon(input, error)?;
+        return Ok(Item::Const { name, value });
     }
     if !input.peek(syn::Ident) {
         return Err(input.error(format!("expected a section: {SECTIONS}")));
@@ -153,6 +185,7 @@ fn parse_item(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result
     let known = [
         "coordinates",
         "parameters",
+        "constants",
         "kinetic",
         "potential",
         "dissipation",
@@ -175,7 +208,27 @@ fn parse_item(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result
             keyword,
         },
         "forces" => Item::Forces {
-            entries: parse_forces(input, error)?,
+            entries: parse_entries(input, error, true)?
+                .into_iter()
+                .map(|(target, index, value)| {
+                    let target = match index {
+                        None => Expr::Name(target),
+                        Some((index, close)) => Expr::Index {
+                            range: SpanRange::single(target.span()).to(SpanRange::single(close)),
+                            base: target,
+                            index: Box::new(index),
+                        },
+                    };
+                    (target, value)
+                })
+                .collect(),
+            keyword,
+        },
+        "constants" => Item::Constants {
+            entries: parse_entries(input, error, false)?
+                .into_iter()
+                .map(|(name, _, value)| (name, value))
+                .collect(),
             keyword,
         },
         _ => {
@@ -195,6 +248,8 @@ fn parse_item(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result
 fn recover_missing_semicolon(input: ParseStream, error: &mut Option<syn::Error>) -> bool {
     let next = if input.peek(Token![let]) {
         "let".to_string()
+    } else if input.peek(Token![const]) {
+        "const".to_string()
     } else if input.peek(syn::Ident) && input.peek2(Token![:]) {
         match input.fork().parse::<Ident>() {
             Ok(keyword) => format!("{keyword}:"),
@@ -222,14 +277,16 @@ fn expect_semicolon(input: ParseStream, error: &mut Option<syn::Error>) -> syn::
     }
 }
 
-fn parse_names(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result<Vec<Ident>> {
+fn parse_names(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result<Vec<Decl>> {
     let mut names = Vec::new();
     loop {
         if input.peek(Token![;]) && !names.is_empty() {
             input.parse::<Token![;]>()?;
             return Ok(names);
         }
-        names.push(plain_name(input)?);
+        let name = plain_name(input)?;
+        let len = parse_bracket(input)?.map(|(len, _)| len);
+        names.push(Decl { name, len });
         if input.peek(Token![,]) {
             input.parse::<Token![,]>()?;
         } else if input.peek(Token![;]) {
@@ -243,10 +300,67 @@ fn parse_names(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Resul
     }
 }
 
-fn parse_forces(
+/// `[expr]` after a name, if there: the expression and the closing span.
+fn parse_bracket(input: ParseStream) -> syn::Result<Option<(Expr, proc_macro2::Span)>> {
+    if !input.peek(syn::token::Bracket) {
+        return Ok(None);
+    }
+    let inner;
+    let bracket = bracketed!(inner in input);
+    if inner.is_empty() {
+        return Err(syn::Error::new(
+            bracket.span.join(),
+            "empty brackets: expected an index or a length inside `[]`",
+        ));
+    }
+    let e = drain_on_error(&inner, |inner| {
+        let e = parse_expr(inner)?;
+        if !inner.is_empty() {
+            return Err(inner.error("expected an operator or `]`"));
+        }
+        Ok(e)
+    })?;
+    Ok(Some((e, bracket.span.close())))
+}
+
+/// `var in lo..hi` or `var in lo..=hi`.
+fn parse_index_range(input: ParseStream) -> syn::Result<IndexRange> {
+    let var = plain_name(input)?;
+    if !input.peek(Token![in]) {
+        return Err(input.error(format!(
+            "expected `in`: an index is written `{var} in 0..N` or `{var} in 0..=i`"
+        )));
+    }
+    input.parse::<Token![in]>()?;
+    let lo = parse_expr(input)?;
+    let inclusive = if input.peek(Token![..=]) {
+        input.parse::<Token![..=]>()?;
+        true
+    } else if input.peek(Token![..]) {
+        input.parse::<Token![..]>()?;
+        false
+    } else {
+        return Err(input.error("expected `..` or `..=`: a range is written `0..N` or `0..=i`"));
+    };
+    let hi = parse_expr(input)?;
+    Ok(IndexRange {
+        range: SpanRange::single(var.span()).to(hi.range()),
+        var,
+        lo: Box::new(lo),
+        hi: Box::new(hi),
+        inclusive,
+    })
+}
+
+/// One entry of `forces:` or `constants:`.
+type Entry = (Ident, Option<(Expr, proc_macro2::Span)>, Expr);
+
+/// `name = expr, ...;` (`forces:` targets may be indexed: `x[N-1] = ...`).
+fn parse_entries(
     input: ParseStream,
     error: &mut Option<syn::Error>,
-) -> syn::Result<Vec<(Ident, Expr)>> {
+    forces: bool,
+) -> syn::Result<Vec<Entry>> {
     let mut entries = Vec::new();
     loop {
         if input.peek(Token![;]) && !entries.is_empty() {
@@ -254,14 +368,17 @@ fn parse_forces(
             return Ok(entries);
         }
         let target: Ident = plain_name(input)?;
+        let index = if forces { parse_bracket(input)? } else { None };
         if !input.peek(Token![=]) {
-            return Err(input.error(
-                "expected `=`: a force is written `coordinate = expression`, e.g. `x1 = -c*dot(x1)`",
-            ));
+            return Err(input.error(if forces {
+                "expected `=`: a force is written `position = expression`, e.g. `x1 = -c*dot(x1)`"
+            } else {
+                "expected `=`: a constant is written `name = value`, e.g. `g = 9.81`"
+            }));
         }
         input.parse::<Token![=]>()?;
         let value = parse_expr(input)?;
-        entries.push((target, value));
+        entries.push((target, index, value));
         if input.peek(Token![,]) {
             input.parse::<Token![,]>()?;
         } else if input.peek(Token![;]) {
@@ -347,7 +464,7 @@ fn parse_power(input: ParseStream) -> syn::Result<Expr> {
 /// `postfix := primary ('.' name '(' args ')')*`
 fn parse_postfix(input: ParseStream) -> syn::Result<Expr> {
     let mut e = parse_primary(input)?;
-    while input.peek(Token![.]) {
+    while input.peek(Token![.]) && !input.peek(Token![..]) {
         input.parse::<Token![.]>()?;
         let method: Ident = input.parse()?;
         if !input.peek(syn::token::Paren) {
@@ -450,6 +567,16 @@ fn parse_primary(input: ParseStream) -> syn::Result<Expr> {
     }
     if input.peek(syn::Ident) {
         let name: Ident = plain_name(input)?;
+        if name == "sum" && input.peek(syn::token::Paren) {
+            return parse_sum(input, name);
+        }
+        if let Some((index, close)) = parse_bracket(input)? {
+            return Ok(Expr::Index {
+                range: SpanRange::single(name.span()).to(SpanRange::single(close)),
+                base: name,
+                index: Box::new(index),
+            });
+        }
         if input.peek(syn::token::Paren) {
             let (args, close) = parse_args(input)?;
             return Ok(Expr::Call {
@@ -464,6 +591,38 @@ fn parse_primary(input: ParseStream) -> syn::Result<Expr> {
         return Err(input.error("expected an expression here"));
     }
     Err(input.error("expected an expression: a number, a name, a function call or `(`"))
+}
+
+/// `sum(j in a..b, body)`.
+fn parse_sum(input: ParseStream, keyword: Ident) -> syn::Result<Expr> {
+    let inner;
+    let paren = parenthesized!(inner in input);
+    let (index, body) = drain_on_error(&inner, |inner| {
+        if inner.is_empty() {
+            return Err(inner
+                .error("expected an index and a term: a sum is written `sum(i in 0..N, term)`"));
+        }
+        let index = parse_index_range(inner)?;
+        if !inner.peek(Token![,]) {
+            return Err(
+                inner.error("expected `,` and the term: a sum is written `sum(i in 0..N, term)`")
+            );
+        }
+        inner.parse::<Token![,]>()?;
+        let body = parse_expr(inner)?;
+        if inner.peek(Token![,]) {
+            inner.parse::<Token![,]>()?;
+        }
+        if !inner.is_empty() {
+            return Err(inner.error("expected an operator or `)`"));
+        }
+        Ok((index, body))
+    })?;
+    Ok(Expr::Sum {
+        range: SpanRange::single(keyword.span()).to(SpanRange::single(paren.span.close())),
+        index,
+        body: Box::new(body),
+    })
 }
 
 #[cfg(test)]
@@ -493,6 +652,15 @@ mod tests {
                 let a: Vec<String> = args.iter().map(show).collect();
                 format!("{func}({})", a.join(", "))
             }
+            Expr::Index { base, index, .. } => format!("{base}[{}]", show(index)),
+            Expr::Sum { index, body, .. } => format!(
+                "sum({} in {}{}{}, {})",
+                index.var,
+                show(&index.lo),
+                if index.inclusive { "..=" } else { ".." },
+                show(&index.hi),
+                show(body)
+            ),
         }
     }
 
@@ -504,6 +672,19 @@ mod tests {
         assert_eq!(show(&expr("a^b^c")), "(a ^ (b ^ c))");
         assert_eq!(show(&expr("m1/2*(x + y)")), "((m1 / 2) * (x + y))");
         assert_eq!(show(&expr("a - b - c")), "((a - b) - c)");
+    }
+
+    #[test]
+    fn indices_and_sums() {
+        assert_eq!(show(&expr("x[i-1]^2")), "(x[(i - 1)] ^ 2)");
+        assert_eq!(
+            show(&expr("sum(j in 0..=i, l[j]*sin(theta[j]))")),
+            "sum(j in 0..=i, (l[j] * sin(theta[j])))"
+        );
+        assert_eq!(
+            show(&expr("-sum(j in i+1..N, m[j])")),
+            "(-sum(j in (i + 1)..N, m[j]))"
+        );
     }
 
     #[test]

@@ -241,11 +241,20 @@ impl Pool {
             }
             let (mut base, exp) = self.split_pow(f);
             // A sum gives its content to the product, `0.5·m·(2a·x + 2b·x) =
-            // m·x·(a + b)`; only for a plain factor (exponent 1).
-            if exp == Pool::ONE {
+            // m·x·(a + b)`, under any integer power: `(b − a)⁻¹ = −(a − b)⁻¹`,
+            // so that `(a − b)²·(b − a)⁻¹` collects to `−(a − b)` and no
+            // removable `0/0` is left where `a = b`. Not under a fractional
+            // power, where the sign may not come out (`√(−x) ≠ −√x`).
+            if let Some(n) = self
+                .as_num(exp)
+                .filter(|n| n.fract() == 0.0 && n.abs() < 1e9)
+            {
                 if let Some((k, common, inner)) = self.content(base) {
-                    coeff *= k;
-                    stack.extend(common);
+                    coeff *= k.powi(n as i32);
+                    for c in common {
+                        let p = self.pow(c, exp);
+                        stack.push(p);
+                    }
                     base = inner;
                 }
             }

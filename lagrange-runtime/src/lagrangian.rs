@@ -138,9 +138,18 @@ pub trait Lagrangian<const N: usize> {
         None
     }
 
+    /// Whether the model has no non-conservative forces at all (no
+    /// `forces:` and no `dissipation:`): then
+    /// [`nonconservative_forces`](Self::nonconservative_forces) is zero
+    /// without any code for it. Generated models set it; hand-written ones
+    /// that leave it `false` and provide no `nonconservative_forces` are
+    /// refused by the variational integrator rather than assumed conservative.
+    const CONSERVATIVE: bool = false;
+
     /// The non-conservative generalized forces `Q − ∂R/∂q̇`, if the model
-    /// provides them (generated models do; all zero without `forces:` and
-    /// `dissipation:`). Variational integrators need them.
+    /// provides them (generated models with `forces:` or `dissipation:` do;
+    /// a [`CONSERVATIVE`](Self::CONSERVATIVE) model gets zero from this
+    /// default). Variational integrators need them.
     fn nonconservative_forces(
         &self,
         t: Self::Scalar,
@@ -148,7 +157,7 @@ pub trait Lagrangian<const N: usize> {
         qdot: &SVector<Self::Scalar, N>,
     ) -> Option<SVector<Self::Scalar, N>> {
         let _ = (t, q, qdot);
-        None
+        Self::CONSERVATIVE.then(SVector::zeros)
     }
 
     /// Whether every runtime parameter of the model is finite. Integrators
