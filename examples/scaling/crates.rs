@@ -24,6 +24,7 @@ pub struct Crates {
     target: PathBuf,
     cargo: String,
     timeout: Duration,
+    optimised_macro: bool,
 }
 
 /// One generated crate.
@@ -42,7 +43,9 @@ impl ChainCrate {
 }
 
 impl Crates {
-    pub fn new(repo: &Path, timeout: Duration) -> Self {
+    /// `optimised_macro`: build the proc macro (and the engine) with
+    /// optimisations, which cargo does not do by default.
+    pub fn new(repo: &Path, timeout: Duration, optimised_macro: bool) -> Self {
         let root = repo.join("target").join("scaling");
         Crates {
             repo: repo.to_path_buf(),
@@ -50,6 +53,7 @@ impl Crates {
             root,
             cargo: std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()),
             timeout,
+            optimised_macro,
         }
     }
 
@@ -91,6 +95,11 @@ num-dual = "0.15"
 "#,
             repo = self.repo.display()
         );
+        let manifest = if self.optimised_macro {
+            manifest + "\n[profile.release.build-override]\nopt-level = 3\n"
+        } else {
+            manifest
+        };
         fs::write(dir.join("Cargo.toml"), manifest)?;
         // The repository's lock file: the same versions of everything shared.
         let lock = dir.join("Cargo.lock");

@@ -15,7 +15,9 @@
 //! these), `--scalar` (the model
 //! written out, `theta0, theta1, ...`, instead of the indexed DSL),
 //! `--engine-only` (no builds), `--no-ad`, `--no-write` (leave
-//! `BENCHMARKS.md` alone), `--timeout S` (per build, default 600).
+//! `BENCHMARKS.md` alone), `--optimised-macro` (the model crates build the
+//! proc macro with `opt-level = 3`; cargo's default is 0), `--timeout S`
+//! (per build, default 600).
 
 mod chain;
 mod crates;
@@ -37,6 +39,7 @@ struct Options {
     builds: bool,
     ad: bool,
     write: bool,
+    optimised_macro: bool,
     timeout: Duration,
 }
 
@@ -49,6 +52,7 @@ impl Options {
             builds: true,
             ad: true,
             write: true,
+            optimised_macro: false,
             timeout: Duration::from_secs(600),
         };
         let mut args = std::env::args().skip(1);
@@ -70,13 +74,13 @@ impl Options {
                 "--engine-only" => o.builds = false,
                 "--no-ad" => o.ad = false,
                 "--no-write" => o.write = false,
-                "--help" | "-h" => {
-                    return Err(
-                        "usage: cargo run --release --example scaling -- \
-                         [--max N | --only N,N,..] [--scalar] [--engine-only] [--no-ad] [--no-write] [--timeout S]"
-                            .into(),
-                    )
-                }
+                "--optimised-macro" => o.optimised_macro = true,
+                "--help" | "-h" => return Err(
+                    "usage: cargo run --release --example scaling -- [--max N | --only N,N,..] \
+                         [--scalar] [--engine-only] [--no-ad] [--no-write] [--optimised-macro] \
+                         [--timeout S]"
+                        .into(),
+                ),
                 other => return Err(format!("unknown option `{other}` (try --help)")),
             }
         }
@@ -111,6 +115,9 @@ impl Options {
         }
         if !self.ad {
             s.push_str(" --no-ad");
+        }
+        if self.optimised_macro {
+            s.push_str(" --optimised-macro");
         }
         if s.is_empty() {
             String::new()
@@ -174,7 +181,7 @@ fn run(options: &Options) -> Result<(), String> {
 
     let mut cold = None;
     if options.builds {
-        let crates = Crates::new(repo, options.timeout);
+        let crates = Crates::new(repo, options.timeout, options.optimised_macro);
         println!("\nwarm-up: the dependencies, built once into target/scaling/target ...");
         let was_cold = !crates.target_exists();
         let first = crates.write(1, options.form).map_err(|e| e.to_string())?;
@@ -339,7 +346,10 @@ without any sharing.
 and a small timing binary, after touching the model, its dependencies already built: macro \
 expansion inside rustc, type checking and codegen of the generated code. Cargo builds proc \
 macros without optimisation by default (`build-override`), so the expansion inside rustc is \
-slower than the **expand** column.
+slower than the **expand** column (`--optimised-macro` sets \
+`[profile.release.build-override] opt-level = 3` in the model crates). **check**: \
+`cargo check --release` of the same, after touching the model: the front end alone (expansion \
+and type checking); build − check is roughly codegen.
 - **M+f**: the generated `mass_matrix_and_forcing(t, &q, &qdot)` for `f64`, ns per call \
 (best of 15 batches of about 5 ms).
 - **AD**: the same `M` and `f` by runtime forward-mode AD (num-dual 0.15): one Hessian of \
