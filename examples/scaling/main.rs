@@ -190,7 +190,7 @@ fn run(options: &Options) -> Result<(), String> {
         let what = if was_cold {
             "cold, dependencies included"
         } else {
-            "dependencies already built"
+            "target directory reused: only what changed was rebuilt"
         };
         println!("  warm-up build: {:.1} s ({what})", t.as_secs_f64());
         cold = was_cold.then_some(t);
