@@ -81,17 +81,23 @@ fn run() -> Result<(), String> {
     println!("max_rel_diff {worst:e}");
 
     let (q, qdot) = chain::state(0);
-    let gen_ns = chain::time_ns(|| {
-        black_box(model.mass_matrix_and_forcing(black_box(0.0), black_box(&q), black_box(&qdot)));
-    });
-    let ad_ns = chain::time_ns(|| {
-        black_box(ad_mass_matrix_and_forcing(
-            black_box(&m),
-            black_box(&l),
-            black_box(&q),
-            black_box(&qdot),
-        ));
-    });
+    let (gen_ns, ad_ns) = chain::time_ns_pair(
+        || {
+            black_box(model.mass_matrix_and_forcing(
+                black_box(0.0),
+                black_box(&q),
+                black_box(&qdot),
+            ));
+        },
+        || {
+            black_box(ad_mass_matrix_and_forcing(
+                black_box(&m),
+                black_box(&l),
+                black_box(&q),
+                black_box(&qdot),
+            ));
+        },
+    );
     println!("gen_ns {gen_ns}");
     println!("ad_ns {ad_ns}");
     Ok(())

@@ -32,29 +32,43 @@ pub fn state(k: usize) -> (SVector<f64, N>, SVector<f64, N>) {
     (q, qdot)
 }
 
-/// Nanoseconds per call of `f`: the best of 15 batches, each long enough
+/// Nanoseconds per call of `f`: the best of 40 batches, each long enough
 /// (about 5 ms) for the clock not to matter. The best, not the mean: on a
 /// shared machine other work only ever adds time.
 pub fn time_ns(mut f: impl FnMut()) -> f64 {
-    use std::time::{Duration, Instant};
-    let mut iters: u64 = 1;
-    loop {
-        let start = Instant::now();
-        for _ in 0..iters {
-            f();
-        }
-        if start.elapsed() > Duration::from_millis(5) {
-            break;
-        }
+    let iters = calibrate(&mut f);
+    (0..ROUNDS)
+        .map(|_| batch_ns(&mut f, iters))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// [`time_ns`] of two functions, their batches interleaved, so that a slow
+/// spell of the machine cannot favour one of them.
+pub fn time_ns_pair(mut f: impl FnMut(), mut g: impl FnMut()) -> (f64, f64) {
+    let (fi, gi) = (calibrate(&mut f), calibrate(&mut g));
+    let (mut a, mut b) = (f64::INFINITY, f64::INFINITY);
+    for _ in 0..ROUNDS {
+        a = a.min(batch_ns(&mut f, fi));
+        b = b.min(batch_ns(&mut g, gi));
+    }
+    (a, b)
+}
+
+const ROUNDS: usize = 40;
+
+/// Iterations for a batch of at least 5 ms.
+fn calibrate(f: &mut impl FnMut()) -> u64 {
+    let mut iters = 1;
+    while batch_ns(f, iters) * iters as f64 <= 5e6 {
         iters *= 2;
     }
-    (0..15)
-        .map(|_| {
-            let start = Instant::now();
-            for _ in 0..iters {
-                f();
-            }
-            start.elapsed().as_secs_f64() * 1e9 / iters as f64
-        })
-        .fold(f64::INFINITY, f64::min)
+    iters
+}
+
+fn batch_ns(f: &mut impl FnMut(), iters: u64) -> f64 {
+    let start = std::time::Instant::now();
+    for _ in 0..iters {
+        f();
+    }
+    start.elapsed().as_secs_f64() * 1e9 / iters as f64
 }
