@@ -19,8 +19,8 @@ pub enum Form {
 impl Form {
     pub fn name(self) -> &'static str {
         match self {
-            Form::Indexed => "indexed (`theta[N]`, `sum`)",
-            Form::Scalar => "written out (`theta0, theta1, ...`)",
+            Form::Indexed => "the indexed DSL (`theta[N]`, `sum(..)`, `g` a constant)",
+            Form::Scalar => "written out (`theta0, theta1, ...`, `g` a parameter)",
         }
     }
 }

@@ -148,7 +148,7 @@ fn run(options: &Options) -> Result<(), String> {
     let load_start = machine::load_average();
     let machine = machine::Machine::probe();
     println!(
-        "{} cores, {}; load {load_start}; model {}",
+        "{} cores, {}; load {load_start}; model in {}",
         machine.cores,
         machine.cpu,
         options.form.name()
@@ -259,7 +259,7 @@ fn run(options: &Options) -> Result<(), String> {
     .unwrap();
     writeln!(
         section,
-        "- Model: N point masses on massless rods, angles from the vertical, written {}.\n",
+        "- Model: N point masses on massless rods, angles from the vertical; source in {}.\n",
         options.form.name()
     )
     .unwrap();
