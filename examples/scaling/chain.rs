@@ -20,7 +20,7 @@ impl Form {
     pub fn name(self) -> &'static str {
         match self {
             Form::Indexed => "the indexed DSL (`theta[N]`, `sum(..)`, `g` a constant)",
-            Form::Scalar => "written out (`theta0, theta1, ...`, `g` a parameter)",
+            Form::Scalar => "the written-out form (`theta0, theta1, ...`, `g` a parameter)",
         }
     }
 }
