@@ -8,7 +8,7 @@
 use crate::cse::{expands_to_product, schedule, Schedule};
 use crate::derive::Equations;
 use crate::expr::{ExprId, Node, Pool, SymId};
-use crate::model::{Model, Scalar, SymKind};
+use crate::model::{Field, Model, Scalar, SymKind};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::{HashMap, HashSet};
@@ -437,16 +437,7 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
     let attrs = &model.attrs;
     let fields = &model.fields;
     let params: Vec<&Ident> = fields.iter().map(|f| &f.name).collect();
-    let param_types: Vec<TokenStream> = fields
-        .iter()
-        .map(|f| match f.len {
-            None => quote!(S),
-            Some(len) => {
-                let len = Literal::usize_unsuffixed(len);
-                quote!([S; #len])
-            }
-        })
-        .collect();
+    let param_types: Vec<TokenStream> = fields.iter().map(Field::rust_type).collect();
     let n_lit = Literal::usize_unsuffixed(n);
     let vector = quote!(#na::SVector<S, #n_lit>);
     let matrix = quote!(#na::SMatrix<S, #n_lit, #n_lit>);
