@@ -252,6 +252,15 @@ impl<'a> FnEmitter<'a> {
         if mag != 1.0 || factors.is_empty() {
             numer.push(self.constant(mag));
         }
+        // A square written `x * x` is parenthesized inside a longer product,
+        // so that it rounds as one factor whether it is inlined here or bound
+        // to a `let` elsewhere: `M` and `f` computed together or apart agree
+        // to the last bit.
+        let ctx = if numer.len() + factors.len() > 1 {
+            Prec::Atom
+        } else {
+            Prec::Product
+        };
         for &f in factors {
             if !self.names.contains_key(&f) {
                 if let Node::Pow(b, e) = *self.pool.node(f) {
@@ -261,7 +270,7 @@ impl<'a> FnEmitter<'a> {
                     }
                 }
             }
-            numer.push(self.operand(f, Prec::Product));
+            numer.push(self.operand(f, ctx));
         }
         if numer.is_empty() {
             numer.push(self.constant(1.0));
