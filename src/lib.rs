@@ -47,15 +47,25 @@
 //!
 //! ## The language
 //!
-//! - `coordinates: a, b;` the generalized coordinates, in the order of `q`.
+//! - `coordinates: a, b;` the generalized coordinates, in the order of `q`;
+//!   `theta[N]` declares `N` of them, `theta[0]` … `theta[N-1]`, in index order.
 //! - `parameters: m, l;` runtime parameters: public fields of the struct,
-//!   and the arguments of `new`, in this order.
+//!   and the arguments of `new`, in this order; `m[N]` is a field `m: [S; N]`.
+//! - `const N = 6;` a compile-time integer; `constants: g = 9.81;` values
+//!   folded into the generated code (no field, no run-time cost).
 //! - `let name = expr;` intermediate quantities (positions, lengths) in terms
-//!   of coordinates, parameters, `t` and earlier `let`s.
+//!   of coordinates, parameters, `t` and earlier `let`s; `let x[i in 0..N] =
+//!   expr;` one per index.
+//! - `sum(j in a..b, expr)`, `sum(j in a..=b, expr)`, unrolled at compile
+//!   time; ranges may use outer indices, indices may use arithmetic
+//!   (`theta[i-1]`, `x[N-1]`); an index out of range is a compile error.
 //! - `dot(e)` the total time derivative `Σ ∂e/∂q_i q̇_i + ∂e/∂t`.
 //! - `kinetic:` T and `potential:` V (required; V may be `0`),
-//!   `dissipation:` a Rayleigh function R(q, q̇), `forces: x = expr, ...`
-//!   non-conservative generalized forces on coordinates (may use t, q, q̇).
+//!   `dissipation:` a Rayleigh function R(q, q̇), `forces: p = expr, ...`
+//!   non-conservative forces (may use t, q, q̇) on a coordinate or along any
+//!   position `p` (a `let`): `Q_i += F ∂p/∂q_i`, the virtual work.
+//! - Sections may repeat, in any order; repeated `kinetic:`, `potential:` and
+//!   `dissipation:` sections add up.
 //! - `#[lagrange(jacobians)]` on the struct: also generate the exact
 //!   Jacobians of the residual `M q̈ − f`, which implicit integrators use for
 //!   Newton's method (opt-in: compile time is paid only where it is used).
@@ -74,7 +84,9 @@
 //! `DOF`, `COORDINATES`, `PARAMETERS`, `EQUATIONS` (the derived equations as
 //! text), `new`, `mass_matrix`, `forcing`, `mass_matrix_and_forcing`,
 //! `kinetic_energy`, `potential_energy`, `energy`, `momentum` (∂L/∂q̇),
-//! `lagrangian_gradient` (∂L/∂q), `nonconservative_forces` (Q − ∂R/∂q̇), and
+//! `lagrangian_gradient` (∂L/∂q), `nonconservative_forces` (Q − ∂R/∂q̇; only
+//! for a model with forces or dissipation, others are
+//! [`Lagrangian::CONSERVATIVE`] and emit no code for them), and
 //! with `#[lagrange(jacobians)]` `residual_jacobians`; plus an implementation of
 //! [`Lagrangian`] so the integrators take it.
 //!

@@ -54,6 +54,7 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
     for i in 0..n {
         for j in i..n {
             let m = pool.diff(momenta[i], s.velocities[j]);
+            let m = pool.factored(m);
             mass[i][j] = m;
             mass[j][i] = m;
         }
@@ -93,7 +94,8 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         }
         let dt = pool.diff(momenta[i], s.time);
         terms.push(pool.neg(dt));
-        forcing.push(pool.add(&terms));
+        let fi = pool.add(&terms);
+        forcing.push(pool.factored(fi));
     }
     let energy = pool.add2(t_kin, v_pot);
     let jacobians = want_jacobians.then(|| {

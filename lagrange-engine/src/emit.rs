@@ -8,7 +8,7 @@
 use crate::cse::{expands_to_product, schedule, Schedule};
 use crate::derive::Equations;
 use crate::expr::{ExprId, Node, Pool, SymId};
-use crate::model::{Model, Scalar, SymKind};
+use crate::model::{Field, Model, Scalar, SymKind};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::{HashMap, HashSet};
@@ -252,6 +252,15 @@ impl<'a> FnEmitter<'a> {
         if mag != 1.0 || factors.is_empty() {
             numer.push(self.constant(mag));
         }
+        // A square written `x * x` is parenthesized inside a longer product,
+        // so that it rounds as one factor whether it is inlined here or bound
+        // to a `let` elsewhere: `M` and `f` computed together or apart agree
+        // to the last bit.
+        let ctx = if numer.len() + factors.len() > 1 {
+            Prec::Atom
+        } else {
+            Prec::Product
+        };
         for &f in factors {
             if !self.names.contains_key(&f) {
                 if let Node::Pow(b, e) = *self.pool.node(f) {
@@ -261,7 +270,7 @@ impl<'a> FnEmitter<'a> {
                     }
                 }
             }
-            numer.push(self.operand(f, Prec::Product));
+            numer.push(self.operand(f, ctx));
         }
         if numer.is_empty() {
             numer.push(self.constant(1.0));
@@ -437,16 +446,7 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
     let attrs = &model.attrs;
     let fields = &model.fields;
     let params: Vec<&Ident> = fields.iter().map(|f| &f.name).collect();
-    let param_types: Vec<TokenStream> = fields
-        .iter()
-        .map(|f| match f.len {
-            None => quote!(S),
-            Some(len) => {
-                let len = Literal::usize_unsuffixed(len);
-                quote!([S; #len])
-            }
-        })
-        .collect();
+    let param_types: Vec<TokenStream> = fields.iter().map(Field::rust_type).collect();
     let n_lit = Literal::usize_unsuffixed(n);
     let vector = quote!(#na::SVector<S, #n_lit>);
     let matrix = quote!(#na::SMatrix<S, #n_lit, #n_lit>);

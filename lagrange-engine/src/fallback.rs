@@ -39,16 +39,7 @@ impl Stub {
             fields,
         } = self;
         let params: Vec<&Ident> = fields.iter().map(|f| &f.name).collect();
-        let types: Vec<TokenStream> = fields
-            .iter()
-            .map(|f| match f.len {
-                None => quote!(S),
-                Some(len) => {
-                    let len = Literal::usize_unsuffixed(len);
-                    quote!([S; #len])
-                }
-            })
-            .collect();
+        let types: Vec<TokenStream> = fields.iter().map(Field::rust_type).collect();
         let fields = if params.is_empty() {
             quote!({ _scalar: ::core::marker::PhantomData<S> })
         } else {

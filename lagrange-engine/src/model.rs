@@ -101,6 +101,19 @@ pub struct Field {
     pub len: Option<usize>,
 }
 
+impl Field {
+    /// The field's type: `S` or `[S; len]`.
+    pub fn rust_type(&self) -> proc_macro2::TokenStream {
+        match self.len {
+            None => quote::quote!(S),
+            Some(len) => {
+                let len = proc_macro2::Literal::usize_unsuffixed(len);
+                quote::quote!([S; #len])
+            }
+        }
+    }
+}
+
 /// A force: `value` acts along the position `position` (a coordinate or a
 /// `let`), contributing `value · ∂position/∂q_i` to each `Q_i`.
 pub struct Force {
@@ -213,14 +226,7 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
     };
 
     // `const`s first, in order: sizes and indices anywhere may use them.
-    let mut cx = Lowering {
-        pool,
-        symbols: Symbols::new(0, 0),
-        names: HashMap::new(),
-        pending_lets: Vec::new(),
-        env: Vec::new(),
-        model: def.name.clone(),
-    };
+    let mut cx = Lowering::new(pool, &def.name);
     for item in &def.items {
         if let Item::Const { name, value } = item {
             declare(name, "`const`")?;
@@ -438,14 +444,7 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
 /// is fixed (a duplicated name or `t` is the error, not an extra one; a size
 /// that cannot be evaluated counts as one).
 pub fn declared_shape(def: &ModelDef) -> (usize, Vec<Field>) {
-    let mut cx = Lowering {
-        pool: Pool::default(),
-        symbols: Symbols::new(0, 0),
-        names: HashMap::new(),
-        pending_lets: Vec::new(),
-        env: Vec::new(),
-        model: def.name.clone(),
-    };
+    let mut cx = Lowering::new(Pool::default(), &def.name);
     for item in &def.items {
         if let Item::Const { name, value } = item {
             if let Ok(v) = cx.int(value) {
@@ -530,6 +529,18 @@ struct Lowering {
 }
 
 impl Lowering {
+    /// A lowering with no names yet: the `const`s come first.
+    fn new(pool: Pool, model: &Ident) -> Self {
+        Lowering {
+            pool,
+            symbols: Symbols::new(0, 0),
+            names: HashMap::new(),
+            pending_lets: Vec::new(),
+            env: Vec::new(),
+            model: model.clone(),
+        }
+    }
+
     fn lower(&mut self, e: &Expr) -> syn::Result<ExprId> {
         Ok(match e {
             Expr::Num { value, .. } => self.pool.num(*value),

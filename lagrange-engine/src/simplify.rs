@@ -317,6 +317,24 @@ impl Pool {
         self.intern(Node::Mul(out.into_boxed_slice()))
     }
 
+    /// `id` with the content of a sum pulled out, `Σ k·c·t_i = k·c·Σ t_i`:
+    /// for a result that is evaluated, not added to further (an entry of
+    /// `M`). Sums stay expanded inside the derivation so that terms can
+    /// cancel; an entry `M_ab = Σ_{i ≥ b} m_i·l_a·l_b·P_ab` of a chain is
+    /// then one product with the tail `Σ_{i ≥ b} m_i`, shared by every entry
+    /// with the same tail, instead of a sum of N − b products.
+    pub fn factored(&mut self, id: ExprId) -> ExprId {
+        match self.content(id) {
+            None => id,
+            Some((k, common, inner)) => {
+                let mut factors = vec![self.num(k)];
+                factors.extend(common);
+                factors.push(inner);
+                self.mul(&factors)
+            }
+        }
+    }
+
     /// The content of a sum: `sum = k · c1^e1 ⋯ · s`, where the `c` are the
     /// factors every term shares, `k` the shared coefficient magnitude (if all
     /// are equal) times the first term's sign, and `s` the primitive part.

@@ -284,3 +284,119 @@ fn no_edit_of_a_model_makes_the_engine_panic() {
         "{errors} errors, {items} valid models"
     );
 }
+
+/// The N-link chain in the indexed DSL.
+fn indexed_chain(n: usize) -> String {
+    format!(
+        r#"
+    pub struct Chain {{
+        const N = {n};
+        coordinates: theta[N];
+        parameters: m[N], l[N];
+        constants: g = 9.81;
+        let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));
+        let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));
+        kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2));
+        potential: sum(i in 0..N, m[i]*g*y[i]);
+    }}
+"#
+    )
+}
+
+/// The same chain written out name by name, as before indices existed.
+fn written_out_chain(n: usize) -> String {
+    let list = |p: &str| {
+        (0..n)
+            .map(|k| format!("{p}{k}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut s = format!(
+        "pub struct Chain {{ coordinates: {}; parameters: {}, {}; constants: g = 9.81;\n",
+        list("theta"),
+        list("m"),
+        list("l")
+    );
+    for k in 0..n {
+        let (px, py) = if k == 0 {
+            (String::new(), String::new())
+        } else {
+            (format!("x{} + ", k - 1), format!("y{} ", k - 1))
+        };
+        s += &format!("let x{k} = {px}l{k}*sin(theta{k});\n");
+        s += &format!("let y{k} = {py}- l{k}*cos(theta{k});\n");
+    }
+    let t: Vec<String> = (0..n)
+        .map(|k| format!("m{k}/2*(dot(x{k})^2 + dot(y{k})^2)"))
+        .collect();
+    let v: Vec<String> = (0..n).map(|k| format!("m{k}*g*y{k}")).collect();
+    s += &format!(
+        "kinetic: {};\npotential: {};\n}}",
+        t.join(" + "),
+        v.join(" + ")
+    );
+    s
+}
+
+#[test]
+fn indexed_and_written_out_chains_derive_the_same_equations() {
+    let n = 4;
+    let a = lagrange_engine::derive(indexed_chain(n).parse().unwrap()).unwrap();
+    let b = lagrange_engine::derive(written_out_chain(n).parse().unwrap()).unwrap();
+    let mut seed = 11u64;
+    let mut next = || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..50 {
+        let q: Vec<f64> = (0..n).map(|_| 6.0 * next() - 3.0).collect();
+        let v: Vec<f64> = (0..n).map(|_| 4.0 * next() - 2.0).collect();
+        // Both order their parameters m[0..n], l[0..n].
+        let p: Vec<f64> = (0..2 * n).map(|_| 0.5 + next()).collect();
+        let (ma, mb) = (
+            a.eval_mass_matrix(0.0, &q, &p),
+            b.eval_mass_matrix(0.0, &q, &p),
+        );
+        let (fa, fb) = (
+            a.eval_forcing(0.0, &q, &v, &p),
+            b.eval_forcing(0.0, &q, &v, &p),
+        );
+        // Same smooth functions in a different order of operations: a few
+        // ulps per operation on O(10²) operations of size O(10).
+        for i in 0..n {
+            assert!(
+                (fa[i] - fb[i]).abs() < 1e-11,
+                "f[{i}]: {} vs {}",
+                fa[i],
+                fb[i]
+            );
+            for j in 0..n {
+                assert!((ma[i][j] - mb[i][j]).abs() < 1e-11);
+            }
+        }
+    }
+}
+
+#[test]
+fn the_indexed_chain_expands_to_the_same_code_every_time() {
+    let a = lagrange_engine::expand(indexed_chain(8).parse().unwrap()).to_string();
+    let b = lagrange_engine::expand(indexed_chain(8).parse().unwrap()).to_string();
+    assert!(!a.contains("compile_error"), "{a}");
+    assert_eq!(a, b);
+}
+
+#[test]
+fn a_chain_past_the_budget_stops_with_the_budget_error() {
+    // A 40-link chain needs a few hundred thousand nodes; with a budget of
+    // 20 000 the derivation must stop and say so, not run on.
+    let err = lagrange_engine::derive_with_budget(indexed_chain(40).parse().unwrap(), 20_000)
+        .err()
+        .expect("40 links need more than 20 000 nodes");
+    assert!(
+        err.to_string()
+            .contains("size budget of 20000 expression nodes"),
+        "{err}"
+    );
+}

@@ -1,14 +1,15 @@
 use lagrange::prelude::*;
 
 lagrangian! {
-    pub struct Pendulum {
+    pub struct Chain {
         coordinates: theta;
-        parameters: m, l, g, c;
-        let x = l*sin(theta);
+        parameters: m, l;
+        constants: g = 9.81*m;
         kinetic: m/2*l^2*dot(theta)^2;
         potential: -m*g*l*cos(theta);
-        forces: x = -c*dot(x);
     }
 }
 
-fn main() {}
+fn main() {
+    let _ = Chain::<f64>::DOF;
+}

@@ -1,0 +1,16 @@
+use lagrange::prelude::*;
+
+lagrangian! {
+    pub struct Chain {
+        const N = 3;
+        coordinates: theta[N];
+        parameters: m, l, g;
+        let y[i in 0..N] = -sum(j in 0..=i, l*cos(theta[j]));
+        kinetic: sum(i in 0..N, m/2*l^2*dot(theta[i])^2);
+        potential: m*g*y[N];
+    }
+}
+
+fn main() {
+    let _ = Chain::<f64>::DOF;
+}
