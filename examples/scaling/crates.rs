@@ -43,8 +43,9 @@ impl ChainCrate {
 }
 
 impl Crates {
-    /// `optimised_macro`: build the proc macro (and the engine) with
-    /// optimisations, which cargo does not do by default.
+    /// `optimised_macro`: build the symbolic engine, which runs inside the
+    /// proc macro, with optimisations; cargo builds proc macros and their
+    /// dependencies at opt-level 0 unless the crate says otherwise.
     pub fn new(repo: &Path, timeout: Duration, optimised_macro: bool) -> Self {
         let root = repo.join("target").join("scaling");
         Crates {
@@ -96,7 +97,8 @@ num-dual = "0.15"
             repo = self.repo.display()
         );
         let manifest = if self.optimised_macro {
-            manifest + "\n[profile.release.build-override]\nopt-level = 3\n"
+            // What the README recommends to crates using `lagrange`.
+            manifest + "\n[profile.release.package.lagrange-engine]\nopt-level = 3\n"
         } else {
             manifest
         };

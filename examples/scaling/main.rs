@@ -16,8 +16,8 @@
 //! written out, `theta0, theta1, ...`, instead of the indexed DSL),
 //! `--engine-only` (no builds), `--no-ad`, `--no-write` (leave
 //! `BENCHMARKS.md` alone), `--optimised-macro` (the model crates build the
-//! proc macro with `opt-level = 3`; cargo's default is 0), `--timeout S`
-//! (per build, default 600).
+//! engine with `opt-level = 3`, as the README recommends; cargo's default
+//! for proc macros is 0), `--timeout S` (per build, default 600).
 
 mod chain;
 mod crates;
@@ -360,8 +360,8 @@ without any sharing.
 and a small timing binary, after touching the model, its dependencies already built: macro \
 expansion inside rustc, type checking and codegen of the generated code. Cargo builds proc \
 macros without optimisation by default (`build-override`), so the expansion inside rustc is \
-slower than the **expand** column (`--optimised-macro` sets \
-`[profile.release.build-override] opt-level = 3` in the model crates). **check**: \
+slower than the **expand** column, unless the crate sets \
+`[profile.release.package.lagrange-engine] opt-level = 3` (`--optimised-macro`). **check**: \
 `cargo check --release` of the same, after touching the model: the front end alone (expansion \
 and type checking); build − check is roughly codegen.
 - **M+f**: the generated `mass_matrix_and_forcing(t, &q, &qdot)` for `f64`, ns per call: \
