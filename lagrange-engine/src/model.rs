@@ -744,12 +744,16 @@ impl Lowering {
         let overflow = || e.range().error("index arithmetic overflows");
         match e {
             Expr::Num { value, .. } => {
-                if value.fract() == 0.0 && value.abs() <= MAX_RANGE as f64 * 1e6 {
-                    Ok(*value as i64)
-                } else {
+                if value.fract() != 0.0 {
                     Err(e.range().error(format!(
                         "`{value}` is not an integer: indices and sizes are integers"
                     )))
+                } else if value.abs() > i32::MAX as f64 {
+                    Err(e.range().error(format!(
+                        "`{value}` is too large for an index or a size"
+                    )))
+                } else {
+                    Ok(*value as i64)
                 }
             }
             Expr::Name(name) => {
