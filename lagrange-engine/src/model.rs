@@ -575,7 +575,7 @@ impl Lowering {
                     None => return Err(self.unknown_name(name)),
                 }
             }
-            Expr::Index { base, index, .. } => match self.element(base, index)? {
+            Expr::Index { base, index, .. } => match self.element(base, index)?.1 {
                 Binding::Symbol(s) => self.pool.sym(s),
                 Binding::Let(id) => id,
                 _ => unreachable!("elements are symbols or lets"),
@@ -613,8 +613,9 @@ impl Lowering {
         })
     }
 
-    /// The binding of `base[index]`, with the index checked against its range.
-    fn element(&mut self, base: &Ident, index: &Expr) -> syn::Result<Binding> {
+    /// The index of `base[index]`, checked against its range, and the
+    /// element's binding.
+    fn element(&self, base: &Ident, index: &Expr) -> syn::Result<(i64, Binding)> {
         let s = base.to_string();
         let (lo, hi) = match self.names.get(&s) {
             Some(Binding::Array { lo, hi, .. }) => (*lo, *hi),
@@ -640,7 +641,7 @@ impl Lowering {
             )));
         }
         match self.names.get(&format!("{s}[{k}]")) {
-            Some(b) => Ok(*b),
+            Some(b) => Ok((k, *b)),
             // An indexed `let` using its own later elements.
             None => Err(index.range().error(format!(
                 "`{s}[{k}]` is used before it is defined: an element of a `let` may only use the elements before it"
@@ -659,8 +660,7 @@ impl Lowering {
                 }
             }
             Expr::Index { base, index, .. } => {
-                let b = self.element(base, index)?;
-                let k = self.int(index)?;
+                let (k, b) = self.element(base, index)?;
                 (format!("{base}[{k}]"), b)
             }
             _ => unreachable!("the parser reads force targets as names or elements"),
@@ -705,7 +705,7 @@ impl Lowering {
     }
 
     /// `lo..hi` (or `lo..=hi`) as a half-open integer range.
-    fn range(&mut self, r: &IndexRange) -> syn::Result<(i64, i64)> {
+    fn range(&self, r: &IndexRange) -> syn::Result<(i64, i64)> {
         let lo = self.int(&r.lo)?;
         let hi = self.int(&r.hi)?;
         let hi = if r.inclusive {
@@ -723,7 +723,7 @@ impl Lowering {
     }
 
     /// The length of `name[len]`.
-    fn length(&mut self, e: &Expr) -> syn::Result<usize> {
+    fn length(&self, e: &Expr) -> syn::Result<usize> {
         let n = self.int(e)?;
         if n < 1 {
             return Err(e.range().error(format!(
@@ -917,7 +917,7 @@ impl Model {
         bad: &dyn Fn(&mut Pool, ExprId) -> bool,
     ) -> SpanRange {
         if let Expr::Sum { index, body, .. } = e {
-            let mut cx = self.lowering(env);
+            let cx = self.lowering(env);
             let range = cx.range(index);
             self.pool = cx.pool;
             if let Ok((lo, hi)) = range {
