@@ -1,0 +1,301 @@
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DoublePendulum<S = f64> {
+    pub m1: S,
+    pub m2: S,
+    pub l1: S,
+    pub l2: S,
+    pub g: S,
+}
+#[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]
+impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S> {
+    /// Number of degrees of freedom (generalized coordinates).
+    pub const DOF: usize = 2;
+    /// Names of the generalized coordinates, in the order of `q`.
+    pub const COORDINATES: [&'static str; 2] = ["theta1", "theta2"];
+    /// Names of the runtime parameters (the struct's fields; an
+    /// indexed parameter `m[N]` is one field `m: [S; N]`), in
+    /// declaration order.
+    pub const PARAMETERS: [&'static str; 5] = ["m1", "m2", "l1", "l2", "g"];
+    ///The derived equations `M q̈ = f`, readable: shared subexpressions first, then each entry.
+    pub const EQUATIONS: &'static str = "e0 = m1 + m2\ne1 = cos(theta1)\ne2 = cos(theta2)\ne3 = sin(theta1)\ne4 = sin(theta2)\ne5 = e1*e4 - e3*e2\nM[theta1, theta1] = l1^2*e0\nM[theta1, theta2] = l1*l2*m2*(e1*e2 + e3*e4)\nM[theta2, theta2] = m2*l2^2\nf[theta1] = -l1*(e3*g*e0 - l2*m2*e5*dot(theta2)^2)\nf[theta2] = -l2*m2*(e4*g + l1*dot(theta1)^2*e5)\n";
+    ///A `DoublePendulum` with the given parameters (`m1`, `m2`, `l1`, `l2`, `g`).
+    #[inline]
+    pub const fn new(m1: S, m2: S, l1: S, l2: S, g: S) -> Self {
+        Self { m1, m2, l1, l2, g }
+    }
+    /// The mass matrix `M(t, q) = ∂²T/∂q̇²`.
+    #[inline]
+    pub fn mass_matrix(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> ::lagrange::nalgebra::SMatrix<S, 2, 2> {
+        let [theta1, theta2] = [q[0], q[1]];
+        let Self { m1, m2, l1, l2, .. } = *self;
+        let e0 = l1 * l2 * m2
+            * (::lagrange::nalgebra::ComplexField::cos(theta1)
+                * ::lagrange::nalgebra::ComplexField::cos(theta2)
+                + ::lagrange::nalgebra::ComplexField::sin(theta1)
+                    * ::lagrange::nalgebra::ComplexField::sin(theta2));
+        ::lagrange::nalgebra::SMatrix::<
+            S,
+            2,
+            2,
+        >::from_column_slice(&[(l1 * l1) * (m1 + m2), e0, e0, m2 * (l2 * l2)])
+    }
+    /// The forcing `f(t, q, q̇)` of `M q̈ = f`.
+    #[inline]
+    pub fn forcing(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> ::lagrange::nalgebra::SVector<S, 2> {
+        let ([theta1, theta2], [theta1_dot, theta2_dot]) = (
+            [q[0], q[1]],
+            [qdot[0], qdot[1]],
+        );
+        let Self { m1, m2, l1, l2, g, .. } = *self;
+        let e0 = ::lagrange::nalgebra::ComplexField::sin(theta1);
+        let e1 = ::lagrange::nalgebra::ComplexField::sin(theta2);
+        let e2 = ::lagrange::nalgebra::ComplexField::cos(theta1) * e1
+            - e0 * ::lagrange::nalgebra::ComplexField::cos(theta2);
+        ::lagrange::nalgebra::SVector::<
+            S,
+            2,
+        >::from_column_slice(
+            &[
+                -l1 * (e0 * g * (m1 + m2) - l2 * m2 * e2 * (theta2_dot * theta2_dot)),
+                -l2 * m2 * (e1 * g + l1 * (theta1_dot * theta1_dot) * e2),
+            ],
+        )
+    }
+    /// `M` and `f` together, sharing their common subexpressions.
+    #[inline]
+    pub fn mass_matrix_and_forcing(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> (::lagrange::nalgebra::SMatrix<S, 2, 2>, ::lagrange::nalgebra::SVector<S, 2>) {
+        let ([theta1, theta2], [theta1_dot, theta2_dot]) = (
+            [q[0], q[1]],
+            [qdot[0], qdot[1]],
+        );
+        let Self { m1, m2, l1, l2, g, .. } = *self;
+        let e0 = m1 + m2;
+        let e1 = ::lagrange::nalgebra::ComplexField::cos(theta1);
+        let e2 = ::lagrange::nalgebra::ComplexField::cos(theta2);
+        let e3 = ::lagrange::nalgebra::ComplexField::sin(theta1);
+        let e4 = ::lagrange::nalgebra::ComplexField::sin(theta2);
+        let e5 = l1 * l2 * m2 * (e1 * e2 + e3 * e4);
+        let e6 = e1 * e4 - e3 * e2;
+        (
+            ::lagrange::nalgebra::SMatrix::<
+                S,
+                2,
+                2,
+            >::from_column_slice(&[(l1 * l1) * e0, e5, e5, m2 * (l2 * l2)]),
+            ::lagrange::nalgebra::SVector::<
+                S,
+                2,
+            >::from_column_slice(
+                &[
+                    -l1 * (e3 * g * e0 - l2 * m2 * e6 * (theta2_dot * theta2_dot)),
+                    -l2 * m2 * (e4 * g + l1 * (theta1_dot * theta1_dot) * e6),
+                ],
+            ),
+        )
+    }
+    /// Kinetic energy `T(t, q, q̇)`.
+    #[inline]
+    pub fn kinetic_energy(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> S {
+        let ([theta1, theta2], [theta1_dot, theta2_dot]) = (
+            [q[0], q[1]],
+            [qdot[0], qdot[1]],
+        );
+        let Self { m1, m2, l1, l2, .. } = *self;
+        let k0: S = ::lagrange::nalgebra::convert::<f64, S>(0.5f64);
+        let e0 = l1 * ::lagrange::nalgebra::ComplexField::cos(theta1) * theta1_dot
+            + l2 * ::lagrange::nalgebra::ComplexField::cos(theta2) * theta2_dot;
+        let e1 = l1 * ::lagrange::nalgebra::ComplexField::sin(theta1) * theta1_dot
+            + l2 * ::lagrange::nalgebra::ComplexField::sin(theta2) * theta2_dot;
+        k0 * m1 * (l1 * l1) * (theta1_dot * theta1_dot) + k0 * m2 * (e0 * e0 + e1 * e1)
+    }
+    /// Potential energy `V(t, q)`.
+    #[inline]
+    pub fn potential_energy(&self, t: S, q: &::lagrange::nalgebra::SVector<S, 2>) -> S {
+        let [theta1, theta2] = [q[0], q[1]];
+        let Self { m1, m2, l1, l2, g, .. } = *self;
+        let e0 = ::lagrange::nalgebra::ComplexField::cos(theta1);
+        -l1 * e0 * m1 * g
+            - m2 * g * (l2 * ::lagrange::nalgebra::ComplexField::cos(theta2) + l1 * e0)
+    }
+    /// Total energy `T + V`.
+    #[inline]
+    pub fn energy(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> S {
+        let ([theta1, theta2], [theta1_dot, theta2_dot]) = (
+            [q[0], q[1]],
+            [qdot[0], qdot[1]],
+        );
+        let Self { m1, m2, l1, l2, g, .. } = *self;
+        let k0: S = ::lagrange::nalgebra::convert::<f64, S>(0.5f64);
+        let e0 = ::lagrange::nalgebra::ComplexField::cos(theta1);
+        let e1 = ::lagrange::nalgebra::ComplexField::cos(theta2);
+        let e2 = l1 * e0 * theta1_dot + l2 * e1 * theta2_dot;
+        let e3 = l1 * ::lagrange::nalgebra::ComplexField::sin(theta1) * theta1_dot
+            + l2 * ::lagrange::nalgebra::ComplexField::sin(theta2) * theta2_dot;
+        k0 * m1 * (l1 * l1) * (theta1_dot * theta1_dot) + k0 * m2 * (e2 * e2 + e3 * e3)
+            - l1 * e0 * m1 * g - m2 * g * (l2 * e1 + l1 * e0)
+    }
+    /// The generalized momenta `p = ∂L/∂q̇`.
+    #[inline]
+    pub fn momentum(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> ::lagrange::nalgebra::SVector<S, 2> {
+        let ([theta1, theta2], [theta1_dot, theta2_dot]) = (
+            [q[0], q[1]],
+            [qdot[0], qdot[1]],
+        );
+        let Self { m1, m2, l1, l2, .. } = *self;
+        let e0 = ::lagrange::nalgebra::ComplexField::cos(theta1);
+        let e1 = ::lagrange::nalgebra::ComplexField::cos(theta2);
+        let e2 = l1 * e0 * theta1_dot + l2 * e1 * theta2_dot;
+        let e3 = ::lagrange::nalgebra::ComplexField::sin(theta1);
+        let e4 = ::lagrange::nalgebra::ComplexField::sin(theta2);
+        let e5 = l1 * e3 * theta1_dot + l2 * e4 * theta2_dot;
+        ::lagrange::nalgebra::SVector::<
+            S,
+            2,
+        >::from_column_slice(
+            &[
+                m1 * theta1_dot * (l1 * l1) + l1 * m2 * (e0 * e2 + e3 * e5),
+                l2 * m2 * (e1 * e2 + e4 * e5),
+            ],
+        )
+    }
+    /// `∂L/∂q`.
+    #[inline]
+    pub fn lagrangian_gradient(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> ::lagrange::nalgebra::SVector<S, 2> {
+        let ([theta1, theta2], [theta1_dot, theta2_dot]) = (
+            [q[0], q[1]],
+            [qdot[0], qdot[1]],
+        );
+        let Self { m1, m2, l1, l2, g, .. } = *self;
+        let e0 = ::lagrange::nalgebra::ComplexField::sin(theta1);
+        let e1 = ::lagrange::nalgebra::ComplexField::cos(theta1);
+        let e2 = ::lagrange::nalgebra::ComplexField::cos(theta2);
+        let e3 = l1 * e1 * theta1_dot + l2 * e2 * theta2_dot;
+        let e4 = ::lagrange::nalgebra::ComplexField::sin(theta2);
+        let e5 = l1 * e0 * theta1_dot + l2 * e4 * theta2_dot;
+        ::lagrange::nalgebra::SVector::<
+            S,
+            2,
+        >::from_column_slice(
+            &[
+                -l1 * theta1_dot * m2 * (e0 * e3 - e1 * e5) - l1 * e0 * g * (m1 + m2),
+                -l2 * m2 * theta2_dot * (e4 * e3 - e2 * e5) - l2 * e4 * m2 * g,
+            ],
+        )
+    }
+}
+impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> ::lagrange::Lagrangian<2>
+for DoublePendulum<S> {
+    type Scalar = S;
+    const COORDINATES: [&'static str; 2] = Self::COORDINATES;
+    #[inline]
+    fn mass_matrix(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> ::lagrange::nalgebra::SMatrix<S, 2, 2> {
+        DoublePendulum::mass_matrix(self, t, q)
+    }
+    #[inline]
+    fn forcing(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> ::lagrange::nalgebra::SVector<S, 2> {
+        DoublePendulum::forcing(self, t, q, qdot)
+    }
+    #[inline]
+    fn mass_matrix_and_forcing(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> (::lagrange::nalgebra::SMatrix<S, 2, 2>, ::lagrange::nalgebra::SVector<S, 2>) {
+        DoublePendulum::mass_matrix_and_forcing(self, t, q, qdot)
+    }
+    #[inline]
+    fn kinetic_energy(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> S {
+        DoublePendulum::kinetic_energy(self, t, q, qdot)
+    }
+    #[inline]
+    fn potential_energy(&self, t: S, q: &::lagrange::nalgebra::SVector<S, 2>) -> S {
+        DoublePendulum::potential_energy(self, t, q)
+    }
+    #[inline]
+    fn energy(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> S {
+        DoublePendulum::energy(self, t, q, qdot)
+    }
+    #[inline]
+    fn momentum(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> ::core::option::Option<::lagrange::nalgebra::SVector<S, 2>> {
+        ::core::option::Option::Some(DoublePendulum::momentum(self, t, q, qdot))
+    }
+    #[inline]
+    fn lagrangian_gradient(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> ::core::option::Option<::lagrange::nalgebra::SVector<S, 2>> {
+        ::core::option::Option::Some(
+            DoublePendulum::lagrangian_gradient(self, t, q, qdot),
+        )
+    }
+    const CONSERVATIVE: bool = true;
+    #[inline]
+    fn parameters_are_finite(&self) -> bool {
+        ::lagrange::nalgebra::ComplexField::is_finite(&self.m1)
+            && ::lagrange::nalgebra::ComplexField::is_finite(&self.m2)
+            && ::lagrange::nalgebra::ComplexField::is_finite(&self.l1)
+            && ::lagrange::nalgebra::ComplexField::is_finite(&self.l2)
+            && ::lagrange::nalgebra::ComplexField::is_finite(&self.g)
+    }
+}

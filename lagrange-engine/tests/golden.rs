@@ -1,0 +1,226 @@
+//! The generated code does not change by accident.
+//!
+//! Every `lagrangian! { .. }` written anywhere in the repository (the crate's
+//! models, tests, examples and the UI tests' error cases), plus the indexed
+//! chain at N = 20, is expanded here and its exact output fingerprinted
+//! (length and FNV-1a 64 of the token string), keyed by the model's name and
+//! a fingerprint of its input, so that a model may move between files.
+//! `tests/data/golden.txt` holds the fingerprints of the last deliberate
+//! change: every model found must expand exactly as recorded there. A change
+//! meant to alter the generated code updates the file with
+//! `LAGRANGE_BLESS=1 cargo test -p lagrange-engine --test golden` and says why
+//! in its commit. Recorded models no longer in the repository, and models new
+//! since the last bless, are listed, not failed (tests move and merge), but
+//! the double pendulum and the 20-link chain are always checked.
+//!
+//! The double pendulum's expansion is also kept whole
+//! (`tests/data/double_pendulum.expanded.rs`), so that a change shows as a
+//! readable diff.
+
+use proc_macro2::{Delimiter, TokenStream, TokenTree};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("the engine crate sits in the workspace root")
+        .to_path_buf()
+}
+
+/// All `.rs` files under `dir`, sorted, skipping build output.
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let mut entries: Vec<_> = entries.filter_map(|e| e.ok()).map(|e| e.path()).collect();
+    entries.sort();
+    for path in entries {
+        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
+        if path.is_dir() {
+            if name != "target" && !name.starts_with('.') {
+                rust_files(&path, out);
+            }
+        } else if name.ends_with(".rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// The bodies of `lagrangian! { .. }` invocations in a token stream, at any depth.
+fn invocations(stream: TokenStream, found: &mut Vec<TokenStream>) {
+    let tokens: Vec<TokenTree> = stream.into_iter().collect();
+    for (i, tt) in tokens.iter().enumerate() {
+        if let TokenTree::Group(g) = tt {
+            let after_bang = i >= 2
+                && matches!(&tokens[i - 1], TokenTree::Punct(p) if p.as_char() == '!')
+                && matches!(&tokens[i - 2], TokenTree::Ident(id) if id == "lagrangian");
+            if after_bang && g.delimiter() == Delimiter::Brace {
+                found.push(g.stream());
+            } else {
+                invocations(g.stream(), found);
+            }
+        }
+    }
+}
+
+/// The N-link chain of the README and the scaling benchmark.
+fn indexed_chain(n: usize) -> String {
+    format!(
+        "pub struct Chain {{
+            const N = {n};
+            coordinates: theta[N];
+            parameters: m[N], l[N];
+            constants: g = 9.81;
+            let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));
+            let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));
+            kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2));
+            potential: sum(i in 0..N, m[i]*g*y[i]);
+        }}"
+    )
+}
+
+fn fnv1a(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for &b in bytes {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    }
+    h
+}
+
+/// The struct's name: the identifier after `struct`, or `?`.
+fn struct_name(body: &TokenStream) -> String {
+    let mut after_struct = false;
+    for tt in body.clone() {
+        if let TokenTree::Ident(id) = tt {
+            if after_struct {
+                return id.to_string();
+            }
+            after_struct = id == "struct";
+        }
+    }
+    "?".into()
+}
+
+fn key(body: &TokenStream) -> String {
+    format!(
+        "{}:{:016x}",
+        struct_name(body),
+        fnv1a(body.to_string().as_bytes())
+    )
+}
+
+/// Key of each model (name and input fingerprint) → its expansion.
+fn expansions() -> BTreeMap<String, String> {
+    let root = repo_root();
+    let mut files = Vec::new();
+    for dir in ["src", "tests", "examples", "benches", "lagrange-runtime"] {
+        rust_files(&root.join(dir), &mut files);
+    }
+    let mut out = BTreeMap::new();
+    for file in files {
+        let text = std::fs::read_to_string(&file).unwrap();
+        if !text.contains("lagrangian!") {
+            continue;
+        }
+        // Files that do not tokenize (none today) are skipped, not failed:
+        // the test is about the engine's output, not the repo's syntax.
+        let Ok(stream) = text.parse::<TokenStream>() else {
+            continue;
+        };
+        let mut found = Vec::new();
+        invocations(stream, &mut found);
+        for body in found {
+            let k = key(&body);
+            out.insert(k, lagrange_engine::expand(body).to_string());
+        }
+    }
+    for text in [DOUBLE_PENDULUM.to_string(), indexed_chain(20)] {
+        let body: TokenStream = text.parse().unwrap();
+        let k = key(&body);
+        out.insert(k, lagrange_engine::expand(body).to_string());
+    }
+    out
+}
+
+/// The README's double pendulum.
+const DOUBLE_PENDULUM: &str = "
+    pub struct DoublePendulum {
+        coordinates: theta1, theta2;
+        parameters: m1, m2, l1, l2, g;
+        let x1 = l1*sin(theta1);
+        let y1 = -l1*cos(theta1);
+        let x2 = x1 + l2*sin(theta2);
+        let y2 = y1 - l2*cos(theta2);
+        kinetic: m1/2*(dot(x1)^2 + dot(y1)^2) + m2/2*(dot(x2)^2 + dot(y2)^2);
+        potential: m1*g*y1 + m2*g*y2;
+    }";
+
+fn manifest(expansions: &BTreeMap<String, String>) -> String {
+    let mut s =
+        String::from("# model  bytes  fnv1a64 of lagrange_engine::expand(..).to_string()\n");
+    for (name, text) in expansions {
+        s += &format!("{name}  {}  {:016x}\n", text.len(), fnv1a(text.as_bytes()));
+    }
+    s
+}
+
+fn parse_manifest(text: &str) -> BTreeMap<String, String> {
+    text.lines()
+        .filter(|l| !l.starts_with('#'))
+        .filter_map(|l| l.split_once("  "))
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .collect()
+}
+
+#[test]
+fn every_model_in_the_repository_expands_to_the_recorded_code() {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let all = expansions();
+    // The scan must have found the models it is meant to guard.
+    assert!(all.len() > 50, "only {} models found", all.len());
+    let dp_key = key(&DOUBLE_PENDULUM.parse().unwrap());
+    let chain_key = key(&indexed_chain(20).parse().unwrap());
+    let dp = syn::parse_file(&all[&dp_key]).expect("the expansion is Rust");
+    let dp_pretty = prettyplease::unparse(&dp);
+    let got = manifest(&all);
+    if std::env::var_os("LAGRANGE_BLESS").is_some() {
+        std::fs::create_dir_all(&data).unwrap();
+        std::fs::write(data.join("golden.txt"), &got).unwrap();
+        std::fs::write(data.join("double_pendulum.expanded.rs"), &dp_pretty).unwrap();
+        return;
+    }
+    let want_dp = std::fs::read_to_string(data.join("double_pendulum.expanded.rs")).unwrap();
+    assert_eq!(
+        dp_pretty, want_dp,
+        "the double pendulum's expansion changed (tests/data/double_pendulum.expanded.rs)"
+    );
+    let want = parse_manifest(&std::fs::read_to_string(data.join("golden.txt")).unwrap());
+    let got = parse_manifest(&got);
+    for must in [&dp_key, &chain_key] {
+        assert_eq!(got.get(must), want.get(must), "{must} changed");
+    }
+    let changed: Vec<_> = got
+        .iter()
+        .filter_map(|(k, v)| match want.get(k) {
+            Some(w) if w != v => Some(format!("{k}: now {v}, recorded {w}")),
+            _ => None,
+        })
+        .collect();
+    let new = got.keys().filter(|k| !want.contains_key(*k)).count();
+    if new > 0 {
+        eprintln!("{new} models are new since the last bless (not checked until blessed)");
+    }
+    let gone = want.keys().filter(|k| !got.contains_key(*k)).count();
+    if gone > 0 {
+        eprintln!("{gone} recorded models are no longer in the repository");
+    }
+    assert!(
+        changed.is_empty(),
+        "{} of {} expansions differ from tests/data/golden.txt; bless with LAGRANGE_BLESS=1 only if the change is meant:\n{}",
+        changed.len(),
+        got.len(),
+        changed.join("\n")
+    );
+}
