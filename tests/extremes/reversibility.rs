@@ -8,8 +8,9 @@
 //! is `Φ₋ₕᴺ ∘ Φₕᴺ`: the identity exactly when the method is symmetric
 //! (`Φ₋ₕ = Φₕ⁻¹`: implicit midpoint, Gauss–Legendre, and the variational
 //! midpoint rule in `(q, p)`), and off by its truncation error otherwise.
-//! Figures: `cargo test --release --test extremes_reversibility -- --nocapture`.
+//! Figures: `cargo test --release --test extremes -- reversibility:: --nocapture`.
 
+use crate::support::fit::{log_slope, sci};
 use lagrange::models::DoublePendulum;
 use lagrange::nalgebra::{Matrix4, Vector2};
 use lagrange::prelude::*;
@@ -20,10 +21,8 @@ type State = (Vector2<f64>, Vector2<f64>);
 /// to swing the upper rod over the top): regular, not chaotic, so that
 /// errors grow slowly and the round-off bound below stays meaningful.
 fn problem() -> (DoublePendulum, State) {
-    (
-        DoublePendulum::new(1.0, 0.7, 1.0, 0.8, 9.81),
-        (Vector2::new(0.6, -0.4), Vector2::new(0.0, 0.5)),
-    )
+    let (model, q0, v0) = DoublePendulum::regular();
+    (model, (q0, v0))
 }
 
 /// Length of each leg of the round trip: about four periods of the slow
@@ -297,7 +296,7 @@ fn round_trip_error_of_rk4_is_fifth_order_and_of_euler_first_order() {
     let check = |name: &str, order: f64, hs: &[f64], trips: Vec<RoundTrip>| {
         let returned: Vec<f64> = trips.iter().map(|t| t.returned).collect();
         let global: Vec<f64> = trips.iter().map(|t| t.global).collect();
-        let (p_return, p_global) = (slope(hs, &returned), slope(hs, &global));
+        let (p_return, p_global) = (log_slope(hs, &returned), log_slope(hs, &global));
         println!(
             "round-trip order | {name:<14} | return error order theory {order} observed {p_return:.3} | \
              global error order observed {p_global:.3} | h {} | return error {} | global error {}",
@@ -329,20 +328,4 @@ fn round_trip_error_of_rk4_is_fifth_order_and_of_euler_first_order() {
             .map(|&h| round_trip(&ExplicitEuler::new(h)))
             .collect(),
     );
-}
-
-fn sci(xs: &[f64]) -> String {
-    let parts: Vec<String> = xs.iter().map(|x| format!("{x:.2e}")).collect();
-    format!("[{}]", parts.join(", "))
-}
-
-/// Least-squares slope of `ln y` against `ln x`.
-fn slope(x: &[f64], y: &[f64]) -> f64 {
-    let lx: Vec<f64> = x.iter().map(|v| v.ln()).collect();
-    let ly: Vec<f64> = y.iter().map(|v| v.ln()).collect();
-    let n = lx.len() as f64;
-    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
-    let sxy: f64 = lx.iter().zip(&ly).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let sxx: f64 = lx.iter().map(|a| (a - mx) * (a - mx)).sum();
-    sxy / sxx
 }

@@ -14,8 +14,8 @@
 //! chain shows all there is, and the exact solution is the modal one, in
 //! closed form.
 //!
-//! Every test prints its figures; `cargo test --release --test extremes_stiff
-//! -- --nocapture --test-threads=1` shows them in order.
+//! Every test prints its figures; `cargo test --release --test extremes --
+//! stiff:: --nocapture --test-threads=1` shows them in order.
 
 use lagrange::nalgebra::{Complex, Matrix2, Matrix4, Vector2, Vector4};
 use lagrange::prelude::*;
@@ -417,7 +417,7 @@ fn adaptive_explicit_methods_pay_for_the_fast_mode_with_steps() {
 /// mode alone. From the slow start it crosses the 10 s in a few dozen steps
 /// at either ratio (≤ 100 at tolerance 1e-6; the cost does not grow with
 /// the stiffness). Its errors are the documented ones
-/// (`lagrange-runtime/tests/radau5.rs`): at the end of a step ≤ 30 tol (the
+/// (`lagrange-runtime/tests/integrators/radau5.rs`): at the end of a step ≤ 30 tol (the
 /// global error ∝ tol^(5/6)), and at samples between steps, which come from
 /// the order-3 collocation polynomial, ≤ 3.1 local tolerances
 /// `0.1 tol^(2/3)` times `1 + |y|`. At 1e-10 too, to show that 10⁸ costs no

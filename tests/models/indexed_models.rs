@@ -8,6 +8,7 @@
 //! few ulps per operation; with O(N²) terms of size O(1) a relative 1e-10
 //! leaves a margin of more than 1e3 over that rounding.
 
+use lagrange::models::Chain;
 use lagrange::nalgebra::SVector;
 use lagrange::prelude::*;
 use rand::{rngs::StdRng, Rng, SeedableRng};
@@ -31,21 +32,8 @@ lagrangian! {
     }
 }
 
-lagrangian! {
-    /// The same chain without forces: conservative.
-    pub struct Chain {
-        const N = 5;
-        coordinates: theta[N];
-        parameters: m[N], l[N];
-        constants: g = 9.81;
-        let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));
-        let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));
-        kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2));
-        potential: sum(i in 0..N, m[i]*g*y[i]);
-    }
-}
-
-const N: usize = 5;
+/// The links of `lagrange::models::Chain`, the chain without forces.
+const N: usize = Chain::<f64>::DOF;
 const G: f64 = 9.81;
 
 fn random_chain(rng: &mut StdRng) -> ([f64; N], [f64; N]) {

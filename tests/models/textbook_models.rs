@@ -1,11 +1,13 @@
 //! The classics: what `lagrangian!` derives for the damped two-mass chain and
 //! the double pendulum, against the equations every mechanics text writes
 //! down. Each closed form is derived by hand, written as its list of terms
-//! (see `common::Closed`), and compared at many random states and parameters.
+//! (see `support::closed_form::Closed`), and compared at many random states
+//! and parameters. The double pendulum is the one of `lagrange::models`,
+//! written through the Cartesian positions of its bobs; two more spellings
+//! of it stand here.
 
-mod common;
-
-use common::*;
+use crate::support::closed_form::*;
+use lagrange::models::DoublePendulum;
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
 
@@ -285,20 +287,6 @@ fn chain_models_compute_m_and_f_together_exactly_as_apart() {
 // Double pendulum: point masses m1, m2 on massless rods l1, l2, absolute
 // angles θ1, θ2 from the downward vertical.
 // ---------------------------------------------------------------------------
-
-lagrangian! {
-    /// The double pendulum through the Cartesian positions of its bobs.
-    pub struct DoublePendulum {
-        coordinates: theta1, theta2;
-        parameters: m1, m2, l1, l2, g;
-        let x1 = l1*sin(theta1);
-        let y1 = -l1*cos(theta1);
-        let x2 = x1 + l2*sin(theta2);
-        let y2 = y1 - l2*cos(theta2);
-        kinetic: m1/2*(dot(x1)^2 + dot(y1)^2) + m2/2*(dot(x2)^2 + dot(y2)^2);
-        potential: m1*g*y1 + m2*g*y2;
-    }
-}
 
 lagrangian! {
     /// The same model in Rust method syntax and float literals.

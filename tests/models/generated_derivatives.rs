@@ -2,7 +2,7 @@
 //! non-conservative forces (for variational integrators), and on request the
 //! exact Jacobians of the residual `r = M q̈ − f` (for implicit integrators).
 
-use lagrange::nalgebra::{SMatrix, SVector, Vector2};
+use lagrange::nalgebra::{SMatrix, Vector2};
 use lagrange::prelude::*;
 use lagrange::Stats;
 use rand::{rngs::StdRng, Rng, SeedableRng};
@@ -126,26 +126,8 @@ fn momenta_gradient_and_nonconservative_forces_rebuild_the_forcing() {
 #[test]
 fn runtime_uses_exact_jacobians_when_the_model_has_them() {
     use lagrange::jacobian::acceleration_jacobians;
+    use lagrange::models::WithoutJacobians;
     use lagrange::solve::acceleration;
-
-    /// The same model seen without its Jacobians: the fallback path.
-    struct WithoutJacobians(DrivenDoublePendulum);
-    impl Lagrangian<2> for WithoutJacobians {
-        type Scalar = f64;
-        const COORDINATES: [&'static str; 2] = DrivenDoublePendulum::<f64>::COORDINATES;
-        fn mass_matrix(&self, t: f64, q: &SVector<f64, 2>) -> SMatrix<f64, 2, 2> {
-            self.0.mass_matrix(t, q)
-        }
-        fn forcing(&self, t: f64, q: &SVector<f64, 2>, v: &SVector<f64, 2>) -> SVector<f64, 2> {
-            self.0.forcing(t, q, v)
-        }
-        fn kinetic_energy(&self, t: f64, q: &SVector<f64, 2>, v: &SVector<f64, 2>) -> f64 {
-            self.0.kinetic_energy(t, q, v)
-        }
-        fn potential_energy(&self, t: f64, q: &SVector<f64, 2>) -> f64 {
-            self.0.potential_energy(t, q)
-        }
-    }
 
     let mut rng = StdRng::seed_from_u64(3);
     let m = model(&mut rng);

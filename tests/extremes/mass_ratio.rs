@@ -22,23 +22,13 @@
 //!   the model is **stiff**: explicit methods must resolve `ω_k`.
 //!
 //! Every test prints the figures quoted in STABILITY.md; run with
-//! `cargo test --release --test extremes_mass_ratio -- --nocapture`.
+//! `cargo test --release --test extremes -- mass_ratio:: --nocapture`.
 
-use lagrange::models::DoublePendulum;
+use lagrange::models::{DoublePendulum, Pendulum};
 use lagrange::nalgebra::{Vector1, Vector2};
 use lagrange::prelude::*;
 use lagrange::solve::{pivot_ratio, solve_mass_matrix};
 use lagrange::{IntegrationResult, Stats};
-
-lagrangian! {
-    /// A simple pendulum: the limit of either extreme.
-    pub struct Pendulum {
-        coordinates: theta;
-        parameters: l, g;
-        kinetic: l^2/2*dot(theta)^2;
-        potential: -g*l*cos(theta);
-    }
-}
 
 lagrangian! {
     /// The limit `m2/m1 → 0` of the double pendulum: `θ1` a simple pendulum
@@ -207,7 +197,7 @@ fn light_outer_bob_leaves_the_inner_link_a_simple_pendulum() {
         .rtol(1e-13)
         .atol(1e-13)
         .integrate(
-            &Pendulum::new(1.0, G),
+            &Pendulum::new(1.0, 1.0, G),
             0.0,
             Vector1::new(q0[0]),
             Vector1::new(v0[0]),
@@ -279,7 +269,7 @@ fn heavy_outer_bob_makes_the_chain_a_pendulum_of_length_l1_plus_l2() {
         .rtol(1e-13)
         .atol(1e-13)
         .integrate(
-            &Pendulum::new(2.0, G),
+            &Pendulum::new(1.0, 2.0, G),
             0.0,
             Vector1::new(q0[0]),
             Vector1::new(v0[0]),

@@ -6,22 +6,17 @@
 //! from the exact state, where nothing but the interpolant is measured, then
 //! across whole adaptive runs, where it is what a user sampling densely
 //! gets. Each test prints its figures:
-//! `cargo test --release --test extremes_order -- --nocapture`.
+//! `cargo test --release --test extremes -- order:: --nocapture`.
 
+use crate::support::fit::{log_slope, sci};
+use lagrange::models::Oscillator;
 use lagrange::nalgebra::Vector1;
 use lagrange::prelude::*;
 
-lagrangian! {
-    /// A mass on a spring: `x(t) = x₀ cos ωt + (v₀/ω) sin ωt`, `ω = √(k/m)`.
-    /// Exact Jacobians, so that Newton's iteration on this linear problem
-    /// solves the stage equations exactly.
-    #[lagrange(jacobians)]
-    pub struct Oscillator {
-        coordinates: x;
-        parameters: m, k;
-        kinetic: m/2*dot(x)^2;
-        potential: k/2*x^2;
-    }
+/// The harmonic oscillator, `c = 0`. Exact Jacobians, so that Newton's
+/// iteration on this linear problem solves the stage equations exactly.
+fn oscillator(m: f64, k: f64) -> Oscillator {
+    Oscillator::new(m, k, 0.0)
 }
 
 /// The oscillator of the fixed-step ladder: `ω = 2`, released off its
@@ -52,22 +47,6 @@ fn relative_error(w: f64, x0: f64, v0: f64, t: f64, x: f64, v: f64) -> f64 {
     ((x - xe).abs() / amplitude).max((v - ve).abs() / (w * amplitude))
 }
 
-fn sci(xs: &[f64]) -> String {
-    let parts: Vec<String> = xs.iter().map(|x| format!("{x:.2e}")).collect();
-    format!("[{}]", parts.join(", "))
-}
-
-/// Least-squares slope of `ln y` against `ln x`.
-fn slope(x: &[f64], y: &[f64]) -> f64 {
-    let lx: Vec<f64> = x.iter().map(|v| v.ln()).collect();
-    let ly: Vec<f64> = y.iter().map(|v| v.ln()).collect();
-    let n = lx.len() as f64;
-    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
-    let sxy: f64 = lx.iter().zip(&ly).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let sxx: f64 = lx.iter().map(|a| (a - mx) * (a - mx)).sum();
-    sxy / sxx
-}
-
 /// Round-off floor for the fits: an error after `steps` steps must be at
 /// least `100 · steps · ε` (states of size one). Each step rounds by at
 /// most about `10 ε`: a few ε of arithmetic, and the implicit methods'
@@ -86,7 +65,7 @@ fn floor(steps: usize) -> f64 {
 /// and the steps taken.
 fn fixed_step_error<I: Integrator<f64>>(method: &I) -> (f64, usize) {
     let (m, k, x0, v0) = LADDER;
-    let model = Oscillator::new(m, k);
+    let model = oscillator(m, k);
     let traj = method
         .integrate(&model, 0.0, Vector1::new(x0), Vector1::new(v0), &[T])
         .unwrap();
@@ -108,7 +87,7 @@ fn assert_fixed_order<I: Integrator<f64>>(
 ) {
     let runs: Vec<(f64, usize)> = hs.iter().map(|&h| fixed_step_error(&make(h))).collect();
     let errors: Vec<f64> = runs.iter().map(|r| r.0).collect();
-    let p = slope(hs, &errors);
+    let p = log_slope(hs, &errors);
     println!(
         "order ladder | {name:<18} | theory {order} | observed {p:.3} | h {} | error {}",
         sci(hs),
@@ -194,7 +173,7 @@ const PER_STEP: usize = 16;
 /// is exact at its first iterate, whatever its stopping rule.
 fn one_step_errors<I: Integrator<f64>>(method: &I, (m, k): (f64, f64), h: f64) -> (f64, f64) {
     let (x0, v0) = (1.0, 0.0);
-    let model = Oscillator::new(m, k);
+    let model = oscillator(m, k);
     let w = omega(m, k);
     let times: Vec<f64> = (1..=PER_STEP)
         .map(|i| h * i as f64 / PER_STEP as f64)
@@ -236,7 +215,7 @@ fn assert_dense_order<I: Integrator<f64>>(
         .iter()
         .map(|&phase| one_step_errors(method, (m, k), phase / w))
         .unzip();
-    let p_dense = slope(phases, &inside);
+    let p_dense = log_slope(phases, &inside);
     let ends_fit: Vec<(f64, f64)> = phases
         .iter()
         .zip(&ends)
@@ -245,7 +224,7 @@ fn assert_dense_order<I: Integrator<f64>>(
         .collect();
     let (fit_phases, fit_ends): (Vec<f64>, Vec<f64>) = ends_fit.into_iter().unzip();
     let p_end = if fit_phases.len() >= 2 {
-        format!("{:.3}", slope(&fit_phases, &fit_ends))
+        format!("{:.3}", log_slope(&fit_phases, &fit_ends))
     } else {
         "below round-off".into()
     };
@@ -329,7 +308,7 @@ struct RunErrors {
 /// One adaptive run of the ladder's oscillator over `[0, RUN]`.
 fn run_errors<I: Integrator<f64>>(method: &I) -> RunErrors {
     let (m, k, x0, v0) = LADDER;
-    let model = Oscillator::new(m, k);
+    let model = oscillator(m, k);
     let w = omega(m, k);
     let mut times: Vec<f64> = (1..=RUN_SAMPLES)
         .map(|i| RUN * (i as f64 - 0.5) / RUN_SAMPLES as f64)
@@ -378,7 +357,7 @@ fn assert_run_order<I: Integrator<f64>>(
     let dense: Vec<f64> = runs.iter().map(|r| r.between).collect();
     let ends: Vec<f64> = runs.iter().map(|r| r.end).collect();
     let hs: Vec<f64> = runs.iter().map(|r| RUN / r.steps as f64).collect();
-    let (p_dense, p_end) = (slope(&hs, &dense), slope(&hs, &ends));
+    let (p_dense, p_end) = (log_slope(&hs, &dense), log_slope(&hs, &ends));
     let ratio: Vec<f64> = dense.iter().zip(&ends).map(|(d, e)| d / e).collect();
     println!(
         "dense output, adaptive runs | {name:<7} | between-step error order theory {dense_order} observed {p_dense:.3} \

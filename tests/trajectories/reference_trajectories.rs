@@ -10,81 +10,9 @@
 //! `C · tol · growth · scale` with `C = 100`: ten times the measured factor,
 //! for a nonlinear problem. A wrong term in M or f gives O(1) errors.
 
-use lagrange::models::{DoublePendulum, TwoMassChain};
-use lagrange::nalgebra::Vector2;
+use crate::support::reference::{Reference, Sample};
+use lagrange::models::TwoMassChain;
 use lagrange::prelude::*;
-use serde_json::Value;
-
-struct Sample {
-    t: f64,
-    q: Vector2<f64>,
-    qdot: Vector2<f64>,
-    energy: f64,
-    growth: f64,
-}
-
-struct Reference {
-    params: Value,
-    q0: Vector2<f64>,
-    qdot0: Vector2<f64>,
-    samples: Vec<Sample>,
-}
-
-fn num(v: &Value) -> f64 {
-    match v {
-        Value::String(s) => s.parse().unwrap(),
-        v => v.as_f64().unwrap(),
-    }
-}
-
-fn vec2(v: &Value) -> Vector2<f64> {
-    Vector2::new(num(&v[0]), num(&v[1]))
-}
-
-fn reference(name: &str) -> Reference {
-    let path = format!("{}/tests/data/{name}.json", env!("CARGO_MANIFEST_DIR"));
-    let json: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    let growth = json["float64_check"]["perturbation_growth"].clone();
-    let samples = json["samples"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .enumerate()
-        .map(|(k, s)| Sample {
-            t: num(&s["t"]),
-            q: vec2(&s["q"]),
-            qdot: vec2(&s["dq"]),
-            energy: num(&s["energy"]),
-            // The chain's flow contracts (damped, linear): growth ≤ 1.
-            growth: growth.get(k).map(num).unwrap_or(1.0),
-        })
-        .collect();
-    Reference {
-        params: json["parameters_exact"].clone(),
-        q0: vec2(&json["q0"]),
-        qdot0: vec2(&json["dq0"]),
-        samples,
-    }
-}
-
-fn chain(r: &Reference) -> TwoMassChain {
-    let p = |k: &str| num(&r.params[k]);
-    TwoMassChain::new(
-        p("m1"),
-        p("m2"),
-        p("k1"),
-        p("k2"),
-        p("k3"),
-        p("c1"),
-        p("c2"),
-        p("c3"),
-    )
-}
-
-fn pendulum(r: &Reference) -> DoublePendulum {
-    let p = |k: &str| num(&r.params[k]);
-    DoublePendulum::new(p("m1"), p("m2"), p("l1"), p("l2"), p("g"))
-}
 
 /// Largest |q − q_ref|, |q̇ − q̇_ref| component over the state.
 fn state_error(traj: &Trajectory<f64, 2>, k: usize, s: &Sample) -> f64 {
@@ -104,9 +32,9 @@ fn report<const N: usize>(name: &str, traj: &Trajectory<f64, N>, errors: &[f64])
 
 #[test]
 fn damped_chain_matches_reference_with_dormand_prince() {
-    let r = reference("damped_two_mass_spring");
-    let model = chain(&r);
-    let times: Vec<f64> = r.samples.iter().map(|s| s.t).collect();
+    let r = Reference::damped_chain();
+    let model = r.two_mass_chain_model();
+    let times = r.times();
     let tol = 1e-12;
     let traj = Dopri5::new()
         .rtol(tol)
@@ -142,9 +70,9 @@ fn damped_chain_matches_reference_with_dormand_prince() {
 
 #[test]
 fn damped_chain_matches_reference_with_rk4() {
-    let r = reference("damped_two_mass_spring");
-    let model = chain(&r);
-    let times: Vec<f64> = r.samples.iter().map(|s| s.t).collect();
+    let r = Reference::damped_chain();
+    let model = r.two_mass_chain_model();
+    let times = r.times();
     let h = 1e-3;
     let traj = Rk4::new(h)
         .integrate(&model, 0.0, r.q0, r.qdot0, &times)
@@ -173,9 +101,9 @@ fn damped_chain_matches_reference_with_rk4() {
 
 #[test]
 fn chaotic_double_pendulum_matches_reference_within_its_perturbation_growth() {
-    let r = reference("double_pendulum");
-    let model = pendulum(&r);
-    let times: Vec<f64> = r.samples.iter().map(|s| s.t).collect();
+    let r = Reference::double_pendulum();
+    let model = r.double_pendulum_model();
+    let times = r.times();
     let tol = 1e-13;
     let traj = Dopri5::new()
         .rtol(tol)
@@ -219,18 +147,8 @@ fn chaotic_double_pendulum_matches_reference_within_its_perturbation_growth() {
 
 #[test]
 fn damped_chain_in_f32_stays_within_single_precision_round_off() {
-    let r = reference("damped_two_mass_spring");
-    let p = |k: &str| num(&r.params[k]) as f32;
-    let model: TwoMassChain<f32> = TwoMassChain::new(
-        p("m1"),
-        p("m2"),
-        p("k1"),
-        p("k2"),
-        p("k3"),
-        p("c1"),
-        p("c2"),
-        p("c3"),
-    );
+    let r = Reference::damped_chain();
+    let model: TwoMassChain<f32> = r.two_mass_chain_model();
     let h = 1e-3f32;
     let q0 = r.q0.map(|x| x as f32);
     let qdot0 = r.qdot0.map(|x| x as f32);

@@ -5,24 +5,18 @@
 //! end in its typed error, quickly, with the samples computed before it,
 //! never in a hang, an infinity or a silently wrong trajectory.
 //!
-//! Every test prints its figures; `cargo test --release --test
-//! extremes_steps -- --nocapture --test-threads=1` shows them in order.
+//! Every test prints its figures; `cargo test --release --test extremes --
+//! steps:: --nocapture --test-threads=1` shows them in order.
 
+use lagrange::models::{Method, Oscillator};
 use lagrange::nalgebra::{SVector, Vector1, Vector2};
 use lagrange::prelude::*;
 use lagrange::{IntegrationResult, InvalidInput};
 use std::time::Instant;
 
-lagrangian! {
-    /// A unit mass on a spring `k` with a dashpot `c`.
-    #[lagrange(jacobians)]
-    pub struct Spring {
-        coordinates: x;
-        parameters: k, c;
-        kinetic: dot(x)^2/2;
-        potential: k*x^2/2;
-        dissipation: c*dot(x)^2/2;
-    }
+/// A unit mass on a spring `k` with a dashpot `c`.
+fn unit_spring(k: f64, c: f64) -> Oscillator {
+    Oscillator::new(1.0, k, c)
 }
 
 lagrangian! {
@@ -37,84 +31,39 @@ lagrangian! {
     }
 }
 
-/// The fixed-step methods, by name.
-const FIXED: [&str; 7] = [
-    "ExplicitEuler",
-    "SymplecticEuler",
-    "Rk4",
-    "ImplicitMidpoint",
-    "GaussLegendre2",
-    "GaussLegendre3",
-    "Variational",
-];
-
-/// The adaptive methods, by name.
-const ADAPTIVE: [&str; 3] = ["Dopri5", "Dop853", "Radau5"];
-
 type Start<const N: usize> = (f64, SVector<f64, N>, SVector<f64, N>);
 
-/// Runs the fixed-step method `name` with step `h` and a step budget.
+/// Runs the fixed-step `method` with step `h` and a step budget.
 fn fixed<L: Lagrangian<N, Scalar = f64>, const N: usize>(
-    name: &str,
+    method: Method,
     h: f64,
     max_steps: usize,
     model: &L,
     (t0, q0, v0): Start<N>,
     times: &[f64],
 ) -> IntegrationResult<f64, N> {
-    match name {
-        "ExplicitEuler" => ExplicitEuler::new(h)
-            .max_steps(max_steps)
-            .integrate(model, t0, q0, v0, times),
-        "SymplecticEuler" => SymplecticEuler::new(h)
-            .max_steps(max_steps)
-            .integrate(model, t0, q0, v0, times),
-        "Rk4" => Rk4::new(h)
-            .max_steps(max_steps)
-            .integrate(model, t0, q0, v0, times),
-        "ImplicitMidpoint" => ImplicitMidpoint::new(h)
-            .max_steps(max_steps)
-            .integrate(model, t0, q0, v0, times),
-        "GaussLegendre2" => GaussLegendre::two_stage(h)
-            .max_steps(max_steps)
-            .integrate(model, t0, q0, v0, times),
-        "GaussLegendre3" => GaussLegendre::three_stage(h)
-            .max_steps(max_steps)
-            .integrate(model, t0, q0, v0, times),
-        "Variational" => Variational::new(h)
-            .max_steps(max_steps)
-            .integrate(model, t0, q0, v0, times),
-        _ => unreachable!("{name}"),
-    }
+    assert!(!method.is_adaptive(), "{method:?}");
+    method
+        .with_step(h)
+        .max_steps(max_steps)
+        .integrate(model, t0, q0, v0, times)
 }
 
-/// Runs the adaptive method `name` with `rtol`, `atol` and a step budget.
+/// Runs the adaptive `method` with `rtol`, `atol` and a step budget.
 fn adaptive<L: Lagrangian<N, Scalar = f64>, const N: usize>(
-    name: &str,
+    method: Method,
     (rtol, atol): (f64, f64),
     max_steps: usize,
     model: &L,
     (t0, q0, v0): Start<N>,
     times: &[f64],
 ) -> IntegrationResult<f64, N> {
-    match name {
-        "Dopri5" => Dopri5::new()
-            .rtol(rtol)
-            .atol(atol)
-            .max_steps(max_steps)
-            .integrate(model, t0, q0, v0, times),
-        "Dop853" => Dop853::new()
-            .rtol(rtol)
-            .atol(atol)
-            .max_steps(max_steps)
-            .integrate(model, t0, q0, v0, times),
-        "Radau5" => Radau5::new()
-            .rtol(rtol)
-            .atol(atol)
-            .max_steps(max_steps)
-            .integrate(model, t0, q0, v0, times),
-        _ => unreachable!("{name}"),
-    }
+    assert!(method.is_adaptive(), "{method:?}");
+    method
+        .integrator(f64::NAN, rtol)
+        .tolerances(rtol, atol)
+        .max_steps(max_steps)
+        .integrate(model, t0, q0, v0, times)
 }
 
 /// Released from x = 1 at rest, at t = 0.
@@ -153,23 +102,36 @@ fn samples() -> Vec<f64> {
 /// printed.
 #[test]
 fn explicit_steps_beyond_the_stability_limit_stop_with_unstable() {
-    let spring = Spring::new(1e6, 0.0);
-    let damper = Spring::new(1.0, 1000.0);
+    let spring = unit_spring(1e6, 0.0);
+    let damper = unit_spring(1.0, 1000.0);
     let lambda = (1000.0 + (1000.0f64.powi(2) - 4.0).sqrt()) / 2.0;
-    let cases: [(&str, &Spring, &str, f64, f64); 5] = [
-        ("stiff spring", &spring, "Rk4", 8f64.sqrt(), 1000.0),
-        ("stiff spring", &spring, "SymplecticEuler", 2.0, 1000.0),
-        ("stiff damper", &damper, "ExplicitEuler", 2.0, lambda),
-        ("stiff damper", &damper, "SymplecticEuler", 2.0, lambda),
-        ("stiff damper", &damper, "Rk4", 2.785, lambda),
+    let cases: [(&str, &Oscillator, Method, f64, f64); 5] = [
+        ("stiff spring", &spring, Method::Rk4, 8f64.sqrt(), 1000.0),
+        (
+            "stiff spring",
+            &spring,
+            Method::SymplecticEuler,
+            2.0,
+            1000.0,
+        ),
+        ("stiff damper", &damper, Method::ExplicitEuler, 2.0, lambda),
+        (
+            "stiff damper",
+            &damper,
+            Method::SymplecticEuler,
+            2.0,
+            lambda,
+        ),
+        ("stiff damper", &damper, Method::Rk4, 2.785, lambda),
     ];
     let every_50_steps = |h: f64| (1..=40).map(|i| (50 * i) as f64 * h).collect::<Vec<_>>();
-    let unstable = |model_name: &str, model: &Spring, method: &str, h: f64, row: String| {
+    let unstable = |model_name: &str, model: &Oscillator, method: Method, h: f64, row: String| {
         let times = every_50_steps(h);
-        let failure = fixed(method, h, FIXED_BUDGET, model, released(), &times).expect_err(method);
+        let failure = fixed(method, h, FIXED_BUDGET, model, released(), &times)
+            .expect_err(&format!("{method:?}"));
         let IntegrationError::Unstable { t, q, qdot, .. } = failure.error else {
             panic!(
-                "{model_name}, {method}, {row}: expected Unstable, got {}",
+                "{model_name}, {method:?}, {row}: expected Unstable, got {}",
                 failure.error
             );
         };
@@ -177,9 +139,12 @@ fn explicit_steps_beyond_the_stability_limit_stop_with_unstable() {
         let steps = failure.trajectory.stats().steps_accepted;
         let size = q[0].abs().max(qdot[0].abs());
         println!(
-            "steps | {model_name} | {method} {row} | Unstable at t = {t:.4} after {steps} steps, |y| = {size:.1e}, {kept} samples kept"
+            "steps | {model_name} | {method:?} {row} | Unstable at t = {t:.4} after {steps} steps, |y| = {size:.1e}, {kept} samples kept"
         );
-        assert!(size.is_finite() && size < 1e300, "{method}: |y| = {size:e}");
+        assert!(
+            size.is_finite() && size < 1e300,
+            "{method:?}: |y| = {size:e}"
+        );
         assert_eq!(failure.trajectory.times(), &times[..kept]);
     };
     for (model_name, model, method, limit, rate) in cases {
@@ -194,7 +159,7 @@ fn explicit_steps_beyond_the_stability_limit_stop_with_unstable() {
         );
         assert!(
             stable.is_ok(),
-            "{method} at 0.9 of its limit: {}",
+            "{method:?} at 0.9 of its limit: {}",
             stable.unwrap_err()
         );
         for f in [1.01, 1.1, 2.0, 10.0, 100.0] {
@@ -208,7 +173,7 @@ fn explicit_steps_beyond_the_stability_limit_stop_with_unstable() {
         unstable(
             "stiff spring",
             &spring,
-            "ExplicitEuler",
+            Method::ExplicitEuler,
             h_omega / 1000.0,
             row,
         );
@@ -225,10 +190,10 @@ fn explicit_steps_beyond_the_stability_limit_stop_with_unstable() {
 /// finite, samples.
 #[test]
 fn explicit_euler_slow_gain_below_the_guard_overflows_into_non_finite_state() {
-    let spring = Spring::new(1e6, 0.0);
+    let spring = unit_spring(1e6, 0.0);
     let times = samples();
     let failure = fixed(
-        "ExplicitEuler",
+        Method::ExplicitEuler,
         0.3 / 1000.0,
         FIXED_BUDGET,
         &spring,
@@ -268,24 +233,28 @@ fn explicit_euler_slow_gain_below_the_guard_overflows_into_non_finite_state() {
 /// in the default 10⁷ steps for explicit Euler (timed), or the budget given.
 #[test]
 fn a_step_that_does_not_advance_time_is_step_size_underflow() {
-    let spring = Spring::new(1.0, 0.0);
+    let spring = unit_spring(1.0, 0.0);
     let (x0, v0) = (Vector1::new(1.0), Vector1::new(0.0));
     for (t0, h, end) in [(1e20, 1.0, 1e20 + 1e5), (1.0, 1e-300, 2.0)] {
         let start = (t0, x0, v0);
-        let mut runs: Vec<(&str, IntegrationResult<f64, 1>)> = FIXED
+        let mut runs: Vec<(Method, IntegrationResult<f64, 1>)> = Method::FIXED_STEP
             .iter()
-            .map(|&name| (name, fixed(name, h, FIXED_BUDGET, &spring, start, &[end])))
+            .map(|&method| {
+                let run = fixed(method, h, FIXED_BUDGET, &spring, start, &[end]);
+                (method, run)
+            })
             .collect();
         if t0 == 1e20 {
-            runs.extend(ADAPTIVE.iter().map(|&name| {
+            runs.extend(Method::ADAPTIVE.iter().map(|&method| {
                 let tolerances = (1e-8, 1e-8);
                 (
-                    name,
-                    adaptive(name, tolerances, ADAPTIVE_BUDGET, &spring, start, &[end]),
+                    method,
+                    adaptive(method, tolerances, ADAPTIVE_BUDGET, &spring, start, &[end]),
                 )
             }));
         }
-        for (name, run) in runs {
+        for (method, run) in runs {
+            let name = &format!("{method:?}");
             let failure = run.expect_err(name);
             let IntegrationError::StepSizeUnderflow {
                 t,
@@ -316,7 +285,7 @@ fn a_step_that_does_not_advance_time_is_step_size_underflow() {
 
     let clock = Instant::now();
     let failure = fixed(
-        "ExplicitEuler",
+        Method::ExplicitEuler,
         1e-300,
         FIXED_BUDGET,
         &spring,
@@ -335,8 +304,9 @@ fn a_step_that_does_not_advance_time_is_step_size_underflow() {
     assert_eq!(max_steps, 10_000_000);
     // The step count saturates: 10⁷ steps of 1 / usize::MAX.
     assert!((t - 1e7 / u64::MAX as f64).abs() <= 1e-6 * t, "t = {t:e}");
-    for name in FIXED {
-        let failure = fixed(name, 1e-300, 1000, &spring, released(), &[1.0]).expect_err(name);
+    for method in Method::FIXED_STEP {
+        let name = &format!("{method:?}");
+        let failure = fixed(method, 1e-300, 1000, &spring, released(), &[1.0]).expect_err(name);
         assert!(
             matches!(
                 failure.error,
@@ -366,12 +336,13 @@ fn a_step_that_does_not_advance_time_is_step_size_underflow() {
 ///   error within the budget, never a hang.
 #[test]
 fn impossible_tolerances_end_in_a_clear_error() {
-    let spring = Spring::new(1.0, 0.0);
+    let spring = unit_spring(1.0, 0.0);
     let min_rtol = 10.0 * f64::EPSILON;
-    for name in ADAPTIVE {
+    for method in Method::ADAPTIVE {
+        let name = &format!("{method:?}");
         let run = |rtol, atol| {
             adaptive(
-                name,
+                method,
                 (rtol, atol),
                 ADAPTIVE_BUDGET,
                 &spring,
@@ -429,11 +400,11 @@ fn impossible_tolerances_end_in_a_clear_error() {
     let coupled = Coupled::new();
     let (q0, qdot0) = (Vector2::new(1.0, 0.0), Vector2::zeros());
     let start = (0.0, q0, qdot0);
-    let runs = ADAPTIVE.map(|name| {
+    let runs = Method::ADAPTIVE.map(|method| {
         (
-            name,
+            format!("{method:?}"),
             adaptive(
-                name,
+                method,
                 (1e-14, 1e-300),
                 ADAPTIVE_BUDGET,
                 &coupled,
@@ -443,7 +414,7 @@ fn impossible_tolerances_end_in_a_clear_error() {
         )
     });
     for (name, run) in runs {
-        let failure = run.expect_err(name);
+        let failure = run.expect_err(&name);
         let stats = failure.trajectory.stats();
         let attempts = stats.steps_accepted + stats.steps_rejected;
         let outcome = match failure.error {
@@ -472,22 +443,16 @@ fn impossible_tolerances_end_in_a_clear_error() {
 /// 2e-6, so 1e-5; the others, and the adaptive ones at 1e-10, 1e-6).
 #[test]
 fn an_exhausted_step_budget_is_too_many_steps_with_the_samples_so_far() {
-    let spring = Spring::new(1.0, 0.0);
+    let spring = unit_spring(1.0, 0.0);
     let times = samples();
     let (h, tol, budget) = (0.01, 1e-10, 25);
-    let orders = [1, 1, 4, 2, 4, 6, 2, 5, 8, 5];
-    let runs = FIXED
-        .iter()
-        .map(|&name| (name, fixed(name, h, budget, &spring, released(), &times)))
-        .chain(ADAPTIVE.iter().map(|&name| {
-            (
-                name,
-                adaptive(name, (tol, tol), budget, &spring, released(), &times),
-            )
-        }))
-        .zip(orders)
-        .map(|((name, run), order)| (name, order, run));
-    for (name, order, run) in runs {
+    for method in Method::ALL {
+        let name = &format!("{method:?}");
+        let run = if method.is_adaptive() {
+            adaptive(method, (tol, tol), budget, &spring, released(), &times)
+        } else {
+            fixed(method, h, budget, &spring, released(), &times)
+        };
         let failure = run.expect_err(name);
         let IntegrationError::TooManySteps {
             t,
@@ -513,7 +478,7 @@ fn an_exhausted_step_budget_is_too_many_steps_with_the_samples_so_far() {
             budget,
             "{name}"
         );
-        if FIXED.contains(&name) {
+        if !method.is_adaptive() {
             assert!((t - 0.25).abs() < 1e-15, "{name}: t = {t}");
         }
         assert_eq!(kept, &times[..kept.len()], "{name}");
@@ -522,7 +487,7 @@ fn an_exhausted_step_budget_is_too_many_steps_with_the_samples_so_far() {
             "{name}: kept {kept:?}, t = {t}"
         );
         assert!(!kept.is_empty(), "{name}");
-        let allowed = match order {
+        let allowed = match method.order() {
             1 => 5e-3,
             2 => 1e-5,
             _ => 1e-6,

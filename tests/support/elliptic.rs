@@ -2,7 +2,7 @@
 //! exact pendulum: the arithmetic–geometric mean and the descending Landen
 //! transformation (Abramowitz & Stegun 16.4, 17.6), about 20 lines, good to
 //! ~1e-14 even a millionth from the separatrix (checked against 30-digit
-//! mpmath values in `extremes_separatrix.rs`).
+//! mpmath values in `tests/extremes/separatrix.rs`).
 //!
 //! Written here rather than taken from a crate: the maintained Rust crates
 //! for elliptic integrals do not provide the amplitude `am(u | m)` that a
@@ -10,7 +10,6 @@
 //! whose complement `1 − m` loses the digits that matter near `m = 1`. Here
 //! the complementary modulus `k' = √(1 − m)` is an input, computed by the
 //! caller without cancellation.
-#![allow(dead_code)]
 
 use std::f64::consts::PI;
 

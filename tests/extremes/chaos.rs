@@ -7,85 +7,20 @@
 //! quantities are left to check. In between, how long a run stays within a
 //! given distance of the truth (its agreement horizon) grows only
 //! logarithmically with the tolerance: `ln(100)/λ` per 100× tighter.
-//! Figures: `cargo test --release --test extremes_chaos -- --nocapture`.
+//! Figures: `cargo test --release --test extremes -- chaos:: --nocapture`.
 
-use lagrange::models::DoublePendulum;
+use crate::support::fit::slope;
+use crate::support::reference::Reference;
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
-use serde_json::Value;
-
-struct RefSample {
-    t: f64,
-    q: Vector2<f64>,
-    qdot: Vector2<f64>,
-    energy: f64,
-    growth: f64,
-}
-
-struct Reference {
-    model: DoublePendulum,
-    q0: Vector2<f64>,
-    qdot0: Vector2<f64>,
-    energy0: f64,
-    samples: Vec<RefSample>,
-}
-
-fn num(v: &Value) -> f64 {
-    match v {
-        Value::String(s) => s.parse().unwrap(),
-        v => v.as_f64().unwrap(),
-    }
-}
-
-fn vec2(v: &Value) -> Vector2<f64> {
-    Vector2::new(num(&v[0]), num(&v[1]))
-}
-
-/// The reference, read as `tests/reference_trajectories.rs` does.
-/// `perturbation_growth` is `max |δy(t)| / |δy(0)|` for a 1e-20 kick of
-/// every initial coordinate: how much the flow amplifies an error made at
-/// the start.
-fn reference() -> Reference {
-    let path = format!(
-        "{}/tests/data/double_pendulum.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let json: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    let growth = &json["float64_check"]["perturbation_growth"];
-    let samples = json["samples"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .enumerate()
-        .map(|(k, s)| RefSample {
-            t: num(&s["t"]),
-            q: vec2(&s["q"]),
-            qdot: vec2(&s["dq"]),
-            energy: num(&s["energy"]),
-            growth: num(&growth[k]),
-        })
-        .collect();
-    let p = |k: &str| num(&json["parameters_exact"][k]);
-    Reference {
-        model: DoublePendulum::new(p("m1"), p("m2"), p("l1"), p("l2"), p("g")),
-        q0: vec2(&json["q0"]),
-        qdot0: vec2(&json["dq0"]),
-        energy0: num(&json["energy0"]),
-        samples,
-    }
-}
 
 /// The largest Lyapunov exponent, as the least-squares slope of
 /// `ln(growth)` against `t` over the reference's samples (through the
 /// origin would force growth 1 at t = 0; a free intercept absorbs the
 /// transient before perturbations align with the unstable direction).
 fn lyapunov_exponent(r: &Reference) -> f64 {
-    let (x, y): (Vec<f64>, Vec<f64>) = r.samples.iter().map(|s| (s.t, s.growth.ln())).unzip();
-    let n = x.len() as f64;
-    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
-    let sxy: f64 = x.iter().zip(&y).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
-    sxy / sxx
+    let (t, growth): (Vec<f64>, Vec<f64>) = r.samples.iter().map(|s| (s.t, s.growth.ln())).unzip();
+    slope(&t, &growth)
 }
 
 type Run = Trajectory<f64, 2>;
@@ -123,7 +58,7 @@ fn dopri5(tol: f64) -> Dopri5<f64> {
 
 fn solve<I: Integrator<f64>>(r: &Reference, method: &I, times: &[f64]) -> Run {
     method
-        .integrate(&r.model, 0.0, r.q0, r.qdot0, times)
+        .integrate(&r.double_pendulum_model(), 0.0, r.q0, r.qdot0, times)
         .unwrap()
 }
 
@@ -150,7 +85,7 @@ fn scale(s: &State) -> f64 {
 /// control makes local errors of about `tol · scale`; the flow amplifies
 /// them by at most the reference's `perturbation_growth`, so the state
 /// error is within `100 · tol · growth · scale` (the factor 100 as in
-/// `tests/reference_trajectories.rs`: ten times the ≈ 9× that error-per-step
+/// `tests/trajectories/reference_trajectories.rs`: ten times the ≈ 9× that error-per-step
 /// control measures on a smooth problem). A sample is checked state by state
 /// only where that bound is below [`AGREEMENT`]: beyond it the bound says
 /// no more than chaos does (at t = 10, growth 1.1e9, it is ≈ 0.1).
@@ -160,9 +95,10 @@ fn scale(s: &State) -> f64 {
 /// [`energy_bound`]).
 #[test]
 fn tight_dop853_follows_the_reference_while_chaos_allows_and_keeps_energy_after() {
-    let r = reference();
+    let r = Reference::double_pendulum();
     let times: Vec<f64> = r.samples.iter().map(|s| s.t).collect();
     let run = solve(&r, &dop853(TRUTH_TOL), &times);
+    let model = r.double_pendulum_model::<f64>();
     let lambda = lyapunov_exponent(&r);
     let gradient = energy_gradient_bound(&r);
     println!(
@@ -180,7 +116,7 @@ fn tight_dop853_follows_the_reference_while_chaos_allows_and_keeps_energy_after(
         };
         let error = distance(&got, &want);
         let bound = 100.0 * TRUTH_TOL * s.growth * scale(&want);
-        let energy_error = (r.model.energy(got.t, &got.q, &got.qdot) - s.energy).abs();
+        let energy_error = (model.energy(got.t, &got.q, &got.qdot) - s.energy).abs();
         let e_bound = energy_bound(TRUTH_TOL, gradient);
         let checked = bound < AGREEMENT;
         println!(
@@ -218,7 +154,7 @@ fn tight_dop853_follows_the_reference_while_chaos_allows_and_keeps_energy_after(
 /// dotted with `∇E`, with no amplification by the flow, chaotic or not.
 /// Their sum is what the global error of a non-expanding flow adds up to,
 /// and error-per-step control keeps that within `C tol · scale` with
-/// `C = 100` (`tests/reference_trajectories.rs`: ten times the ≈ 9×
+/// `C = 100` (`tests/trajectories/reference_trajectories.rs`: ten times the ≈ 9×
 /// measured on smooth problems). Each component counts with its weight
 /// `|∂E/∂yᵢ|` (measured along the motion, [`energy_gradient_bound`]) and
 /// scale `1 + |y| ≤ 10` here: `100 · tol · 10 · |∇E|₁`. So the energy holds
@@ -233,7 +169,8 @@ fn energy_bound(tol: f64, gradient: f64) -> f64 {
 fn energy_gradient_bound(r: &Reference) -> f64 {
     let run = solve(r, &dop853(1e-10), &dense_times());
     let d = 1e-6;
-    let e = |q: Vector2<f64>, v: Vector2<f64>| r.model.energy(0.0, &q, &v);
+    let model = r.double_pendulum_model::<f64>();
+    let e = |q: Vector2<f64>, v: Vector2<f64>| model.energy(0.0, &q, &v);
     run.iter()
         .map(|s| {
             (0..2)
@@ -292,6 +229,7 @@ struct Rung {
 }
 
 fn ladder<I: Integrator<f64>>(r: &Reference, truth: &Truth, make: impl Fn(f64) -> I) -> Vec<Rung> {
+    let model = r.double_pendulum_model::<f64>();
     let ten = (10.0 / DT).round() as usize - 1;
     LADDER
         .iter()
@@ -306,7 +244,7 @@ fn ladder<I: Integrator<f64>>(r: &Reference, truth: &Truth, make: impl Fn(f64) -
                 gap,
                 steps: run.stats().steps_accepted,
                 state_error_10: distance(&at_10, &truth.run.get(ten).unwrap()),
-                energy_error_10: (r.model.energy(at_10.t, &at_10.q, &at_10.qdot) - r.energy0).abs(),
+                energy_error_10: (model.energy(at_10.t, &at_10.q, &at_10.qdot) - r.energy0).abs(),
             }
         })
         .collect()
@@ -372,14 +310,14 @@ fn assert_horizon_grows(name: &str, rungs: &[Rung], lambda: f64) {
 
 #[test]
 fn dop853_agreement_horizon_grows_by_ln100_over_lambda_per_100x_tolerance() {
-    let r = reference();
+    let r = Reference::double_pendulum();
     let rungs = ladder(&r, &truth(&r), dop853);
     assert_horizon_grows("Dop853", &rungs, lyapunov_exponent(&r));
 }
 
 #[test]
 fn dopri5_agreement_horizon_grows_by_ln100_over_lambda_per_100x_tolerance() {
-    let r = reference();
+    let r = Reference::double_pendulum();
     let rungs = ladder(&r, &truth(&r), dopri5);
     assert_horizon_grows("Dopri5", &rungs, lyapunov_exponent(&r));
 }
@@ -392,7 +330,7 @@ fn dopri5_agreement_horizon_grows_by_ln100_over_lambda_per_100x_tolerance() {
 /// Printed in units of `tol · |E|`.
 #[test]
 fn energy_holds_to_the_tolerance_at_t10_even_past_the_agreement_horizon() {
-    let r = reference();
+    let r = Reference::double_pendulum();
     let truth = truth(&r);
     let gradient = energy_gradient_bound(&r);
     let methods: [(&str, Vec<Rung>); 2] = [

@@ -24,10 +24,9 @@
 //! `SingularMassMatrix` error is the answer.
 //!
 //! Every test prints the figures quoted in STABILITY.md; run with
-//! `cargo test --release --test extremes_singularity -- --nocapture`.
+//! `cargo test --release --test extremes -- singularity:: --nocapture`.
 
-mod elliptic;
-
+use crate::support::elliptic;
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
 use lagrange::IntegrationResult;

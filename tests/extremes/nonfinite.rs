@@ -7,9 +7,10 @@
 //! method can resolve) and in which state, and keeps every sample before.
 //! For every integrator.
 //!
-//! Every test prints its figures; `cargo test --release --test
-//! extremes_nonfinite -- --nocapture --test-threads=1` shows them in order.
+//! Every test prints its figures; `cargo test --release --test extremes --
+//! nonfinite:: --nocapture --test-threads=1` shows them in order.
 
+use lagrange::models::Method;
 use lagrange::nalgebra::Vector1;
 use lagrange::prelude::*;
 use lagrange::{IntegrationResult, InvalidInput, NonFiniteValue, Stats};
@@ -29,42 +30,18 @@ lagrangian! {
     }
 }
 
-/// Every method, by name.
-const METHODS: [&str; 10] = [
-    "ExplicitEuler",
-    "SymplecticEuler",
-    "Rk4",
-    "ImplicitMidpoint",
-    "GaussLegendre2",
-    "GaussLegendre3",
-    "Variational",
-    "Dopri5",
-    "Dop853",
-    "Radau5",
-];
-
-fn is_adaptive(name: &str) -> bool {
-    matches!(name, "Dopri5" | "Dop853" | "Radau5")
-}
-
 /// The fixed step, and the adaptive tolerances (the defaults).
 const H: f64 = 0.01;
 
-fn run(name: &str, model: &RunsOut, x0: f64, v0: f64, times: &[f64]) -> IntegrationResult<f64, 1> {
+fn run(
+    method: Method,
+    model: &RunsOut,
+    x0: f64,
+    v0: f64,
+    times: &[f64],
+) -> IntegrationResult<f64, 1> {
     let (q0, qdot0) = (Vector1::new(x0), Vector1::new(v0));
-    match name {
-        "ExplicitEuler" => ExplicitEuler::new(H).integrate(model, 0.0, q0, qdot0, times),
-        "SymplecticEuler" => SymplecticEuler::new(H).integrate(model, 0.0, q0, qdot0, times),
-        "Rk4" => Rk4::new(H).integrate(model, 0.0, q0, qdot0, times),
-        "ImplicitMidpoint" => ImplicitMidpoint::new(H).integrate(model, 0.0, q0, qdot0, times),
-        "GaussLegendre2" => GaussLegendre::two_stage(H).integrate(model, 0.0, q0, qdot0, times),
-        "GaussLegendre3" => GaussLegendre::three_stage(H).integrate(model, 0.0, q0, qdot0, times),
-        "Variational" => Variational::new(H).integrate(model, 0.0, q0, qdot0, times),
-        "Dopri5" => Dopri5::new().integrate(model, 0.0, q0, qdot0, times),
-        "Dop853" => Dop853::new().integrate(model, 0.0, q0, qdot0, times),
-        "Radau5" => Radau5::new().integrate(model, 0.0, q0, qdot0, times),
-        _ => unreachable!("{name}"),
-    }
+    method.with_step(H).integrate(model, 0.0, q0, qdot0, times)
 }
 
 /// Every 1/2 up to 5.
@@ -84,7 +61,8 @@ fn non_finite_initial_state_or_parameters_are_refused_before_any_work() {
         RunsOut::new(1.0, f64::INFINITY, 10.0),
         RunsOut::new(1.0, 0.0, f64::NEG_INFINITY),
     ];
-    for name in METHODS {
+    for method in Method::ALL {
+        let name = &format!("{method:?}");
         let mut refused = 0;
         let mut check = |run: IntegrationResult<f64, 1>,
                          expected: &dyn Fn(&InvalidInput<f64>) -> bool| {
@@ -103,20 +81,20 @@ fn non_finite_initial_state_or_parameters_are_refused_before_any_work() {
         };
         for x0 in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
             check(
-                run(name, &good, x0, 0.0, &samples()),
+                run(method, &good, x0, 0.0, &samples()),
                 &|e| matches!(e, InvalidInput::NonFiniteInitialPosition { coordinate: "x", value } if value.to_bits() == x0.to_bits()),
             );
             check(
-                run(name, &good, 1.0, x0, &samples()),
+                run(method, &good, 1.0, x0, &samples()),
                 &|e| matches!(e, InvalidInput::NonFiniteInitialVelocity { coordinate: "x", value } if value.to_bits() == x0.to_bits()),
             );
         }
         for model in &bad_parameters {
-            check(run(name, model, 1.0, 0.0, &samples()), &|e| {
+            check(run(method, model, 1.0, 0.0, &samples()), &|e| {
                 matches!(e, InvalidInput::NonFiniteParameters)
             });
         }
-        check(run(name, &good, 1.0, 0.0, &[1.0, f64::NAN]), &|e| {
+        check(run(method, &good, 1.0, 0.0, &[1.0, f64::NAN]), &|e| {
             matches!(e, InvalidInput::NonFiniteSampleTime { index: 1, .. })
         });
         println!("nonfinite | {name} | {refused} non-finite inputs refused as InvalidInput, 0 evaluations");
@@ -128,16 +106,16 @@ fn non_finite_initial_state_or_parameters_are_refused_before_any_work() {
 /// the step start (explicit Euler and symplectic Euler only there; the
 /// Gauss methods also take their Jacobian there), the stage nodes, or the
 /// midpoint alone (the variational integrator).
-fn evaluation_nodes(name: &str) -> Vec<f64> {
+fn evaluation_nodes(method: Method) -> Vec<f64> {
     let (r3, r15) = (3f64.sqrt() / 6.0, 15f64.sqrt() / 10.0);
-    match name {
-        "ExplicitEuler" | "SymplecticEuler" => vec![0.0],
-        "Rk4" => vec![0.0, 0.5, 1.0],
-        "ImplicitMidpoint" => vec![0.0, 0.5],
-        "GaussLegendre2" => vec![0.0, 0.5 - r3, 0.5 + r3],
-        "GaussLegendre3" => vec![0.0, 0.5 - r15, 0.5, 0.5 + r15],
-        "Variational" => vec![0.5],
-        _ => unreachable!("{name}"),
+    match method {
+        Method::ExplicitEuler | Method::SymplecticEuler => vec![0.0],
+        Method::Rk4 => vec![0.0, 0.5, 1.0],
+        Method::ImplicitMidpoint => vec![0.0, 0.5],
+        Method::GaussLegendre2 => vec![0.0, 0.5 - r3, 0.5 + r3],
+        Method::GaussLegendre3 => vec![0.0, 0.5 - r15, 0.5, 0.5 + r15],
+        Method::Variational => vec![0.5],
+        Method::Dopri5 | Method::Dop853 | Method::Radau5 => unreachable!("{method:?} is adaptive"),
     }
 }
 
@@ -176,8 +154,9 @@ fn a_force_that_turns_nan_at_t_star_stops_the_run_there() {
     let model = RunsOut::new(1.0, 0.0, t_star);
     let times = samples();
     let before = times.iter().filter(|&&t| t < t_star).count();
-    for name in METHODS {
-        let failure = run(name, &model, 1.0, 0.0, &times).expect_err(name);
+    for method in Method::ALL {
+        let name = &format!("{method:?}");
+        let failure = run(method, &model, 1.0, 0.0, &times).expect_err(name);
         let IntegrationError::NonFiniteState { t, q, qdot, value } = failure.error else {
             panic!("{name}: expected NonFiniteState, got {}", failure.error);
         };
@@ -189,24 +168,24 @@ fn a_force_that_turns_nan_at_t_star_stops_the_run_there() {
             failure.trajectory.len(),
             stats.rhs_evals
         );
-        let expected = if name == "Variational" {
+        let expected = if method == Method::Variational {
             NonFiniteValue::NonconservativeForces
         } else {
             NonFiniteValue::Forcing
         };
         assert_eq!(value, expected, "{name}");
         assert!(t > t_star, "{name}: t = {t}");
-        if is_adaptive(name) {
+        if method.is_adaptive() {
             assert!(t - t_star <= 1e-12 * t_star, "{name}: t = {t}");
         } else {
             assert!(t - t_star <= H, "{name}: t = {t}");
-            let first = first_evaluation_past(evaluation_nodes(name), t_star);
+            let first = first_evaluation_past(evaluation_nodes(method), t_star);
             assert!(
                 (t - first).abs() < 1e-12,
                 "{name}: t = {t}, expected {first}"
             );
         }
-        let first_order = matches!(name, "ExplicitEuler" | "SymplecticEuler");
+        let first_order = method.order() == 1;
         let allowed = if first_order { 0.05 } else { 1e-3 };
         assert!(error <= allowed, "{name}: state error {error:e}");
         assert_eq!(failure.trajectory.times(), &times[..before], "{name}");

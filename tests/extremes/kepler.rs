@@ -23,41 +23,19 @@
 //! orbit in polar coordinates, far below its `O(h²)` energy error.
 //!
 //! The figures (for STABILITY.md):
-//! `cargo test --release --test extremes_kepler -- --nocapture` (a few
+//! `cargo test --release --test extremes -- kepler:: --nocapture` (a few
 //! seconds). The full 10⁴-period runs are ignored in CI (about two minutes
 //! on two cores):
-//! `cargo test --release --test extremes_kepler -- --ignored --nocapture`.
+//! `cargo test --release --test extremes -- kepler:: --ignored --nocapture`.
 
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 use std::time::Instant;
 
+use crate::support::fit::log_slope;
+use lagrange::models::{Kepler, Method, PolarKepler};
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
-use lagrange::IntegrationResult;
-
-lagrangian! {
-    /// A unit mass around a unit central mass (μ = 1), Cartesian: constant
-    /// M, separable Hamiltonian.
-    #[lagrange(jacobians)]
-    pub struct CartesianKepler {
-        coordinates: x, y;
-        parameters: mu;
-        kinetic: (dot(x)^2 + dot(y)^2)/2;
-        potential: -mu/sqrt(x^2 + y^2);
-    }
-}
-
-lagrangian! {
-    /// The same orbit in polar coordinates: M(q) = diag(1, r²).
-    #[lagrange(jacobians)]
-    pub struct PolarKepler {
-        coordinates: r, phi;
-        parameters: mu;
-        kinetic: (dot(r)^2 + r^2*dot(phi)^2)/2;
-        potential: -mu/r;
-    }
-}
 
 /// The period of every orbit here: semi-major axis 1, μ = 1.
 const PERIOD: f64 = 2.0 * PI;
@@ -65,61 +43,21 @@ const EPS: f64 = f64::EPSILON;
 
 type V2 = Vector2<f64>;
 
-/// Start at pericentre, `r = 1 − e`, with speed `√((1 + e)/(1 − e))`.
+/// Start at pericentre of the orbit of eccentricity `e`.
 fn cartesian_start(e: f64) -> (V2, V2) {
-    let speed = ((1.0 + e) / (1.0 - e)).sqrt();
-    (V2::new(1.0 - e, 0.0), V2::new(0.0, speed))
+    Kepler::new(1.0).pericentre(e)
 }
 
 fn polar_start(e: f64) -> (V2, V2) {
-    let speed = ((1.0 + e) / (1.0 - e)).sqrt();
-    (V2::new(1.0 - e, 0.0), V2::new(0.0, speed / (1.0 - e)))
+    PolarKepler::new(1.0).pericentre(e)
 }
 
 fn cartesian_angular_momentum(q: &V2, v: &V2) -> f64 {
-    q[0] * v[1] - q[1] * v[0]
+    Kepler::angular_momentum(q, v)
 }
 
 fn polar_angular_momentum(q: &V2, v: &V2) -> f64 {
-    q[0] * q[0] * v[1]
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Method {
-    ExplicitEuler,
-    SymplecticEuler,
-    Rk4,
-    ImplicitMidpoint,
-    GaussLegendre2,
-    GaussLegendre3,
-    Variational,
-}
-
-impl Method {
-    fn integrate<L: Lagrangian<2, Scalar = f64>>(
-        self,
-        h: f64,
-        model: &L,
-        t0: f64,
-        (q0, v0): (V2, V2),
-        times: &[f64],
-    ) -> IntegrationResult<f64, 2> {
-        match self {
-            Method::ExplicitEuler => ExplicitEuler::new(h).integrate(model, t0, q0, v0, times),
-            Method::SymplecticEuler => SymplecticEuler::new(h).integrate(model, t0, q0, v0, times),
-            Method::Rk4 => Rk4::new(h).integrate(model, t0, q0, v0, times),
-            Method::ImplicitMidpoint => {
-                ImplicitMidpoint::new(h).integrate(model, t0, q0, v0, times)
-            }
-            Method::GaussLegendre2 => {
-                GaussLegendre::two_stage(h).integrate(model, t0, q0, v0, times)
-            }
-            Method::GaussLegendre3 => {
-                GaussLegendre::three_stage(h).integrate(model, t0, q0, v0, times)
-            }
-            Method::Variational => Variational::new(h).integrate(model, t0, q0, v0, times),
-        }
-    }
+    PolarKepler::angular_momentum(q, v)
 }
 
 /// One long run: the worst relative errors of each completed orbit.
@@ -169,13 +107,17 @@ fn fly<L: Lagrangian<2, Scalar = f64>>(
         for (j, t) in times.iter_mut().enumerate() {
             *t = (first + j + 1) as f64 * h;
         }
-        let trajectory = match method.integrate(h, model, first as f64 * h, state, &times) {
-            Ok(trajectory) => trajectory,
-            Err(failure) => {
-                flight.failure = Some(format!("{} in orbit {}", failure.error, orbit + 1));
-                break;
-            }
-        };
+        let trajectory =
+            match method
+                .with_step(h)
+                .integrate(model, first as f64 * h, state.0, state.1, &times)
+            {
+                Ok(trajectory) => trajectory,
+                Err(failure) => {
+                    flight.failure = Some(format!("{} in orbit {}", failure.error, orbit + 1));
+                    break;
+                }
+            };
         let (mut de, mut dl) = (0.0f64, 0.0f64);
         for s in &trajectory {
             de = de.max(((model.energy(s.t, &s.q, &s.qdot) - e0) / e0).abs());
@@ -209,13 +151,9 @@ fn windows(per_orbit: &[f64]) -> Vec<(f64, f64)> {
 /// Errors below ε/2, the resolution of a relative difference of order-one
 /// numbers, count as ε/2.
 fn growth_exponent(windows: &[(f64, f64)]) -> f64 {
-    let x: Vec<f64> = windows.iter().map(|w| w.0.ln()).collect();
-    let y: Vec<f64> = windows.iter().map(|w| w.1.max(EPS / 2.0).ln()).collect();
-    let n = x.len() as f64;
-    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
-    let sxy: f64 = x.iter().zip(&y).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
-    sxy / sxx
+    let (ends, worst): (Vec<f64>, Vec<f64>) =
+        windows.iter().map(|w| (w.0, w.1.max(EPS / 2.0))).unzip();
+    log_slope(&ends, &worst)
 }
 
 /// The growth exponent, where there are enough windows to fit one.
@@ -368,7 +306,7 @@ fn assert_momentum_kept(flight: &Flight) {
 /// passage ≈ 0.2 time units, three steps): coarse, but every method here is
 /// stable at it and `Variational` still converges (it fails to at T/40).
 fn cartesian_e06(method: Method, orbits: usize) -> Flight {
-    let model = CartesianKepler::new(1.0);
+    let model = Kepler::new(1.0);
     let label = "cartesian e = 0.6";
     let start = cartesian_start(0.6);
     fly(
@@ -488,7 +426,7 @@ fn polar_e06_flights(gauss_orbits: usize) -> Vec<Flight> {
 /// spirals outwards), at least 10× its first-orbit error within 64 orbits.
 #[test]
 fn explicit_euler_spirals_out_of_the_e06_kepler_orbit() {
-    let model = CartesianKepler::new(1.0);
+    let model = Kepler::new(1.0);
     let start = cartesian_start(0.6);
     let coarse = fly(
         "cartesian e = 0.6",
@@ -528,7 +466,7 @@ fn explicit_euler_spirals_out_of_the_e06_kepler_orbit() {
 /// 2 6e-5, 3 3e-7), RK4 drifts linearly (and over 10⁴ orbits loses the
 /// orbit: 4 |E₀| by orbit 4096), and the Gauss methods keep L to round-off.
 fn e09_flights(orbits: usize) {
-    let model = CartesianKepler::new(1.0);
+    let model = Kepler::new(1.0);
     let start = cartesian_start(0.9);
     let label = "cartesian e = 0.9";
     let run = |method| {

@@ -1,7 +1,5 @@
-//! What the textbook-model tests share: seeded random states, closed forms
+//! What the model tests share: seeded random states, closed forms
 //! written as lists of terms, and a comparison scaled to those terms.
-#![allow(dead_code)]
-
 use lagrange::nalgebra::{SMatrix, SVector};
 use lagrange::Lagrangian;
 use rand::rngs::StdRng;

@@ -1,6 +1,6 @@
 //! Numerical stability at the extremes: a pendulum a millionth of its
 //! energy range from the separatrix, against the exact solution in Jacobi
-//! elliptic functions (`tests/elliptic/mod.rs`).
+//! elliptic functions (`tests/support/elliptic.rs`).
 //!
 //! `θ̈ = −ω₀² sin θ` (here `ω₀ = 1`) started at the bottom with
 //! `θ̇ = 2 ω₀ κ`: the energy above the bottom is `2 κ²` (units `m g l`),
@@ -20,25 +20,13 @@
 //! not stall in the slow creep either.
 //!
 //! Every test prints the figures quoted in STABILITY.md; run with
-//! `cargo test --release --test extremes_separatrix -- --nocapture`.
+//! `cargo test --release --test extremes -- separatrix:: --nocapture`.
 
-mod elliptic;
-
-use elliptic::{complete_k, jacobi, Swing};
+use crate::support::elliptic::{complete_k, jacobi, Swing};
+use lagrange::models::Pendulum;
 use lagrange::nalgebra::Vector1;
 use lagrange::prelude::*;
 use lagrange::IntegrationResult;
-
-lagrangian! {
-    /// The simple pendulum, `θ` from the downward vertical.
-    #[lagrange(jacobians)]
-    pub struct Pendulum {
-        coordinates: theta;
-        parameters: m, l, g;
-        kinetic: m*l^2/2*dot(theta)^2;
-        potential: -m*g*l*cos(theta);
-    }
-}
 
 /// `g = l = 1`: `ω₀ = 1`, energies in units of `m g l`.
 fn pendulum() -> Pendulum {

@@ -14,37 +14,13 @@
 //! under Radau5.
 //!
 //! Every test prints the figures quoted in STABILITY.md; run with
-//! `cargo test --release --test extremes_f32 -- --nocapture`.
+//! `cargo test --release --test extremes -- f32:: --nocapture`.
 
-use lagrange::models::DoublePendulum;
-use lagrange::nalgebra::{self, RealField, SMatrix, SVector, Vector2, Vector3};
+use crate::support::reference::Reference;
+use lagrange::models::{DoublePendulum, Kepler, StiffChain, WithoutJacobians};
+use lagrange::nalgebra::{self, RealField, SVector, Vector2};
 use lagrange::prelude::*;
 use lagrange::{IntegrationResult, InvalidInput};
-use serde_json::Value;
-
-lagrangian! {
-    /// A unit mass around a unit central mass, Cartesian: `M = I`, so the
-    /// Gauss–Legendre methods are symplectic on it.
-    pub struct Kepler {
-        coordinates: x, y;
-        parameters: mu;
-        kinetic: (dot(x)^2 + dot(y)^2)/2;
-        potential: -mu/sqrt(x^2 + y^2);
-    }
-}
-
-lagrangian! {
-    /// Three unit masses between walls; the middle spring `stiff` times
-    /// harder than the others, and damped (the work–precision problem).
-    #[lagrange(jacobians)]
-    pub struct StiffChain {
-        coordinates: x1, x2, x3;
-        parameters: k, stiff, c;
-        kinetic: (dot(x1)^2 + dot(x2)^2 + dot(x3)^2)/2;
-        potential: k/2*x1^2 + stiff*k/2*(x2 - x1)^2 + k/2*(x3 - x2)^2 + k/2*x3^2;
-        dissipation: c/2*(dot(x2) - dot(x1))^2;
-    }
-}
 
 const EPS32: f64 = f32::EPSILON as f64;
 
@@ -72,12 +48,9 @@ fn distance<S: RealField + Copy, const N: usize>(
 // The smooth double pendulum of the integrator suite, to t = 1.
 // ---------------------------------------------------------------------------
 
+/// The regular double pendulum of the integrator suite.
 fn smooth<S: RealField + Copy>() -> (DoublePendulum<S>, Vector2<S>, Vector2<S>) {
-    (
-        DoublePendulum::new(c(1.0), c(0.7), c(1.0), c(0.8), c(9.81)),
-        Vector2::new(c(0.6), c(-0.4)),
-        Vector2::new(c(0.0), c(0.5)),
-    )
+    DoublePendulum::regular()
 }
 
 /// Dop853 at 1e-13 in `f64`: ~1e-12 from the truth, far below any `f32`
@@ -208,45 +181,6 @@ fn rk4_in_f32_has_an_error_floor_that_rises_with_the_step_count() {
 // The chaotic double pendulum against tests/data/double_pendulum.json.
 // ---------------------------------------------------------------------------
 
-fn num(v: &Value) -> f64 {
-    match v {
-        Value::String(s) => s.parse().unwrap(),
-        v => v.as_f64().unwrap(),
-    }
-}
-
-struct ChaoticReference {
-    q0: Vector2<f64>,
-    qdot0: Vector2<f64>,
-    /// `(t, q, q̇, perturbation growth)` from the reference.
-    samples: Vec<(f64, Vector2<f64>, Vector2<f64>, f64)>,
-}
-
-fn chaotic_reference() -> ChaoticReference {
-    let path = format!(
-        "{}/tests/data/double_pendulum.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let json: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    let v2 = |v: &Value| Vector2::new(num(&v[0]), num(&v[1]));
-    let growth = json["float64_check"]["perturbation_growth"]
-        .as_array()
-        .unwrap()
-        .clone();
-    let samples = json["samples"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .zip(growth)
-        .map(|(s, g)| (num(&s["t"]), v2(&s["q"]), v2(&s["dq"]), num(&g)))
-        .collect();
-    ChaoticReference {
-        q0: v2(&json["q0"]),
-        qdot0: v2(&json["dq0"]),
-        samples,
-    }
-}
-
 /// The chaotic double pendulum (unit masses and rods, `g = 9.81`; a
 /// perturbation of the start grows 3, 15, 13, 1930 and 1.1e9 times by
 /// `t = 0.5, 1, 2, 5, 10`), RK4 at `h = 1e-4` in both precisions against
@@ -259,8 +193,8 @@ fn chaotic_reference() -> ChaoticReference {
 /// `t ≈ 2` (error 3e-5) and useless past `t ≈ 5`.
 #[test]
 fn chaotic_double_pendulum_in_f32_has_no_digit_left_by_t_10() {
-    let reference = chaotic_reference();
-    let times: Vec<f64> = reference.samples.iter().map(|s| s.0).collect();
+    let reference = Reference::double_pendulum();
+    let times = reference.times();
     let h = 1e-4;
     let model = DoublePendulum::new(1.0, 1.0, 1.0, 1.0, 9.81);
     let run64 = Rk4::new(h)
@@ -278,7 +212,8 @@ fn chaotic_double_pendulum_in_f32_has_no_digit_left_by_t_10() {
         )
         .unwrap();
     let mut rows = Vec::new();
-    for (k, &(t, q, qdot, growth)) in reference.samples.iter().enumerate() {
+    for (k, s) in reference.samples.iter().enumerate() {
+        let (t, q, qdot, growth) = (s.t, s.q, s.qdot, s.growth);
         let (a, b) = (run64.get(k).unwrap(), run32.get(k).unwrap());
         let e64 = distance(&a.q, &a.qdot, &(q, qdot));
         let e32 = distance(&b.q, &b.qdot, &(q, qdot));
@@ -309,9 +244,9 @@ fn chaotic_double_pendulum_in_f32_has_no_digit_left_by_t_10() {
 /// ends at errors ~4e-5 here, where `f64` goes on to ~1e-13.
 #[test]
 fn adaptive_f32_matches_f64_down_to_its_smallest_tolerance() {
-    let reference = chaotic_reference();
-    let samples: Vec<_> = reference.samples.iter().filter(|s| s.0 <= 2.0).collect();
-    let times: Vec<f64> = samples.iter().map(|s| s.0).collect();
+    let reference = Reference::double_pendulum();
+    let samples: Vec<_> = reference.samples.iter().filter(|s| s.t <= 2.0).collect();
+    let times: Vec<f64> = samples.iter().map(|s| s.t).collect();
     let times32: Vec<f32> = times.iter().map(|&t| t as f32).collect();
     let model = DoublePendulum::new(1.0, 1.0, 1.0, 1.0, 9.81);
     let model32 = DoublePendulum::<f32>::new(1.0, 1.0, 1.0, 1.0, 9.81);
@@ -370,13 +305,13 @@ fn adaptive_f32_matches_f64_down_to_its_smallest_tolerance() {
             let (run64, run32) = (run64.unwrap(), run32.unwrap());
             let steps = run32.stats().steps_accepted as f64;
             let error = |k: usize, precision64: bool| {
-                let (_, q, qdot, _) = samples[k];
+                let (q, qdot) = (samples[k].q, samples[k].qdot);
                 if precision64 {
                     let s = run64.get(k).unwrap();
-                    distance(&s.q, &s.qdot, &(*q, *qdot))
+                    distance(&s.q, &s.qdot, &(q, qdot))
                 } else {
                     let s = run32.get(k).unwrap();
-                    distance(&s.q, &s.qdot, &(*q, *qdot))
+                    distance(&s.q, &s.qdot, &(q, qdot))
                 }
             };
             let (e64, e32) = (worst(&|k| error(k, true)), worst(&|k| error(k, false)));
@@ -384,7 +319,8 @@ fn adaptive_f32_matches_f64_down_to_its_smallest_tolerance() {
                 "chaotic pendulum to t = 2, {name} tol {tol:.1e}: error f64 {e64:.1e}, f32 {e32:.1e} \
                  ({steps} steps)"
             );
-            for (k, &&(t, q, qdot, growth)) in samples.iter().enumerate() {
+            for (k, s) in samples.iter().enumerate() {
+                let (t, q, qdot, growth) = (s.t, s.q, s.qdot, s.growth);
                 let size = q.amax().max(qdot.amax());
                 let bound = (allowance + steps.sqrt() * EPS32) * growth * size;
                 assert!(error(k, false) <= bound, "{name} {tol:e} f32 at t = {t}");
@@ -406,9 +342,11 @@ fn kepler_energy<S: RealField + Copy, I: Integrator<S>>(
 ) -> (f64, f64, usize) {
     let e = 0.6f64;
     let period = 2.0 * std::f64::consts::PI;
-    let model = Kepler::<S>::new(S::one());
-    let q0 = Vector2::new(c(1.0 - e), c(0.0));
-    let v0 = Vector2::new(c(0.0), c(((1.0 + e) / (1.0 - e)).sqrt()));
+    // Without exact Jacobians: Gauss–Legendre differences the acceleration.
+    let model = WithoutJacobians(Kepler::<S>::new(S::one()));
+    // The start in f64, rounded once to S.
+    let (q0, v0) = Kepler::new(1.0).pericentre(e);
+    let (q0, v0) = (q0.map(c), v0.map(c));
     let times: Vec<S> = (1..=orbits * 40)
         .map(|k| c(period * k as f64 / 40.0))
         .collect();
@@ -472,43 +410,6 @@ fn symplectic_energy_conservation_becomes_a_random_walk_in_f32() {
 // The stiff chain under Radau5.
 // ---------------------------------------------------------------------------
 
-/// The chain's exact state at `t` (linear, through the matrix exponential
-/// of the first-order system, ~4e-12 accurate per the README).
-fn stiff_exact(t: f64) -> (Vector3<f64>, Vector3<f64>) {
-    let (k, stiff, damping) = (1.0, 1e6, 20.0);
-    let stiffness = SMatrix::<f64, 3, 3>::new(
-        k + stiff * k,
-        -stiff * k,
-        0.0,
-        -stiff * k,
-        stiff * k + k,
-        -k,
-        0.0,
-        -k,
-        2.0 * k,
-    );
-    let dampers = SMatrix::<f64, 3, 3>::new(
-        damping, -damping, 0.0, -damping, damping, 0.0, 0.0, 0.0, 0.0,
-    );
-    let mut a = SMatrix::<f64, 6, 6>::zeros();
-    a.fixed_view_mut::<3, 3>(0, 3)
-        .copy_from(&SMatrix::<f64, 3, 3>::identity());
-    a.fixed_view_mut::<3, 3>(3, 0).copy_from(&(-stiffness));
-    a.fixed_view_mut::<3, 3>(3, 3).copy_from(&(-dampers));
-    let mut y0 = SVector::<f64, 6>::zeros();
-    y0.fixed_rows_mut::<3>(0).copy_from(&stiff_start().0);
-    let y = (a * t).exp() * y0;
-    (
-        y.fixed_rows::<3>(0).into_owned(),
-        y.fixed_rows::<3>(3).into_owned(),
-    )
-}
-
-/// The stiff spring relaxed, the others not.
-fn stiff_start() -> (Vector3<f64>, Vector3<f64>) {
-    (Vector3::new(0.1, 0.1, -0.05), Vector3::zeros())
-}
-
 /// Radau5 in `f32` on the stiff chain (stiffness ratio 10⁶, 10 s): the
 /// Newton iterations converge in single precision too, and the error stays
 /// within `100 tol^(5/6) · scale` at every tolerance down to `10 ε₃₂`, as in
@@ -518,9 +419,9 @@ fn stiff_start() -> (Vector3<f64>, Vector3<f64>) {
 #[test]
 fn stiff_chain_in_f32_is_solved_by_radau5_at_f32_tolerances() {
     let end = 10.0;
-    let exact = stiff_exact(end);
-    let (q0, v0) = stiff_start();
-    let model = StiffChain::new(1.0, 1e6, 20.0);
+    let model = StiffChain::ratio_1e6();
+    let (q0, v0) = StiffChain::start();
+    let exact = model.exact(end, q0, v0);
     let model32 = StiffChain::<f32>::new(1.0, 1e6, 20.0);
     for tol in [1e-3, 1e-4, 1e-5, 10.0 * EPS32] {
         let tol32 = tol as f32;

@@ -3,9 +3,7 @@
 //! is written the way a student would: Cartesian positions of the masses,
 //! then `T` and `V`; the engine does the rest.
 
-mod common;
-
-use common::*;
+use crate::support::closed_form::*;
 use lagrange::nalgebra::{Vector1, Vector2};
 use lagrange::prelude::*;
 use rand::rngs::StdRng;

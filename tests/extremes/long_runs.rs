@@ -8,16 +8,17 @@
 //! printed inside a measured call.
 //!
 //! The figures (for STABILITY.md):
-//! `cargo test --release --test extremes_long_runs -- --nocapture` (a few
+//! `cargo test --release --test extremes -- long_runs:: --nocapture` (a few
 //! seconds). Every integrator at 10⁶ steps (about twenty seconds) is
 //! ignored in CI:
-//! `cargo test --release --test extremes_long_runs -- --ignored --nocapture`.
+//! `cargo test --release --test extremes -- long_runs:: --ignored --nocapture`.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::f64::consts::PI;
 use std::time::Instant;
 
+use lagrange::models::{Kepler, Method, WithoutJacobians};
 use lagrange::nalgebra::{SVector, Vector2};
 use lagrange::prelude::*;
 use lagrange::IntegrationResult;
@@ -89,29 +90,6 @@ fn measure<R>(run: impl FnOnce() -> R) -> (R, Usage) {
     (result, usage)
 }
 
-lagrangian! {
-    /// A unit mass around a unit central mass, Cartesian, with exact
-    /// Jacobians for the implicit methods.
-    #[lagrange(jacobians)]
-    pub struct Kepler {
-        coordinates: x, y;
-        parameters: mu;
-        kinetic: (dot(x)^2 + dot(y)^2)/2;
-        potential: -mu/sqrt(x^2 + y^2);
-    }
-}
-
-lagrangian! {
-    /// The same without generated Jacobians: the implicit methods take
-    /// theirs by finite differences, another code path.
-    pub struct KeplerFd {
-        coordinates: x, y;
-        parameters: mu;
-        kinetic: (dot(x)^2 + dot(y)^2)/2;
-        potential: -mu/sqrt(x^2 + y^2);
-    }
-}
-
 const PERIOD: f64 = 2.0 * PI;
 
 /// Fixed steps: T/200, so an orbit is 200 steps and 50 orbits are 10⁴.
@@ -120,91 +98,44 @@ const H: f64 = PERIOD / 200.0;
 /// An e = 0.6 orbit from pericentre: the pericentre passages make the
 /// adaptive methods change their step and reject some.
 fn start() -> (Vector2<f64>, Vector2<f64>) {
-    let e: f64 = 0.6;
-    let speed = ((1.0 + e) / (1.0 - e)).sqrt();
-    (Vector2::new(1.0 - e, 0.0), Vector2::new(0.0, speed))
+    Kepler::new(1.0).pericentre(0.6)
 }
 
 const MAX_STEPS: usize = 10_000_000;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Method {
-    ExplicitEuler,
-    SymplecticEuler,
-    Rk4,
-    ImplicitMidpoint,
-    GaussLegendre2,
-    GaussLegendre3,
-    Variational,
-    Dopri5,
-    Dop853,
-    Radau5,
+/// Every method, with the model whose Jacobians it uses: the ones that use
+/// Jacobians twice, exact and by finite differences.
+fn all() -> Vec<(Method, bool)> {
+    Method::ALL
+        .into_iter()
+        .flat_map(|method| {
+            let differenced = method.uses_jacobians().then_some((method, false));
+            std::iter::once((method, true)).chain(differenced)
+        })
+        .collect()
 }
 
-/// Every method, with the model whose Jacobians it uses: the implicit
-/// Runge–Kutta methods twice, exact and by finite differences.
-const ALL: [(Method, bool); 14] = [
-    (Method::ExplicitEuler, true),
-    (Method::SymplecticEuler, true),
-    (Method::Rk4, true),
-    (Method::ImplicitMidpoint, true),
-    (Method::ImplicitMidpoint, false),
-    (Method::GaussLegendre2, true),
-    (Method::GaussLegendre2, false),
-    (Method::GaussLegendre3, true),
-    (Method::GaussLegendre3, false),
-    (Method::Variational, true),
-    (Method::Dopri5, true),
-    (Method::Dop853, true),
-    (Method::Radau5, true),
-    (Method::Radau5, false),
-];
-
-impl Method {
-    /// Tolerances that give the adaptive methods about 200 steps per orbit,
-    /// like the fixed-step ones (DOP853 about 90 even at 1e-13), and a
-    /// budget above the 10⁵ steps they default to.
-    fn integrate<L: Lagrangian<2, Scalar = f64>>(
-        self,
-        model: &L,
-        times: &[f64],
-    ) -> IntegrationResult<f64, 2> {
-        let (q0, v0) = start();
-        match self {
-            Method::ExplicitEuler => ExplicitEuler::new(H).integrate(model, 0.0, q0, v0, times),
-            Method::SymplecticEuler => SymplecticEuler::new(H).integrate(model, 0.0, q0, v0, times),
-            Method::Rk4 => Rk4::new(H).integrate(model, 0.0, q0, v0, times),
-            Method::ImplicitMidpoint => {
-                ImplicitMidpoint::new(H).integrate(model, 0.0, q0, v0, times)
-            }
-            Method::GaussLegendre2 => {
-                GaussLegendre::two_stage(H).integrate(model, 0.0, q0, v0, times)
-            }
-            Method::GaussLegendre3 => {
-                GaussLegendre::three_stage(H).integrate(model, 0.0, q0, v0, times)
-            }
-            Method::Variational => Variational::new(H).integrate(model, 0.0, q0, v0, times),
-            Method::Dopri5 => Dopri5::new()
-                .rtol(1e-10)
-                .atol(1e-10)
-                .max_steps(MAX_STEPS)
-                .integrate(model, 0.0, q0, v0, times),
-            Method::Dop853 => Dop853::new()
-                .rtol(1e-13)
-                .atol(1e-13)
-                .max_steps(MAX_STEPS)
-                .integrate(model, 0.0, q0, v0, times),
-            Method::Radau5 => Radau5::new()
-                .rtol(1e-10)
-                .atol(1e-10)
-                .max_steps(MAX_STEPS)
-                .integrate(model, 0.0, q0, v0, times),
-        }
-    }
-
-    fn is_fixed_step(self) -> bool {
-        !matches!(self, Method::Dopri5 | Method::Dop853 | Method::Radau5)
-    }
+/// Tolerances that give the adaptive methods about 200 steps per orbit,
+/// like the fixed-step ones (DOP853 about 90 even at 1e-13), and a budget
+/// above the 10⁵ steps they default to.
+fn integrate<L: Lagrangian<2, Scalar = f64>>(
+    method: Method,
+    model: &L,
+    times: &[f64],
+) -> IntegrationResult<f64, 2> {
+    let (q0, v0) = start();
+    let tol = if method == Method::Dop853 {
+        1e-13
+    } else {
+        1e-10
+    };
+    let integrator = method.integrator(H, tol);
+    let integrator = if method.is_adaptive() {
+        integrator.max_steps(MAX_STEPS)
+    } else {
+        integrator
+    };
+    integrator.integrate(model, 0.0, q0, v0, times)
 }
 
 /// One measured run over `orbits` periods with `samples` equally spaced
@@ -229,9 +160,9 @@ fn run(method: Method, exact_jacobians: bool, orbits: usize, samples: usize) -> 
         .collect();
     let clock = Instant::now();
     let (trajectory, usage) = if exact_jacobians {
-        measure(|| method.integrate(&Kepler::new(1.0), &times))
+        measure(|| integrate(method, &Kepler::new(1.0), &times))
     } else {
-        measure(|| method.integrate(&KeplerFd::new(1.0), &times))
+        measure(|| integrate(method, &WithoutJacobians(Kepler::new(1.0)), &times))
     };
     let seconds = clock.elapsed().as_secs_f64();
     let trajectory = trajectory.unwrap_or_else(|f| panic!("{method:?}: {}", f.error));
@@ -244,11 +175,7 @@ fn run(method: Method, exact_jacobians: bool, orbits: usize, samples: usize) -> 
 }
 
 fn name(method: Method, exact_jacobians: bool) -> String {
-    let implicit = matches!(
-        method,
-        Method::ImplicitMidpoint | Method::GaussLegendre2 | Method::GaussLegendre3 | Method::Radau5
-    );
-    match (implicit, exact_jacobians) {
+    match (method.uses_jacobians(), exact_jacobians) {
         (true, true) => format!("{method:?} (exact J)"),
         (true, false) => format!("{method:?} (FD J)"),
         _ => format!("{method:?}"),
@@ -285,7 +212,7 @@ fn assert_same_memory_for_more_steps(method: Method, exact: bool, short: usize, 
         a.steps(),
         b.steps()
     );
-    if method.is_fixed_step() {
+    if !method.is_adaptive() {
         assert_eq!(a.steps(), 200 * short, "{label}");
         assert_eq!(b.steps(), 200 * long, "{label}");
     }
@@ -297,7 +224,7 @@ fn assert_same_memory_for_more_steps(method: Method, exact: bool, short: usize, 
 /// half), the same 100 samples: the same allocations, bytes and peak memory.
 #[test]
 fn no_integrator_allocates_per_step() {
-    for (method, exact) in ALL {
+    for (method, exact) in all() {
         assert_same_memory_for_more_steps(method, exact, 50, 500);
     }
 }
@@ -317,7 +244,7 @@ fn a_million_explicit_steps_allocate_no_more_than_ten_thousand() {
 #[test]
 #[ignore = "10⁶ steps of every integrator, about twenty seconds; run with --ignored"]
 fn no_integrator_allocates_per_step_over_a_million_steps() {
-    for (method, exact) in ALL {
+    for (method, exact) in all() {
         assert_same_memory_for_more_steps(method, exact, 50, 5000);
     }
 }
@@ -330,7 +257,7 @@ fn no_integrator_allocates_per_step_over_a_million_steps() {
 #[test]
 fn memory_grows_with_the_requested_samples_only() {
     let per_sample = std::mem::size_of::<f64>() + 2 * std::mem::size_of::<SVector<f64, 2>>();
-    for (method, exact) in ALL {
+    for (method, exact) in all() {
         let (few, many) = (100, 1000);
         let a = run(method, exact, 50, few);
         let b = run(method, exact, 50, many);

@@ -1,0 +1,25 @@
+//! Numerical stability at the extremes: the scenarios of STABILITY.md, one
+//! module per group. Each test's doc comment states the expected behaviour
+//! and why; the figures STABILITY.md quotes are what they print:
+//!
+//! ```sh
+//! cargo test --release --test extremes -- --nocapture            # every group
+//! cargo test --release --test extremes -- kepler:: --nocapture   # one group
+//! cargo test --release --test extremes -- --ignored --nocapture  # the long runs
+//! ```
+
+#[path = "../support/mod.rs"]
+mod support;
+
+mod chaos;
+mod f32;
+mod kepler;
+mod long_runs;
+mod mass_ratio;
+mod nonfinite;
+mod order;
+mod reversibility;
+mod separatrix;
+mod singularity;
+mod steps;
+mod stiff;
