@@ -2,11 +2,10 @@
 //! accuracy against the tolerance, cost against DOPRI5, and the dense
 //! output between steps.
 
-mod models;
-
+use crate::models::{max_difference, max_error, CoupledOscillator};
+use lagrange::models::DoublePendulum;
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;
-use models::{max_difference, max_error, CoupledOscillator, DoublePendulum};
 
 const OMEGA: f64 = 2.0;
 

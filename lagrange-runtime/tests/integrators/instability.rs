@@ -1,12 +1,11 @@
 //! A fixed step beyond the method's stability limit stops with a typed
 //! `Unstable` error, before the state overflows, with the samples before it.
 
-mod models;
-
+use crate::models::{BlowUp, StiffChain};
+use lagrange::models::Oscillator;
 use lagrange_runtime::nalgebra::{Vector1, Vector2};
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::IntegrationResult;
-use models::{BlowUp, DampedOscillator, StiffChain};
 
 /// RK4's stability interval on the imaginary axis is |hω| ≤ 2.83; the stiff
 /// chain's fast mode has ω = √(2·10⁶) ≈ 1414, so h = 0.01 (hω ≈ 14) is far
@@ -155,11 +154,7 @@ fn rough_but_bounded_and_smooth_but_growing_are_no_false_alarms() {
 /// RK4 returned `Ok` with `x ≈ 1e49` at t = 10.
 #[test]
 fn rk4_just_beyond_its_limit_on_a_stiff_damper_stops_too() {
-    let honey = DampedOscillator {
-        m: 1.0,
-        k: 1.0,
-        c: 1000.0,
-    };
+    let honey = Oscillator::new(1.0, 1.0, 1000.0);
     let lambda = (1000.0 + (1000.0f64.powi(2) - 4.0).sqrt()) / 2.0;
     let times: Vec<f64> = (1..=10).map(|k| k as f64).collect();
     let failure = Rk4::new(1.01 * 2.785 / lambda)

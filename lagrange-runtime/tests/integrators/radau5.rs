@@ -3,16 +3,14 @@
 //! Jacobians used when the model has them, and the same typed failures as
 //! the explicit methods.
 
-mod models;
-
+use crate::models::{
+    max_error, BlowUp, CoupledOscillator, ElasticPendulum, ForcingBreaksDown, InertiaVanishes,
+    StiffChain,
+};
 use lagrange_runtime::jacobian::acceleration_jacobians;
 use lagrange_runtime::nalgebra::{SMatrix, SVector, Vector1, Vector2};
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::{InvalidInput, NonFiniteValue, Stats};
-use models::{
-    max_error, BlowUp, CoupledOscillator, ElasticPendulum, ForcingBreaksDown, InertiaVanishes,
-    StiffChain,
-};
 
 const OMEGA: f64 = 2.0;
 

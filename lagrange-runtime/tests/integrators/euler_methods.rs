@@ -2,12 +2,11 @@
 //! on a nonlinear model, and on an oscillator symplectic Euler keeps the
 //! energy where explicit Euler pumps it up.
 
-mod models;
-
+use crate::models::{max_difference, max_error, observed_order, CoupledOscillator};
+use lagrange::models::DoublePendulum;
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::Trajectory;
-use models::{max_difference, max_error, observed_order, CoupledOscillator, DoublePendulum};
 
 const OMEGA: f64 = 2.0;
 

@@ -1,14 +1,12 @@
 //! Radau5 allocates its workspace once per call, never per step: counted
 //! with a global allocator that tallies this thread's allocations.
 
-mod models;
-
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
+use crate::models::ElasticPendulum;
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;
-use models::ElasticPendulum;
 
 struct CountingAllocator;
 

@@ -1,12 +1,11 @@
 //! Models that break, and inputs that are wrong: typed errors with the time
 //! and state, the samples before the failure kept, never a NaN or a hang.
 
-mod models;
-
+use crate::models::{BlowUp, CoupledOscillator, ForcingBreaksDown, InertiaVanishes};
+use lagrange::models::Oscillator;
 use lagrange_runtime::nalgebra::{SVector, Vector1, Vector2};
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::{IntegrationResult, InvalidInput, NonFiniteValue};
-use models::{BlowUp, CoupledOscillator, DampedOscillator, ForcingBreaksDown, InertiaVanishes};
 use std::mem::discriminant;
 
 /// The Dopri5 retry (shrinking h by 5× after a failed stage) closes in on a
@@ -450,11 +449,7 @@ fn dop853_exhausted_step_budget_keeps_the_samples_so_far() {
 /// the sample is still reached in 10 steps, not 9 of 1.1 h.
 #[test]
 fn a_step_that_does_not_advance_time_is_step_size_underflow() {
-    let model = DampedOscillator {
-        m: 1.0,
-        k: 1.0,
-        c: 0.0,
-    };
+    let model = Oscillator::new(1.0, 1.0, 0.0);
     let (q0, qdot0) = (Vector1::new(1.0), Vector1::zeros());
     let (t0, end) = (1e20, 1e20 + 1e5);
     let fixed: [(&str, IntegrationResult<f64, 1>); 3] = [
@@ -483,11 +478,7 @@ fn a_step_that_does_not_advance_time_is_step_size_underflow() {
         assert_eq!(failure.trajectory.stats().steps_accepted, 0, "{name}");
     }
 
-    let free = DampedOscillator {
-        m: 1.0,
-        k: 0.0,
-        c: 0.0,
-    };
+    let free = Oscillator::new(1.0, 0.0, 0.0);
     let run = Rk4::new(1e5)
         .integrate(&free, t0, q0, qdot0, &[1e20 + 1e6])
         .unwrap();
@@ -504,11 +495,7 @@ fn a_step_that_does_not_advance_time_is_step_size_underflow() {
 /// allowed.
 #[test]
 fn a_tiny_motion_with_a_tinier_absolute_tolerance_is_integrated() {
-    let model = DampedOscillator {
-        m: 1.0,
-        k: 1.0,
-        c: 0.0,
-    };
+    let model = Oscillator::new(1.0, 1.0, 0.0);
     let (x0, v0) = (Vector1::new(1e-100), Vector1::zeros());
     let rtol = 1e-8;
     let runs: [(&str, IntegrationResult<f64, 1>); 3] = [

@@ -1,11 +1,9 @@
 //! Accuracy on a problem with an exact solution: a coupled harmonic
 //! oscillator (`M` full, `q̈ = -ω² q`), in `f64` and `f32`.
 
-mod models;
-
+use crate::models::{max_error, CoupledOscillator};
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;
-use models::{max_error, CoupledOscillator};
 
 const OMEGA: f64 = 2.0;
 
