@@ -6,11 +6,17 @@
 //!
 //! `cargo bench --bench vs_ode_solvers`
 
+/// The tests' reader of `tests/data/*.json`; the benchmark needs part of it.
+#[allow(dead_code)]
+#[path = "../tests/support/reference.rs"]
+mod reference;
+
 use criterion::{criterion_group, criterion_main, Criterion};
 use lagrange::models::DoublePendulum;
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
 use lagrange::solve::acceleration;
+use reference::Reference;
 use std::hint::black_box;
 
 type State = ode_solvers::Vector4<f64>;
@@ -28,17 +34,9 @@ impl ode_solvers::System<f64, State> for FirstOrder {
 }
 
 const T_END: f64 = 2.0;
-/// The reference at t = 2 (tests/data/double_pendulum.json).
-#[allow(clippy::excessive_precision)] // the reference's digits, as published
-const REFERENCE: [f64; 4] = [
-    -2.922032235907540809832084,
-    0.1173851722026145485738509,
-    0.9107795549934107394534342,
-    4.426951873901197949893401,
-];
 
 fn model() -> DoublePendulum {
-    DoublePendulum::new(1.0, 1.0, 1.0, 1.0, 9.81)
+    DoublePendulum::unit()
 }
 
 fn ours<I: Integrator<f64>>(method: I) -> (State, usize) {
@@ -122,10 +120,13 @@ fn theirs(tol: f64) -> (State, usize) {
     (*stepper.y_out().last().unwrap(), stats.num_eval as usize)
 }
 
+/// The largest difference from the reference at `T_END`
+/// (`tests/data/double_pendulum.json`).
 fn error(y: &State) -> f64 {
-    (0..4)
-        .map(|i| (y[i] - REFERENCE[i]).abs())
-        .fold(0.0, f64::max)
+    let reference = Reference::double_pendulum();
+    let s = reference.samples.iter().find(|s| s.t == T_END).unwrap();
+    let exact = [s.q[0], s.q[1], s.qdot[0], s.qdot[1]];
+    (0..4).map(|i| (y[i] - exact[i]).abs()).fold(0.0, f64::max)
 }
 
 fn bench(c: &mut Criterion) {

@@ -1,27 +1,16 @@
 //! The textbook double pendulum: derive, print the equations, simulate the
-//! chaotic case, and report how well each integrator keeps the energy.
+//! chaotic case, and report how well each integrator keeps the energy. The
+//! model is `lagrange::models::DoublePendulum` (`src/models/double_pendulum.rs`,
+//! written as in the README); `examples/chain.rs` shows a model written out.
 //!
 //! `cargo run --release --example double_pendulum`
 
+use lagrange::models::DoublePendulum;
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
 
-lagrangian! {
-    /// The double pendulum, absolute angles from the downward vertical.
-    pub struct DoublePendulum {
-        coordinates: theta1, theta2;
-        parameters: m1, m2, l1, l2, g;
-        let x1 = l1*sin(theta1);
-        let y1 = -l1*cos(theta1);
-        let x2 = x1 + l2*sin(theta2);
-        let y2 = y1 - l2*cos(theta2);
-        kinetic: m1/2*(dot(x1)^2 + dot(y1)^2) + m2/2*(dot(x2)^2 + dot(y2)^2);
-        potential: m1*g*y1 + m2*g*y2;
-    }
-}
-
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let pendulum = DoublePendulum::new(1.0, 1.0, 1.0, 1.0, 9.81);
+    let pendulum = DoublePendulum::unit();
     println!("Derived at compile time (M q'' = f, with e_k shared subexpressions):\n");
     println!("{}", DoublePendulum::<f64>::EQUATIONS);
 

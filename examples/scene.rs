@@ -10,29 +10,15 @@
 //!
 //! `cargo run --release --example scene`
 
-use lagrange::models::DoublePendulum;
+use lagrange::models::{Chain, DoublePendulum};
 use lagrange::nalgebra::SVector;
 use lagrange::prelude::*;
 use plotters::prelude::*;
 use std::error::Error;
 use std::time::Instant;
 
-lagrangian! {
-    /// A chain of N point masses on massless rods, angles from the downward
-    /// vertical.
-    pub struct Chain {
-        const N = 5;
-        coordinates: theta[N];
-        parameters: m[N], l[N];
-        constants: g = 9.81;
-        let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));
-        let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));
-        kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2));
-        potential: sum(i in 0..N, m[i]*g*y[i]);
-    }
-}
-
-const N: usize = 5;
+/// The links of `lagrange::models::Chain`.
+const N: usize = Chain::<f64>::DOF;
 const HZ: usize = 60;
 const FRAMES: usize = 4 * HZ;
 

@@ -2,27 +2,19 @@
 //! with dampers c1, c2, c3 beside the springs, written with a Rayleigh
 //! dissipation function. Prints the derived equations, simulates, and checks
 //! the energy balance: what the dampers dissipate is what the energy loses.
+//! The model is `lagrange::models::RayleighTwoMassChain`
+//! (`src/models/two_mass_chain.rs`).
 //!
 //! `cargo run --release --example two_mass_spring`
 
+use lagrange::models::RayleighTwoMassChain;
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
 
-lagrangian! {
-    /// Two masses between three springs and three dampers.
-    pub struct TwoMassChain {
-        coordinates: x1, x2;
-        parameters: m1, m2, k1, k2, k3, c1, c2, c3;
-        kinetic: m1/2*dot(x1)^2 + m2/2*dot(x2)^2;
-        potential: k1/2*x1^2 + k2/2*(x2 - x1)^2 + k3/2*x2^2;
-        dissipation: c1/2*dot(x1)^2 + c2/2*(dot(x2) - dot(x1))^2 + c3/2*dot(x2)^2;
-    }
-}
-
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let chain = TwoMassChain::new(1.0, 2.0, 10.0, 20.0, 15.0, 0.1, 0.2, 0.3);
+    let chain = RayleighTwoMassChain::new(1.0, 2.0, 10.0, 20.0, 15.0, 0.1, 0.2, 0.3);
     println!("Derived at compile time (M q'' = f):\n");
-    println!("{}", TwoMassChain::<f64>::EQUATIONS);
+    println!("{}", RayleighTwoMassChain::<f64>::EQUATIONS);
 
     let (q0, qdot0) = (Vector2::new(0.1, -0.05), Vector2::zeros());
     let dt = 0.01;

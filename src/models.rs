@@ -23,5 +23,5 @@ pub use methods::{AnyIntegrator, Method};
 pub use oscillator::Oscillator;
 pub use pendulum::Pendulum;
 pub use stiff_chain::StiffChain;
-pub use two_mass_chain::TwoMassChain;
+pub use two_mass_chain::{RayleighTwoMassChain, TwoMassChain};
 pub use without_jacobians::WithoutJacobians;

@@ -11,137 +11,57 @@
 //! Dormand–Prince.
 
 mod plot;
+/// The tests' reader of `tests/data/*.json`; the study needs part of it.
+#[allow(dead_code)]
+#[path = "../../tests/support/reference.rs"]
+mod reference;
 mod systems;
 
-use lagrange::nalgebra::SVector;
+use lagrange::models::{Kepler, Method};
 use lagrange::prelude::*;
+use lagrange::IntegrationResult;
 use std::time::Instant;
 use systems::Problem;
 
 /// One integrator with one setting: a step size for the fixed-step methods,
 /// a tolerance (rtol = atol) for the adaptive ones.
 #[derive(Clone, Copy, Debug)]
-pub enum Method {
-    Euler(f64),
-    SymplecticEuler(f64),
-    Rk4(f64),
-    ImplicitMidpoint(f64),
-    Gauss4(f64),
-    Gauss6(f64),
-    Variational(f64),
-    Dopri5(f64),
-    Dop853(f64),
-    Radau5(f64),
+pub struct Setting {
+    pub method: Method,
+    pub value: f64,
 }
 
-impl Method {
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Euler(_) => "explicit_euler",
-            Method::SymplecticEuler(_) => "symplectic_euler",
-            Method::Rk4(_) => "rk4",
-            Method::ImplicitMidpoint(_) => "implicit_midpoint",
-            Method::Gauss4(_) => "gauss_legendre_2",
-            Method::Gauss6(_) => "gauss_legendre_3",
-            Method::Variational(_) => "variational",
-            Method::Dopri5(_) => "dopri5",
-            Method::Dop853(_) => "dop853",
-            Method::Radau5(_) => "radau5",
-        }
-    }
-
-    /// The step size or the tolerance.
-    pub fn setting(self) -> f64 {
-        match self {
-            Method::Euler(x)
-            | Method::SymplecticEuler(x)
-            | Method::Rk4(x)
-            | Method::ImplicitMidpoint(x)
-            | Method::Gauss4(x)
-            | Method::Gauss6(x)
-            | Method::Variational(x)
-            | Method::Dopri5(x)
-            | Method::Dop853(x)
-            | Method::Radau5(x) => x,
-        }
-    }
-
-    fn fixed_step(self) -> bool {
-        !matches!(
-            self,
-            Method::Dopri5(_) | Method::Dop853(_) | Method::Radau5(_)
-        )
-    }
-
+impl Setting {
     pub fn integrate<L: Lagrangian<N, Scalar = f64>, const N: usize>(
         self,
         p: &Problem<L, N>,
         times: &[f64],
     ) -> IntegrationResult<f64, N> {
-        let (m, q, v) = (&p.model, p.q0, p.qdot0);
-        let budget = usize::MAX;
-        match self {
-            Method::Euler(h) => ExplicitEuler::new(h)
-                .max_steps(budget)
-                .integrate(m, 0.0, q, v, times),
-            Method::SymplecticEuler(h) => SymplecticEuler::new(h)
-                .max_steps(budget)
-                .integrate(m, 0.0, q, v, times),
-            Method::Rk4(h) => Rk4::new(h).max_steps(budget).integrate(m, 0.0, q, v, times),
-            Method::ImplicitMidpoint(h) => ImplicitMidpoint::new(h)
-                .max_steps(budget)
-                .integrate(m, 0.0, q, v, times),
-            Method::Gauss4(h) => GaussLegendre::two_stage(h)
-                .max_steps(budget)
-                .integrate(m, 0.0, q, v, times),
-            Method::Gauss6(h) => GaussLegendre::three_stage(h)
-                .max_steps(budget)
-                .integrate(m, 0.0, q, v, times),
-            Method::Variational(h) => Variational::new(h)
-                .max_steps(budget)
-                .integrate(m, 0.0, q, v, times),
-            Method::Dopri5(tol) => Dopri5::new()
-                .rtol(tol)
-                .atol(tol)
-                .max_steps(10_000_000)
-                .integrate(m, 0.0, q, v, times),
-            Method::Dop853(tol) => Dop853::new()
-                .rtol(tol)
-                .atol(tol)
-                .max_steps(10_000_000)
-                .integrate(m, 0.0, q, v, times),
-            Method::Radau5(tol) => Radau5::new()
-                .rtol(tol)
-                .atol(tol)
-                .max_steps(10_000_000)
-                .integrate(m, 0.0, q, v, times),
-        }
+        let budget = if self.method.is_adaptive() {
+            10_000_000
+        } else {
+            usize::MAX
+        };
+        self.method
+            .integrator(self.value, self.value)
+            .max_steps(budget)
+            .integrate(&p.model, 0.0, p.q0, p.qdot0, times)
     }
 }
 
-use lagrange::IntegrationResult;
-
 /// Every method at every setting worth running on a problem.
-fn sweep(steps: &[f64]) -> Vec<Method> {
+fn sweep(steps: &[f64]) -> Vec<Setting> {
     let tolerances: Vec<f64> = (3..=13).map(|k| 10f64.powi(-k)).collect();
-    let fixed: [fn(f64) -> Method; 7] = [
-        Method::Euler,
-        Method::SymplecticEuler,
-        Method::Rk4,
-        Method::ImplicitMidpoint,
-        Method::Gauss4,
-        Method::Gauss6,
-        Method::Variational,
-    ];
-    let adaptive: [fn(f64) -> Method; 3] = [Method::Dopri5, Method::Dop853, Method::Radau5];
-    let mut methods = Vec::new();
-    for make in fixed {
-        methods.extend(steps.iter().map(|&h| make(h)));
+    let mut settings = Vec::new();
+    for method in Method::ALL {
+        let values = if method.is_adaptive() {
+            &tolerances
+        } else {
+            steps
+        };
+        settings.extend(values.iter().map(|&value| Setting { method, value }));
     }
-    for make in adaptive {
-        methods.extend(tolerances.iter().map(|&t| make(t)));
-    }
-    methods
+    settings
 }
 
 /// One row of the CSV.
@@ -161,17 +81,17 @@ pub struct Run {
 /// median wall time of up to five runs (fewer when one run takes > 0.5 s).
 fn measure<L: Lagrangian<N, Scalar = f64>, const N: usize>(
     p: &Problem<L, N>,
-    method: Method,
+    setting: Setting,
 ) -> Result<Run, String> {
     let end = *p.times.last().unwrap();
-    if method.fixed_step() && end / method.setting() > 3e6 {
+    if !setting.method.is_adaptive() && end / setting.value > 3e6 {
         return Err("skipped: more than 3e6 steps".into());
     }
     let mut seconds = Vec::new();
     let mut trajectory = None;
     for _ in 0..5 {
         let start = Instant::now();
-        let result = method.integrate(p, &p.times);
+        let result = setting.integrate(p, &p.times);
         seconds.push(start.elapsed().as_secs_f64());
         trajectory = Some(result.map_err(|f| f.error.to_string())?);
         if seconds.iter().sum::<f64>() > 0.5 {
@@ -199,8 +119,8 @@ fn measure<L: Lagrangian<N, Scalar = f64>, const N: usize>(
     }
     Ok(Run {
         system: p.name,
-        method: method.name(),
-        setting: method.setting(),
+        method: setting.method.id(),
+        setting: setting.value,
         error,
         energy_error,
         rhs_evals: trajectory.stats().rhs_evals,
@@ -214,8 +134,8 @@ fn study<L: Lagrangian<N, Scalar = f64>, const N: usize>(p: &Problem<L, N>, runs
         "{:<18} {:>10} {:>10} {:>10} {:>10} {:>11}",
         "method", "setting", "error", "energy", "rhs evals", "seconds"
     );
-    for method in sweep(&p.steps) {
-        match measure(p, method) {
+    for setting in sweep(&p.steps) {
+        match measure(p, setting) {
             Ok(run) => {
                 println!(
                     "{:<18} {:>10.2e} {:>10.2e} {:>10.2e} {:>10} {:>11.3e}",
@@ -228,7 +148,7 @@ fn study<L: Lagrangian<N, Scalar = f64>, const N: usize>(p: &Problem<L, N>, runs
                 );
                 runs.push(run);
             }
-            Err(why) => println!("{:<18} {:>10.2e} {why}", method.name(), method.setting()),
+            Err(why) => println!("{:<18} {:>10.2e} {why}", setting.method.id(), setting.value),
         }
     }
 }
@@ -248,11 +168,9 @@ fn write_csv(path: &std::path::Path, runs: &[Run]) -> std::io::Result<()> {
 /// h = T/500: 5e5 steps, sampled ten times per orbit) for the methods that
 /// show the trade.
 fn long_run(dir: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
-    let e: f64 = 0.6;
     let period = 2.0 * std::f64::consts::PI;
-    let model = systems::Kepler::new(1.0);
-    let q0 = SVector::<f64, 2>::new(1.0 - e, 0.0);
-    let v0 = SVector::<f64, 2>::new(0.0, ((1.0 + e) / (1.0 - e)).sqrt());
+    let model = Kepler::new(1.0);
+    let (q0, v0) = model.pericentre(0.6);
     let e0 = model.energy(0.0, &q0, &v0);
     let times: Vec<f64> = (1..=10_000).map(|k| period * k as f64 / 10.0).collect();
     let h = period / 500.0;

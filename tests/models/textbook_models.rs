@@ -7,7 +7,7 @@
 //! of it stand here.
 
 use crate::support::closed_form::*;
-use lagrange::models::DoublePendulum;
+use lagrange::models::{DoublePendulum, RayleighTwoMassChain};
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
 
@@ -15,17 +15,6 @@ use lagrange::prelude::*;
 // Damped two-mass spring chain: wall–k1–m1–k2–m2–k3–wall, a damper c_i in
 // parallel with each spring k_i.
 // ---------------------------------------------------------------------------
-
-lagrangian! {
-    /// The chain with its dampers as a Rayleigh dissipation function.
-    pub struct DampedChain {
-        coordinates: x1, x2;
-        parameters: m1, m2, k1, k2, k3, c1, c2, c3;
-        kinetic: m1/2*dot(x1)^2 + m2/2*dot(x2)^2;
-        potential: k1/2*x1^2 + k2/2*(x2 - x1)^2 + k3/2*x2^2;
-        dissipation: c1/2*dot(x1)^2 + c2/2*(dot(x2) - dot(x1))^2 + c3/2*dot(x2)^2;
-    }
-}
 
 lagrangian! {
     /// The same chain with the dampers written out as generalized forces,
@@ -72,9 +61,9 @@ impl Chain {
         }
     }
 
-    fn rayleigh(&self) -> DampedChain {
+    fn rayleigh(&self) -> RayleighTwoMassChain {
         let c = *self;
-        DampedChain::new(c.m1, c.m2, c.k1, c.k2, c.k3, c.c1, c.c2, c.c3)
+        RayleighTwoMassChain::new(c.m1, c.m2, c.k1, c.k2, c.k3, c.c1, c.c2, c.c3)
     }
 
     fn forced(&self) -> ForcedDampedChain {
@@ -251,13 +240,13 @@ fn rayleigh_damping_and_explicit_damping_forces_give_the_same_equations() {
 
 #[test]
 fn chain_models_declare_their_coordinates_and_parameters() {
-    assert_eq!(DampedChain::<f64>::DOF, 2);
-    assert_eq!(DampedChain::<f64>::COORDINATES, ["x1", "x2"]);
+    assert_eq!(RayleighTwoMassChain::<f64>::DOF, 2);
+    assert_eq!(RayleighTwoMassChain::<f64>::COORDINATES, ["x1", "x2"]);
     assert_eq!(
-        DampedChain::<f64>::PARAMETERS,
+        RayleighTwoMassChain::<f64>::PARAMETERS,
         ["m1", "m2", "k1", "k2", "k3", "c1", "c2", "c3"]
     );
-    let p = DampedChain::new(1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0);
+    let p = RayleighTwoMassChain::new(1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0);
     assert_eq!(
         [p.m1, p.m2, p.k1, p.k2, p.k3, p.c1, p.c2, p.c3],
         [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0]
