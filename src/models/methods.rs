@@ -155,6 +155,19 @@ impl Method {
     pub fn integrator<S: RealField + Copy>(self, h: S, tol: S) -> AnyIntegrator<S> {
         self.with_step(h).tolerances(tol, tol)
     }
+
+    /// An adaptive method with `rtol = atol = tol`.
+    ///
+    /// # Panics
+    ///
+    /// For a fixed-step method, which has no tolerance.
+    pub fn with_tolerance<S: RealField + Copy>(self, tol: S) -> AnyIntegrator<S> {
+        assert!(
+            self.is_adaptive(),
+            "{self:?} has a fixed step, no tolerance"
+        );
+        self.integrator(S::zero(), tol)
+    }
 }
 
 /// Any of the runtime's integrators with its settings: an [`Integrator`]

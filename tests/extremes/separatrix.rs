@@ -23,7 +23,7 @@
 //! `cargo test --release --test extremes -- separatrix:: --nocapture`.
 
 use crate::support::elliptic::{complete_k, jacobi, Swing};
-use lagrange::models::Pendulum;
+use lagrange::models::{Method, Pendulum};
 use lagrange::nalgebra::Vector1;
 use lagrange::prelude::*;
 use lagrange::IntegrationResult;
@@ -293,58 +293,37 @@ fn check_adaptive<I: Integrator<f64>>(
 /// energy sensitivity `~1/δ`, to the growth the exact solution predicts.
 #[test]
 fn libration_a_millionth_below_the_separatrix_follows_the_elliptic_solution() {
-    let tol = 1e-10;
-    let delta = 1e-6;
-    check_adaptive(
-        "Dopri5 1e-10",
-        &Dopri5::new().rtol(tol).atol(tol),
-        100.0 * tol,
-        delta,
-        false,
-    );
-    check_adaptive(
-        "Dop853 1e-10",
-        &Dop853::new().rtol(tol).atol(tol),
-        100.0 * tol,
-        delta,
-        false,
-    );
-    check_adaptive(
-        "Radau5 1e-10",
-        &Radau5::new().rtol(tol).atol(tol),
-        100.0 * f64::powf(tol, 5.0 / 6.0),
-        delta,
-        false,
-    );
+    check_every_adaptive(1e-6, false);
 }
 
 /// Just above (`δ = 10⁻⁶`): the rotation crawls over the top once per
 /// revolution; the same checks.
 #[test]
 fn rotation_a_millionth_above_the_separatrix_follows_the_elliptic_solution() {
+    check_every_adaptive(1e-6, true);
+}
+
+/// [`check_adaptive`] for every adaptive method at `tol = 1e-10`.
+fn check_every_adaptive(delta: f64, above: bool) {
     let tol = 1e-10;
-    let delta = 1e-6;
-    check_adaptive(
-        "Dopri5 1e-10",
-        &Dopri5::new().rtol(tol).atol(tol),
-        100.0 * tol,
-        delta,
-        true,
-    );
-    check_adaptive(
-        "Dop853 1e-10",
-        &Dop853::new().rtol(tol).atol(tol),
-        100.0 * tol,
-        delta,
-        true,
-    );
-    check_adaptive(
-        "Radau5 1e-10",
-        &Radau5::new().rtol(tol).atol(tol),
-        100.0 * f64::powf(tol, 5.0 / 6.0),
-        delta,
-        true,
-    );
+    for method in Method::ADAPTIVE {
+        check_adaptive(
+            &format!("{method:?} 1e-10"),
+            &method.with_tolerance(tol),
+            allowance(method, tol),
+            delta,
+            above,
+        );
+    }
+}
+
+/// `C tol'` as in the other suites: `100 tol` for Dormand–Prince,
+/// `100 tol^(5/6)` for Radau5.
+fn allowance(method: Method, tol: f64) -> f64 {
+    match method {
+        Method::Radau5 => 100.0 * f64::powf(tol, 5.0 / 6.0),
+        _ => 100.0 * tol,
+    }
 }
 
 /// Steps (accepted and rejected) over two libration periods at `δ`, with
@@ -383,15 +362,11 @@ fn assert_no_stall<I: Integrator<f64>>(name: &str, make: impl Fn(usize) -> I) {
 #[test]
 fn step_control_does_not_stall_near_the_unstable_equilibrium() {
     let tol = 1e-10;
-    assert_no_stall("Dopri5 1e-10", |b| {
-        Dopri5::new().rtol(tol).atol(tol).max_steps(b)
-    });
-    assert_no_stall("Dop853 1e-10", |b| {
-        Dop853::new().rtol(tol).atol(tol).max_steps(b)
-    });
-    assert_no_stall("Radau5 1e-10", |b| {
-        Radau5::new().rtol(tol).atol(tol).max_steps(b)
-    });
+    for method in Method::ADAPTIVE {
+        assert_no_stall(&format!("{method:?} 1e-10"), |b| {
+            method.with_tolerance(tol).max_steps(b)
+        });
+    }
 }
 
 /// Fixed steps near the separatrix: the energy error, not the state error,

@@ -60,7 +60,7 @@ fn adaptive<L: Lagrangian<N, Scalar = f64>, const N: usize>(
 ) -> IntegrationResult<f64, N> {
     assert!(method.is_adaptive(), "{method:?}");
     method
-        .integrator(f64::NAN, rtol)
+        .with_tolerance(rtol)
         .tolerances(rtol, atol)
         .max_steps(max_steps)
         .integrate(model, t0, q0, v0, times)

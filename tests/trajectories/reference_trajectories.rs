@@ -21,13 +21,21 @@ fn state_error(traj: &Trajectory<f64, 2>, k: usize, s: &Sample) -> f64 {
     (got.q - s.q).amax().max((got.qdot - s.qdot).amax())
 }
 
-fn report<const N: usize>(name: &str, traj: &Trajectory<f64, N>, errors: &[f64]) {
+/// The state error at each reference sample, printed with the run's work.
+fn errors(name: &str, r: &Reference, traj: &Trajectory<f64, 2>) -> Vec<f64> {
+    let errors: Vec<f64> = r
+        .samples
+        .iter()
+        .enumerate()
+        .map(|(k, s)| state_error(traj, k, s))
+        .collect();
     let e: Vec<String> = errors.iter().map(|e| format!("{e:.2e}")).collect();
     println!(
         "{name}: errors [{}], stats {:?}",
         e.join(", "),
         traj.stats()
     );
+    errors
 }
 
 #[test]
@@ -41,13 +49,7 @@ fn damped_chain_matches_reference_with_dormand_prince() {
         .atol(tol)
         .integrate(&model, 0.0, r.q0, r.qdot0, &times)
         .unwrap();
-    let errors: Vec<f64> = r
-        .samples
-        .iter()
-        .enumerate()
-        .map(|(k, s)| state_error(&traj, k, s))
-        .collect();
-    report("chain dopri5", &traj, &errors);
+    let errors = errors("chain dopri5", &r, &traj);
     for (k, s) in r.samples.iter().enumerate() {
         // |y| ≤ 1 here: scale 1.
         let bound = 100.0 * tol * s.growth;
@@ -77,13 +79,7 @@ fn damped_chain_matches_reference_with_rk4() {
     let traj = Rk4::new(h)
         .integrate(&model, 0.0, r.q0, r.qdot0, &times)
         .unwrap();
-    let errors: Vec<f64> = r
-        .samples
-        .iter()
-        .enumerate()
-        .map(|(k, s)| state_error(&traj, k, s))
-        .collect();
-    report("chain rk4", &traj, &errors);
+    let errors = errors("chain rk4", &r, &traj);
     // RK4's local error is ≈ (h ω)⁵ / 120 · |y| per step (ω = 6.26 rad/s the
     // fast mode, |y| ≤ 0.1·ω): summed over t/h steps in a contracting flow,
     // the global error is ≤ t/h · (hω)⁵/120 · 0.1ω.
@@ -111,13 +107,7 @@ fn chaotic_double_pendulum_matches_reference_within_its_perturbation_growth() {
         .max_steps(1_000_000)
         .integrate(&model, 0.0, r.q0, r.qdot0, &times)
         .unwrap();
-    let errors: Vec<f64> = r
-        .samples
-        .iter()
-        .enumerate()
-        .map(|(k, s)| state_error(&traj, k, s))
-        .collect();
-    report("double pendulum dopri5", &traj, &errors);
+    let errors = errors("double pendulum dopri5", &r, &traj);
     let steps = traj.stats().steps_accepted as f64;
     for (k, s) in r.samples.iter().enumerate() {
         // Scale: the state's size, max(1, |y|) (up to ≈ 9 here). At t = 10
