@@ -1,7 +1,10 @@
 //! Models that break, and inputs that are wrong: typed errors with the time
 //! and state, the samples before the failure kept, never a NaN or a hang.
 
-use crate::models::{BlowUp, CoupledOscillator, ForcingBreaksDown, InertiaVanishes};
+use crate::models::{
+    assert_exhausted_budget_keeps_the_samples, BlowUp, CoupledOscillator, ForcingBreaksDown,
+    InertiaVanishes,
+};
 use lagrange::models::Oscillator;
 use lagrange_runtime::nalgebra::{SVector, Vector1, Vector2};
 use lagrange_runtime::prelude::*;
@@ -75,25 +78,11 @@ fn nan_forcing_is_reported_where_it_starts() {
 
 #[test]
 fn exhausted_step_budget_keeps_the_samples_so_far() {
+    assert_exhausted_budget_keeps_the_samples(10, |b| Dopri5::new().max_steps(b));
+
     let model = CoupledOscillator { omega: 2.0 };
     let (q0, qdot0) = (Vector2::new(1.0, 0.0), Vector2::zeros());
     let times = [0.1, 0.2, 0.3, 0.4, 100.0];
-
-    let failure = Dopri5::new()
-        .max_steps(10)
-        .integrate(&model, 0.0, q0, qdot0, &times)
-        .unwrap_err();
-    let IntegrationError::TooManySteps { t, max_steps, .. } = failure.error else {
-        panic!("expected too many steps, got {}", failure.error);
-    };
-    let stats = failure.trajectory.stats();
-    assert_eq!(max_steps, 10);
-    assert_eq!(stats.steps_accepted + stats.steps_rejected, 10);
-    // Exactly the samples the ten steps passed.
-    let kept = failure.trajectory.times();
-    assert!(!kept.is_empty() && kept.len() < times.len());
-    assert!(kept.iter().all(|&s| s <= t) && times[kept.len()] > t);
-
     let failure = Rk4::new(0.01_f64)
         .max_steps(25)
         .integrate(&model, 0.0, q0, qdot0, &times)
@@ -420,23 +409,7 @@ fn dop853_fails_where_and_how_dopri5_does() {
 
 #[test]
 fn dop853_exhausted_step_budget_keeps_the_samples_so_far() {
-    let model = CoupledOscillator { omega: 2.0 };
-    let (q0, qdot0) = (Vector2::new(1.0, 0.0), Vector2::zeros());
-    let times = [0.1, 0.2, 0.3, 0.4, 100.0];
-    let failure = Dop853::new()
-        .max_steps(5)
-        .integrate(&model, 0.0, q0, qdot0, &times)
-        .unwrap_err();
-    let IntegrationError::TooManySteps { t, max_steps, .. } = failure.error else {
-        panic!("expected too many steps, got {}", failure.error);
-    };
-    let stats = failure.trajectory.stats();
-    assert_eq!(max_steps, 5);
-    assert_eq!(stats.steps_accepted + stats.steps_rejected, 5);
-    // Exactly the samples the five steps passed.
-    let kept = failure.trajectory.times();
-    assert!(!kept.is_empty() && kept.len() < times.len());
-    assert!(kept.iter().all(|&s| s <= t) && times[kept.len()] > t);
+    assert_exhausted_budget_keeps_the_samples(5, |b| Dop853::new().max_steps(b));
 }
 
 /// `t0 = 1e20` with `h = 1`: `t + h == t`, so no step of `h` can be taken.

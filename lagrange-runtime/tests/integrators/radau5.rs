@@ -4,8 +4,8 @@
 //! the explicit methods.
 
 use crate::models::{
-    max_error, BlowUp, CoupledOscillator, ElasticPendulum, ForcingBreaksDown, InertiaVanishes,
-    StiffChain,
+    assert_exhausted_budget_keeps_the_samples, max_error, BlowUp, CoupledOscillator,
+    ElasticPendulum, ForcingBreaksDown, InertiaVanishes, StiffChain,
 };
 use lagrange_runtime::jacobian::acceleration_jacobians;
 use lagrange_runtime::nalgebra::{SMatrix, SVector, Vector1, Vector2};
@@ -113,9 +113,9 @@ fn linear_model_keeps_its_first_jacobian_for_the_whole_run() {
 fn every_evaluation_solve_and_iteration_is_counted() {
     let model = ElasticPendulum {
         exact_jacobians: true,
-        ..pendulum()
+        ..ElasticPendulum::stiff()
     };
-    let (q0, qdot0) = pendulum_start(&model);
+    let (q0, qdot0) = model.start();
     let stats = radau5(1e-7)
         .integrate(&model, 0.0, q0, qdot0, &[5.0])
         .unwrap()
@@ -221,32 +221,14 @@ fn stiff_chain_costs_dopri5_two_hundred_times_more_evaluations() {
 // The elastic pendulum: nonlinear, q-dependent mass matrix, spring 32× faster
 // than the swing.
 
-fn pendulum() -> ElasticPendulum {
-    ElasticPendulum {
-        m: 1.0,
-        l: 1.0,
-        g: 9.81,
-        k: 1e4,
-        c: 20.0,
-        exact_jacobians: false,
-    }
-}
-
-/// Released at θ = 0.5 from rest with the spring at its static stretch.
-fn pendulum_start(p: &ElasticPendulum) -> (Vector2<f64>, Vector2<f64>) {
-    let theta: f64 = 0.5;
-    let r = p.l + p.m * p.g * theta.cos() / p.k;
-    (Vector2::new(r, theta), Vector2::zeros())
-}
-
 #[test]
 fn hand_written_pendulum_jacobians_match_finite_differences() {
     let (exact, approximate) = (
         ElasticPendulum {
             exact_jacobians: true,
-            ..pendulum()
+            ..ElasticPendulum::stiff()
         },
-        pendulum(),
+        ElasticPendulum::stiff(),
     );
     // A generic state, moving, so every term of the Jacobians matters.
     let (q, qdot) = (Vector2::new(1.05, 0.7), Vector2::new(-0.3, 1.2));
@@ -269,9 +251,9 @@ fn exact_jacobians_give_the_same_answer_for_fewer_evaluations() {
     let run = |exact_jacobians| {
         let model = ElasticPendulum {
             exact_jacobians,
-            ..pendulum()
+            ..ElasticPendulum::stiff()
         };
-        let (q0, qdot0) = pendulum_start(&model);
+        let (q0, qdot0) = model.start();
         radau5(1e-7)
             .integrate(&model, 0.0, q0, qdot0, &times)
             .unwrap()
@@ -342,22 +324,7 @@ fn nan_forcing_is_reported_where_it_starts() {
 
 #[test]
 fn exhausted_step_budget_keeps_the_samples_so_far() {
-    let model = CoupledOscillator { omega: OMEGA };
-    let (q0, qdot0) = (Vector2::new(1.0, 0.0), Vector2::zeros());
-    let times = [0.1, 0.2, 0.3, 0.4, 100.0];
-    let failure = Radau5::new()
-        .max_steps(10)
-        .integrate(&model, 0.0, q0, qdot0, &times)
-        .unwrap_err();
-    let IntegrationError::TooManySteps { t, max_steps, .. } = failure.error else {
-        panic!("expected too many steps, got {}", failure.error);
-    };
-    let stats = failure.trajectory.stats();
-    assert_eq!(max_steps, 10);
-    assert_eq!(stats.steps_accepted + stats.steps_rejected, 10);
-    let kept = failure.trajectory.times();
-    assert!(!kept.is_empty() && kept.len() < times.len());
-    assert!(kept.iter().all(|&s| s <= t) && times[kept.len()] > t);
+    assert_exhausted_budget_keeps_the_samples(10, |b| Radau5::new().max_steps(b));
 }
 
 #[test]

@@ -5,7 +5,6 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
 use crate::models::ElasticPendulum;
-use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;
 
 struct CountingAllocator;
@@ -41,18 +40,8 @@ static GLOBAL: CountingAllocator = CountingAllocator;
 fn allocations_do_not_grow_with_the_number_of_steps() {
     // Nonlinear and stiff, so every step path runs: Newton, Jacobians by
     // finite differences, refactoring, rejections, dense output.
-    let model = ElasticPendulum {
-        m: 1.0,
-        l: 1.0,
-        g: 9.81,
-        k: 1e4,
-        c: 20.0,
-        exact_jacobians: false,
-    };
-    let (q0, qdot0) = (
-        Vector2::new(1.0 + 9.81 * 0.5f64.cos() / 1e4, 0.5),
-        Vector2::zeros(),
-    );
+    let model = ElasticPendulum::stiff();
+    let (q0, qdot0) = model.start();
     let times: Vec<f64> = (1..=50).map(|i| 0.1 * i as f64).collect();
     let run = |tol: f64| {
         let before = ALLOCATIONS.with(Cell::get);

@@ -70,3 +70,25 @@ impl Lagrangian<2> for ElasticPendulum {
         Some((d_q, d_qdot))
     }
 }
+
+impl ElasticPendulum {
+    /// `m = l = 1`, `g = 9.81`, a spring `k = 1e4` (32× faster than the
+    /// swing) damped by `c = 20`, Jacobians by finite differences.
+    pub fn stiff() -> Self {
+        Self {
+            m: 1.0,
+            l: 1.0,
+            g: 9.81,
+            k: 1e4,
+            c: 20.0,
+            exact_jacobians: false,
+        }
+    }
+
+    /// Released at θ = 0.5 from rest with the spring at its static stretch.
+    pub fn start(&self) -> (Vector2<f64>, Vector2<f64>) {
+        let theta: f64 = 0.5;
+        let r = self.l + self.m * self.g * theta.cos() / self.k;
+        (Vector2::new(r, theta), Vector2::zeros())
+    }
+}

@@ -22,7 +22,8 @@ pub use stiff_chain::StiffChain;
 pub use without::Without;
 
 use lagrange::models::Method;
-use lagrange_runtime::nalgebra::{RealField, SVector};
+use lagrange_runtime::nalgebra::{RealField, SVector, Vector2};
+use lagrange_runtime::{IntegrationError, Integrator};
 
 /// The stages `s` of a Gauss method (order `2s`): the right-hand sides each
 /// Newton iteration evaluates.
@@ -69,4 +70,29 @@ pub fn observed_order(hs: &[f64], errors: &[f64]) -> f64 {
     let sxy: f64 = x.iter().zip(&y).map(|(x, y)| (x - mx) * (y - my)).sum();
     let sxx: f64 = x.iter().map(|x| (x - mx) * (x - mx)).sum();
     sxy / sxx
+}
+
+/// An adaptive method, `with_budget(budget)`, on the coupled oscillator
+/// (`ω = 2`, samples at 0.1 … 0.4 and 100): `TooManySteps` stating the
+/// budget, after exactly that many attempts, keeping exactly the samples
+/// those steps passed.
+pub fn assert_exhausted_budget_keeps_the_samples<I: Integrator<f64>>(
+    budget: usize,
+    with_budget: impl Fn(usize) -> I,
+) {
+    let model = CoupledOscillator { omega: 2.0 };
+    let (q0, qdot0) = (Vector2::new(1.0, 0.0), Vector2::zeros());
+    let times = [0.1, 0.2, 0.3, 0.4, 100.0];
+    let failure = with_budget(budget)
+        .integrate(&model, 0.0, q0, qdot0, &times)
+        .unwrap_err();
+    let IntegrationError::TooManySteps { t, max_steps, .. } = failure.error else {
+        panic!("expected too many steps, got {}", failure.error);
+    };
+    let stats = failure.trajectory.stats();
+    assert_eq!(max_steps, budget);
+    assert_eq!(stats.steps_accepted + stats.steps_rejected, budget);
+    let kept = failure.trajectory.times();
+    assert!(!kept.is_empty() && kept.len() < times.len());
+    assert!(kept.iter().all(|&s| s <= t) && times[kept.len()] > t);
 }
