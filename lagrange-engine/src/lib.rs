@@ -37,16 +37,13 @@
 
 pub mod ast;
 pub mod check;
-pub mod cse;
 pub mod derive;
-pub mod diff;
 pub mod emit;
 pub mod expr;
 pub mod fallback;
 pub mod model;
 pub mod parse;
 pub mod render;
-pub mod simplify;
 
 use proc_macro2::TokenStream;
 
@@ -117,7 +114,7 @@ impl Derived {
 
     /// Operation counts of `M` and `f` as emitted (with sharing) and as a
     /// tree without sharing would need.
-    pub fn op_counts(&self) -> (cse::OpCount, cse::OpCount) {
+    pub fn op_counts(&self) -> (expr::cse::OpCount, expr::cse::OpCount) {
         let n = self.model.dof();
         let mut roots = Vec::new();
         for i in 0..n {
@@ -127,8 +124,8 @@ impl Derived {
         }
         roots.extend(&self.equations.forcing);
         (
-            cse::shared_ops(&self.model.pool, &roots),
-            cse::tree_ops(&self.model.pool, &roots),
+            expr::cse::shared_ops(&self.model.pool, &roots),
+            expr::cse::tree_ops(&self.model.pool, &roots),
         )
     }
 }

@@ -5,8 +5,8 @@
 //! bound to a `let` (see [`cse`](crate::cse)), and the result built on the
 //! stack. No heap allocation, no branch, no symbolic work at run time.
 
-use crate::cse::{expands_to_product, schedule, Schedule};
 use crate::derive::Equations;
+use crate::expr::cse::{expands_to_product, schedule, Schedule};
 use crate::expr::{ExprId, Node, Pool, SymId};
 use crate::model::{Field, Model, Scalar, SymKind};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
