@@ -3,12 +3,13 @@
 //! (unknown or duplicated names, misplaced sections); the physics is checked
 //! in [`check`](crate::check).
 //!
-//! Lowering runs six passes over the items ([`passes`]), each a function:
+//! Lowering runs six passes over the items (`passes.rs`), each a function:
 //! the `const`s; the declarations (every name once, the coordinates and
 //! parameters with their sizes); the symbols; the `constants:`; the `let`s;
-//! the sections. An expression is lowered by [`lowering`], with the index
-//! arithmetic of [`index`] and the function table of [`functions`];
-//! [`locate`] finds the tokens behind a node for the checks' errors.
+//! the sections. An expression is lowered by `lowering.rs`, with the index
+//! arithmetic of [`index`], the function table of [`functions`] and the
+//! names of `scope.rs`; `locate.rs` finds the tokens behind a node for the
+//! checks' errors.
 
 pub mod functions;
 pub mod index;

@@ -303,6 +303,7 @@ fn parse_sum(input: ParseStream, keyword: Ident) -> syn::Result<Expr> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use syn::parse::Parser;
 
     fn expr(src: &str) -> Expr {
         parse_expr.parse_str(src).unwrap()
