@@ -7,7 +7,9 @@
 //!
 //! To add an output: compute its expressions in [`derive`](mod@crate::derive)
 //! (a field of `Equations`), then add one [`Method`] to [`METHODS`] whose
-//! `roots` returns them in the layout of its [`Returns`]. Nothing else.
+//! `roots` returns them in the layout of its [`Returns`]; the impl, the
+//! `Lagrangian` impl and the stub follow. (A method new to the `Lagrangian`
+//! trait is also declared there, in `lagrange-runtime`.)
 
 use super::outline::{Outline, Types};
 use crate::derive::{Equations, ExprMatrix};

@@ -109,6 +109,8 @@ pub struct Model {
     pub dissipation: Option<Section>,
     pub forces: Vec<Force>,
     pub pool: Pool,
+    /// Every name as lowering left it, so that `locate` can lower a piece
+    /// of a section again.
     scope: HashMap<String, Binding>,
 }
 
@@ -143,6 +145,7 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
     })
 }
 
+/// The error of a derivation past the pool's budget, on the model's name.
 pub fn budget_error(name: &Ident, budget: usize) -> syn::Error {
     syn::Error::new(
         name.span(),
