@@ -47,62 +47,22 @@
 //!
 //! ## The language
 //!
-//! - `coordinates: a, b;` the generalized coordinates, in the order of `q`;
-//!   `theta[N]` declares `N` of them, `theta[0]` … `theta[N-1]`, in index order.
-//! - `parameters: m, l;` runtime parameters: public fields of the struct,
-//!   and the arguments of `new`, in this order; `m[N]` is a field `m: [S; N]`.
-//! - `const N = 6;` a compile-time integer; `constants: g = 9.81;` values
-//!   folded into the generated code (no field, no run-time cost).
-//! - `let name = expr;` intermediate quantities (positions, lengths) in terms
-//!   of coordinates, parameters, `t` and earlier `let`s; `let x[i in 0..N] =
-//!   expr;` one per index.
-//! - `sum(j in a..b, expr)`, `sum(j in a..=b, expr)`, unrolled at compile
-//!   time; ranges may use outer indices, indices may use arithmetic
-//!   (`theta[i-1]`, `x[N-1]`); an index out of range is a compile error.
-//! - `dot(e)` the total time derivative `Σ ∂e/∂q_i q̇_i + ∂e/∂t`.
-//! - `kinetic:` T and `potential:` V (required; V may be `0`),
-//!   `dissipation:` a Rayleigh function R(q, q̇), `forces: p = expr, ...`
-//!   non-conservative forces (may use t, q, q̇) on a coordinate or along any
-//!   position `p` (a `let`): `Q_i += F ∂p/∂q_i`, the virtual work.
-//! - Sections may repeat, in any order; repeated `kinetic:`, `potential:` and
-//!   `dissipation:` sections add up.
-//! - `#[lagrange(jacobians)]` on the struct: also generate the exact
-//!   Jacobians of the residual `M q̈ − f`, which implicit integrators use for
-//!   Newton's method (opt-in: compile time is paid only where it is used).
-//! - `+ - * /`, unary minus, `^` as power with mathematical precedence
-//!   (`-x^2` is −x², `a*b^2` is a·b²), real literals (`1/2` is 0.5), and
-//!   `sin cos tan asin acos atan atan2 sinh cosh tanh exp ln sqrt powi powf`,
-//!   also as methods (`x.sin()`, `x.powi(2)`, `y.atan2(x)`).
-//!
-//! With `L = T − V`: `M = ∂²T/∂q̇²` and
-//! `f = ∂L/∂q − (∂²L/∂q̇∂q) q̇ − ∂²L/∂q̇∂t − ∂R/∂q̇ + Q`.
-//!
-//! ## What is generated
-//!
-//! For `struct Name` with `N` coordinates: `Name<S = f64>` (any
-//! `S: RealField + Copy`, `f32` included) with the parameters as fields, and
-//! `DOF`, `COORDINATES`, `PARAMETERS`, `EQUATIONS` (the derived equations as
-//! text), `new`, `mass_matrix`, `forcing`, `mass_matrix_and_forcing`,
-//! `kinetic_energy`, `potential_energy`, `energy`, `momentum` (∂L/∂q̇),
-//! `lagrangian_gradient` (∂L/∂q), `nonconservative_forces` (Q − ∂R/∂q̇; only
-//! for a model with forces or dissipation, others are
-//! [`Lagrangian::CONSERVATIVE`] and emit no code for them), and
-//! with `#[lagrange(jacobians)]` `residual_jacobians`; plus an implementation of
-//! [`Lagrangian`] so the integrators take it.
+//! Sections, indices and `sum`, expressions, the equations derived, the
+//! limits and every generated item: [`language`], the one reference (also
+//! `docs/language.md` in the repository).
 //!
 //! ## Mistakes are compile errors that speak physics
 //!
-//! ```compile_fail
-//! use lagrange::prelude::*;
-//! lagrangian! {
-//!     pub struct Broken {
-//!         coordinates: x, y;
-//!         parameters: m, k;
-//!         kinetic: m/2*dot(x)^2;            // error: coordinate `y` has no
-//!         potential: k/2*(x^2 + y^2);       // kinetic energy: the mass matrix
-//!     }                                     // is singular
-//! }
-//! ```
+//! A model that is not mechanics (a coordinate without kinetic energy, a
+//! potential holding a velocity, an index out of range) is one compile error
+//! on the offending tokens: [`language`](language#mistakes-are-compile-errors).
+//!
+//! ## Where things live
+//!
+//! The macro is a thin shell over the engine (`lagrange-engine`, an ordinary
+//! library); the runtime (`lagrange-runtime`, re-exported here) holds the
+//! [`Lagrangian`] trait, the integrators and their results. `ARCHITECTURE.md`
+//! in the repository is the map.
 
 extern crate self as lagrange;
 
@@ -111,6 +71,9 @@ pub use lagrange_runtime::*;
 pub use nalgebra;
 
 pub mod models;
+
+#[doc = include_str!("../docs/language.md")]
+pub mod language {}
 
 /// Everything a model and a simulation need: the macro, the [`Lagrangian`]
 /// trait, the integrators and their results.

@@ -2,7 +2,7 @@
 //! takes (with the engine built in release, as this example is), and how
 //! many operations the generated `M` and `f` perform.
 
-use lagrange_engine::cse::{self, OpCount};
+use lagrange_engine::expr::cse::{self, OpCount};
 use lagrange_engine::expr::DEFAULT_NODE_BUDGET;
 use proc_macro2::TokenStream;
 use std::time::{Duration, Instant};

@@ -1,21 +1,32 @@
 //! The symbolic engine behind `lagrangian!`.
 //!
 //! An ordinary library, so that it is unit-tested and benchmarked without
-//! rustc: it takes the macro's tokens and returns the generated items. The
-//! pipeline, one module per stage:
+//! rustc: it takes the macro's tokens and returns the generated items. Two
+//! layers. The pipeline, one module per stage:
 //!
 //! 1. [`parse`]: tokens → [`ast`], with mathematical precedence for `^`;
-//! 2. [`model`]: names resolved, `let`s and `dot` expanded into the
-//!    hash-consed expression DAG of [`expr`], built only through the
-//!    simplifying constructors of [`simplify`];
+//! 2. [`model`]: names resolved, `let`s and `dot` expanded, every section
+//!    lowered into the expression DAG, one pass per function;
 //! 3. [`check`]: the physics (V free of velocities, T quadratic in them, a
 //!    regular mass matrix), each failure a spanned error;
-//! 4. [`diff`] and [`derive`]: `M = ∂²T/∂q̇²` and
+//! 4. [`derive`](mod@derive): `M = ∂²T/∂q̇²` and
 //!    `f = ∂L/∂q − (∂²L/∂q̇∂q) q̇ − ∂²L/∂q̇∂t − ∂R/∂q̇ + Q`;
-//! 5. [`cse`]: which shared nodes become `let`s, in which order;
-//! 6. [`emit`]: straight-line, allocation-free Rust; [`render`] the same
-//!    equations as text. On any error, [`fallback`] emits the error and a
-//!    stub, so one mistake gives one error.
+//! 5. [`emit`]: straight-line, allocation-free Rust for each const and
+//!    method listed in [`emit::api`]; [`render`] the same equations as text.
+//!    On any error, [`fallback`] emits the error and a stub of the same API,
+//!    so one mistake gives one error.
+//!
+//! Under it, the algebra kernel [`expr`], which knows nothing of models: the
+//! hash-consed [`Pool`](expr::Pool) of nodes, built only through its
+//! simplifying constructors ([`expr::simplify`]), its derivatives
+//! ([`expr::diff`]), numeric evaluation ([`expr::eval`]) and the choice of
+//! shared nodes to bind in emitted code ([`expr::cse`]).
+//!
+//! Where to add things: an output of the generated code is one entry of
+//! [`emit::api::METHODS`] plus the code in [`derive`](mod@derive) that computes its
+//! expressions; a section of the language is a variant of [`ast::Item`], its
+//! parse in [`parse`], and its lowering pass in [`model`]; a check is a
+//! function of [`check`] called from [`derive`](fn@derive).
 //!
 //! Output is deterministic: no step iterates a hash map, and node ids (which
 //! order everything) are handed out in a deterministic order.
@@ -37,16 +48,13 @@
 
 pub mod ast;
 pub mod check;
-pub mod cse;
 pub mod derive;
-pub mod diff;
 pub mod emit;
 pub mod expr;
 pub mod fallback;
 pub mod model;
 pub mod parse;
 pub mod render;
-pub mod simplify;
 
 use proc_macro2::TokenStream;
 
@@ -117,7 +125,7 @@ impl Derived {
 
     /// Operation counts of `M` and `f` as emitted (with sharing) and as a
     /// tree without sharing would need.
-    pub fn op_counts(&self) -> (cse::OpCount, cse::OpCount) {
+    pub fn op_counts(&self) -> (expr::cse::OpCount, expr::cse::OpCount) {
         let n = self.model.dof();
         let mut roots = Vec::new();
         for i in 0..n {
@@ -127,8 +135,8 @@ impl Derived {
         }
         roots.extend(&self.equations.forcing);
         (
-            cse::shared_ops(&self.model.pool, &roots),
-            cse::tree_ops(&self.model.pool, &roots),
+            expr::cse::shared_ops(&self.model.pool, &roots),
+            expr::cse::tree_ops(&self.model.pool, &roots),
         )
     }
 }
@@ -138,7 +146,7 @@ pub fn derive(input: TokenStream) -> syn::Result<Derived> {
     derive_with_budget(input, expr::DEFAULT_NODE_BUDGET)
 }
 
-/// [`derive`] with a node budget other than the default: a derivation that
+/// [`derive`](fn@derive) with a node budget other than the default: a derivation that
 /// would need more expression nodes stops with an error naming the budget.
 pub fn derive_with_budget(input: TokenStream, budget: usize) -> syn::Result<Derived> {
     let parsed = parse::parse(input)?;

@@ -2,8 +2,8 @@
 //! the shared subexpressions first (`e0 = ...`), then each entry of `M` and
 //! `f`. Velocities read `dot(x)`, as in the model.
 
-use crate::cse::schedule;
 use crate::derive::Equations;
+use crate::expr::cse::schedule;
 use crate::expr::{ExprId, Node, Pool};
 use crate::model::{Model, SymKind};
 use std::collections::HashMap;

@@ -2,7 +2,8 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::{fixed_step, Integrator, Recorder, State};
+use super::Integrator;
+use crate::driver::{fixed_step, Recorder, State};
 use crate::{IntegrationError, IntegrationResult, Lagrangian};
 
 /// Explicit Euler with a fixed step `h`: one right-hand side per step,

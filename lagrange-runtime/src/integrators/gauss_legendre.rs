@@ -15,7 +15,7 @@ use crate::{IntegrationResult, Lagrangian};
 /// a step is expensive. Each step solves a nonlinear system of dimension
 /// `2 N s` by simplified Newton (see [`ImplicitMidpoint`](super::ImplicitMidpoint),
 /// which shares the solver); what "symplectic" does and does not mean here is
-/// in the [module documentation](super#implicit-methods-symmetric-and-when-symplectic).
+/// in the [crate documentation](crate#implicit-methods-symmetric-and-when-symplectic).
 ///
 /// ```
 /// use lagrange_runtime::prelude::*;

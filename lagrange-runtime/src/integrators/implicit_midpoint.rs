@@ -12,7 +12,7 @@ use crate::{IntegrationResult, Lagrangian};
 /// Order 2, symmetric, A-stable, and conserving every quadratic invariant of
 /// `(q, q̇)`: the simplest method whose energy does not drift on long runs
 /// (what "symplectic" does and does not mean here is in the
-/// [module documentation](super#implicit-methods-symmetric-and-when-symplectic)).
+/// [crate documentation](crate#implicit-methods-symmetric-and-when-symplectic)).
 /// It is the one-stage [`GaussLegendre`](super::GaussLegendre) method and
 /// shares its solver: each step solves for the stage increment
 /// `Z = (y_{n+1} − y_n) / 2` by simplified Newton, with the Jacobian of `q̈`

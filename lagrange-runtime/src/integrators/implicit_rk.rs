@@ -13,16 +13,19 @@
 //!
 //! The last line is `y_n + h Σ b_j F(Y_j)` without evaluating `F` again.
 //! The Hamiltonian of a model with `M(q)` is not separable, so no
-//! partitioned shortcut applies: this is the general form.
+//! partitioned shortcut applies: this is the general form. What the
+//! methods conserve, and how the Newton iteration below stops and what it
+//! costs, is told to users in the
+//! [crate documentation](crate#implicit-methods-symmetric-and-when-symplectic).
 //!
 //! [`ImplicitMidpoint`]: super::ImplicitMidpoint
 //! [`GaussLegendre`]: super::GaussLegendre
 
 use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
-use super::lu::Lu;
-use super::{fixed_step, newton_noise_floor, Recorder, State};
+use crate::driver::{fixed_step, newton_noise_floor, Recorder, State};
 use crate::jacobian::acceleration_jacobians;
+use crate::linalg::lu::Lu;
 use crate::{IntegrationError, IntegrationResult, Lagrangian};
 
 /// Butcher tableau of an implicit method, with `dᵀ = bᵀ A⁻¹` precomputed.

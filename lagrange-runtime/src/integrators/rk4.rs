@@ -2,7 +2,8 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::{fixed_step, Integrator, Recorder, State};
+use super::Integrator;
+use crate::driver::{fixed_step, Recorder, State};
 use crate::{IntegrationError, IntegrationResult, Lagrangian};
 
 /// Classic RK4 with a fixed step `h`: four right-hand sides per step,

@@ -2,7 +2,8 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::{fixed_step, Integrator, Recorder, State};
+use super::Integrator;
+use crate::driver::{fixed_step, Recorder, State};
 use crate::{IntegrationError, IntegrationResult, Lagrangian};
 
 /// Semi-implicit Euler with a fixed step `h`: the velocity first, then the

@@ -2,7 +2,7 @@
 //! dependency sets: the derivative of a node that does not mention the symbol
 //! is zero without a visit, which is what keeps chains of many links cheap.
 
-use crate::expr::{ExprId, Func, Node, Pool, SymId};
+use super::{ExprId, Func, Node, Pool, SymId};
 
 impl Pool {
     /// `∂e/∂s`, simplified.

@@ -1,94 +1,8 @@
-//! The expression DAG: every distinct node exists once (hash-consing), so a
-//! subexpression that appears in M, f and the energies is one node, and common
-//! subexpression elimination is a matter of counting uses at emission time.
-//!
-//! Nodes are only ever built through the simplifying constructors in
-//! [`simplify`](crate::simplify), which keep them in a canonical form; this
-//! module holds the storage, the symbol-dependency sets and numeric evaluation.
+//! The arena: one copy of each node, cheap ids, a dependency set per node,
+//! and the node budget that bounds a derivation.
 
+use super::{ExprId, Node, SymId};
 use std::collections::HashMap;
-
-/// A node of the [`Pool`]. Ids are handed out in creation order, which is
-/// deterministic, so ordering by id gives deterministic output.
-#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
-pub struct ExprId(u32);
-
-impl ExprId {
-    pub fn index(self) -> usize {
-        self.0 as usize
-    }
-}
-
-/// A symbol: time, a coordinate, a velocity or a parameter. What each id
-/// means is the model's business (see [`crate::model::Symbols`]).
-#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
-pub struct SymId(pub u32);
-
-/// Elementary functions of one argument.
-#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
-pub enum Func {
-    Sin,
-    Cos,
-    Tan,
-    Asin,
-    Acos,
-    Atan,
-    Sinh,
-    Cosh,
-    Tanh,
-    Exp,
-    Ln,
-}
-
-impl Func {
-    pub fn name(self) -> &'static str {
-        match self {
-            Func::Sin => "sin",
-            Func::Cos => "cos",
-            Func::Tan => "tan",
-            Func::Asin => "asin",
-            Func::Acos => "acos",
-            Func::Atan => "atan",
-            Func::Sinh => "sinh",
-            Func::Cosh => "cosh",
-            Func::Tanh => "tanh",
-            Func::Exp => "exp",
-            Func::Ln => "ln",
-        }
-    }
-
-    pub fn apply(self, x: f64) -> f64 {
-        match self {
-            Func::Sin => x.sin(),
-            Func::Cos => x.cos(),
-            Func::Tan => x.tan(),
-            Func::Asin => x.asin(),
-            Func::Acos => x.acos(),
-            Func::Atan => x.atan(),
-            Func::Sinh => x.sinh(),
-            Func::Cosh => x.cosh(),
-            Func::Tanh => x.tanh(),
-            Func::Exp => x.exp(),
-            Func::Ln => x.ln(),
-        }
-    }
-}
-
-/// One node. `Add` and `Mul` are n-ary with at least two operands in
-/// canonical order (see `simplify`); division is `a * b^-1`, subtraction
-/// `a + (-1)*b`, `sqrt(x)` is `x^0.5`.
-#[derive(Clone, PartialEq, Eq, Hash, Debug)]
-pub enum Node {
-    /// A finite or non-finite real constant, stored as canonical bits (no -0.0).
-    Num(u64),
-    Sym(SymId),
-    Add(Box<[ExprId]>),
-    Mul(Box<[ExprId]>),
-    Pow(ExprId, ExprId),
-    Func(Func, ExprId),
-    /// `atan2(y, x)`.
-    Atan2(ExprId, ExprId),
-}
 
 /// Raised when a derivation grows past the pool's node budget.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -101,8 +15,8 @@ pub struct Pool {
     nodes: Vec<Node>,
     deps: Vec<Box<[u64]>>,
     index: HashMap<Node, ExprId>,
-    pub(crate) diff_memo: HashMap<(ExprId, SymId), ExprId>,
-    pub(crate) content_memo: HashMap<ExprId, Option<(f64, Vec<ExprId>, ExprId)>>,
+    pub(super) diff_memo: HashMap<(ExprId, SymId), ExprId>,
+    pub(super) content_memo: HashMap<ExprId, Option<(f64, Vec<ExprId>, ExprId)>>,
     budget: usize,
     exceeded: bool,
 }
@@ -162,11 +76,11 @@ impl Pool {
     }
 
     /// The node's id if it already exists (never creates one).
-    pub(crate) fn lookup(&self, node: &Node) -> Option<ExprId> {
+    pub(super) fn lookup(&self, node: &Node) -> Option<ExprId> {
         self.index.get(node).copied()
     }
 
-    pub(crate) fn intern(&mut self, node: Node) -> ExprId {
+    pub(super) fn intern(&mut self, node: Node) -> ExprId {
         if let Some(&id) = self.index.get(&node) {
             return id;
         }
@@ -230,44 +144,6 @@ impl Pool {
             Node::Num(bits) => Some(f64::from_bits(bits)),
             _ => None,
         }
-    }
-
-    /// Evaluates `id` with `values[s]` for each symbol `s`. Used by tests and
-    /// by compile-time checks; emitted code never calls it.
-    pub fn eval(&self, id: ExprId, values: &[f64]) -> f64 {
-        let mut memo: HashMap<ExprId, f64> = HashMap::new();
-        self.eval_memo(id, values, &mut memo)
-    }
-
-    pub fn eval_memo(&self, id: ExprId, values: &[f64], memo: &mut HashMap<ExprId, f64>) -> f64 {
-        if let Some(&v) = memo.get(&id) {
-            return v;
-        }
-        let v = match &self.nodes[id.index()] {
-            Node::Num(bits) => f64::from_bits(*bits),
-            Node::Sym(s) => values[s.0 as usize],
-            Node::Add(xs) => xs.iter().map(|&x| self.eval_memo(x, values, memo)).sum(),
-            Node::Mul(xs) => xs
-                .iter()
-                .map(|&x| self.eval_memo(x, values, memo))
-                .product(),
-            Node::Pow(a, b) => {
-                let base = self.eval_memo(*a, values, memo);
-                let exp = self.eval_memo(*b, values, memo);
-                if exp.fract() == 0.0 && exp.abs() < 1e9 {
-                    base.powi(exp as i32)
-                } else {
-                    base.powf(exp)
-                }
-            }
-            Node::Func(f, a) => f.apply(self.eval_memo(*a, values, memo)),
-            Node::Atan2(y, x) => {
-                let y = self.eval_memo(*y, values, memo);
-                y.atan2(self.eval_memo(*x, values, memo))
-            }
-        };
-        memo.insert(id, v);
-        v
     }
 
     /// Nodes reachable from `roots`, children before parents, each once, in a

@@ -8,7 +8,7 @@
 
 use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
-use crate::solve::{acceleration, solve_mass_matrix, SolveError};
+use super::solve::{acceleration, solve_mass_matrix, SolveError};
 use crate::{IntegrationError, Lagrangian, NonFiniteValue, Stats};
 
 /// `(∂q̈/∂q, ∂q̈/∂q̇)` at `(t, q, q̇)`, where `qddot` is `q̈` there.

@@ -3,7 +3,7 @@
 //! function, which nodes get a `let` (those used more than once, and the
 //! bases of powers that are expanded into products) and in which order.
 
-use crate::expr::{ExprId, Node, Pool};
+use super::{ExprId, Node, Pool};
 
 /// What one emitted function computes, and how.
 pub struct Schedule {

@@ -1,0 +1,361 @@
+//! One generated function's body: the symbols it reads destructured once,
+//! the constants converted to `S` once, every shared node bound to a `let`
+//! (see [`cse`](crate::expr::cse)), and the roots' expressions.
+
+use super::names::Namer;
+use super::outline::nalgebra;
+use crate::expr::cse::{expands_to_product, schedule, Schedule};
+use crate::expr::{ExprId, Node, Pool};
+use crate::model::Model;
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
+use std::collections::HashMap;
+
+/// Operator precedence of an emitted expression, for parenthesization.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Prec {
+    Sum,
+    Product,
+    Atom,
+}
+
+/// Emits one function body: the bindings and the expressions of its roots.
+struct FnEmitter<'a> {
+    pool: &'a Pool,
+    sched: Schedule,
+    namer: Namer,
+    names: HashMap<ExprId, Ident>,
+    consts: Vec<(Ident, f64)>,
+    const_names: HashMap<u64, Ident>,
+    stmts: Vec<TokenStream>,
+}
+
+impl<'a> FnEmitter<'a> {
+    fn new(pool: &'a Pool, namer: &Namer, roots: &[ExprId]) -> Self {
+        let sched = schedule(pool, roots);
+        let mut e = FnEmitter {
+            pool,
+            sched,
+            namer: namer.clone(),
+            names: HashMap::new(),
+            consts: Vec::new(),
+            const_names: HashMap::new(),
+            stmts: Vec::new(),
+        };
+        let order = e.sched.order.clone();
+        for id in order {
+            if e.sched.bound[id.index()] {
+                let (value, _) = e.inline(id);
+                let name = e.namer.fresh("e", true);
+                e.stmts.push(quote!(let #name = #value;));
+                e.names.insert(id, name);
+            }
+        }
+        e
+    }
+
+    fn constant(&mut self, v: f64) -> TokenStream {
+        let bits = v.to_bits();
+        if let Some(name) = self.const_names.get(&bits) {
+            return quote!(#name);
+        }
+        let name = self.namer.fresh("k", true);
+        self.consts.push((name.clone(), v));
+        self.const_names.insert(bits, name.clone());
+        quote!(#name)
+    }
+
+    /// The tokens naming `id` in a context of precedence `ctx`.
+    fn operand(&mut self, id: ExprId, ctx: Prec) -> TokenStream {
+        if let Some(name) = self.names.get(&id) {
+            return quote!(#name);
+        }
+        match self.pool.node(id) {
+            Node::Sym(s) => {
+                let name = &self.namer.symbol[s.0 as usize];
+                return quote!(#name);
+            }
+            Node::Num(bits) => {
+                let v = f64::from_bits(*bits);
+                if v < 0.0 && ctx > Prec::Sum {
+                    let c = self.constant(-v);
+                    return quote!((-#c));
+                }
+                if v < 0.0 {
+                    let c = self.constant(-v);
+                    return quote!(-#c);
+                }
+                return self.constant(v);
+            }
+            _ => {}
+        }
+        let (tokens, prec) = self.inline(id);
+        if prec < ctx {
+            quote!((#tokens))
+        } else {
+            tokens
+        }
+    }
+
+    fn split(&self, id: ExprId) -> (f64, Vec<ExprId>) {
+        match self.pool.node(id) {
+            Node::Mul(xs) => match self.pool.as_num(xs[0]) {
+                Some(c) => (c, xs[1..].to_vec()),
+                None => (1.0, xs.to_vec()),
+            },
+            Node::Num(bits) => (f64::from_bits(*bits), Vec::new()),
+            _ => (1.0, vec![id]),
+        }
+    }
+
+    /// The expression of a node, one level deep (operands by name or inline).
+    fn inline(&mut self, id: ExprId) -> (TokenStream, Prec) {
+        match self.pool.node(id).clone() {
+            Node::Num(_) | Node::Sym(_) => (self.operand(id, Prec::Sum), Prec::Atom),
+            Node::Add(xs) => {
+                let mut out = TokenStream::new();
+                for (k, &x) in xs.iter().enumerate() {
+                    let (c, factors) = self.split(x);
+                    let term = self.product(c.abs(), &factors);
+                    out = match (k, c < 0.0) {
+                        (0, false) => term,
+                        (0, true) => quote!(-#term),
+                        (_, false) => quote!(#out + #term),
+                        (_, true) => quote!(#out - #term),
+                    };
+                }
+                (out, Prec::Sum)
+            }
+            Node::Mul(_) => {
+                let (c, factors) = self.split(id);
+                let term = self.product(c.abs(), &factors);
+                if c < 0.0 {
+                    (quote!(-#term), Prec::Sum)
+                } else {
+                    (term, Prec::Product)
+                }
+            }
+            Node::Pow(b, e) => match self.pool.as_num(e) {
+                Some(v) if v > 0.0 => self.power(b, v),
+                Some(v) => {
+                    let (d, prec) = self.power(b, -v);
+                    let d = if prec < Prec::Atom { quote!((#d)) } else { d };
+                    let one = self.constant(1.0);
+                    (quote!(#one / #d), Prec::Product)
+                }
+                None => {
+                    let b = self.operand(b, Prec::Sum);
+                    let e = self.operand(e, Prec::Sum);
+                    let na = nalgebra();
+                    (quote!(#na::ComplexField::powf(#b, #e)), Prec::Atom)
+                }
+            },
+            Node::Func(f, a) => {
+                let a = self.operand(a, Prec::Sum);
+                let name = format_ident!("{}", f.name());
+                let na = nalgebra();
+                (quote!(#na::ComplexField::#name(#a)), Prec::Atom)
+            }
+            Node::Atan2(y, x) => {
+                let y = self.operand(y, Prec::Sum);
+                let x = self.operand(x, Prec::Sum);
+                let na = nalgebra();
+                (quote!(#na::RealField::atan2(#y, #x)), Prec::Atom)
+            }
+        }
+    }
+
+    /// `mag * f1 * f2 / (d1 * d2)`, with negative constant powers as divisors.
+    fn product(&mut self, mag: f64, factors: &[ExprId]) -> TokenStream {
+        let mut numer: Vec<TokenStream> = Vec::new();
+        let mut denom: Vec<(TokenStream, Prec)> = Vec::new();
+        if mag != 1.0 || factors.is_empty() {
+            numer.push(self.constant(mag));
+        }
+        // A square written `x * x` is parenthesized inside a longer product,
+        // so that it rounds as one factor whether it is inlined here or bound
+        // to a `let` elsewhere: `M` and `f` computed together or apart agree
+        // to the last bit.
+        let ctx = if numer.len() + factors.len() > 1 {
+            Prec::Atom
+        } else {
+            Prec::Product
+        };
+        for &f in factors {
+            if !self.names.contains_key(&f) {
+                if let Node::Pow(b, e) = *self.pool.node(f) {
+                    if let Some(v) = self.pool.as_num(e).filter(|v| *v < 0.0) {
+                        denom.push(self.power(b, -v));
+                        continue;
+                    }
+                }
+            }
+            numer.push(self.operand(f, ctx));
+        }
+        if numer.is_empty() {
+            numer.push(self.constant(1.0));
+        }
+        let mut out = numer[0].clone();
+        for n in &numer[1..] {
+            out = quote!(#out * #n);
+        }
+        match denom.len() {
+            0 => out,
+            1 => {
+                let (d, prec) = &denom[0];
+                if *prec < Prec::Atom {
+                    quote!(#out / (#d))
+                } else {
+                    quote!(#out / #d)
+                }
+            }
+            _ => {
+                let mut d = denom[0].0.clone();
+                for (n, _) in &denom[1..] {
+                    d = quote!(#d * #n);
+                }
+                quote!(#out / (#d))
+            }
+        }
+    }
+
+    /// `b^v` for a positive constant `v`.
+    fn power(&mut self, b: ExprId, v: f64) -> (TokenStream, Prec) {
+        let na = nalgebra();
+        if v == 1.0 {
+            return (self.operand(b, Prec::Atom), Prec::Atom);
+        }
+        if expands_to_product(v) {
+            let x = self.operand(b, Prec::Atom);
+            return if v == 2.0 {
+                (quote!(#x * #x), Prec::Product)
+            } else {
+                (quote!(#x * #x * #x), Prec::Product)
+            };
+        }
+        let x = self.operand(b, Prec::Sum);
+        if v == 0.5 {
+            return (quote!(#na::ComplexField::sqrt(#x)), Prec::Atom);
+        }
+        if v.fract() == 0.0 && v <= i32::MAX as f64 {
+            let n = Literal::i32_unsuffixed(v as i32);
+            return (quote!(#na::ComplexField::powi(#x, #n)), Prec::Atom);
+        }
+        let e = self.constant(v);
+        (quote!(#na::ComplexField::powf(#x, #e)), Prec::Atom)
+    }
+
+    /// The bindings this function needs, in order: symbols, constants, lets.
+    fn prelude(&self, model: &Model) -> TokenStream {
+        let mut used = vec![false; model.symbols.count()];
+        for &id in &self.sched.order {
+            if let Node::Sym(s) = self.pool.node(id) {
+                used[s.0 as usize] = true;
+            }
+        }
+        let s = &model.symbols;
+        // Coordinates, velocities and accelerations are read from their
+        // vectors in one destructuring, so a coordinate may be named `q`.
+        let mut patterns: Vec<TokenStream> = Vec::new();
+        let mut sources: Vec<TokenStream> = Vec::new();
+        let idx: Vec<Literal> = (0..s.coordinates.len())
+            .map(Literal::usize_unsuffixed)
+            .collect();
+        for (syms, source) in [
+            (&s.coordinates, quote!(q)),
+            (&s.velocities, quote!(qdot)),
+            (&s.accelerations, quote!(qddot)),
+        ] {
+            if !syms.iter().any(|x| used[x.0 as usize]) {
+                continue;
+            }
+            let names = syms.iter().map(|x| {
+                if used[x.0 as usize] {
+                    let n = &self.namer.symbol[x.0 as usize];
+                    quote!(#n)
+                } else {
+                    quote!(_)
+                }
+            });
+            patterns.push(quote!([#(#names),*]));
+            sources.push(quote!([#(#source[#idx]),*]));
+        }
+        let mut out = TokenStream::new();
+        match patterns.len() {
+            0 => {}
+            1 => {
+                let (p, v) = (&patterns[0], &sources[0]);
+                out.extend(quote!(let #p = #v;));
+            }
+            _ => out.extend(quote!(let (#(#patterns),*) = (#(#sources),*);)),
+        }
+        // Parameters: one destructuring of `self`, scalar fields by name,
+        // array fields by element pattern (`m: [m_0, _, m_2]`).
+        let mut params: Vec<TokenStream> = Vec::new();
+        let mut k = 0;
+        for field in &model.fields {
+            let len = field.len.unwrap_or(1);
+            let syms = &s.parameters[k..k + len];
+            k += len;
+            if !syms.iter().any(|x| used[x.0 as usize]) {
+                continue;
+            }
+            let names: Vec<TokenStream> = syms
+                .iter()
+                .map(|x| {
+                    if used[x.0 as usize] {
+                        let n = &self.namer.symbol[x.0 as usize];
+                        quote!(#n)
+                    } else {
+                        quote!(_)
+                    }
+                })
+                .collect();
+            let f = &field.name;
+            params.push(match field.len {
+                None => quote!(#f),
+                Some(_) => quote!(#f: [#(#names),*]),
+            });
+        }
+        if !params.is_empty() {
+            out.extend(quote!(let Self { #(#params,)* .. } = *self;));
+        }
+        let na = nalgebra();
+        for (name, v) in &self.consts {
+            let lit = float_tokens(*v);
+            out.extend(quote!(let #name: S = #na::convert::<f64, S>(#lit);));
+        }
+        for st in &self.stmts {
+            out.extend(st.clone());
+        }
+        out
+    }
+
+    fn root(&mut self, id: ExprId) -> TokenStream {
+        self.operand(id, Prec::Sum)
+    }
+}
+
+fn float_tokens(v: f64) -> TokenStream {
+    if v.is_finite() {
+        let lit = Literal::f64_suffixed(v);
+        quote!(#lit)
+    } else if v.is_nan() {
+        quote!(::core::f64::NAN)
+    } else if v > 0.0 {
+        quote!(::core::f64::INFINITY)
+    } else {
+        quote!(::core::f64::NEG_INFINITY)
+    }
+}
+
+/// A function's statements and its root expressions.
+pub(super) fn body(
+    model: &Model,
+    namer: &Namer,
+    roots: &[ExprId],
+) -> (TokenStream, Vec<TokenStream>) {
+    let mut e = FnEmitter::new(&model.pool, namer, roots);
+    let outs: Vec<TokenStream> = roots.iter().map(|&r| e.root(r)).collect();
+    (e.prelude(model), outs)
+}

@@ -1,0 +1,177 @@
+//! Model + equations → Rust items: the model's struct, an inherent impl with
+//! the consts and methods of [`api`], and the `Lagrangian` impl.
+//!
+//! Each generated function is straight-line code (`function.rs`): the
+//! symbols it reads are destructured once, the constants converted to `S`
+//! once, every shared node bound to a `let`, and the result built on the
+//! stack. No heap allocation, no branch, no symbolic work at run time.
+
+pub mod api;
+mod function;
+mod names;
+pub mod outline;
+
+use crate::derive::Equations;
+use crate::expr::ExprId;
+use crate::model::Model;
+use api::{Doc, InTrait, Method, CONSTS, METHODS};
+use names::Namer;
+use outline::{nalgebra, Outline, Types};
+use proc_macro2::{Ident, TokenStream};
+use quote::quote;
+
+/// What every item of one model is emitted from.
+struct Context<'a> {
+    model: &'a Model,
+    outline: Outline<'a>,
+    types: Types,
+    namer: Namer,
+    /// The roots of each method of [`METHODS`], `None` if the model has no
+    /// such method.
+    roots: Vec<Option<Vec<ExprId>>>,
+}
+
+/// The generated items of a derived model.
+pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream {
+    let cx = Context {
+        model,
+        outline: Outline {
+            attrs: &model.attrs,
+            vis: &model.vis,
+            name: &model.name,
+            dof: model.dof(),
+            fields: &model.fields,
+        },
+        types: Types::new(model.dof()),
+        namer: Namer::new(model),
+        roots: METHODS.iter().map(|m| (m.roots)(model, eq)).collect(),
+    };
+    let item = cx.outline.struct_item();
+    let inherent = inherent_impl(&cx, equations_text);
+    let lagrangian = lagrangian_impl(&cx);
+    quote! {
+        #item
+        #inherent
+        #lagrangian
+    }
+}
+
+/// `impl Name<S>`: the consts, `new`, and every method the model has.
+fn inherent_impl(cx: &Context, equations_text: &str) -> TokenStream {
+    let na = nalgebra();
+    let name = cx.outline.name;
+    let consts = CONSTS.iter().filter_map(|c| {
+        let item = c.item(&cx.outline, Some((cx.model, equations_text)))?;
+        let doc = c.doc.attributes();
+        Some(quote!(#doc #item))
+    });
+    let new_doc = cx.outline.constructor_doc();
+    let new = cx.outline.constructor();
+    let methods = METHODS
+        .iter()
+        .zip(&cx.roots)
+        .filter_map(|(m, roots)| Some(method(cx, m, roots.as_ref()?)));
+    quote! {
+        #[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]
+        impl<S: #na::RealField + ::core::marker::Copy> #name<S> {
+            #(#consts)*
+
+            #[doc = #new_doc]
+            #[inline]
+            pub #new
+
+            #(#methods)*
+        }
+    }
+}
+
+/// One inherent method: its docs, signature and straight-line body.
+fn method(cx: &Context, m: &Method, roots: &[ExprId]) -> TokenStream {
+    let doc = Doc::Lines(m.doc).attributes();
+    let signature = m.signature(&cx.types);
+    let (prelude, outs) = function::body(cx.model, &cx.namer, roots);
+    let value = m.returns.assemble(&cx.types, &outs);
+    quote! {
+        #doc
+        #[inline]
+        pub #signature {
+            #prelude
+            #value
+        }
+    }
+}
+
+/// `impl Lagrangian<N> for Name<S>`: each method calls the inherent one.
+fn lagrangian_impl(cx: &Context) -> TokenStream {
+    let na = nalgebra();
+    let name = cx.outline.name;
+    let n = &cx.types.n;
+    let methods = METHODS
+        .iter()
+        .zip(&cx.roots)
+        .map(|(m, roots)| trait_method(cx, m, roots.is_some()));
+    let finite = parameters_are_finite(cx);
+    quote! {
+        impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::Lagrangian<#n> for #name<S> {
+            type Scalar = S;
+            const COORDINATES: [&'static str; #n] = Self::COORDINATES;
+            #(#methods)*
+            #[inline]
+            fn parameters_are_finite(&self) -> bool {
+                #finite
+            }
+        }
+    }
+}
+
+/// A method of the `Lagrangian` impl: a call of the inherent one, or, where
+/// the model has none, the trait's flag for its absence.
+fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
+    if !present {
+        return match m.in_trait {
+            InTrait::Optional {
+                flag_if_absent: Some(flag),
+            } => {
+                let flag = Ident::new(flag, proc_macro2::Span::call_site());
+                quote!(const #flag: bool = true;)
+            }
+            _ => TokenStream::new(),
+        };
+    }
+    let signature = m.trait_signature(&cx.types);
+    let model = cx.outline.name;
+    let method = m.ident();
+    let args = m.arg_idents();
+    let call = quote!(#model::#method(self, #(#args),*));
+    match m.in_trait {
+        InTrait::Optional { .. } => quote! {
+            #[inline]
+            #signature {
+                ::core::option::Option::Some(#call)
+            }
+        },
+        InTrait::Required | InTrait::Provided => quote! {
+            #[inline]
+            #signature {
+                #call
+            }
+        },
+    }
+}
+
+/// Whether every parameter field is finite, for the runtime's input checks.
+fn parameters_are_finite(cx: &Context) -> TokenStream {
+    let fields = cx.outline.fields;
+    if fields.is_empty() {
+        return quote!(true);
+    }
+    let na = nalgebra();
+    let checks = fields.iter().map(|f| {
+        let n = &f.name;
+        match f.len {
+            None => quote!(#na::ComplexField::is_finite(&self.#n)),
+            Some(_) => quote!(self.#n.iter().all(#na::ComplexField::is_finite)),
+        }
+    });
+    quote!(#(#checks)&&*)
+}

@@ -1,0 +1,105 @@
+//! What the generated items know of a model whether or not it derived: the
+//! struct with its fields and constructor, and the vector and matrix types
+//! of its size. Shared by [`emit`](super::emit) and the error stub.
+
+use crate::model::Field;
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::quote;
+use syn::{Attribute, Visibility};
+
+/// The types of a model with `dof` coordinates.
+pub struct Types {
+    pub dof: usize,
+    pub n: Literal,
+    pub vector: TokenStream,
+    pub matrix: TokenStream,
+    pub new_vector: TokenStream,
+    pub new_matrix: TokenStream,
+}
+
+impl Types {
+    pub fn new(dof: usize) -> Self {
+        let na = nalgebra();
+        let n = Literal::usize_unsuffixed(dof);
+        Types {
+            dof,
+            vector: quote!(#na::SVector<S, #n>),
+            matrix: quote!(#na::SMatrix<S, #n, #n>),
+            new_vector: quote!(#na::SVector::<S, #n>::from_column_slice),
+            new_matrix: quote!(#na::SMatrix::<S, #n, #n>::from_column_slice),
+            n,
+        }
+    }
+}
+
+/// The path of nalgebra in generated code.
+pub fn nalgebra() -> TokenStream {
+    quote!(::lagrange::nalgebra)
+}
+
+/// What the generated items know of a model whether or not it derived: its
+/// struct's attributes, visibility, name and fields, and its size.
+pub struct Outline<'a> {
+    pub attrs: &'a [Attribute],
+    pub vis: &'a Visibility,
+    pub name: &'a Ident,
+    pub dof: usize,
+    pub fields: &'a [Field],
+}
+
+impl Outline<'_> {
+    /// `struct Name<S = f64> { pub field: S, ... }`, with the user's
+    /// attributes; a model without parameters holds a `PhantomData`.
+    pub fn struct_item(&self) -> TokenStream {
+        let Outline {
+            attrs, vis, name, ..
+        } = self;
+        let fields = if self.fields.is_empty() {
+            quote!({ _scalar: ::core::marker::PhantomData<S> })
+        } else {
+            let params = self.fields.iter().map(|f| &f.name);
+            let types = self.fields.iter().map(Field::rust_type);
+            quote!({ #(pub #params: #types,)* })
+        };
+        quote! {
+            #(#attrs)*
+            #[derive(Clone, Copy, Debug, PartialEq)]
+            #vis struct #name<S = f64> #fields
+        }
+    }
+
+    /// `const fn new(fields) -> Self`.
+    pub fn constructor(&self) -> TokenStream {
+        let params: Vec<&Ident> = self.fields.iter().map(|f| &f.name).collect();
+        let types = self.fields.iter().map(Field::rust_type);
+        let body = if params.is_empty() {
+            quote!(Self {
+                _scalar: ::core::marker::PhantomData
+            })
+        } else {
+            quote!(Self { #(#params,)* })
+        };
+        quote!(const fn new(#(#params: #types),*) -> Self { #body })
+    }
+
+    /// The constructor's doc: the parameters in order.
+    pub fn constructor_doc(&self) -> String {
+        let parameters: Vec<String> = self
+            .fields
+            .iter()
+            .map(|f| match f.len {
+                None => format!("`{}`", f.name),
+                Some(len) => format!("`{}: [S; {len}]`", f.name),
+            })
+            .collect();
+        format!(
+            "A `{}` with the given parameters ({}).",
+            self.name,
+            if parameters.is_empty() {
+                "none".to_string()
+            } else {
+                parameters.join(", ")
+            }
+        )
+    }
+}

@@ -1,0 +1,107 @@
+//! The algebra kernel: a hash-consed expression DAG and what is done with
+//! it. Every distinct node exists once, so a subexpression that appears in
+//! M, f and the energies is one node, and common subexpression elimination is
+//! a matter of counting uses at emission time.
+//!
+//! The kernel knows nothing of models or tokens; the pipeline stages above it
+//! (`model`, `check`, `derive`, `emit`, `render`) build and read expressions
+//! only through [`Pool`]. One file per concern of `Pool`:
+//!
+//! - [`pool`]: the storage, hash-consing, dependency sets, the node budget;
+//! - [`simplify`]: the simplifying constructors, the only way nodes are made,
+//!   which keep every node in a canonical form; [`content`] pulls the common
+//!   factors out of a sum;
+//! - [`diff`]: differentiation, memoized;
+//! - [`eval`]: numeric evaluation, for tests and compile-time checks;
+//! - [`cse`]: which shared nodes an emitted function binds to `let`s.
+
+pub mod content;
+pub mod cse;
+pub mod diff;
+pub mod eval;
+pub mod pool;
+pub mod simplify;
+
+pub use pool::{BudgetExceeded, Pool, DEFAULT_NODE_BUDGET};
+
+/// A node of the [`Pool`]. Ids are handed out in creation order, which is
+/// deterministic, so ordering by id gives deterministic output.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub struct ExprId(u32);
+
+impl ExprId {
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// A symbol: time, a coordinate, a velocity or a parameter. What each id
+/// means is the model's business (see [`crate::model::Symbols`]).
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub struct SymId(pub u32);
+
+/// Elementary functions of one argument.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub enum Func {
+    Sin,
+    Cos,
+    Tan,
+    Asin,
+    Acos,
+    Atan,
+    Sinh,
+    Cosh,
+    Tanh,
+    Exp,
+    Ln,
+}
+
+impl Func {
+    pub fn name(self) -> &'static str {
+        match self {
+            Func::Sin => "sin",
+            Func::Cos => "cos",
+            Func::Tan => "tan",
+            Func::Asin => "asin",
+            Func::Acos => "acos",
+            Func::Atan => "atan",
+            Func::Sinh => "sinh",
+            Func::Cosh => "cosh",
+            Func::Tanh => "tanh",
+            Func::Exp => "exp",
+            Func::Ln => "ln",
+        }
+    }
+
+    pub fn apply(self, x: f64) -> f64 {
+        match self {
+            Func::Sin => x.sin(),
+            Func::Cos => x.cos(),
+            Func::Tan => x.tan(),
+            Func::Asin => x.asin(),
+            Func::Acos => x.acos(),
+            Func::Atan => x.atan(),
+            Func::Sinh => x.sinh(),
+            Func::Cosh => x.cosh(),
+            Func::Tanh => x.tanh(),
+            Func::Exp => x.exp(),
+            Func::Ln => x.ln(),
+        }
+    }
+}
+
+/// One node. `Add` and `Mul` are n-ary with at least two operands in
+/// canonical order (see `simplify`); division is `a * b^-1`, subtraction
+/// `a + (-1)*b`, `sqrt(x)` is `x^0.5`.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+pub enum Node {
+    /// A finite or non-finite real constant, stored as canonical bits (no -0.0).
+    Num(u64),
+    Sym(SymId),
+    Add(Box<[ExprId]>),
+    Mul(Box<[ExprId]>),
+    Pow(ExprId, ExprId),
+    Func(Func, ExprId),
+    /// `atan2(y, x)`.
+    Atan2(ExprId, ExprId),
+}

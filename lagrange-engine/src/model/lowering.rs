@@ -1,0 +1,214 @@
+//! Expressions → DAG nodes: names resolved, indices evaluated, sums
+//! unrolled, every node built through the pool's simplifying constructors.
+
+use super::functions::FUNCTIONS;
+use super::scope::{Binding, Role};
+use super::{budget_error, SymKind, Symbols};
+use crate::ast::{BinOp, Expr};
+use crate::expr::{ExprId, Pool};
+use std::collections::HashMap;
+use syn::Ident;
+
+/// The state of lowering: the pool, the names bound so far, the index
+/// variables in scope.
+pub(super) struct Lowering {
+    pub(super) pool: Pool,
+    pub(super) symbols: Symbols,
+    pub(super) names: HashMap<String, Binding>,
+    /// The `let`s not lowered yet, to tell "used before its `let`" from
+    /// "unknown".
+    pub(super) pending_lets: Vec<String>,
+    /// The index variables in scope, innermost last.
+    pub(super) env: Vec<(String, i64)>,
+    /// The model's name, for the budget error.
+    pub(super) model: Ident,
+}
+
+impl Lowering {
+    /// A lowering with no names yet: the `const`s come first.
+    pub(super) fn new(pool: Pool, model: &Ident) -> Self {
+        Lowering {
+            pool,
+            symbols: Symbols::new(0, 0),
+            names: HashMap::new(),
+            pending_lets: Vec::new(),
+            env: Vec::new(),
+            model: model.clone(),
+        }
+    }
+
+    pub(super) fn lower(&mut self, e: &Expr) -> syn::Result<ExprId> {
+        Ok(match e {
+            Expr::Num { value, .. } => self.pool.num(*value),
+            Expr::Name(name) => {
+                let s = name.to_string();
+                if let Some(&(_, k)) = self.env.iter().rev().find(|(v, _)| *v == s) {
+                    return Ok(self.pool.num(k as f64));
+                }
+                match self.names.get(&s) {
+                    Some(Binding::Symbol(s)) => self.pool.sym(*s),
+                    Some(Binding::Let(id)) => *id,
+                    Some(Binding::Const(v)) => self.pool.num(*v as f64),
+                    Some(Binding::Array { lo, hi, role }) => {
+                        let role = match role {
+                            Role::Coordinate => "an indexed coordinate",
+                            Role::Parameter => "an indexed parameter",
+                            Role::Let => "an indexed `let`",
+                        };
+                        let example = if self.env.is_empty() {
+                            format!("`{s}[{lo}]`")
+                        } else {
+                            format!("`{s}[{}]`", self.env[self.env.len() - 1].0)
+                        };
+                        return Err(syn::Error::new(
+                            name.span(),
+                            format!(
+                                "`{s}` is {role} (`{s}[{lo}]` to `{s}[{}]`): write one element, e.g. {example}",
+                                hi - 1
+                            ),
+                        ));
+                    }
+                    None => return Err(self.unknown_name(name)),
+                }
+            }
+            Expr::Index { base, index, .. } => match self.element(base, index)?.1 {
+                Binding::Symbol(s) => self.pool.sym(s),
+                Binding::Let(id) => id,
+                _ => unreachable!("elements are symbols or lets"),
+            },
+            Expr::Sum { index, body, .. } => {
+                let (lo, hi) = self.range(index)?;
+                let mut terms = Vec::new();
+                for k in lo..hi {
+                    self.env.push((index.var.to_string(), k));
+                    let term = self.lower(body);
+                    self.env.pop();
+                    terms.push(term?);
+                    self.pool
+                        .check_budget()
+                        .map_err(|b| budget_error(&self.model, b.budget))?;
+                }
+                self.pool.add(&terms)
+            }
+            Expr::Neg { inner, .. } => {
+                let x = self.lower(inner)?;
+                self.pool.neg(x)
+            }
+            Expr::Binary { op, lhs, rhs, .. } => {
+                let a = self.lower(lhs)?;
+                let b = self.lower(rhs)?;
+                match op {
+                    BinOp::Add => self.pool.add2(a, b),
+                    BinOp::Sub => self.pool.sub(a, b),
+                    BinOp::Mul => self.pool.mul2(a, b),
+                    BinOp::Div => self.pool.div(a, b),
+                    BinOp::Pow => self.pool.pow(a, b),
+                }
+            }
+            Expr::Call { func, range, args } => self.lower_call(func, *range, args)?,
+        })
+    }
+
+    pub(super) fn element(&self, base: &Ident, index: &Expr) -> syn::Result<(i64, Binding)> {
+        let s = base.to_string();
+        let (lo, hi) = match self.names.get(&s) {
+            Some(Binding::Array { lo, hi, .. }) => (*lo, *hi),
+            Some(Binding::Const(_)) => {
+                return Err(syn::Error::new(
+                    base.span(),
+                    format!("`{s}` is a `const`, not indexed: write `{s}`"),
+                ))
+            }
+            Some(_) => {
+                return Err(syn::Error::new(
+                    base.span(),
+                    format!("`{s}` is not indexed: write `{s}` (declare `{s}[N]` to index it)"),
+                ))
+            }
+            None => return Err(self.unknown_name(base)),
+        };
+        let k = self.int(index)?;
+        if k < lo || k >= hi {
+            return Err(index.range().error(format!(
+                "index {k} is out of range: `{s}` has elements `{s}[{lo}]` to `{s}[{}]`",
+                hi - 1
+            )));
+        }
+        match self.names.get(&format!("{s}[{k}]")) {
+            Some(b) => Ok((k, *b)),
+            // An indexed `let` using its own later elements.
+            None => Err(index.range().error(format!(
+                "`{s}[{k}]` is used before it is defined: an element of a `let` may only use the elements before it"
+            ))),
+        }
+    }
+
+    /// The force target `x` or `x[k]`: its label and its position.
+    pub(super) fn force_target(&mut self, target: &Expr) -> syn::Result<(String, ExprId)> {
+        let (label, binding) = match target {
+            Expr::Name(name) => {
+                let s = name.to_string();
+                match self.names.get(&s) {
+                    Some(b) => (s, *b),
+                    None => return Err(self.unknown_name(name)),
+                }
+            }
+            Expr::Index { base, index, .. } => {
+                let (k, b) = self.element(base, index)?;
+                (format!("{base}[{k}]"), b)
+            }
+            _ => unreachable!("the parser reads force targets as names or elements"),
+        };
+        let not_a_position = |what: &str| {
+            target.range().error(format!(
+                "force on `{label}`, which is {what}: a force acts on a coordinate or along a position \
+                 (a `let` of the coordinates), e.g. `x = F` or `x[N-1] = F`"
+            ))
+        };
+        let position = match binding {
+            Binding::Symbol(s) if s == self.symbols.time => return Err(not_a_position("time")),
+            Binding::Symbol(s) => match self.symbols.kind(s) {
+                SymKind::Coordinate(_) => self.pool.sym(s),
+                _ => return Err(not_a_position("a parameter")),
+            },
+            Binding::Const(_) => return Err(not_a_position("a `const`")),
+            Binding::Array { .. } => {
+                return Err(target.range().error(format!(
+                    "`{label}` is indexed: apply the force to one element, e.g. `{label}[0] = F`"
+                )))
+            }
+            Binding::Let(id) => id,
+        };
+        let s = &self.symbols;
+        if s.velocities
+            .iter()
+            .any(|&v| self.pool.depends_on(position, v))
+        {
+            return Err(not_a_position("not a position (it holds a velocity)"));
+        }
+        if !s
+            .coordinates
+            .iter()
+            .any(|&q| self.pool.depends_on(position, q))
+        {
+            return Err(not_a_position(
+                "a constant or a parameter (it depends on no coordinate, so the force does no virtual work)",
+            ));
+        }
+        Ok((label, position))
+    }
+
+    pub(super) fn unknown_name(&self, name: &Ident) -> syn::Error {
+        let s = name.to_string();
+        let msg = if self.pending_lets.contains(&s) {
+            format!("`{s}` is used before its `let`: a `let` may only use the ones above it")
+        } else if FUNCTIONS.iter().any(|(f, _)| *f == s) || s == "sum" {
+            format!("`{s}` is a function: call it, e.g. `{s}(x)` or `x.{s}()`")
+        } else {
+            format!(
+                "unknown name `{s}`: not a coordinate, a parameter, a constant, a `let` or `t` (declare parameters with `parameters: {s};`)"
+            )
+        };
+        syn::Error::new(name.span(), msg)
+    }
+}

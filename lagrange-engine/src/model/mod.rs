@@ -1,0 +1,170 @@
+//! AST → model: names resolved to symbols, `let`s and `dot` expanded, every
+//! section lowered into the expression DAG. Errors here are about the text
+//! (unknown or duplicated names, misplaced sections); the physics is checked
+//! in [`check`](crate::check).
+//!
+//! Lowering runs six passes over the items (`passes.rs`), each a function:
+//! the `const`s; the declarations (every name once, the coordinates and
+//! parameters with their sizes); the symbols; the `constants:`; the `let`s;
+//! the sections. An expression is lowered by `lowering.rs`, with the index
+//! arithmetic of [`index`], the function table of [`functions`] and the
+//! names of `scope.rs`; `locate.rs` finds the tokens behind a node for the
+//! checks' errors.
+
+pub mod functions;
+pub mod index;
+mod locate;
+mod lowering;
+mod passes;
+mod scope;
+pub mod symbols;
+
+pub use functions::FUNCTIONS;
+pub use index::MAX_RANGE;
+pub use passes::declared_shape;
+pub use symbols::{SymKind, Symbols};
+
+use crate::ast::{Expr, ModelDef, SpanRange};
+use crate::expr::{ExprId, Pool};
+use lowering::Lowering;
+use scope::{Binding, Declared};
+use std::collections::HashMap;
+use syn::{Attribute, Ident, Visibility};
+
+/// A section's expression with the tokens it came from. A section written
+/// more than once is their sum: `ast` is then the `+` of the parts.
+pub struct Section {
+    pub keyword: Ident,
+    pub ast: Expr,
+    pub value: ExprId,
+}
+
+/// One scalar of the model: a name, or one element of an indexed name.
+#[derive(Clone, Debug)]
+pub struct Scalar {
+    pub name: Ident,
+    pub index: Option<usize>,
+}
+
+impl Scalar {
+    pub fn span(&self) -> proc_macro2::Span {
+        self.name.span()
+    }
+}
+
+impl std::fmt::Display for Scalar {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.index {
+            None => write!(f, "{}", self.name),
+            Some(k) => write!(f, "{}[{k}]", self.name),
+        }
+    }
+}
+
+/// A runtime parameter as the struct holds it: `m: S` or `m: [S; len]`.
+#[derive(Clone, Debug)]
+pub struct Field {
+    pub name: Ident,
+    pub len: Option<usize>,
+}
+
+impl Field {
+    /// The field's type: `S` or `[S; len]`.
+    pub fn rust_type(&self) -> proc_macro2::TokenStream {
+        match self.len {
+            None => quote::quote!(S),
+            Some(len) => {
+                let len = proc_macro2::Literal::usize_unsuffixed(len);
+                quote::quote!([S; #len])
+            }
+        }
+    }
+}
+
+/// A force: `value` acts along the position `position` (a coordinate or a
+/// `let`), contributing `value · ∂position/∂q_i` to each `Q_i`.
+pub struct Force {
+    /// The target as resolved: `x`, `theta[0]`.
+    pub label: String,
+    pub target: Expr,
+    pub ast: Expr,
+    pub position: ExprId,
+    pub value: ExprId,
+}
+
+/// The lowered model.
+pub struct Model {
+    pub attrs: Vec<Attribute>,
+    pub options: crate::ast::Options,
+    pub vis: Visibility,
+    pub name: Ident,
+    pub coordinates: Vec<Scalar>,
+    /// The parameters, one scalar each, in the order of the symbols.
+    pub parameters: Vec<Scalar>,
+    /// The parameters as struct fields, in declaration order.
+    pub fields: Vec<Field>,
+    pub symbols: Symbols,
+    pub kinetic: Section,
+    pub potential: Section,
+    pub dissipation: Option<Section>,
+    pub forces: Vec<Force>,
+    pub pool: Pool,
+    /// Every name as lowering left it, so that `locate` can lower a piece
+    /// of a section again.
+    scope: HashMap<String, Binding>,
+}
+
+/// Lowers a parsed model, pass by pass. The first error met is returned.
+pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
+    let mut declared = Declared::default();
+    let mut cx = Lowering::new(pool, &def.name);
+    passes::consts(&def, &mut declared, &mut cx)?;
+    let mut decls = passes::declarations(&def, &mut declared, &cx)?;
+    let symbols = passes::bind_symbols(&def, &mut decls, &mut cx);
+    passes::constants(&def, &mut cx)?;
+    passes::lets(&def, &mut cx)?;
+    let sections = passes::sections(def.items, &def.name, &mut cx)?;
+    cx.pool
+        .check_budget()
+        .map_err(|b| budget_error(&def.name, b.budget))?;
+    Ok(Model {
+        attrs: def.attrs,
+        options: def.options,
+        vis: def.vis,
+        name: def.name,
+        coordinates: decls.coordinates,
+        parameters: decls.parameters,
+        fields: decls.fields,
+        symbols,
+        kinetic: sections.kinetic,
+        potential: sections.potential,
+        dissipation: sections.dissipation,
+        forces: sections.forces,
+        pool: cx.pool,
+        scope: cx.names,
+    })
+}
+
+/// The error of a derivation past the pool's budget, on the model's name.
+pub fn budget_error(name: &Ident, budget: usize) -> syn::Error {
+    syn::Error::new(
+        name.span(),
+        format!(
+            "the derivation of `{name}` exceeds the size budget of {budget} expression nodes: \
+             the model is too large to derive symbolically (simplify the positions, or split the model)"
+        ),
+    )
+}
+
+impl Model {
+    pub fn dof(&self) -> usize {
+        self.coordinates.len()
+    }
+}
+
+impl Section {
+    /// From the section's keyword to the end of its expression.
+    pub fn keyword_and_value(&self) -> SpanRange {
+        SpanRange::single(self.keyword.span()).to(self.ast.range())
+    }
+}

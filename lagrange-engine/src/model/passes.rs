@@ -1,0 +1,335 @@
+//! The lowering passes, in the order [`lower_with_pool`](super::lower_with_pool)
+//! runs them. Each reads the whole item list, so a section may be written in
+//! any order except that a `const`, a constant or a `let` may use only the
+//! ones above it.
+
+use super::lowering::Lowering;
+use super::scope::{Binding, Declared, Role};
+use super::{Field, Force, Scalar, Section, Symbols};
+use crate::ast::{BinOp, Expr, Item, ModelDef};
+use crate::expr::Pool;
+use syn::Ident;
+
+/// Pass 1: the `const`s, in order; sizes and indices anywhere may use them.
+pub(super) fn consts(
+    def: &ModelDef,
+    declared: &mut Declared,
+    cx: &mut Lowering,
+) -> syn::Result<()> {
+    for item in &def.items {
+        if let Item::Const { name, value } = item {
+            declared.declare(name, "`const`")?;
+            let v = cx.int(value)?;
+            cx.names.insert(name.to_string(), Binding::Const(v));
+        }
+    }
+    Ok(())
+}
+
+/// The coordinates and parameters as declared, element by element.
+pub(super) struct Declarations {
+    pub(super) coordinates: Vec<Scalar>,
+    pub(super) parameters: Vec<Scalar>,
+    pub(super) fields: Vec<Field>,
+    /// The indexed names among them, with their ranges.
+    arrays: Vec<(String, Binding)>,
+}
+
+/// Pass 2: every name declared once; the coordinates and parameters, which
+/// may be listed anywhere, with their sizes.
+pub(super) fn declarations(
+    def: &ModelDef,
+    declared: &mut Declared,
+    cx: &Lowering,
+) -> syn::Result<Declarations> {
+    let mut out = Declarations {
+        coordinates: Vec::new(),
+        parameters: Vec::new(),
+        fields: Vec::new(),
+        arrays: Vec::new(),
+    };
+    for item in &def.items {
+        match item {
+            Item::Coordinates { names, .. } | Item::Parameters { names, .. } => {
+                let (role, what) = match item {
+                    Item::Coordinates { .. } => (Role::Coordinate, "coordinate"),
+                    _ => (Role::Parameter, "parameter"),
+                };
+                for d in names {
+                    declared.declare(&d.name, what)?;
+                    let len = match &d.len {
+                        None => None,
+                        Some(e) => Some(cx.length(e)?),
+                    };
+                    let scalars = match role {
+                        Role::Coordinate => &mut out.coordinates,
+                        _ => &mut out.parameters,
+                    };
+                    match len {
+                        None => scalars.push(Scalar {
+                            name: d.name.clone(),
+                            index: None,
+                        }),
+                        Some(len) => {
+                            out.arrays.push((
+                                d.name.to_string(),
+                                Binding::Array {
+                                    lo: 0,
+                                    hi: len as i64,
+                                    role,
+                                },
+                            ));
+                            scalars.extend((0..len).map(|k| Scalar {
+                                name: d.name.clone(),
+                                index: Some(k),
+                            }));
+                        }
+                    }
+                    if role == Role::Parameter {
+                        out.fields.push(Field {
+                            name: d.name.clone(),
+                            len,
+                        });
+                    }
+                }
+            }
+            Item::Constants { entries, .. } => {
+                for (n, _) in entries {
+                    declared.declare(n, "constant")?;
+                }
+            }
+            Item::Let { name, .. } => declared.declare(name, "`let`")?,
+            _ => {}
+        }
+    }
+    if out.coordinates.is_empty() {
+        return Err(syn::Error::new(
+            def.name.span(),
+            format!(
+                "model `{}` has no `coordinates:` section: list its generalized coordinates, e.g. `coordinates: x, theta;`",
+                def.name
+            ),
+        ));
+    }
+    Ok(out)
+}
+
+/// Pass 3: a symbol for `t` and for each coordinate and parameter, bound to
+/// its name (`x`, `theta[2]`); the indexed names bound to their ranges.
+pub(super) fn bind_symbols(def: &ModelDef, decls: &mut Declarations, cx: &mut Lowering) -> Symbols {
+    let symbols = Symbols::new(decls.coordinates.len(), decls.parameters.len());
+    cx.symbols = symbols.clone();
+    cx.names.insert("t".into(), Binding::Symbol(symbols.time));
+    for (i, c) in decls.coordinates.iter().enumerate() {
+        cx.names
+            .insert(c.to_string(), Binding::Symbol(symbols.coordinates[i]));
+    }
+    for (k, p) in decls.parameters.iter().enumerate() {
+        cx.names
+            .insert(p.to_string(), Binding::Symbol(symbols.parameters[k]));
+    }
+    cx.names.extend(std::mem::take(&mut decls.arrays));
+    cx.pending_lets = def
+        .items
+        .iter()
+        .filter_map(|i| match i {
+            Item::Let { name, .. } => Some(name.to_string()),
+            _ => None,
+        })
+        .collect();
+    symbols
+}
+
+/// Pass 4: the `constants:`, in order; each must fold to a number.
+pub(super) fn constants(def: &ModelDef, cx: &mut Lowering) -> syn::Result<()> {
+    for item in &def.items {
+        if let Item::Constants { entries, .. } = item {
+            for (name, value) in entries {
+                let id = cx.lower(value)?;
+                if cx.pool.as_num(id).is_none() {
+                    return Err(value.range().error(format!(
+                        "constant `{name}` is not a number: a constant may use numbers, `const`s and the constants before it \
+                         (declare values that change at run time with `parameters: {name};`)"
+                    )));
+                }
+                cx.names.insert(name.to_string(), Binding::Let(id));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Pass 5: the `let`s, in order; each may use the ones above it, and an
+/// element of an indexed `let` the elements before it.
+pub(super) fn lets(def: &ModelDef, cx: &mut Lowering) -> syn::Result<()> {
+    for item in &def.items {
+        if let Item::Let { name, index, value } = item {
+            match index {
+                None => {
+                    let id = cx.lower(value)?;
+                    cx.names.insert(name.to_string(), Binding::Let(id));
+                }
+                Some(range) => {
+                    let (lo, hi) = cx.range(range)?;
+                    cx.names.insert(
+                        name.to_string(),
+                        Binding::Array {
+                            lo,
+                            hi,
+                            role: Role::Let,
+                        },
+                    );
+                    for k in lo..hi {
+                        cx.env.push((range.var.to_string(), k));
+                        let id = cx.lower(value);
+                        cx.env.pop();
+                        cx.names.insert(format!("{name}[{k}]"), Binding::Let(id?));
+                    }
+                }
+            }
+            cx.pending_lets.retain(|n| n != &name.to_string());
+        }
+    }
+    Ok(())
+}
+
+/// The energies and forces of a model.
+pub(super) struct Sections {
+    pub(super) kinetic: Section,
+    pub(super) potential: Section,
+    pub(super) dissipation: Option<Section>,
+    pub(super) forces: Vec<Force>,
+}
+
+/// Pass 6: the sections, in order; a section written twice is the sum of
+/// both. `kinetic:` and `potential:` are required.
+pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn::Result<Sections> {
+    let mut kinetic = None;
+    let mut potential = None;
+    let mut dissipation = None;
+    let mut forces: Vec<Force> = Vec::new();
+    for item in items {
+        match item {
+            Item::Kinetic { keyword, value } => add_to(&mut kinetic, cx, keyword, value)?,
+            Item::Potential { keyword, value } => add_to(&mut potential, cx, keyword, value)?,
+            Item::Dissipation { keyword, value } => add_to(&mut dissipation, cx, keyword, value)?,
+            Item::Forces { entries, .. } => {
+                for (target, value) in entries {
+                    forces.push(force(&forces, cx, target, value)?);
+                }
+            }
+            _ => {}
+        }
+    }
+    let missing = |what: &str, example: &str| {
+        syn::Error::new(
+            name.span(),
+            format!("model `{name}` has no `{what}:` section: {example}"),
+        )
+    };
+    let kinetic = kinetic.ok_or_else(|| {
+        missing(
+            "kinetic",
+            "write its kinetic energy T, e.g. `kinetic: m/2*dot(x)^2;`",
+        )
+    })?;
+    let potential = potential.ok_or_else(|| {
+        missing(
+            "potential",
+            "write its potential energy V, e.g. `potential: m*g*y;` (or `potential: 0;`)",
+        )
+    })?;
+    Ok(Sections {
+        kinetic,
+        potential,
+        dissipation,
+        forces,
+    })
+}
+
+/// One entry `target = value` of `forces:`.
+fn force(before: &[Force], cx: &mut Lowering, target: Expr, value: Expr) -> syn::Result<Force> {
+    let (label, position) = cx.force_target(&target)?;
+    if before.iter().any(|f| f.label == label) {
+        return Err(target.range().error(format!(
+            "a second force on `{label}`: write the sum of the forces in one entry"
+        )));
+    }
+    let id = cx.lower(&value)?;
+    Ok(Force {
+        label,
+        target,
+        ast: value,
+        position,
+        value: id,
+    })
+}
+
+/// Lowers a section; a section written again adds to the first.
+fn add_to(
+    slot: &mut Option<Section>,
+    cx: &mut Lowering,
+    keyword: Ident,
+    ast: Expr,
+) -> syn::Result<()> {
+    let value = cx.lower(&ast)?;
+    *slot = Some(match slot.take() {
+        None => Section {
+            keyword,
+            ast,
+            value,
+        },
+        Some(first) => Section {
+            value: cx.pool.add2(first.value, value),
+            ast: Expr::Binary {
+                op: BinOp::Add,
+                range: first.ast.range().to(ast.range()),
+                lhs: Box::new(first.ast),
+                rhs: Box::new(ast),
+            },
+            keyword: first.keyword,
+        },
+    });
+    Ok(())
+}
+
+/// For the stub of a model with an error: its number of coordinates and
+/// its parameter fields, counted as lowering will count them once the error
+/// is fixed (a duplicated name or `t` is the error, not an extra one; a size
+/// that cannot be evaluated counts as one).
+pub fn declared_shape(def: &ModelDef) -> (usize, Vec<Field>) {
+    let mut cx = Lowering::new(Pool::default(), &def.name);
+    for item in &def.items {
+        if let Item::Const { name, value } = item {
+            if let Ok(v) = cx.int(value) {
+                cx.names
+                    .entry(name.to_string())
+                    .or_insert(Binding::Const(v));
+            }
+        }
+    }
+    let mut seen: Vec<String> = vec!["t".into()];
+    let mut dof = 0;
+    let mut fields = Vec::new();
+    for item in &def.items {
+        let (Item::Coordinates { names, .. } | Item::Parameters { names, .. }) = item else {
+            continue;
+        };
+        for d in names {
+            if seen.contains(&d.name.to_string()) {
+                continue;
+            }
+            seen.push(d.name.to_string());
+            let len = d.len.as_ref().map(|e| cx.length(e).unwrap_or(1));
+            if matches!(item, Item::Coordinates { .. }) {
+                dof += len.unwrap_or(1);
+            } else {
+                fields.push(Field {
+                    name: d.name.clone(),
+                    len,
+                });
+            }
+        }
+    }
+    (dof, fields)
+}

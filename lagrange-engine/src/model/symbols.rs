@@ -1,0 +1,59 @@
+//! The symbols of a model and what each id stands for.
+
+use crate::expr::SymId;
+
+/// What a symbol id stands for. Symbol ids are dense: `t`, then the
+/// coordinates, then the velocities, then the parameters, so a numeric state
+/// is one slice in that order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SymKind {
+    Time,
+    Coordinate(usize),
+    Velocity(usize),
+    Parameter(usize),
+    /// Only in the residual `M q̈ − f` of the Jacobians.
+    Acceleration(usize),
+}
+
+/// The symbols of a model.
+#[derive(Clone, Debug)]
+pub struct Symbols {
+    pub time: SymId,
+    pub coordinates: Vec<SymId>,
+    pub velocities: Vec<SymId>,
+    pub parameters: Vec<SymId>,
+    pub accelerations: Vec<SymId>,
+}
+
+impl Symbols {
+    pub(super) fn new(n: usize, p: usize) -> Self {
+        let id = |k: usize| SymId(k as u32);
+        Symbols {
+            time: id(0),
+            coordinates: (0..n).map(|i| id(1 + i)).collect(),
+            velocities: (0..n).map(|i| id(1 + n + i)).collect(),
+            parameters: (0..p).map(|k| id(1 + 2 * n + k)).collect(),
+            accelerations: (0..n).map(|i| id(1 + 2 * n + p + i)).collect(),
+        }
+    }
+
+    pub fn count(&self) -> usize {
+        1 + 3 * self.coordinates.len() + self.parameters.len()
+    }
+
+    pub fn kind(&self, s: SymId) -> SymKind {
+        let n = self.coordinates.len();
+        let k = s.0 as usize;
+        if k == 0 {
+            SymKind::Time
+        } else if k <= n {
+            SymKind::Coordinate(k - 1)
+        } else if k <= 2 * n {
+            SymKind::Velocity(k - 1 - n)
+        } else if k <= 2 * n + self.parameters.len() {
+            SymKind::Parameter(k - 1 - 2 * n)
+        } else {
+            SymKind::Acceleration(k - 1 - 2 * n - self.parameters.len())
+        }
+    }
+}

@@ -1,0 +1,373 @@
+//! Expressions, with mathematical precedence:
+//!
+//! ```text
+//! sum     := product (('+' | '-') product)*
+//! product := unary (('*' | '/') unary)*
+//! unary   := '-' unary | power
+//! power   := postfix ('^' unary)?
+//! postfix := primary ('.' name '(' args ')')*
+//! primary := number | name | name '[' sum ']' | name '(' args ')'
+//!          | 'sum' '(' name 'in' sum ('..' | '..=') sum ',' sum ')' | '(' sum ')'
+//! ```
+
+use super::plain_name;
+use crate::ast::{BinOp, Expr, IndexRange, SpanRange};
+use syn::parse::ParseStream;
+use syn::{bracketed, parenthesized, Ident, LitFloat, LitInt, Token};
+
+/// `[expr]` after a name, if there: the expression and the closing span.
+pub(super) fn parse_bracket(input: ParseStream) -> syn::Result<Option<(Expr, proc_macro2::Span)>> {
+    if !input.peek(syn::token::Bracket) {
+        return Ok(None);
+    }
+    let inner;
+    let bracket = bracketed!(inner in input);
+    if inner.is_empty() {
+        return Err(syn::Error::new(
+            bracket.span.join(),
+            "empty brackets: expected an index or a length inside `[]`",
+        ));
+    }
+    let e = drain_on_error(&inner, |inner| {
+        let e = parse_expr(inner)?;
+        if !inner.is_empty() {
+            return Err(inner.error("expected an operator or `]`"));
+        }
+        Ok(e)
+    })?;
+    Ok(Some((e, bracket.span.close())))
+}
+
+/// `var in lo..hi` or `var in lo..=hi`.
+pub(super) fn parse_index_range(input: ParseStream) -> syn::Result<IndexRange> {
+    let var = plain_name(input)?;
+    if !input.peek(Token![in]) {
+        return Err(input.error(format!(
+            "expected `in`: an index is written `{var} in 0..N` or `{var} in 0..=i`"
+        )));
+    }
+    input.parse::<Token![in]>()?;
+    let lo = parse_expr(input)?;
+    let inclusive = if input.peek(Token![..=]) {
+        input.parse::<Token![..=]>()?;
+        true
+    } else if input.peek(Token![..]) {
+        input.parse::<Token![..]>()?;
+        false
+    } else {
+        return Err(input.error("expected `..` or `..=`: a range is written `0..N` or `0..=i`"));
+    };
+    let hi = parse_expr(input)?;
+    Ok(IndexRange {
+        range: SpanRange::single(var.span()).to(hi.range()),
+        var,
+        lo: Box::new(lo),
+        hi: Box::new(hi),
+        inclusive,
+    })
+}
+
+/// `sum := product (('+' | '-') product)*`
+pub fn parse_expr(input: ParseStream) -> syn::Result<Expr> {
+    let mut lhs = parse_product(input)?;
+    loop {
+        let op = if input.peek(Token![+]) {
+            input.parse::<Token![+]>()?;
+            BinOp::Add
+        } else if input.peek(Token![-]) {
+            input.parse::<Token![-]>()?;
+            BinOp::Sub
+        } else {
+            return Ok(lhs);
+        };
+        let rhs = parse_product(input)?;
+        lhs = binary(op, lhs, rhs);
+    }
+}
+
+fn binary(op: BinOp, lhs: Expr, rhs: Expr) -> Expr {
+    Expr::Binary {
+        op,
+        range: lhs.range().to(rhs.range()),
+        lhs: Box::new(lhs),
+        rhs: Box::new(rhs),
+    }
+}
+
+/// `product := unary (('*' | '/') unary)*`
+fn parse_product(input: ParseStream) -> syn::Result<Expr> {
+    let mut lhs = parse_unary(input)?;
+    loop {
+        let op = if input.peek(Token![*]) {
+            input.parse::<Token![*]>()?;
+            BinOp::Mul
+        } else if input.peek(Token![/]) {
+            input.parse::<Token![/]>()?;
+            BinOp::Div
+        } else {
+            return Ok(lhs);
+        };
+        let rhs = parse_unary(input)?;
+        lhs = binary(op, lhs, rhs);
+    }
+}
+
+/// `unary := '-' unary | power`
+fn parse_unary(input: ParseStream) -> syn::Result<Expr> {
+    if input.peek(Token![-]) {
+        let minus = input.parse::<Token![-]>()?;
+        let inner = parse_unary(input)?;
+        return Ok(Expr::Neg {
+            range: SpanRange::single(minus.span).to(inner.range()),
+            inner: Box::new(inner),
+        });
+    }
+    parse_power(input)
+}
+
+/// `power := postfix ('^' unary)?` — right-associative through `unary`.
+fn parse_power(input: ParseStream) -> syn::Result<Expr> {
+    let base = parse_postfix(input)?;
+    if input.peek(Token![^]) {
+        input.parse::<Token![^]>()?;
+        let exponent = parse_unary(input)?;
+        return Ok(binary(BinOp::Pow, base, exponent));
+    }
+    Ok(base)
+}
+
+/// `postfix := primary ('.' name '(' args ')')*`
+fn parse_postfix(input: ParseStream) -> syn::Result<Expr> {
+    let mut e = parse_primary(input)?;
+    while input.peek(Token![.]) && !input.peek(Token![..]) {
+        input.parse::<Token![.]>()?;
+        let method: Ident = input.parse()?;
+        if !input.peek(syn::token::Paren) {
+            return Err(syn::Error::new(
+                method.span(),
+                format!(
+                    "expected `(` after `.{method}`: only method calls such as `x.sin()` or `x.powi(2)` may follow a `.`"
+                ),
+            ));
+        }
+        let (mut args, close) = parse_args(input)?;
+        args.insert(0, e);
+        e = Expr::Call {
+            range: args[0].range().to(SpanRange::single(close)),
+            func: method,
+            args,
+        };
+    }
+    Ok(e)
+}
+
+fn parse_args(input: ParseStream) -> syn::Result<(Vec<Expr>, proc_macro2::Span)> {
+    let inner;
+    let paren = parenthesized!(inner in input);
+    let args = drain_on_error(&inner, |inner| {
+        let mut args = Vec::new();
+        while !inner.is_empty() {
+            args.push(parse_expr(inner)?);
+            if inner.is_empty() {
+                break;
+            }
+            if !inner.peek(Token![,]) {
+                return Err(inner.error("expected an operator, `,` or `)`"));
+            }
+            inner.parse::<Token![,]>()?;
+        }
+        Ok(args)
+    })?;
+    Ok((args, paren.span.close()))
+}
+
+/// Parses a delimited group; on error, consumes the rest of it. Tokens left
+/// in a group make syn fail the whole macro input with its own "unexpected
+/// token", which would replace our error and lose the stub.
+pub(super) fn drain_on_error<T>(
+    inner: ParseStream,
+    f: impl FnOnce(ParseStream) -> syn::Result<T>,
+) -> syn::Result<T> {
+    f(inner).inspect_err(|_| {
+        let _ = inner.step(|cursor| {
+            let mut rest = *cursor;
+            while let Some((_, next)) = rest.token_tree() {
+                rest = next;
+            }
+            Ok(((), rest))
+        });
+    })
+}
+
+/// `primary := number | name | name '(' args ')' | '(' sum ')'`
+fn parse_primary(input: ParseStream) -> syn::Result<Expr> {
+    if input.peek(LitInt) {
+        let lit: LitInt = input.parse()?;
+        let value = lit
+            .base10_digits()
+            .parse::<f64>()
+            .map_err(|_| syn::Error::new(lit.span(), "this number is not a real number"))?;
+        return Ok(Expr::Num {
+            value,
+            span: lit.span(),
+        });
+    }
+    if input.peek(LitFloat) {
+        let lit: LitFloat = input.parse()?;
+        let value = lit
+            .base10_digits()
+            .parse::<f64>()
+            .map_err(|_| syn::Error::new(lit.span(), "this number is not a real number"))?;
+        return Ok(Expr::Num {
+            value,
+            span: lit.span(),
+        });
+    }
+    if input.peek(syn::token::Paren) {
+        let inner;
+        let paren = parenthesized!(inner in input);
+        if inner.is_empty() {
+            return Err(syn::Error::new(
+                paren.span.join(),
+                "empty parentheses: expected an expression inside `()`",
+            ));
+        }
+        return drain_on_error(&inner, |inner| {
+            let e = parse_expr(inner)?;
+            if !inner.is_empty() {
+                return Err(inner.error("expected an operator or `)`"));
+            }
+            Ok(e)
+        });
+    }
+    if input.peek(syn::Ident) {
+        let name: Ident = plain_name(input)?;
+        if name == "sum" && input.peek(syn::token::Paren) {
+            return parse_sum(input, name);
+        }
+        if let Some((index, close)) = parse_bracket(input)? {
+            return Ok(Expr::Index {
+                range: SpanRange::single(name.span()).to(SpanRange::single(close)),
+                base: name,
+                index: Box::new(index),
+            });
+        }
+        if input.peek(syn::token::Paren) {
+            let (args, close) = parse_args(input)?;
+            return Ok(Expr::Call {
+                range: SpanRange::single(name.span()).to(SpanRange::single(close)),
+                func: name,
+                args,
+            });
+        }
+        return Ok(Expr::Name(name));
+    }
+    if input.is_empty() || input.peek(Token![;]) || input.peek(Token![,]) {
+        return Err(input.error("expected an expression here"));
+    }
+    Err(input.error("expected an expression: a number, a name, a function call or `(`"))
+}
+
+/// `sum(j in a..b, body)`.
+fn parse_sum(input: ParseStream, keyword: Ident) -> syn::Result<Expr> {
+    let inner;
+    let paren = parenthesized!(inner in input);
+    let (index, body) = drain_on_error(&inner, |inner| {
+        if inner.is_empty() {
+            return Err(inner
+                .error("expected an index and a term: a sum is written `sum(i in 0..N, term)`"));
+        }
+        let index = parse_index_range(inner)?;
+        if !inner.peek(Token![,]) {
+            return Err(
+                inner.error("expected `,` and the term: a sum is written `sum(i in 0..N, term)`")
+            );
+        }
+        inner.parse::<Token![,]>()?;
+        let body = parse_expr(inner)?;
+        if inner.peek(Token![,]) {
+            inner.parse::<Token![,]>()?;
+        }
+        if !inner.is_empty() {
+            return Err(inner.error("expected an operator or `)`"));
+        }
+        Ok((index, body))
+    })?;
+    Ok(Expr::Sum {
+        range: SpanRange::single(keyword.span()).to(SpanRange::single(paren.span.close())),
+        index,
+        body: Box::new(body),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use syn::parse::Parser;
+
+    fn expr(src: &str) -> Expr {
+        parse_expr.parse_str(src).unwrap()
+    }
+
+    fn show(e: &Expr) -> String {
+        match e {
+            Expr::Num { value, .. } => format!("{value}"),
+            Expr::Name(n) => n.to_string(),
+            Expr::Neg { inner, .. } => format!("(-{})", show(inner)),
+            Expr::Binary { op, lhs, rhs, .. } => {
+                let o = match op {
+                    BinOp::Add => "+",
+                    BinOp::Sub => "-",
+                    BinOp::Mul => "*",
+                    BinOp::Div => "/",
+                    BinOp::Pow => "^",
+                };
+                format!("({} {o} {})", show(lhs), show(rhs))
+            }
+            Expr::Call { func, args, .. } => {
+                let a: Vec<String> = args.iter().map(show).collect();
+                format!("{func}({})", a.join(", "))
+            }
+            Expr::Index { base, index, .. } => format!("{base}[{}]", show(index)),
+            Expr::Sum { index, body, .. } => format!(
+                "sum({} in {}{}{}, {})",
+                index.var,
+                show(&index.lo),
+                if index.inclusive { "..=" } else { ".." },
+                show(&index.hi),
+                show(body)
+            ),
+        }
+    }
+
+    #[test]
+    fn power_binds_tighter_than_unary_minus_and_product() {
+        assert_eq!(show(&expr("-x^2")), "(-(x ^ 2))");
+        assert_eq!(show(&expr("a*b^2")), "(a * (b ^ 2))");
+        assert_eq!(show(&expr("x^-1")), "(x ^ (-1))");
+        assert_eq!(show(&expr("a^b^c")), "(a ^ (b ^ c))");
+        assert_eq!(show(&expr("m1/2*(x + y)")), "((m1 / 2) * (x + y))");
+        assert_eq!(show(&expr("a - b - c")), "((a - b) - c)");
+    }
+
+    #[test]
+    fn indices_and_sums() {
+        assert_eq!(show(&expr("x[i-1]^2")), "(x[(i - 1)] ^ 2)");
+        assert_eq!(
+            show(&expr("sum(j in 0..=i, l[j]*sin(theta[j]))")),
+            "sum(j in 0..=i, (l[j] * sin(theta[j])))"
+        );
+        assert_eq!(
+            show(&expr("-sum(j in i+1..N, m[j])")),
+            "(-sum(j in (i + 1)..N, m[j]))"
+        );
+    }
+
+    #[test]
+    fn method_syntax_is_a_call_with_the_receiver_first() {
+        assert_eq!(show(&expr("x.sin()")), "sin(x)");
+        assert_eq!(show(&expr("(a - b).cos()")), "cos((a - b))");
+        assert_eq!(show(&expr("x.powi(2) * 2.0")), "(powi(x, 2) * 2)");
+        assert_eq!(show(&expr("y.atan2(x)")), "atan2(y, x)");
+    }
+}

@@ -1,0 +1,222 @@
+//! The adaptive driver of the explicit embedded pairs ([`Dopri5`] and
+//! [`Dop853`]): Hairer's step loop with its stabilized step-size control,
+//! the step budget, the underflow check, and samples from the continuous
+//! extension, so that the methods only supply their stages, error estimate
+//! and dense output.
+//!
+//! [`Dopri5`]: crate::Dopri5
+//! [`Dop853`]: crate::Dop853
+
+use nalgebra::{RealField, SVector};
+
+use super::record::{Recorder, State};
+use super::step_control::{advances, initial_step};
+use super::validate::{check_tolerances, invalid};
+use crate::{IntegrationError, IntegrationResult, Lagrangian};
+
+/// A step-size controller's constants, as Hairer's codes set them:
+/// `h_new = h · safety · err^(−α) · err_old^β`, the ratio `h_new / h` kept
+/// within `[fac_min, fac_max]`, with `α = exponent − β · beta_weight`.
+pub(crate) struct Controller {
+    pub(crate) safety: f64,
+    /// Smallest step-size ratio `h_new / h`.
+    pub(crate) fac_min: f64,
+    /// Largest step-size ratio `h_new / h`.
+    pub(crate) fac_max: f64,
+    /// Lund stabilization (the "I" weight on the previous error).
+    pub(crate) beta: f64,
+    /// `1 / (q + 1)` for an error estimate of order `q`.
+    pub(crate) exponent: f64,
+    /// How much of `β` is taken off the exponent.
+    pub(crate) beta_weight: f64,
+    /// The order the initial step guess assumes.
+    pub(crate) order: u8,
+    /// How much longer than `h` a last step may be stretched to land on the
+    /// end, so that it is not a sliver (Hairer's 1.01).
+    pub(crate) stretch: f64,
+}
+
+/// The settings every adaptive method has.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Tolerances<S> {
+    pub(crate) rtol: S,
+    pub(crate) atol: S,
+    pub(crate) max_steps: usize,
+}
+
+/// How an attempted step ended, short of a model failure.
+pub(crate) enum Outcome<S, Step> {
+    /// The error estimate `err` exceeds the tolerance.
+    Rejected { err: S },
+    /// The step passed the error test with estimate `err`.
+    Accepted { step: Step, err: S },
+}
+
+/// What an explicit embedded Runge–Kutta pair supplies to [`adaptive`]: one
+/// value per integration, holding the tableau and the slopes it carries
+/// from step to step (first same as last).
+pub(crate) trait EmbeddedPair<S: RealField + Copy, const N: usize> {
+    /// An accepted step: the new state and what the dense output needs.
+    type Step;
+    /// The continuous extension on one accepted step.
+    type Dense;
+
+    /// Attempts a step of size `h` from `(t, q, q̇)` to `t_new`. A failing
+    /// evaluation, or an overflow in the error estimate, is an error, which
+    /// rejects the step. `rec` tells whether a sample lies inside the step.
+    fn attempt<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        rec: &mut Recorder<'_, S, N>,
+        model: &L,
+        times: (S, S, S),
+        state: (&SVector<S, N>, &SVector<S, N>),
+    ) -> Result<Outcome<S, Self::Step>, IntegrationError<S, N>>;
+
+    /// The state at the end of an accepted step.
+    fn end(step: &Self::Step) -> State<S, N>;
+
+    /// The continuous extension of an accepted step of size `h` from
+    /// `(q, q̇)`; built only when a sample lies strictly inside it.
+    fn dense(
+        &self,
+        h: S,
+        state: (&SVector<S, N>, &SVector<S, N>),
+        step: &Self::Step,
+    ) -> Self::Dense;
+
+    /// The continuous extension at `t + θ h`.
+    fn dense_at(dense: &Self::Dense, theta: S) -> State<S, N>;
+
+    /// Moves on to the end of an accepted step: its last slope is the next
+    /// step's first.
+    fn advance(&mut self, step: &Self::Step);
+}
+
+/// Integrates `model` with the pair made by `pair` from `(q̇0, q̈0)`:
+/// validation, Hairer's initial step, then attempts until the last sample
+/// time, with the step size controlled by `control`.
+///
+/// A stage where the model cannot be evaluated rejects the step and retries
+/// with `fac_min` of it, so a model that breaks down at `t*` is integrated up
+/// to `t*`; if `h` then underflows, that failure is the error reported.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn adaptive<S, L, P, const N: usize>(
+    control: &Controller,
+    settings: Tolerances<S>,
+    model: &L,
+    t0: S,
+    q0: SVector<S, N>,
+    qdot0: SVector<S, N>,
+    times: &[S],
+    pair: impl FnOnce(&SVector<S, N>, &SVector<S, N>) -> P,
+) -> IntegrationResult<S, N>
+where
+    S: RealField + Copy,
+    L: Lagrangian<N, Scalar = S>,
+    P: EmbeddedPair<S, N>,
+{
+    let Tolerances {
+        rtol,
+        atol,
+        max_steps,
+    } = settings;
+    check_tolerances(rtol, atol).map_err(invalid)?;
+    let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
+    let (Some(_), Some(t_end)) = (rec.pending(), rec.end()) else {
+        return Ok(rec.finish());
+    };
+
+    let c = |x: f64| -> S { nalgebra::convert(x) };
+    let (safety, fac_min, fac_max) = (c(control.safety), c(control.fac_min), c(control.fac_max));
+    let beta = c(control.beta);
+    let alpha = c(control.exponent) - beta * c(control.beta_weight);
+
+    let (mut t, mut q, mut qdot) = (t0, q0, qdot0);
+    let qddot = match rec.rhs(model, t, &q, &qdot) {
+        Ok(a) => a,
+        Err(error) => return Err(rec.fail(error)),
+    };
+    let h_max = t_end - t0;
+    let start = (t, &q, &qdot, &qddot);
+    let mut h = initial_step(&mut rec, model, start, h_max, rtol, atol, control.order);
+    let mut pair = pair(&qdot, &qddot);
+
+    let mut err_old = c(1e-4);
+    let mut rejected_last = false;
+    // The evaluation failure that made us shrink h, reported if h
+    // underflows before we get past it.
+    let mut stage_failure = None;
+
+    loop {
+        let attempts = rec.stats.steps_accepted + rec.stats.steps_rejected;
+        if attempts >= max_steps {
+            let error = IntegrationError::TooManySteps {
+                t,
+                max_steps,
+                q,
+                qdot,
+            };
+            return Err(rec.fail(error));
+        }
+        if !advances(t, h) {
+            let error = stage_failure
+                .take()
+                .unwrap_or(IntegrationError::StepSizeUnderflow { t, h, q, qdot });
+            return Err(rec.fail(error));
+        }
+        // Stretch a step that would stop just short of the end, so the last
+        // step is not a sliver.
+        let last = t + h * c(control.stretch) >= t_end;
+        if last {
+            h = t_end - t;
+        }
+        let t_new = if last { t_end } else { t + h };
+
+        let (step, err) = match pair.attempt(&mut rec, model, (t, t_new, h), (&q, &qdot)) {
+            Ok(Outcome::Accepted { step, err }) => (step, err),
+            Ok(Outcome::Rejected { err }) => {
+                rec.stats.steps_rejected += 1;
+                rejected_last = true;
+                h /= (err.powf(alpha) / safety).min(S::one() / fac_min);
+                continue;
+            }
+            Err(error) => {
+                stage_failure = Some(error);
+                rec.stats.steps_rejected += 1;
+                rejected_last = true;
+                h *= fac_min;
+                continue;
+            }
+        };
+
+        // h_new = h · safety · err^(-alpha) · err_old^beta, bounded.
+        let shrink = err.powf(alpha) / err_old.powf(beta) / safety;
+        let fac = shrink.min(S::one() / fac_min).max(S::one() / fac_max);
+        let mut h_new = (h / fac).min(h_max);
+        if rejected_last {
+            h_new = h_new.min(h);
+        }
+        err_old = err.max(c(1e-4));
+        rec.stats.steps_accepted += 1;
+        rejected_last = false;
+        stage_failure = None;
+
+        let (q_new, qdot_new) = P::end(&step);
+        let mut dense = None;
+        while let Some(ts) = rec.pending().filter(|&ts| ts <= t_new) {
+            if ts < t_new {
+                let dense = dense.get_or_insert_with(|| pair.dense(h, (&q, &qdot), &step));
+                let (qs, qdots) = P::dense_at(dense, (ts - t) / h);
+                rec.record(ts, qs, qdots);
+            } else {
+                rec.record(ts, q_new, qdot_new);
+            }
+        }
+        if last {
+            return Ok(rec.finish());
+        }
+        (t, q, qdot) = (t_new, q_new, qdot_new);
+        pair.advance(&step);
+        h = h_new;
+    }
+}

@@ -1,0 +1,160 @@
+//! The fixed-step driver: how every fixed-step method lands on the sample
+//! times, counts its steps against the budget and is watched for growth,
+//! so that the methods only differ in their step.
+
+use nalgebra::{RealField, SVector};
+
+use super::growth::GrowthGuard;
+use super::record::{Recorder, State};
+use super::validate::{check_step_size, invalid};
+use crate::{IntegrationError, IntegrationResult, Lagrangian, NonFiniteValue};
+
+/// The loop every fixed-step method shares, so that they all land on the
+/// sample times the same way and only differ in `step`.
+///
+/// Sample times are hit exactly, not interpolated: each interval between
+/// consecutive sample times is cut into the fewest equal steps no longer than
+/// `h` ([`Interval`]). `step(rec, model, t, q, q̇, h)` advances one step,
+/// evaluating the model through `rec` so that its work is counted; its error
+/// ends the integration with the samples so far. Every step counts against
+/// `max_steps`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fixed_step<S, L, const N: usize, F>(
+    model: &L,
+    h: S,
+    max_steps: usize,
+    t0: S,
+    q0: SVector<S, N>,
+    qdot0: SVector<S, N>,
+    times: &[S],
+    mut step: F,
+) -> IntegrationResult<S, N>
+where
+    S: RealField + Copy,
+    L: Lagrangian<N, Scalar = S>,
+    F: FnMut(
+        &mut Recorder<'_, S, N>,
+        &L,
+        S,
+        &SVector<S, N>,
+        &SVector<S, N>,
+        S,
+    ) -> Result<State<S, N>, IntegrationError<S, N>>,
+{
+    check_step_size(h).map_err(invalid)?;
+    let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
+    let (mut t, mut q, mut qdot) = (t0, q0, qdot0);
+    let mut growth = GrowthGuard::new(&q0, &qdot0);
+
+    while let Some(target) = rec.pending() {
+        let interval = Interval::new(t, target, h);
+        if interval.underflows() {
+            let h = interval.step;
+            let error = IntegrationError::StepSizeUnderflow { t, h, q, qdot };
+            return Err(rec.fail(error));
+        }
+        for k in 1..=interval.steps {
+            if rec.stats.steps_accepted >= max_steps {
+                let error = IntegrationError::TooManySteps {
+                    t,
+                    max_steps,
+                    q,
+                    qdot,
+                };
+                return Err(rec.fail(error));
+            }
+            let t_next = interval.time(k);
+            let (before, dt) = ((q, qdot), t_next - t);
+            match step(&mut rec, model, t, &q, &qdot, dt) {
+                Ok((q_next, qdot_next)) => (q, qdot) = (q_next, qdot_next),
+                Err(error) => return Err(rec.fail(error)),
+            }
+            t = t_next;
+            rec.stats.steps_accepted += 1;
+            if let Some(steps) = growth.unstable(before, (&q, &qdot), dt) {
+                let error = IntegrationError::Unstable {
+                    t,
+                    h: interval.step,
+                    steps,
+                    q,
+                    qdot,
+                };
+                return Err(rec.fail(error));
+            }
+        }
+        // The last step's state is not evaluated by the model, so check it
+        // here rather than record a NaN.
+        if !(q.iter().chain(qdot.iter()).all(|x| x.is_finite())) {
+            let value = NonFiniteValue::State;
+            let error = IntegrationError::NonFiniteState { t, q, qdot, value };
+            return Err(rec.fail(error));
+        }
+        while rec.pending() == Some(target) {
+            rec.record(target, q, qdot);
+        }
+    }
+    Ok(rec.finish())
+}
+
+/// The interval from `start` to the next sample time `target`, cut into
+/// `steps` equal steps of length `step`, no longer than the `h` asked for
+/// (see [`steps_to_cover`]).
+pub(crate) struct Interval<S> {
+    start: S,
+    target: S,
+    /// The number of steps, at least 1.
+    pub(crate) steps: usize,
+    /// Their length, `(target − start) / steps`.
+    pub(crate) step: S,
+}
+
+impl<S: RealField + Copy> Interval<S> {
+    pub(crate) fn new(start: S, target: S, h: S) -> Self {
+        let steps = steps_to_cover(start, target, h);
+        let step = (target - start) / nalgebra::convert::<f64, S>(steps as f64);
+        Self {
+            start,
+            target,
+            steps,
+            step,
+        }
+    }
+
+    /// Whether the step is too small to move `t` at all.
+    pub(crate) fn underflows(&self) -> bool {
+        self.start + self.step == self.start
+    }
+
+    /// The time at the end of step `k` (from 1 to `steps`), from the
+    /// interval start, so rounding does not accumulate in `t` and the last
+    /// step lands on the target.
+    pub(crate) fn time(&self, k: usize) -> S {
+        if k == self.steps {
+            self.target
+        } else {
+            self.start + self.step * nalgebra::convert::<f64, S>(k as f64)
+        }
+    }
+}
+
+/// The fewest equal steps no longer than `h` that cover `[start, target]`,
+/// forgiving the rounding of the sample times themselves: a span of exactly
+/// `10 h` in decimal takes 10 steps, not 11, and samples `i h` apart by one
+/// step still take one step each late in a run, where `i h` carries rounding
+/// of a few ulps of `t` (at `t = 100`, ~1e-14 — far more than an ulp of `h`).
+/// A step may so exceed `h` by `8 ε (|t| + span)`, which no method notices,
+/// and never by more than `h / 8`: where `h` is within a few ulps of `t`
+/// (`t = 1e20`, `h = 1`), forgiving 8 ulps would merge all the steps into
+/// one giant one, where the callers should see that `h` no longer advances
+/// `t`. Saturates at `usize::MAX`; the step budget stops it long before.
+fn steps_to_cover<S: RealField + Copy>(start: S, target: S, h: S) -> usize {
+    let span = target - start;
+    let eight_ulps = nalgebra::convert::<f64, S>(8.0) * S::default_epsilon();
+    let forgiven = (eight_ulps * (span + start.abs().max(target.abs())))
+        .min(h / nalgebra::convert::<f64, S>(8.0));
+    let steps = ((span - forgiven) / h).ceil();
+    let steps: f64 = nalgebra::try_convert(steps).unwrap_or(f64::MAX);
+    // `as` saturates (and sends negatives to 0); a span of zero never
+    // reaches here.
+    (steps as usize).max(1)
+}

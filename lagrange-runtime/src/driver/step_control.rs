@@ -1,0 +1,96 @@
+//! Step-size control shared by the adaptive methods: the default tolerance,
+//! Hairer's initial step guess, and the two checks before every attempt
+//! (the step budget, and whether `h` still moves `t`).
+
+use nalgebra::{RealField, SVector};
+
+use super::record::Recorder;
+use crate::Lagrangian;
+
+/// The adaptive methods' default `rtol = atol`: `1e-8`, raised to `100 ε`
+/// for scalar types with fewer digits (`1.2e-5` for `f32`).
+pub(crate) fn default_tolerance<S: RealField + Copy>() -> S {
+    nalgebra::convert::<f64, S>(1e-8).max(nalgebra::convert::<f64, S>(100.0) * S::default_epsilon())
+}
+
+/// Hairer's `hinit`, shared by the adaptive methods: a first step for which
+/// a method of order `order` would roughly meet the tolerance, from
+/// estimates of the first and second derivative at `start = (t, q, q̇, q̈)`.
+/// Costs one right-hand side (an explicit Euler probe).
+pub(crate) fn initial_step<S, L, const N: usize>(
+    rec: &mut Recorder<'_, S, N>,
+    model: &L,
+    (t, q, qdot, qddot): (S, &SVector<S, N>, &SVector<S, N>, &SVector<S, N>),
+    h_max: S,
+    rtol: S,
+    atol: S,
+    order: u8,
+) -> S
+where
+    S: RealField + Copy,
+    L: Lagrangian<N, Scalar = S>,
+{
+    let c = |x: f64| -> S { nalgebra::convert(x) };
+    let scale = |y: S| atol + rtol * y.abs();
+    let y = q.iter().chain(qdot.iter());
+    let f0 = qdot.iter().chain(qddot.iter());
+    let dny = y
+        .clone()
+        .fold(S::zero(), |s, &y| s + (y / scale(y)).powi(2));
+    let dnf = f0
+        .zip(y.clone())
+        .fold(S::zero(), |s, (&f, &y)| s + (f / scale(y)).powi(2));
+    let h0 = if dnf <= c(1e-10) || dny <= c(1e-10) {
+        c(1e-6)
+    } else {
+        (dny / dnf).sqrt() * c(0.01)
+    };
+    // A sum of squares that overflowed (a tiny atol makes f / atol huge)
+    // leaves no estimate, only 0 or NaN: take RADAU5's default first step,
+    // as Radau5 does, and let the step control adapt it.
+    let h0 = if h0.is_finite() && h0 > S::zero() {
+        h0
+    } else {
+        c(1e-6)
+    };
+    let h0 = h0.min(h_max);
+
+    // One explicit Euler step estimates the second derivative.
+    let (q1, qdot1) = (q + qdot * h0, qdot + qddot * h0);
+    let Ok(qddot1) = rec.rhs(model, t + h0, &q1, &qdot1) else {
+        // The model breaks down there; let the step control find out.
+        return h0;
+    };
+    let f1 = qdot1.iter().chain(qddot1.iter());
+    let f0 = qdot.iter().chain(qddot.iter());
+    let der2 = f1
+        .zip(f0)
+        .zip(y)
+        .fold(S::zero(), |s, ((&f1, &f0), &y)| {
+            s + ((f1 - f0) / scale(y)).powi(2)
+        })
+        .sqrt()
+        / h0;
+    // h1 such that h1^order · max(|f0|, |f'|) = 0.01.
+    let der12 = der2.max(dnf.sqrt());
+    let h1 = if der12 <= c(1e-15) {
+        c(1e-6).max(h0 * c(1e-3))
+    } else {
+        (c(0.01) / der12).powf(c(1.0 / f64::from(order)))
+    };
+    let h = (h0 * c(100.0)).min(h1).min(h_max);
+    if h.is_finite() && h > S::zero() {
+        h
+    } else {
+        h0
+    }
+}
+
+/// Whether an attempt of size `h` from `t` is still possible: `h` above
+/// `10 ε |t|` and `t + h ≠ t`. Below that, the adaptive methods stop with
+/// [`StepSizeUnderflow`](crate::IntegrationError::StepSizeUnderflow) (or
+/// the model failure that made them shrink `h`).
+pub(crate) fn advances<S: RealField + Copy>(t: S, h: S) -> bool {
+    let underflow = nalgebra::convert::<f64, S>(10.0) * S::default_epsilon();
+    h > underflow * t.abs() && t + h != t
+}

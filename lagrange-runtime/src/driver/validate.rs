@@ -1,0 +1,85 @@
+//! Input validation: everything about a call that can be checked before the
+//! first step is checked here, and refused as [`InvalidInput`] with an
+//! empty trajectory.
+
+use nalgebra::{ComplexField, RealField, SVector};
+
+use crate::{Failure, InvalidInput, Lagrangian, Trajectory};
+
+/// A failure before any work: empty trajectory.
+pub(crate) fn invalid<S: RealField + Copy, const N: usize>(
+    invalid: InvalidInput<S>,
+) -> Box<Failure<S, N>> {
+    Failure::boxed(invalid.into(), Trajectory::with_capacity(0))
+}
+
+/// The checks every method shares: a finite start time, finite parameters
+/// and initial state, and finite, non-decreasing sample times none before
+/// `t0`.
+pub(super) fn validate<L: Lagrangian<N>, const N: usize>(
+    model: &L,
+    t0: L::Scalar,
+    q0: &SVector<L::Scalar, N>,
+    qdot0: &SVector<L::Scalar, N>,
+    times: &[L::Scalar],
+) -> Result<(), InvalidInput<L::Scalar>> {
+    if !t0.is_finite() {
+        return Err(InvalidInput::NonFiniteStartTime { t0 });
+    }
+    if !model.parameters_are_finite() {
+        return Err(InvalidInput::NonFiniteParameters);
+    }
+    for (i, coordinate) in L::COORDINATES.into_iter().enumerate() {
+        if !q0[i].is_finite() {
+            let value = q0[i];
+            return Err(InvalidInput::NonFiniteInitialPosition { coordinate, value });
+        }
+        if !qdot0[i].is_finite() {
+            let value = qdot0[i];
+            return Err(InvalidInput::NonFiniteInitialVelocity { coordinate, value });
+        }
+    }
+    for (index, &time) in times.iter().enumerate() {
+        if !time.is_finite() {
+            return Err(InvalidInput::NonFiniteSampleTime { index, time });
+        }
+        if time < t0 {
+            return Err(InvalidInput::SampleBeforeStart { index, time, t0 });
+        }
+        if let Some(&previous) = index.checked_sub(1).and_then(|i| times.get(i)) {
+            if time < previous {
+                return Err(InvalidInput::UnsortedSampleTimes {
+                    index,
+                    previous,
+                    time,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A fixed step size must be positive and finite.
+pub(crate) fn check_step_size<S: RealField + Copy>(h: S) -> Result<(), InvalidInput<S>> {
+    if h.is_finite() && h > S::zero() {
+        Ok(())
+    } else {
+        Err(InvalidInput::InvalidStepSize { h })
+    }
+}
+
+/// The tolerances an adaptive method can honour: `rtol` at least `10 ε` of
+/// the scalar type, `atol` positive, both finite.
+pub(crate) fn check_tolerances<S: RealField + Copy>(
+    rtol: S,
+    atol: S,
+) -> Result<(), InvalidInput<S>> {
+    let min = nalgebra::convert::<f64, S>(10.0) * S::default_epsilon();
+    if !(rtol.is_finite() && rtol >= min) {
+        return Err(InvalidInput::InvalidRelativeTolerance { rtol, min });
+    }
+    if !(atol.is_finite() && atol > S::zero()) {
+        return Err(InvalidInput::InvalidAbsoluteTolerance { atol });
+    }
+    Ok(())
+}
