@@ -68,16 +68,22 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         qdot: SVector<S, N>,
     },
 
-    /// The integrator used its whole step budget before the last sample time.
+    /// The step budget does not reach the last sample time: it ran out at
+    /// `t`, or, for a fixed-step method, the interval from `t` to the next
+    /// sample time alone needs more steps of the requested `h` than the
+    /// whole budget, which is known before that interval's first step. The
+    /// step is never lengthened to fit the budget.
     #[error(
-        "used all {max_steps} steps and stopped at t = {t:?} (q = {}, q̇ = {}) before the last \
-         sample time; raise max_steps or loosen the tolerances",
+        "the budget of {max_steps} steps does not reach the last sample time: stopped at \
+         t = {t:?} (q = {}, q̇ = {}); raise max_steps, or lengthen the step or loosen the \
+         tolerances",
         Row(.q), Row(.qdot)
     )]
     TooManySteps {
         /// Time reached.
         t: S,
-        /// The step budget that was exhausted (accepted plus rejected steps).
+        /// The step budget (accepted plus rejected steps for the adaptive
+        /// methods).
         max_steps: usize,
         /// Generalized coordinates at `t`.
         q: SVector<S, N>,

@@ -95,7 +95,9 @@ impl<S: RealField + Copy> GaussLegendre<S> {
     }
 
     /// The step budget (default 10 000 000); exceeding it is
-    /// [`TooManySteps`](crate::IntegrationError::TooManySteps).
+    /// [`TooManySteps`](crate::IntegrationError::TooManySteps): at once,
+    /// before any step, when the interval to the next sample alone needs
+    /// more steps of `h` (the step is never lengthened to fit).
     pub fn max_steps(mut self, max_steps: usize) -> Self {
         self.settings.max_steps = max_steps;
         self

@@ -48,7 +48,9 @@ impl<S: RealField + Copy> ImplicitMidpoint<S> {
     }
 
     /// The step budget; exceeding it is
-    /// [`TooManySteps`](crate::IntegrationError::TooManySteps).
+    /// [`TooManySteps`](crate::IntegrationError::TooManySteps): at once,
+    /// before any step, when the interval to the next sample alone needs
+    /// more steps of `h` (the step is never lengthened to fit).
     pub fn max_steps(mut self, max_steps: usize) -> Self {
         self.settings.max_steps = max_steps;
         self

@@ -30,7 +30,9 @@ use nalgebra::{RealField, SVector};
 
 use super::Integrator;
 use crate::driver::{check_step_size, invalid, Interval, Recorder};
-use crate::{IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue};
+use crate::{
+    Failure, IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue,
+};
 use newton::{DiscreteEulerLagrange, StepFailure};
 use velocity::{fail_with_velocity, velocity, VelocityHistory};
 
@@ -121,7 +123,9 @@ impl<S: RealField + Copy> Variational<S> {
 
     /// The step budget; exceeding it is
     /// [`TooManySteps`](IntegrationError::TooManySteps), so a step size that
-    /// is far too small fails instead of running for hours.
+    /// is far too small fails instead of running for hours: at once, before
+    /// any step, when the interval to the next sample alone needs more steps
+    /// of `h` (the step is never lengthened to fit).
     pub fn max_steps(mut self, max_steps: usize) -> Self {
         self.max_steps = max_steps;
         self
@@ -201,24 +205,17 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
                     underflow,
                 ));
             }
-            for k in 1..=interval.steps {
-                if rec.stats.steps_accepted >= self.max_steps {
-                    let max_steps = self.max_steps;
-                    let budget = |qdot| IntegrationError::TooManySteps {
-                        t,
-                        max_steps,
-                        q,
-                        qdot,
-                    };
-                    return Err(fail_with_velocity(
-                        rec,
-                        model,
-                        (t, q, p),
-                        &velocities,
-                        budget,
-                    ));
+            let max_steps = self.max_steps;
+            let Some(steps) = interval.steps(max_steps) else {
+                let state = (t, q, p);
+                return Err(out_of_budget(rec, model, state, &velocities, max_steps));
+            };
+            for k in 1..=steps {
+                if rec.stats.steps_accepted >= max_steps {
+                    let state = (t, q, p);
+                    return Err(out_of_budget(rec, model, state, &velocities, max_steps));
                 }
-                let t_next = interval.time(k);
+                let t_next = interval.time(k, steps);
                 let dt = t_next - t;
                 let del = DiscreteEulerLagrange {
                     model,
@@ -259,6 +256,23 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
         }
         Ok(rec.finish())
     }
+}
+
+/// [`TooManySteps`](IntegrationError::TooManySteps) at `(t, q, p)`.
+fn out_of_budget<L: Lagrangian<N>, const N: usize>(
+    rec: Recorder<'_, L::Scalar, N>,
+    model: &L,
+    (t, q, p): (L::Scalar, SVector<L::Scalar, N>, SVector<L::Scalar, N>),
+    velocities: &VelocityHistory<L::Scalar, N>,
+    max_steps: usize,
+) -> Box<Failure<L::Scalar, N>> {
+    let budget = |qdot| IntegrationError::TooManySteps {
+        t,
+        max_steps,
+        q,
+        qdot,
+    };
+    fail_with_velocity(rec, model, (t, q, p), velocities, budget)
 }
 
 fn lacks<S: RealField + Copy>(needs: &'static str) -> InvalidInput<S> {
