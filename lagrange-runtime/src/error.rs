@@ -35,6 +35,28 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         qdot: SVector<S, N>,
     },
 
+    /// `M(t, q)` is not positive definite: the kinetic energy is negative
+    /// for some velocities (masses or inertias of opposite sign, or a sign
+    /// error in `T`). That is a modelling error, not a numerical one, so it
+    /// is reported as such where it is first met (at the first state for a
+    /// model that is indefinite everywhere) instead of being solved by LU
+    /// into a motion that runs away. A merely singular (semi-definite) `M`
+    /// is [`SingularMassMatrix`](Self::SingularMassMatrix).
+    #[error(
+        "mass matrix is not positive definite at t = {t:?} (q = {}, q̇ = {}): the kinetic \
+         energy is negative for some velocities (masses or inertias of opposite sign, or a \
+         sign error in T); a modelling error",
+        Row(.q), Row(.qdot)
+    )]
+    IndefiniteMassMatrix {
+        /// Time of the evaluation.
+        t: S,
+        /// Generalized coordinates at `t`.
+        q: SVector<S, N>,
+        /// Generalized velocities at `t`.
+        qdot: SVector<S, N>,
+    },
+
     /// A NaN or an infinity appeared in the state, or in `M` or `f` as the
     /// model returned them; continuing would only spread it.
     #[error("{value} at t = {t:?} (q = {}, q̇ = {})", Row(.q), Row(.qdot))]

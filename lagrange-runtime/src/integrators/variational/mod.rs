@@ -30,6 +30,7 @@ use nalgebra::{RealField, SVector};
 
 use super::Integrator;
 use crate::driver::{check_step_size, invalid, Interval, Recorder};
+use crate::linalg::solve::positive_semidefinite;
 use crate::{
     Failure, IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue,
 };
@@ -184,6 +185,18 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
                 qdot,
                 value,
             }));
+        }
+
+        // The steps never solve with M, so a kinetic energy that is negative
+        // for some velocities would otherwise go unnoticed until the first
+        // sample: report the modelling error at the first state, as the
+        // other methods do from their first evaluation. (A singular M, a
+        // chart's pole, is integrated through.)
+        let m0 = model.mass_matrix(t0, &q0);
+        if m0.iter().all(|m| m.is_finite()) && !positive_semidefinite(&m0) {
+            let (q, qdot) = (q0, qdot0);
+            let error = IntegrationError::IndefiniteMassMatrix { t: t0, q, qdot };
+            return Err(rec.fail(error));
         }
 
         let (mut t, mut q, mut p) = (t0, q0, p0);
