@@ -136,24 +136,29 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         qdot: SVector<S, N>,
     },
 
-    /// A fixed-step method is beyond its stability limit: far past its
+    /// An explicit method is beyond its stability limit: far past its
     /// starting size, the state kept growing geometrically in a mode the
     /// step does not resolve (by more than 2× per step; or turning, flipping
     /// sign or moving against its own velocity from one step to the next).
     /// No resolved motion does that, so this is the step size amplifying a
-    /// fast mode: a stiff model. Stopped before the state overflows to
-    /// infinity or turns into finite garbage.
+    /// fast mode: a fixed step too large for a stiff model, or, for
+    /// [`Dopri5`](crate::Dopri5) and [`Dop853`](crate::Dop853), a tolerance
+    /// so loose (`rtol` near 1 or above, or `atol` above the solution's
+    /// size) that the error control no longer holds the step within the
+    /// stability region. Stopped before the state overflows to infinity or
+    /// turns into finite garbage.
     #[error(
         "unstable at t = {t:?} with step h = {h:?} (q = {}, q̇ = {}): the state grew \
          geometrically for {steps} steps in a mode the step does not resolve; h is beyond \
-         this method's stability limit (a stiff model: take a smaller step, or an implicit \
-         method such as Radau5)",
+         this method's stability limit (a stiff model, or a tolerance too loose to hold the \
+         step: take a smaller step or a tighter tolerance, or an implicit method such as \
+         Radau5)",
         Row(.q), Row(.qdot)
     )]
     Unstable {
         /// Time reached.
         t: S,
-        /// The step size.
+        /// The step size (for an adaptive method, of the last step).
         h: S,
         /// Steps of growth that triggered the stop.
         steps: usize,
