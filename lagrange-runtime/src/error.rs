@@ -317,6 +317,14 @@ pub enum InvalidInput<S: RealField + Copy> {
         atol: S,
     },
 
+    /// A Newton iteration limit of zero: an implicit method cannot take a
+    /// step without at least one iteration.
+    #[error("{method} needs at least one Newton iteration per step, but max_iterations = 0")]
+    NoNewtonIterations {
+        /// The integrator.
+        method: &'static str,
+    },
+
     /// The method needs something of the model that it does not provide
     /// (a hand-written [`Lagrangian`](crate::Lagrangian) without the
     /// optional method; models from `lagrangian!` provide them all).

@@ -57,7 +57,9 @@ impl<S: RealField + Copy> ImplicitMidpoint<S> {
     }
 
     /// Newton iterations allowed per step before
-    /// [`NewtonDivergence`](crate::IntegrationError::NewtonDivergence).
+    /// [`NewtonDivergence`](crate::IntegrationError::NewtonDivergence); at
+    /// least 1, zero being
+    /// [`NoNewtonIterations`](crate::InvalidInput::NoNewtonIterations).
     pub fn max_iterations(mut self, max_iterations: usize) -> Self {
         self.settings.max_iterations = max_iterations;
         self
@@ -92,7 +94,16 @@ impl<S: RealField + Copy> Integrator<S> for ImplicitMidpoint<S> {
     where
         L: Lagrangian<N, Scalar = S>,
     {
-        implicit_rk::integrate(&self.tableau(), self.settings, model, t0, q0, qdot0, times)
+        implicit_rk::integrate(
+            "ImplicitMidpoint",
+            &self.tableau(),
+            self.settings,
+            model,
+            t0,
+            q0,
+            qdot0,
+            times,
+        )
     }
 }
 

@@ -132,13 +132,15 @@ impl<S: RealField + Copy> Variational<S> {
         self
     }
 
-    /// Newton iterations allowed per step (at least 1); running out is
+    /// Newton iterations allowed per step, at least 1 (zero is refused when
+    /// integrating, as
+    /// [`NoNewtonIterations`](InvalidInput::NoNewtonIterations)); running out is
     /// [`NewtonDivergence`](IntegrationError::NewtonDivergence). A smooth
     /// problem at a sensible `h` needs two or three, so running out means `h`
     /// is too large for the nonlinearity, or the discrete equations have no
     /// solution at this `h` at all.
     pub fn max_iterations(mut self, max_iterations: usize) -> Self {
-        self.max_iterations = max_iterations.max(1);
+        self.max_iterations = max_iterations;
         self
     }
 
@@ -162,6 +164,10 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
     {
         let h = self.h;
         check_step_size(h).map_err(invalid)?;
+        if self.max_iterations == 0 {
+            let method = "Variational";
+            return Err(invalid(InvalidInput::NoNewtonIterations { method }));
+        }
         let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
         // Refuse a model without the three methods before the first step.
         let p0 = model.momentum(t0, &q0, &qdot0);
