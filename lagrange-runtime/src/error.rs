@@ -35,6 +35,28 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         qdot: SVector<S, N>,
     },
 
+    /// `M(t, q)` is not positive definite: the kinetic energy is negative
+    /// for some velocities (masses or inertias of opposite sign, or a sign
+    /// error in `T`). That is a modelling error, not a numerical one, so it
+    /// is reported as such where it is first met (at the first state for a
+    /// model that is indefinite everywhere) instead of being solved by LU
+    /// into a motion that runs away. A merely singular (semi-definite) `M`
+    /// is [`SingularMassMatrix`](Self::SingularMassMatrix).
+    #[error(
+        "mass matrix is not positive definite at t = {t:?} (q = {}, q̇ = {}): the kinetic \
+         energy is negative for some velocities (masses or inertias of opposite sign, or a \
+         sign error in T); a modelling error",
+        Row(.q), Row(.qdot)
+    )]
+    IndefiniteMassMatrix {
+        /// Time of the evaluation.
+        t: S,
+        /// Generalized coordinates at `t`.
+        q: SVector<S, N>,
+        /// Generalized velocities at `t`.
+        qdot: SVector<S, N>,
+    },
+
     /// A NaN or an infinity appeared in the state, or in `M` or `f` as the
     /// model returned them; continuing would only spread it.
     #[error("{value} at t = {t:?} (q = {}, q̇ = {})", Row(.q), Row(.qdot))]
@@ -68,16 +90,22 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         qdot: SVector<S, N>,
     },
 
-    /// The integrator used its whole step budget before the last sample time.
+    /// The step budget does not reach the last sample time: it ran out at
+    /// `t`, or, for a fixed-step method, the interval from `t` to the next
+    /// sample time alone needs more steps of the requested `h` than the
+    /// whole budget, which is known before that interval's first step. The
+    /// step is never lengthened to fit the budget.
     #[error(
-        "used all {max_steps} steps and stopped at t = {t:?} (q = {}, q̇ = {}) before the last \
-         sample time; raise max_steps or loosen the tolerances",
+        "the budget of {max_steps} steps does not reach the last sample time: stopped at \
+         t = {t:?} (q = {}, q̇ = {}); raise max_steps, or lengthen the step or loosen the \
+         tolerances",
         Row(.q), Row(.qdot)
     )]
     TooManySteps {
         /// Time reached.
         t: S,
-        /// The step budget that was exhausted (accepted plus rejected steps).
+        /// The step budget (accepted plus rejected steps for the adaptive
+        /// methods).
         max_steps: usize,
         /// Generalized coordinates at `t`.
         q: SVector<S, N>,
@@ -108,24 +136,29 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         qdot: SVector<S, N>,
     },
 
-    /// A fixed-step method is beyond its stability limit: far past its
+    /// An explicit method is beyond its stability limit: far past its
     /// starting size, the state kept growing geometrically in a mode the
     /// step does not resolve (by more than 2× per step; or turning, flipping
     /// sign or moving against its own velocity from one step to the next).
     /// No resolved motion does that, so this is the step size amplifying a
-    /// fast mode: a stiff model. Stopped before the state overflows to
-    /// infinity or turns into finite garbage.
+    /// fast mode: a fixed step too large for a stiff model, or, for
+    /// [`Dopri5`](crate::Dopri5) and [`Dop853`](crate::Dop853), a tolerance
+    /// so loose (`rtol` near 1 or above, or `atol` above the solution's
+    /// size) that the error control no longer holds the step within the
+    /// stability region. Stopped before the state overflows to infinity or
+    /// turns into finite garbage.
     #[error(
         "unstable at t = {t:?} with step h = {h:?} (q = {}, q̇ = {}): the state grew \
          geometrically for {steps} steps in a mode the step does not resolve; h is beyond \
-         this method's stability limit (a stiff model: take a smaller step, or an implicit \
-         method such as Radau5)",
+         this method's stability limit (a stiff model, or a tolerance too loose to hold the \
+         step: take a smaller step or a tighter tolerance, or an implicit method such as \
+         Radau5)",
         Row(.q), Row(.qdot)
     )]
     Unstable {
         /// Time reached.
         t: S,
-        /// The step size.
+        /// The step size (for an adaptive method, of the last step).
         h: S,
         /// Steps of growth that triggered the stop.
         steps: usize,
@@ -282,6 +315,14 @@ pub enum InvalidInput<S: RealField + Copy> {
     InvalidAbsoluteTolerance {
         /// The tolerance given.
         atol: S,
+    },
+
+    /// A Newton iteration limit of zero: an implicit method cannot take a
+    /// step without at least one iteration.
+    #[error("{method} needs at least one Newton iteration per step, but max_iterations = 0")]
+    NoNewtonIterations {
+        /// The integrator.
+        method: &'static str,
     },
 
     /// The method needs something of the model that it does not provide

@@ -127,6 +127,16 @@
 //! println!("{failure}"); // mass matrix is singular at t = 0 (q = [0.5], q̇ = [0]): ...
 //! ```
 //!
+//! A kinetic energy that is negative for some velocities (masses of
+//! opposite sign) is a modelling error too,
+//! [`IndefiniteMassMatrix`](IntegrationError::IndefiniteMassMatrix), at the
+//! first state. Settings are used as given, never adjusted: a fixed step is
+//! never lengthened (an interval between samples that needs more steps than
+//! the budget is [`TooManySteps`](IntegrationError::TooManySteps) before its
+//! first step), and a tolerance too loose to keep an explicit method stable
+//! ends in [`Unstable`](IntegrationError::Unstable)
+//! ([the rules](integrators)).
+//!
 //! # Implicit methods: symmetric, and when symplectic
 //!
 //! [`ImplicitMidpoint`] and [`GaussLegendre`] are the Gauss collocation

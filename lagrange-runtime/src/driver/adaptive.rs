@@ -9,6 +9,7 @@
 
 use nalgebra::{RealField, SVector};
 
+use super::growth::GrowthGuard;
 use super::record::{Recorder, State};
 use super::step_control::{advances, initial_step};
 use super::validate::{check_tolerances, invalid};
@@ -99,6 +100,15 @@ pub(crate) trait EmbeddedPair<S: RealField + Copy, const N: usize> {
 /// A stage where the model cannot be evaluated rejects the step and retries
 /// with `fac_min` of it, so a model that breaks down at `t*` is integrated up
 /// to `t*`; if `h` then underflows, that failure is the error reported.
+///
+/// Accepted steps are watched by the fixed-step driver's growth guard: at
+/// everyday tolerances the error control keeps an explicit step within its
+/// stability region and the guard never fires, but a tolerance loose enough
+/// (`rtol` near 1 or above, or `atol` above the solution's size) accepts
+/// steps that blow the solution up, which would otherwise end in a
+/// misleading underflow or overflow; it ends in
+/// [`Unstable`](IntegrationError::Unstable), as for a fixed step beyond its
+/// limit.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn adaptive<S, L, P, const N: usize>(
     control: &Controller,
@@ -141,6 +151,7 @@ where
     let mut h = initial_step(&mut rec, model, start, h_max, rtol, atol, control.order);
     let mut pair = pair(&qdot, &qddot);
 
+    let mut growth = GrowthGuard::new(&q0, &qdot0);
     let mut err_old = c(1e-4);
     let mut rejected_last = false;
     // The evaluation failure that made us shrink h, reported if h
@@ -202,6 +213,17 @@ where
         stage_failure = None;
 
         let (q_new, qdot_new) = P::end(&step);
+        if let Some(steps) = growth.unstable((q, qdot), (&q_new, &qdot_new), h) {
+            let (t, q, qdot) = (t_new, q_new, qdot_new);
+            let error = IntegrationError::Unstable {
+                t,
+                h,
+                steps,
+                q,
+                qdot,
+            };
+            return Err(rec.fail(error));
+        }
         let mut dense = None;
         while let Some(ts) = rec.pending().filter(|&ts| ts <= t_new) {
             if ts < t_new {

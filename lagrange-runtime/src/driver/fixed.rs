@@ -53,7 +53,16 @@ where
             let error = IntegrationError::StepSizeUnderflow { t, h, q, qdot };
             return Err(rec.fail(error));
         }
-        for k in 1..=interval.steps {
+        let Some(steps) = interval.steps(max_steps) else {
+            let error = IntegrationError::TooManySteps {
+                t,
+                max_steps,
+                q,
+                qdot,
+            };
+            return Err(rec.fail(error));
+        };
+        for k in 1..=steps {
             if rec.stats.steps_accepted >= max_steps {
                 let error = IntegrationError::TooManySteps {
                     t,
@@ -63,7 +72,7 @@ where
                 };
                 return Err(rec.fail(error));
             }
-            let t_next = interval.time(k);
+            let t_next = interval.time(k, steps);
             let (before, dt) = ((q, qdot), t_next - t);
             match step(&mut rec, model, t, &q, &qdot, dt) {
                 Ok((q_next, qdot_next)) => (q, qdot) = (q_next, qdot_next),
@@ -97,25 +106,32 @@ where
 }
 
 /// The interval from `start` to the next sample time `target`, cut into
-/// `steps` equal steps of length `step`, no longer than the `h` asked for
-/// (see [`steps_to_cover`]).
+/// equal steps of length `step`, no longer than the `h` asked for (see
+/// [`steps_to_cover`]). Never longer: an interval that would need more
+/// steps than the budget allows is refused whole ([`Interval::steps`]), not
+/// covered in fewer, longer steps.
 pub(crate) struct Interval<S> {
     start: S,
     target: S,
-    /// The number of steps, at least 1.
-    pub(crate) steps: usize,
-    /// Their length, `(target − start) / steps`.
+    /// The number of steps, at least 1; infinite if `span / h` overflows.
+    count: S,
+    /// Their length, `(target − start) / count`: `h` itself, to rounding,
+    /// when `count` is infinite.
     pub(crate) step: S,
 }
 
 impl<S: RealField + Copy> Interval<S> {
     pub(crate) fn new(start: S, target: S, h: S) -> Self {
-        let steps = steps_to_cover(start, target, h);
-        let step = (target - start) / nalgebra::convert::<f64, S>(steps as f64);
+        let count = steps_to_cover(start, target, h);
+        let step = if count.is_finite() {
+            (target - start) / count
+        } else {
+            h
+        };
         Self {
             start,
             target,
-            steps,
+            count,
             step,
         }
     }
@@ -125,11 +141,27 @@ impl<S: RealField + Copy> Interval<S> {
         self.start + self.step == self.start
     }
 
-    /// The time at the end of step `k` (from 1 to `steps`), from the
-    /// interval start, so rounding does not accumulate in `t` and the last
-    /// step lands on the target.
-    pub(crate) fn time(&self, k: usize) -> S {
-        if k == self.steps {
+    /// The number of steps, if the whole budget `max_steps` could cover it.
+    /// `None` means the interval alone needs more steps than the budget:
+    /// the run must stop with
+    /// [`TooManySteps`](crate::IntegrationError::TooManySteps) before its
+    /// first step, rather than spend the budget on a run that cannot reach
+    /// the sample (or, as a saturating count would, stretch the step).
+    pub(crate) fn steps(&self, max_steps: usize) -> Option<usize> {
+        let budget = nalgebra::convert::<f64, S>(max_steps as f64);
+        if self.count <= budget {
+            let count: f64 = nalgebra::try_convert(self.count)?;
+            Some((count as usize).min(max_steps))
+        } else {
+            None
+        }
+    }
+
+    /// The time at the end of step `k` of `steps`, from the interval start,
+    /// so rounding does not accumulate in `t` and the last step lands on the
+    /// target.
+    pub(crate) fn time(&self, k: usize, steps: usize) -> S {
+        if k == steps {
             self.target
         } else {
             self.start + self.step * nalgebra::convert::<f64, S>(k as f64)
@@ -146,15 +178,13 @@ impl<S: RealField + Copy> Interval<S> {
 /// and never by more than `h / 8`: where `h` is within a few ulps of `t`
 /// (`t = 1e20`, `h = 1`), forgiving 8 ulps would merge all the steps into
 /// one giant one, where the callers should see that `h` no longer advances
-/// `t`. Saturates at `usize::MAX`; the step budget stops it long before.
-fn steps_to_cover<S: RealField + Copy>(start: S, target: S, h: S) -> usize {
+/// `t`. A whole number in `S`, at least 1; `+∞` when `span / h` overflows.
+fn steps_to_cover<S: RealField + Copy>(start: S, target: S, h: S) -> S {
     let span = target - start;
     let eight_ulps = nalgebra::convert::<f64, S>(8.0) * S::default_epsilon();
     let forgiven = (eight_ulps * (span + start.abs().max(target.abs())))
         .min(h / nalgebra::convert::<f64, S>(8.0));
-    let steps = ((span - forgiven) / h).ceil();
-    let steps: f64 = nalgebra::try_convert(steps).unwrap_or(f64::MAX);
-    // `as` saturates (and sends negatives to 0); a span of zero never
-    // reaches here.
-    (steps as usize).max(1)
+    // A span of zero never reaches here; a span below what is forgiven
+    // still takes one step.
+    ((span - forgiven) / h).ceil().max(S::one())
 }

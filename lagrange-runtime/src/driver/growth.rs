@@ -1,11 +1,12 @@
-//! The growth guard: how a fixed-step run notices that its step is beyond
+//! The growth guard: how a fixed-step run, or an explicit adaptive one at a
+//! tolerance too loose to hold its step, notices that the step is beyond
 //! the method's stability limit before the state overflows.
 
 use nalgebra::{RealField, SVector};
 
 use super::record::State;
 
-/// Watches a fixed-step run for step-size instability, by two signatures of
+/// Watches a run for step-size instability, by two signatures of
 /// a mode that the step amplifies but cannot resolve. Both only count once
 /// the state's size (largest component of `q`, `q̇`) is above 1000× its
 /// starting scale, far beyond anything the start explains:

@@ -46,7 +46,9 @@ impl<S: RealField + Copy> ExplicitEuler<S> {
 
     /// The step budget; exceeding it is
     /// [`TooManySteps`](IntegrationError::TooManySteps), so a step size that
-    /// is far too small fails instead of running for hours.
+    /// is far too small fails instead of running for hours: at once, before
+    /// any step, when the interval to the next sample alone needs more steps
+    /// of `h` (the step is never lengthened to fit).
     pub fn max_steps(mut self, max_steps: usize) -> Self {
         self.max_steps = max_steps;
         self

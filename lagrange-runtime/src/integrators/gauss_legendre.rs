@@ -95,14 +95,18 @@ impl<S: RealField + Copy> GaussLegendre<S> {
     }
 
     /// The step budget (default 10 000 000); exceeding it is
-    /// [`TooManySteps`](crate::IntegrationError::TooManySteps).
+    /// [`TooManySteps`](crate::IntegrationError::TooManySteps): at once,
+    /// before any step, when the interval to the next sample alone needs
+    /// more steps of `h` (the step is never lengthened to fit).
     pub fn max_steps(mut self, max_steps: usize) -> Self {
         self.settings.max_steps = max_steps;
         self
     }
 
     /// Newton iterations allowed per step (default 20) before
-    /// [`NewtonDivergence`](crate::IntegrationError::NewtonDivergence). From
+    /// [`NewtonDivergence`](crate::IntegrationError::NewtonDivergence); at
+    /// least 1, zero being
+    /// [`NoNewtonIterations`](crate::InvalidInput::NoNewtonIterations). From
     /// the extrapolated starting guess a step at a sensible `h` needs a few.
     pub fn max_iterations(mut self, max_iterations: usize) -> Self {
         self.settings.max_iterations = max_iterations;
@@ -179,7 +183,16 @@ impl<S: RealField + Copy> Integrator<S> for GaussLegendre<S> {
     where
         L: Lagrangian<N, Scalar = S>,
     {
-        implicit_rk::integrate(&self.tableau(), self.settings, model, t0, q0, qdot0, times)
+        implicit_rk::integrate(
+            "GaussLegendre",
+            &self.tableau(),
+            self.settings,
+            model,
+            t0,
+            q0,
+            qdot0,
+            times,
+        )
     }
 }
 

@@ -48,14 +48,18 @@ impl<S: RealField + Copy> ImplicitMidpoint<S> {
     }
 
     /// The step budget; exceeding it is
-    /// [`TooManySteps`](crate::IntegrationError::TooManySteps).
+    /// [`TooManySteps`](crate::IntegrationError::TooManySteps): at once,
+    /// before any step, when the interval to the next sample alone needs
+    /// more steps of `h` (the step is never lengthened to fit).
     pub fn max_steps(mut self, max_steps: usize) -> Self {
         self.settings.max_steps = max_steps;
         self
     }
 
     /// Newton iterations allowed per step before
-    /// [`NewtonDivergence`](crate::IntegrationError::NewtonDivergence).
+    /// [`NewtonDivergence`](crate::IntegrationError::NewtonDivergence); at
+    /// least 1, zero being
+    /// [`NoNewtonIterations`](crate::InvalidInput::NoNewtonIterations).
     pub fn max_iterations(mut self, max_iterations: usize) -> Self {
         self.settings.max_iterations = max_iterations;
         self
@@ -90,7 +94,16 @@ impl<S: RealField + Copy> Integrator<S> for ImplicitMidpoint<S> {
     where
         L: Lagrangian<N, Scalar = S>,
     {
-        implicit_rk::integrate(&self.tableau(), self.settings, model, t0, q0, qdot0, times)
+        implicit_rk::integrate(
+            "ImplicitMidpoint",
+            &self.tableau(),
+            self.settings,
+            model,
+            t0,
+            q0,
+            qdot0,
+            times,
+        )
     }
 }
 

@@ -23,10 +23,10 @@
 
 use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
-use crate::driver::{fixed_step, newton_noise_floor, Recorder, State};
+use crate::driver::{fixed_step, invalid, newton_noise_floor, Recorder, State};
 use crate::jacobian::acceleration_jacobians;
 use crate::linalg::lu::Lu;
-use crate::{IntegrationError, IntegrationResult, Lagrangian};
+use crate::{IntegrationError, IntegrationResult, InvalidInput, Lagrangian};
 
 /// Butcher tableau of an implicit method, with `dᵀ = bᵀ A⁻¹` precomputed.
 #[derive(Debug, Clone)]
@@ -64,9 +64,11 @@ impl<S: RealField + Copy> Settings<S> {
     }
 }
 
-/// Integrates `model` with the implicit method of `tableau`, landing on the
-/// sample times like every fixed-step method.
+/// Integrates `model` with the implicit method of `tableau`, named `method`
+/// in errors, landing on the sample times like every fixed-step method.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn integrate<S: RealField + Copy, L: Lagrangian<N, Scalar = S>, const N: usize>(
+    method: &'static str,
     tableau: &Tableau<S>,
     settings: Settings<S>,
     model: &L,
@@ -75,6 +77,9 @@ pub(crate) fn integrate<S: RealField + Copy, L: Lagrangian<N, Scalar = S>, const
     qdot0: SVector<S, N>,
     times: &[S],
 ) -> IntegrationResult<S, N> {
+    if settings.max_iterations == 0 {
+        return Err(invalid(InvalidInput::NoNewtonIterations { method }));
+    }
     let mut stages = StageSolver::<S, N>::new(tableau, settings.max_iterations);
     let step = |rec: &mut Recorder<'_, S, N>, model: &L, t, q: &_, qdot: &_, h| {
         stages.step(rec, model, t, q, qdot, h)

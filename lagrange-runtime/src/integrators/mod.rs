@@ -16,11 +16,30 @@
 //!   equal to `t0` are the initial state, unchanged.
 //! - A failure returns the samples computed so far in
 //!   [`Failure`](crate::Failure).
+//! - What was asked is never changed quietly. A fixed step `h` is never
+//!   lengthened: each interval between sample times is cut into the fewest
+//!   equal steps no longer than `h` (up to 8 ulps of `t` forgiven to the
+//!   rounding of the sample times), and an interval that alone needs more
+//!   steps than `max_steps` is
+//!   [`TooManySteps`](crate::IntegrationError::TooManySteps) before its
+//!   first step. Tolerances are used as given: `rtol` below `10 ε`, a
+//!   non-positive `atol`, a non-finite or non-positive `h` and
+//!   `max_iterations = 0` are [`InvalidInput`](crate::InvalidInput), and
+//!   loose tolerances are honoured (where one is too loose to keep
+//!   [`Dopri5`] or [`Dop853`] within its stability region, they stop with
+//!   [`Unstable`](crate::IntegrationError::Unstable), as a fixed step beyond
+//!   its limit does; [`Radau5`], L-stable, needs no such guard).
+//! - A mass matrix that is not positive definite, a kinetic energy negative
+//!   for some velocities, is a modelling error:
+//!   [`IndefiniteMassMatrix`](crate::IntegrationError::IndefiniteMassMatrix)
+//!   where it is first met, at the first state for a model indefinite
+//!   everywhere.
 //!
 //! Fixed-step methods supply one step to a shared driver that lands on the
-//! sample times; the explicit adaptive ones supply their stages, error
-//! estimate and dense output to a shared step loop; all adaptive methods
-//! share Hairer's initial step guess and the tolerance checks. Which method
+//! sample times and watches for growth; the explicit adaptive ones supply
+//! their stages, error estimate and dense output to a shared step loop with
+//! the same growth guard; all adaptive methods share Hairer's initial step
+//! guess and the tolerance checks. Which method
 //! to choose, and what the implicit ones conserve, is in the
 //! [crate documentation](crate#choosing-a-method).
 

@@ -32,6 +32,9 @@ pub fn acceleration_jacobians<L: Lagrangian<N>, const N: usize>(
                     let non_finite = |value| IntegrationError::NonFiniteState { t, q, qdot, value };
                     match err {
                         SolveError::Singular => IntegrationError::SingularMassMatrix { t, q, qdot },
+                        SolveError::Indefinite => {
+                            IntegrationError::IndefiniteMassMatrix { t, q, qdot }
+                        }
                         SolveError::NonFiniteMassMatrix => non_finite(NonFiniteValue::MassMatrix),
                         // The right-hand side here is the model's Jacobian.
                         SolveError::NonFiniteForcing => non_finite(NonFiniteValue::Jacobian),

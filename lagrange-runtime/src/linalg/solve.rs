@@ -3,6 +3,8 @@
 //! Every integrator gets `q̈` from [`acceleration`], so singular and
 //! non-finite cases are detected in one place and never leak out as NaN.
 
+use core::cmp::Ordering;
+
 use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use crate::{IntegrationError, Lagrangian, NonFiniteValue};
@@ -20,16 +22,28 @@ pub enum SolveError {
     /// `M` is singular, or so close to it that `q̈` would be noise or overflow.
     #[error("the mass matrix is singular or too ill-conditioned for the scalar type")]
     Singular,
+    /// `M` is not positive semi-definite: some velocity has negative
+    /// kinetic energy `½ q̇ᵀ M q̇`.
+    #[error(
+        "the mass matrix is not positive definite: some velocities have negative kinetic energy"
+    )]
+    Indefinite,
 }
 
 /// Solves `M q̈ = f` without allocating.
 ///
 /// Mass matrices are symmetric positive definite whenever the kinetic energy
-/// is, so Cholesky comes first; LU with partial pivoting catches the rest
-/// (a hand-written or semi-definite `M`). Either factorization is refused
-/// when its smallest pivot is below `N ε` times its largest: the solve would
-/// then amplify rounding by more than `1 / (N ε)`, i.e. return noise. A
-/// non-finite result from finite input (overflow) counts as singular too.
+/// is, so Cholesky comes first. Where it fails, `M` is either positive
+/// semi-definite up to rounding (a coordinate without inertia, a chart's
+/// pole) or ill-conditioned for Cholesky's pivots, and LU with partial
+/// pivoting decides between a solution and [`SolveError::Singular`]; or `M`
+/// is clearly indefinite, masses of opposite sign, and that is
+/// [`SolveError::Indefinite`], not a solution: a kinetic energy that is
+/// negative for some velocities is a modelling error. Either factorization
+/// is refused when its smallest pivot is below `N ε` times its largest: the
+/// solve would then amplify rounding by more than `1 / (N ε)`, i.e. return
+/// noise. A non-finite result from finite input (overflow) counts as
+/// singular too.
 ///
 /// ```
 /// use lagrange_runtime::solve::{solve_mass_matrix, SolveError};
@@ -42,6 +56,10 @@ pub enum SolveError {
 /// // A coordinate without inertia: the second row of M is zero.
 /// let m = Matrix2::new(1.0, 0.0, 0.0, 0.0);
 /// assert_eq!(solve_mass_matrix(&m, &Vector2::new(1.0, 1.0)), Err(SolveError::Singular));
+///
+/// // Masses of opposite sign: regular, but no kinetic energy.
+/// let m = Matrix2::new(1.0, 0.0, 0.0, -1.0);
+/// assert_eq!(solve_mass_matrix(&m, &Vector2::new(1.0, 1.0)), Err(SolveError::Indefinite));
 /// ```
 pub fn solve_mass_matrix<S: RealField + Copy, const N: usize>(
     m: &SMatrix<S, N, N>,
@@ -61,13 +79,56 @@ pub fn solve_mass_matrix<S: RealField + Copy, const N: usize>(
         {
             chol.solve(f)
         }
-        _ => lu_solve(*m, *f)?,
+        Some(_) => lu_solve(*m, *f)?,
+        None if !positive_semidefinite(m) => return Err(SolveError::Indefinite),
+        None => lu_solve(*m, *f)?,
     };
     if all_finite(solution.iter()) {
         Ok(solution)
     } else {
         Err(SolveError::Singular)
     }
+}
+
+/// Whether `M` (its lower triangle, as Cholesky reads it) is positive
+/// semi-definite up to rounding, by symmetric Gaussian elimination with
+/// diagonal pivoting: eliminate on the largest diagonal entry while it is
+/// clearly positive; once none is, the Schur complement left must be zero
+/// up to rounding, as it is for a semi-definite matrix (whose off-diagonal
+/// entries are bounded by its diagonal ones). A clearly negative diagonal
+/// entry, or a clearly nonzero off-diagonal one beside vanishing diagonals,
+/// is a negative eigenvalue by Sylvester's law of inertia. "Clearly" is
+/// `100 N ε` times the largest entry of `M`, far above the rounding of the
+/// elimination, so a semi-definite `M` (the singular cases LU reports) is
+/// never called indefinite; a negative eigenvalue smaller than that is left
+/// to LU, like a singular matrix.
+pub(crate) fn positive_semidefinite<S: RealField + Copy, const N: usize>(
+    m: &SMatrix<S, N, N>,
+) -> bool {
+    let mut s = m.lower_triangle();
+    s.fill_upper_triangle_with_lower_triangle();
+    let scale = s.amax();
+    let clearly = nalgebra::convert::<f64, S>(100.0 * N as f64) * S::default_epsilon() * scale;
+    let mut left = [true; N];
+    for _ in 0..N {
+        let pivot = (0..N)
+            .filter(|&i| left[i])
+            .max_by(|&i, &j| s[(i, i)].partial_cmp(&s[(j, j)]).unwrap_or(Ordering::Equal));
+        let Some(p) = pivot.filter(|&p| s[(p, p)] > clearly) else {
+            break;
+        };
+        left[p] = false;
+        for i in (0..N).filter(|&i| left[i]) {
+            let l = s[(i, p)] / s[(p, p)];
+            for j in (0..N).filter(|&j| left[j]) {
+                let spj = s[(p, j)];
+                s[(i, j)] -= l * spj;
+            }
+        }
+    }
+    // What is left has no clearly positive diagonal entry.
+    let rest = || (0..N).filter(|&i| left[i]);
+    rest().all(|i| s[(i, i)] >= -clearly && rest().all(|j| j == i || s[(i, j)].abs() <= clearly))
 }
 
 /// Gaussian elimination with partial pivoting, on a stack copy. (nalgebra's
@@ -141,6 +202,11 @@ pub fn acceleration<L: Lagrangian<N>, const N: usize>(
             q: *q,
             qdot: *qdot,
         },
+        SolveError::Indefinite => IntegrationError::IndefiniteMassMatrix {
+            t,
+            q: *q,
+            qdot: *qdot,
+        },
     })
 }
 
@@ -194,13 +260,58 @@ mod tests {
         assert!((qdd - expected).norm() < 1e-14);
     }
 
+    /// Regular but indefinite: LU would solve each of these, but no kinetic
+    /// energy has such a matrix. Masses of opposite sign, a negative mass,
+    /// and a coupling without any diagonal inertia.
     #[test]
-    fn indefinite_matrix_falls_back_to_lu() {
-        // Symmetric but indefinite: Cholesky refuses it, LU solves it.
-        let m = Matrix2::new(0.0, 1.0, 1.0, 0.0);
-        assert!(m.cholesky().is_none());
-        let qdd = solve_mass_matrix(&m, &Vector2::new(2.0, 3.0)).unwrap();
-        assert_eq!(qdd, Vector2::new(3.0, 2.0));
+    fn indefinite_mass_matrix_is_refused_not_solved_by_lu() {
+        let f = Vector2::new(2.0, 3.0);
+        for m in [
+            Matrix2::new(1.0, 0.0, 0.0, -1.0),
+            Matrix2::new(-2.0, 0.0, 0.0, -1.0),
+            Matrix2::new(0.0, 1.0, 1.0, 0.0),
+            Matrix2::new(1.0, 2.0, 2.0, 1.0),
+        ] {
+            assert!(m.cholesky().is_none() && lu_solve(m, f).is_ok(), "{m}");
+            assert_eq!(
+                solve_mass_matrix(&m, &f),
+                Err(SolveError::Indefinite),
+                "{m}"
+            );
+        }
+    }
+
+    /// Where Cholesky fails or is refused on a matrix that is semi-definite
+    /// up to rounding, LU still decides, as before: singular here, since a
+    /// semi-definite matrix that Cholesky cannot factor is nearly singular.
+    #[test]
+    fn semidefinite_mass_matrix_is_singular_not_indefinite() {
+        let f = Vector2::new(1.0, 1.0);
+        for m in [
+            // A spherical pendulum at its pole: M = diag(1, sin²θ), θ = 0.
+            Matrix2::new(1.0, 0.0, 0.0, 0.0),
+            // Rank one, with a rounding-sized negative pivot.
+            Matrix2::new(1.0, 1.0, 1.0, 1.0 - f64::EPSILON),
+            Matrix2::new(1.0, 0.0, 0.0, -1e-300),
+            Matrix2::zeros(),
+        ] {
+            assert!(positive_semidefinite(&m), "{m}");
+            assert_eq!(solve_mass_matrix(&m, &f), Err(SolveError::Singular), "{m}");
+        }
+    }
+
+    /// Positive definite but ill-conditioned for Cholesky's own pivots
+    /// (`δ` and `1/δ`, ratio 1e-18): refused by Cholesky, solved by LU with
+    /// partial pivoting (pivots 1 and −1), which is what the fallback is for.
+    #[test]
+    fn positive_definite_matrix_refused_by_cholesky_is_still_solved_by_lu() {
+        let delta = 1e-9;
+        let m = Matrix2::new(delta, 1.0, 1.0, 2.0 / delta);
+        let x = Vector2::new(1.0, 1e-9);
+        assert!(m.cholesky().is_some() && pivot_ratio(&m).unwrap() > 1e17);
+        let qdd = solve_mass_matrix(&m, &(m * x)).unwrap();
+        // cond(M) ≈ 4e18: only the residual is small, ~ε |M| |x|.
+        assert!((m * qdd - m * x).amax() < 1e-6, "{qdd}");
     }
 
     #[test]

@@ -84,7 +84,12 @@ impl<S: RealField + Copy> Dop853<S> {
         }
     }
 
-    /// Relative tolerance; must be at least `10 ε`.
+    /// Relative tolerance; must be at least `10 ε`, and has no upper bound.
+    /// A loose one is honoured as asked; from about `0.1` up the error
+    /// control no longer holds an explicit step within its stability region,
+    /// and a run that then blows up stops with
+    /// [`Unstable`](IntegrationError::Unstable), as a fixed step beyond its
+    /// limit does (use [`Radau5`](crate::Radau5) for such tolerances).
     pub fn rtol(mut self, rtol: S) -> Self {
         self.settings.rtol = rtol;
         self

@@ -142,7 +142,9 @@ impl<S: RealField + Copy> Radau5<S> {
         }
     }
 
-    /// Relative tolerance; must be at least `10 ε`.
+    /// Relative tolerance; must be at least `10 ε`, and has no upper bound:
+    /// a loose one is honoured as asked (see [`Radau5`] for the tolerance
+    /// the local error is then held to).
     pub fn rtol(mut self, rtol: S) -> Self {
         self.rtol = rtol;
         self

@@ -30,7 +30,10 @@ use nalgebra::{RealField, SVector};
 
 use super::Integrator;
 use crate::driver::{check_step_size, invalid, Interval, Recorder};
-use crate::{IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue};
+use crate::linalg::solve::positive_semidefinite;
+use crate::{
+    Failure, IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue,
+};
 use newton::{DiscreteEulerLagrange, StepFailure};
 use velocity::{fail_with_velocity, velocity, VelocityHistory};
 
@@ -121,19 +124,23 @@ impl<S: RealField + Copy> Variational<S> {
 
     /// The step budget; exceeding it is
     /// [`TooManySteps`](IntegrationError::TooManySteps), so a step size that
-    /// is far too small fails instead of running for hours.
+    /// is far too small fails instead of running for hours: at once, before
+    /// any step, when the interval to the next sample alone needs more steps
+    /// of `h` (the step is never lengthened to fit).
     pub fn max_steps(mut self, max_steps: usize) -> Self {
         self.max_steps = max_steps;
         self
     }
 
-    /// Newton iterations allowed per step (at least 1); running out is
+    /// Newton iterations allowed per step, at least 1 (zero is refused when
+    /// integrating, as
+    /// [`NoNewtonIterations`](InvalidInput::NoNewtonIterations)); running out is
     /// [`NewtonDivergence`](IntegrationError::NewtonDivergence). A smooth
     /// problem at a sensible `h` needs two or three, so running out means `h`
     /// is too large for the nonlinearity, or the discrete equations have no
     /// solution at this `h` at all.
     pub fn max_iterations(mut self, max_iterations: usize) -> Self {
-        self.max_iterations = max_iterations.max(1);
+        self.max_iterations = max_iterations;
         self
     }
 
@@ -157,6 +164,10 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
     {
         let h = self.h;
         check_step_size(h).map_err(invalid)?;
+        if self.max_iterations == 0 {
+            let method = "Variational";
+            return Err(invalid(InvalidInput::NoNewtonIterations { method }));
+        }
         let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
         // Refuse a model without the three methods before the first step.
         let p0 = model.momentum(t0, &q0, &qdot0);
@@ -182,6 +193,18 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
             }));
         }
 
+        // The steps never solve with M, so a kinetic energy that is negative
+        // for some velocities would otherwise go unnoticed until the first
+        // sample: report the modelling error at the first state, as the
+        // other methods do from their first evaluation. (A singular M, a
+        // chart's pole, is integrated through.)
+        let m0 = model.mass_matrix(t0, &q0);
+        if m0.iter().all(|m| m.is_finite()) && !positive_semidefinite(&m0) {
+            let (q, qdot) = (q0, qdot0);
+            let error = IntegrationError::IndefiniteMassMatrix { t: t0, q, qdot };
+            return Err(rec.fail(error));
+        }
+
         let (mut t, mut q, mut p) = (t0, q0, p0);
         let mut velocities = VelocityHistory::new(t0, qdot0);
         while let Some(target) = rec.pending() {
@@ -201,24 +224,17 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
                     underflow,
                 ));
             }
-            for k in 1..=interval.steps {
-                if rec.stats.steps_accepted >= self.max_steps {
-                    let max_steps = self.max_steps;
-                    let budget = |qdot| IntegrationError::TooManySteps {
-                        t,
-                        max_steps,
-                        q,
-                        qdot,
-                    };
-                    return Err(fail_with_velocity(
-                        rec,
-                        model,
-                        (t, q, p),
-                        &velocities,
-                        budget,
-                    ));
+            let max_steps = self.max_steps;
+            let Some(steps) = interval.steps(max_steps) else {
+                let state = (t, q, p);
+                return Err(out_of_budget(rec, model, state, &velocities, max_steps));
+            };
+            for k in 1..=steps {
+                if rec.stats.steps_accepted >= max_steps {
+                    let state = (t, q, p);
+                    return Err(out_of_budget(rec, model, state, &velocities, max_steps));
                 }
-                let t_next = interval.time(k);
+                let t_next = interval.time(k, steps);
                 let dt = t_next - t;
                 let del = DiscreteEulerLagrange {
                     model,
@@ -259,6 +275,23 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
         }
         Ok(rec.finish())
     }
+}
+
+/// [`TooManySteps`](IntegrationError::TooManySteps) at `(t, q, p)`.
+fn out_of_budget<L: Lagrangian<N>, const N: usize>(
+    rec: Recorder<'_, L::Scalar, N>,
+    model: &L,
+    (t, q, p): (L::Scalar, SVector<L::Scalar, N>, SVector<L::Scalar, N>),
+    velocities: &VelocityHistory<L::Scalar, N>,
+    max_steps: usize,
+) -> Box<Failure<L::Scalar, N>> {
+    let budget = |qdot| IntegrationError::TooManySteps {
+        t,
+        max_steps,
+        q,
+        qdot,
+    };
+    fail_with_velocity(rec, model, (t, q, p), velocities, budget)
 }
 
 fn lacks<S: RealField + Copy>(needs: &'static str) -> InvalidInput<S> {

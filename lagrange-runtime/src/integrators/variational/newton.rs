@@ -198,6 +198,9 @@ impl<L: Lagrangian<N>, const N: usize> DiscreteEulerLagrange<'_, L, N> {
             Err(SolveError::Singular) => {
                 StepFailure::Error(IntegrationError::SingularMassMatrix { t, q, qdot: *v })
             }
+            Err(SolveError::Indefinite) => {
+                StepFailure::Error(IntegrationError::IndefiniteMassMatrix { t, q, qdot: *v })
+            }
             _ => StepFailure::Diverged { iterations },
         }
     }

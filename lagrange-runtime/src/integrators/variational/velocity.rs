@@ -49,6 +49,11 @@ pub(super) fn velocity<L: Lagrangian<N>, const N: usize>(
             q: *q,
             qdot: near,
         },
+        SolveError::Indefinite => IntegrationError::IndefiniteMassMatrix {
+            t,
+            q: *q,
+            qdot: near,
+        },
     })
 }
 
