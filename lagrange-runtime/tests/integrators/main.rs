@@ -14,6 +14,7 @@ mod implicit_accuracy;
 mod implicit_geometry;
 mod instability;
 mod newton_failures;
+mod properties;
 mod radau5;
 mod radau5_allocations;
 mod variational;

@@ -6,11 +6,12 @@
 //! reproducers of what such inputs once did instead.
 //!
 //! The runs are deterministic: a fixed seed, a fixed number of cases, no
-//! regression files. `cargo test -p lagrange-runtime --test properties --
-//! --nocapture` prints how the outcomes were spread.
+//! regression files. `cargo test -p lagrange-runtime --test integrators --
+//! properties:: --nocapture` prints how the outcomes were spread.
 
 use std::collections::BTreeMap;
 
+use lagrange::models::Method;
 use lagrange_runtime::nalgebra::{Matrix1, Matrix2, Vector1, Vector2};
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::{IntegrationResult, InvalidInput};
@@ -226,68 +227,20 @@ struct Settings {
     max_steps: usize,
 }
 
-/// Every method, by name, with the settings applied.
-const METHODS: [&str; 10] = [
-    "ExplicitEuler",
-    "SymplecticEuler",
-    "Rk4",
-    "ImplicitMidpoint",
-    "GaussLegendre2",
-    "GaussLegendre3",
-    "Variational",
-    "Dopri5",
-    "Dop853",
-    "Radau5",
-];
-
+/// One method of `Method::ALL` (the one list of every integrator), with the
+/// settings applied.
 fn run<L: Lagrangian<N, Scalar = f64>, const N: usize>(
-    method: &str,
+    method: Method,
     s: Settings,
     model: &L,
     (t0, q0, v0): (f64, [f64; N], [f64; N]),
     times: &[f64],
 ) -> IntegrationResult<f64, N> {
-    let (q0, v0) = (q0.into(), v0.into());
-    let (h, steps) = (s.h, s.max_steps);
-    match method {
-        "ExplicitEuler" => ExplicitEuler::new(h)
-            .max_steps(steps)
-            .integrate(model, t0, q0, v0, times),
-        "SymplecticEuler" => SymplecticEuler::new(h)
-            .max_steps(steps)
-            .integrate(model, t0, q0, v0, times),
-        "Rk4" => Rk4::new(h)
-            .max_steps(steps)
-            .integrate(model, t0, q0, v0, times),
-        "ImplicitMidpoint" => ImplicitMidpoint::new(h)
-            .max_steps(steps)
-            .integrate(model, t0, q0, v0, times),
-        "GaussLegendre2" => GaussLegendre::two_stage(h)
-            .max_steps(steps)
-            .integrate(model, t0, q0, v0, times),
-        "GaussLegendre3" => GaussLegendre::three_stage(h)
-            .max_steps(steps)
-            .integrate(model, t0, q0, v0, times),
-        "Variational" => Variational::new(h)
-            .max_steps(steps)
-            .integrate(model, t0, q0, v0, times),
-        "Dopri5" => Dopri5::new()
-            .rtol(s.rtol)
-            .atol(s.atol)
-            .max_steps(steps)
-            .integrate(model, t0, q0, v0, times),
-        "Dop853" => Dop853::new()
-            .rtol(s.rtol)
-            .atol(s.atol)
-            .max_steps(steps)
-            .integrate(model, t0, q0, v0, times),
-        "Radau5" => Radau5::new()
-            .rtol(s.rtol)
-            .atol(s.atol)
-            .max_steps(steps)
-            .integrate(model, t0, q0, v0, times),
-        _ => unreachable!("{method}"),
-    }
+    method
+        .with_step(s.h)
+        .tolerances(s.rtol, s.atol)
+        .max_steps(s.max_steps)
+        .integrate(model, t0, q0.into(), v0.into(), times)
 }
 
 // ---------------------------------------------------------------------------
@@ -383,7 +336,7 @@ fn times() -> impl Strategy<Value = (f64, Vec<f64>)> {
 /// typed failure whose samples are a finite prefix of `times` (none for
 /// invalid input), within the budget. Returns the outcome's name.
 fn check<const N: usize>(
-    method: &str,
+    method: Method,
     s: Settings,
     times: &[f64],
     result: IntegrationResult<f64, N>,
@@ -398,7 +351,7 @@ fn check<const N: usize>(
             let name = name.split([' ', '(', '{']).next().unwrap_or("").to_string();
             let name = match &failure.error {
                 IntegrationError::InvalidInput(invalid) => {
-                    prop_assert!(failure.trajectory.is_empty(), "{method}: {message}");
+                    prop_assert!(failure.trajectory.is_empty(), "{method:?}: {message}");
                     let which = format!("{invalid:?}");
                     format!(
                         "InvalidInput::{}",
@@ -411,10 +364,10 @@ fn check<const N: usize>(
         }
     };
     let kept = trajectory.times();
-    prop_assert!(kept.len() <= times.len(), "{method}: {outcome}");
-    prop_assert!(kept == &times[..kept.len()], "{method}: {outcome}");
+    prop_assert!(kept.len() <= times.len(), "{method:?}: {outcome}");
+    prop_assert!(kept == &times[..kept.len()], "{method:?}: {outcome}");
     if result.is_ok() {
-        prop_assert_eq!(kept.len(), times.len(), "{}", method);
+        prop_assert_eq!(kept.len(), times.len(), "{:?}", method);
     }
     for sample in trajectory {
         let finite = sample
@@ -422,11 +375,11 @@ fn check<const N: usize>(
             .iter()
             .chain(sample.qdot.iter())
             .all(|x| x.is_finite());
-        prop_assert!(finite, "{method}, {outcome}: sample {sample:?}");
+        prop_assert!(finite, "{method:?}, {outcome}: sample {sample:?}");
     }
     let stats = trajectory.stats();
     let attempts = stats.steps_accepted + stats.steps_rejected;
-    prop_assert!(attempts <= s.max_steps, "{method}: {attempts} attempts");
+    prop_assert!(attempts <= s.max_steps, "{method:?}: {attempts} attempts");
     Ok(outcome)
 }
 
@@ -458,7 +411,7 @@ fn every_method_on<L, const N: usize>(
     );
     let outcomes = std::cell::RefCell::new(BTreeMap::<String, usize>::new());
     let result = runner.run(&inputs, |(model, s, (t0, times), q0, v0)| {
-        for method in METHODS {
+        for method in Method::ALL {
             let result = run(method, s, &model, (t0, q0, v0), &times);
             let outcome = check(method, s, &times, result)?;
             *outcomes.borrow_mut().entry(outcome).or_default() += 1;
@@ -470,7 +423,7 @@ fn every_method_on<L, const N: usize>(
     }
     println!(
         "{name}: {cases} cases × {} methods: {:?}",
-        METHODS.len(),
+        Method::ALL.len(),
         outcomes.borrow()
     );
 }
@@ -521,25 +474,25 @@ fn a_fixed_step_too_small_for_the_span_is_too_many_steps_before_any_step() {
         atol: 1e-8,
         max_steps: 10_000_000,
     };
-    for method in &METHODS[..7] {
+    for method in Method::FIXED_STEP {
         let start = (0.0, [0.5], [0.0]);
         let failure = run(method, fixed, &pendulum(), start, &[1e300]).unwrap_err();
         let IntegrationError::TooManySteps { t, max_steps, .. } = failure.error else {
-            panic!("{method}: {}", failure.error);
+            panic!("{method:?}: {}", failure.error);
         };
-        assert_eq!((t, max_steps), (0.0, 10_000_000), "{method}");
-        assert_eq!(failure.trajectory.stats().steps_accepted, 0, "{method}");
-        assert!(failure.trajectory.is_empty(), "{method}");
+        assert_eq!((t, max_steps), (0.0, 10_000_000), "{method:?}");
+        assert_eq!(failure.trajectory.stats().steps_accepted, 0, "{method:?}");
+        assert!(failure.trajectory.is_empty(), "{method:?}");
 
         // With a reachable sample first: 100 steps of 0.01 to it, then the
         // same refusal there, the sample kept.
         let failure = run(method, fixed, &pendulum(), start, &[1.0, 1e300]).unwrap_err();
         let IntegrationError::TooManySteps { t, .. } = failure.error else {
-            panic!("{method}: {}", failure.error);
+            panic!("{method:?}: {}", failure.error);
         };
-        assert_eq!(t, 1.0, "{method}");
-        assert_eq!(failure.trajectory.times(), &[1.0], "{method}");
-        assert_eq!(failure.trajectory.stats().steps_accepted, 100, "{method}");
+        assert_eq!(t, 1.0, "{method:?}");
+        assert_eq!(failure.trajectory.times(), &[1.0], "{method:?}");
+        assert_eq!(failure.trajectory.stats().steps_accepted, 100, "{method:?}");
     }
 }
 
@@ -594,17 +547,17 @@ fn opposite_masses_are_an_indefinite_mass_matrix_at_the_first_state() {
         max_steps: 100_000,
     };
     let start = (0.5, [1.0, 1.0], [0.0, 0.3]);
-    for method in METHODS {
+    for method in Method::ALL {
         let failure = run(method, s, &OppositeMasses, start, &[1.0, 10.0]).unwrap_err();
         let IntegrationError::IndefiniteMassMatrix { t, q, qdot } = failure.error else {
-            panic!("{method}: {}", failure.error);
+            panic!("{method:?}: {}", failure.error);
         };
         assert_eq!(
             (t, q, qdot),
             (0.5, start.1.into(), start.2.into()),
-            "{method}"
+            "{method:?}"
         );
-        assert!(failure.trajectory.is_empty(), "{method}");
+        assert!(failure.trajectory.is_empty(), "{method:?}");
     }
 }
 
@@ -626,15 +579,15 @@ fn loose_tolerances_are_honoured_and_an_unstable_explicit_run_is_unstable() {
         atol: 10.0,
         max_steps: 100_000,
     };
-    for method in ["Dopri5", "Dop853"] {
+    for method in [Method::Dopri5, Method::Dop853] {
         let failure = run(method, loose, &model, start, &times).unwrap_err();
         assert!(
             matches!(failure.error, IntegrationError::Unstable { .. }),
-            "{method}: {}",
+            "{method:?}: {}",
             failure.error
         );
     }
-    let radau = run("Radau5", loose, &model, start, &times).unwrap();
+    let radau = run(Method::Radau5, loose, &model, start, &times).unwrap();
     assert_eq!(radau.times(), &times);
 }
 
