@@ -5,10 +5,15 @@
 
 use super::lowering::Lowering;
 use super::scope::{Binding, Declared, Role};
-use super::{Field, Force, Scalar, Section, Symbols};
+use super::{limit_error, Field, Force, Scalar, Section, Symbols};
 use crate::ast::{BinOp, Expr, Item, ModelDef};
 use crate::expr::Pool;
+use std::collections::HashSet;
 use syn::Ident;
+
+/// What a coordinate or parameter costs the budget, measured as the
+/// memory it holds through the stages (about a kilobyte).
+const STEPS_PER_SCALAR: u64 = 64;
 
 /// Pass 1: the `const`s, in order; sizes and indices anywhere may use them.
 pub(super) fn consts(
@@ -61,6 +66,12 @@ pub(super) fn declarations(
                         None => None,
                         Some(e) => Some(cx.length(e)?),
                     };
+                    // Each element is a scalar of the model, with a name, a
+                    // symbol and a local in every generated function.
+                    cx.pool.charge(STEPS_PER_SCALAR * len.unwrap_or(1) as u64);
+                    cx.pool
+                        .check_budget()
+                        .map_err(|x| limit_error(&def.name, x))?;
                     let scalars = match role {
                         Role::Coordinate => &mut out.coordinates,
                         _ => &mut out.parameters,
@@ -187,7 +198,7 @@ pub(super) fn lets(def: &ModelDef, cx: &mut Lowering) -> syn::Result<()> {
                     }
                 }
             }
-            cx.pending_lets.retain(|n| n != &name.to_string());
+            cx.pending_lets.remove(&name.to_string());
         }
     }
     Ok(())
@@ -281,12 +292,7 @@ fn add_to(
         },
         Some(first) => Section {
             value: cx.pool.add2(first.value, value),
-            ast: Expr::Binary {
-                op: BinOp::Add,
-                range: first.ast.range().to(ast.range()),
-                lhs: Box::new(first.ast),
-                rhs: Box::new(ast),
-            },
+            ast: first.ast.then(BinOp::Add, ast),
             keyword: first.keyword,
         },
     });
@@ -308,7 +314,7 @@ pub fn declared_shape(def: &ModelDef) -> (usize, Vec<Field>) {
             }
         }
     }
-    let mut seen: Vec<String> = vec!["t".into()];
+    let mut seen: HashSet<String> = HashSet::from(["t".to_string()]);
     let mut dof = 0;
     let mut fields = Vec::new();
     for item in &def.items {
@@ -316,10 +322,9 @@ pub fn declared_shape(def: &ModelDef) -> (usize, Vec<Field>) {
             continue;
         };
         for d in names {
-            if seen.contains(&d.name.to_string()) {
+            if !seen.insert(d.name.to_string()) {
                 continue;
             }
-            seen.push(d.name.to_string());
             let len = d.len.as_ref().map(|e| cx.length(e).unwrap_or(1));
             if matches!(item, Item::Coordinates { .. }) {
                 dof += len.unwrap_or(1);
