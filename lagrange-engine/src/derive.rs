@@ -79,12 +79,16 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         .collect();
     let mut nonconservative = Vec::with_capacity(n);
     for i in 0..n {
+        if pool.exhausted() {
+            return Equations::exhausted();
+        }
         let mut terms = Vec::new();
         if let Some(r) = dissipation {
             let dr = pool.diff(r, s.velocities[i]);
             terms.push(pool.neg(dr));
         }
         // Virtual work: a force F along the position p does F·∂p/∂q_i.
+        pool.charge(forces.len() as u64);
         for &(position, force) in &forces {
             if pool.depends_on(position, s.coordinates[i]) {
                 let dp = pool.diff(position, s.coordinates[i]);

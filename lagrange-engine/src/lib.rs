@@ -61,7 +61,7 @@
 //!   sin(a0); let a2 = sin(a1); ...`), is at most [`MAX_DEPTH`](expr::MAX_DEPTH)
 //!   = 400 nodes deep, derivatives included. With the nesting limit this
 //!   keeps the engine's recursion under about 1.5 MiB of stack in a debug
-//!   build, 0.5 MiB optimized; rustc runs a proc macro on a thread of 8 MiB.
+//!   build, 0.3 MiB optimized; rustc runs a proc macro on a thread of 8 MiB.
 //! - **Integers.** Sizes, indices and ranges are 64-bit integer arithmetic,
 //!   every operation checked: an overflow is an error on the expression. A
 //!   range or an indexed name has at most [`MAX_RANGE`](model::MAX_RANGE) =
@@ -72,11 +72,12 @@
 //!   [`DEFAULT_BUDGET`](expr::DEFAULT_BUDGET) = 50 000 000 steps stops with
 //!   an error naming the budget. The 20-link chain takes 3 million steps,
 //!   the 30-link 8 million, the 60-link 44 million; any model stops within
-//!   about 3 s and 500 MB with the engine optimized (as this workspace's
-//!   profile builds it; a debug build of the engine is about 20 times
-//!   slower). `#[lagrange(budget = N)]` on the struct gives one model `N`
-//!   steps instead (at most [`MAX_BUDGET`](ast::MAX_BUDGET)); time and memory
-//!   grow in proportion.
+//!   about 2 s and 400 MB with the engine optimized, as this workspace's
+//!   profile builds it. Cargo builds proc macros unoptimized unless told
+//!   otherwise, and the engine is then 6 to 10 times slower (about 7 s to
+//!   spend the budget). `#[lagrange(budget = N)]` on the struct gives one
+//!   model `N` steps instead (at most [`MAX_BUDGET`](ast::MAX_BUDGET)); time
+//!   and memory grow in proportion.
 //!
 //! The budget counts steps, not time, so an expansion is the same on every
 //! machine: a model expands everywhere or nowhere.

@@ -303,6 +303,12 @@ fn the_hundred_link_chain_stops_with_the_budget_error() {
 }
 
 #[test]
+fn the_smallest_budget_is_an_error_not_a_panic() {
+    let one = chain(2).replacen("pub struct", "#[lagrange(budget = 1)] pub struct", 1);
+    assert!(error(one, DEFAULT_BUDGET).contains(&format!("{OVER_BUDGET} of 1 steps")));
+}
+
+#[test]
 fn the_budget_attribute_raises_the_budget_of_one_model() {
     let small = 200_000;
     assert!(error(chain(8), small).contains(&format!("{OVER_BUDGET} of {small} steps")));

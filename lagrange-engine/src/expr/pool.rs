@@ -64,13 +64,15 @@ impl Pool {
             index: HashMap::new(),
             diff_memo: HashMap::new(),
             content_memo: HashMap::new(),
-            budget,
+            budget: u64::MAX,
             spent: Cell::new(0),
             too_deep: false,
         };
-        // Ids 0 and 1 are always zero and one.
+        // Ids 0 and 1 are always zero and one, whatever the budget.
         pool.intern(Node::Num(0f64.to_bits()));
         pool.intern(Node::Num(1f64.to_bits()));
+        pool.budget = budget;
+        pool.spent.set(0);
         pool
     }
 

@@ -15,6 +15,9 @@ use syn::Ident;
 /// memory it holds through the stages (about a kilobyte).
 const STEPS_PER_SCALAR: u64 = 64;
 
+/// What a name costs the budget: the memory of its entry in the scope.
+const STEPS_PER_NAME: u64 = 16;
+
 /// Pass 1: the `const`s, in order; sizes and indices anywhere may use them.
 pub(super) fn consts(
     def: &ModelDef,
@@ -191,6 +194,8 @@ pub(super) fn lets(def: &ModelDef, cx: &mut Lowering) -> syn::Result<()> {
                         },
                     );
                     for k in lo..hi {
+                        // Each element is a name kept to the end.
+                        cx.pool.charge(STEPS_PER_NAME);
                         cx.env.push((range.var.to_string(), k));
                         let id = cx.lower(value);
                         cx.env.pop();
@@ -219,6 +224,7 @@ pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn
     let mut potential = None;
     let mut dissipation = None;
     let mut forces: Vec<Force> = Vec::new();
+    let mut targets: HashSet<String> = HashSet::new();
     for item in items {
         match item {
             Item::Kinetic { keyword, value } => add_to(&mut kinetic, cx, keyword, value)?,
@@ -226,7 +232,7 @@ pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn
             Item::Dissipation { keyword, value } => add_to(&mut dissipation, cx, keyword, value)?,
             Item::Forces { entries, .. } => {
                 for (target, value) in entries {
-                    forces.push(force(&forces, cx, target, value)?);
+                    forces.push(force(&mut targets, cx, target, value)?);
                 }
             }
             _ => {}
@@ -258,10 +264,15 @@ pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn
     })
 }
 
-/// One entry `target = value` of `forces:`.
-fn force(before: &[Force], cx: &mut Lowering, target: Expr, value: Expr) -> syn::Result<Force> {
+/// One entry `target = value` of `forces:`; `targets`, those before it.
+fn force(
+    targets: &mut HashSet<String>,
+    cx: &mut Lowering,
+    target: Expr,
+    value: Expr,
+) -> syn::Result<Force> {
     let (label, position) = cx.force_target(&target)?;
-    if before.iter().any(|f| f.label == label) {
+    if !targets.insert(label.clone()) {
         return Err(target.range().error(format!(
             "a second force on `{label}`: write the sum of the forces in one entry"
         )));
