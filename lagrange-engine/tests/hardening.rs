@@ -269,7 +269,7 @@ fn nested_sums_that_build_nothing_run_out_of_budget() {
 }
 
 #[test]
-fn three_thousand_coordinates_run_out_of_budget_before_their_matrix() {
+fn three_thousand_coordinates_run_out_of_budget() {
     let e = error(
         "struct M { const N = 3000; coordinates: q[N]; kinetic: sum(i in 0..N, dot(q[i])^2); potential: 0; }".into(),
         DEFAULT_BUDGET,
