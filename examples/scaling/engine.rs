@@ -3,7 +3,7 @@
 //! many operations the generated `M` and `f` perform.
 
 use lagrange_engine::expr::cse::{self, OpCount};
-use lagrange_engine::expr::DEFAULT_NODE_BUDGET;
+use lagrange_engine::expr::DEFAULT_BUDGET;
 use proc_macro2::TokenStream;
 use std::time::{Duration, Instant};
 
@@ -18,7 +18,7 @@ pub struct EngineStats {
     pub emit: Duration,
     /// Repetitions behind each median.
     pub reps: usize,
-    /// Expression nodes in the pool (the budget counts these).
+    /// Expression nodes in the pool (each costs the work budget a few steps).
     pub nodes: usize,
     /// Operations of `M` (upper triangle) and `f`, as emitted with sharing.
     pub shared: OpCount,
@@ -104,8 +104,9 @@ pub fn measure(source: &str) -> Result<EngineStats, EngineFailure> {
     })
 }
 
-pub fn node_budget() -> usize {
-    DEFAULT_NODE_BUDGET
+/// The engine's default work budget, in steps.
+pub fn budget() -> u64 {
+    DEFAULT_BUDGET
 }
 
 pub fn median(xs: &mut [Duration]) -> Duration {

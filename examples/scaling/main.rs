@@ -349,8 +349,8 @@ Columns:
 built in release (median of up to 5 runs). **derive** (parse, lower, check, differentiate) \
 and **emit** (`Derived::tokens`: schedule the shared nodes, write the items) are the same \
 work split in two.
-- **nodes**: expression nodes in the engine's hash-consed pool (the node budget counts \
-these). **code**: the emitted items as text.
+- **nodes**: expression nodes in the engine's hash-consed pool (each costs the work budget \
+a few steps). **code**: the emitted items as text.
 - **ops, shared**: arithmetic operations and function calls of `M` (upper triangle) and `f` \
 as emitted, every shared subexpression computed once (`Derived::op_counts`). **of which \
 M / f**: the same for `M` alone and `f` alone (each with its own sharing, so the two add up to \

@@ -174,8 +174,8 @@ pub fn table(rows: &[Row]) -> String {
             )
             .unwrap(),
             Err(f) if f.over_budget => s.push_str(&format!(
-                "| over the node budget ({}) | | | | | | | ",
-                crate::engine::node_budget()
+                "| over the work budget ({} steps) | | | | | | | ",
+                crate::engine::budget()
             )),
             Err(f) => write!(s, "| error: {} | | | | | | | ", one_line(&f.message)).unwrap(),
         }

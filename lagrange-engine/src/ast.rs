@@ -64,7 +64,15 @@ pub struct Options {
     /// `#[lagrange(jacobians)]`: exact Jacobians of the residual
     /// `M q̈ − f` for implicit integrators.
     pub jacobians: bool,
+    /// `#[lagrange(budget = N)]`: the engine's work budget for this model,
+    /// in steps, instead of [`DEFAULT_BUDGET`](crate::expr::DEFAULT_BUDGET).
+    pub budget: Option<u64>,
 }
+
+/// The largest budget `#[lagrange(budget = N)]` may ask for: the time and
+/// memory of an expansion grow in proportion to the budget, and node ids
+/// must stay 32-bit.
+pub const MAX_BUDGET: u64 = 4_000_000_000;
 
 /// A declared name, scalar or indexed: `x` or `theta[N]`.
 pub struct Decl {
@@ -128,13 +136,13 @@ pub enum Item {
     },
 }
 
+/// An operator of a [`Expr::Chain`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BinOp {
     Add,
     Sub,
     Mul,
     Div,
-    Pow,
 }
 
 #[derive(Clone, Debug)]
@@ -148,11 +156,20 @@ pub enum Expr {
         range: SpanRange,
         inner: Box<Expr>,
     },
-    Binary {
-        op: BinOp,
+    /// `a + b - c` or `a * b / c`: operands combined left to right, as
+    /// `((a + b) - c)`. Kept flat, so that a sum of many terms nests no
+    /// deeper than its terms. `rest` is not empty; its operators are all
+    /// additive or all multiplicative.
+    Chain {
+        first: Box<Expr>,
+        rest: Vec<(BinOp, Expr)>,
         range: SpanRange,
-        lhs: Box<Expr>,
-        rhs: Box<Expr>,
+    },
+    /// `base ^ exponent`.
+    Power {
+        base: Box<Expr>,
+        exponent: Box<Expr>,
+        range: SpanRange,
     },
     /// `f(a, b)` and the method form `a.f(b)` alike; `dot(e)` too.
     Call {
@@ -180,7 +197,8 @@ impl Expr {
             Expr::Num { span, .. } => SpanRange::single(*span),
             Expr::Name(id) => SpanRange::single(id.span()),
             Expr::Neg { range, .. }
-            | Expr::Binary { range, .. }
+            | Expr::Chain { range, .. }
+            | Expr::Power { range, .. }
             | Expr::Call { range, .. }
             | Expr::Index { range, .. }
             | Expr::Sum { range, .. } => *range,
@@ -188,14 +206,40 @@ impl Expr {
     }
 
     /// Direct real-valued subexpressions, left to right (an index is an
-    /// integer, not one of them; a sum's body is, under its index).
+    /// integer, not one of them; a sum's body is, under its index; a
+    /// chain's are all its operands).
     pub fn children(&self) -> Vec<&Expr> {
         match self {
             Expr::Num { .. } | Expr::Name(_) | Expr::Index { .. } => Vec::new(),
             Expr::Sum { body, .. } => vec![body],
             Expr::Neg { inner, .. } => vec![inner],
-            Expr::Binary { lhs, rhs, .. } => vec![lhs, rhs],
+            Expr::Chain { first, rest, .. } => std::iter::once(&**first)
+                .chain(rest.iter().map(|(_, x)| x))
+                .collect(),
+            Expr::Power { base, exponent, .. } => vec![base, exponent],
             Expr::Call { args, .. } => args.iter().collect(),
+        }
+    }
+
+    /// `self + other` (or `self - other`...), flat: appended to `self` if it
+    /// is a chain of the same kind.
+    pub fn then(self, op: BinOp, other: Expr) -> Expr {
+        let additive = |op: BinOp| matches!(op, BinOp::Add | BinOp::Sub);
+        match self {
+            Expr::Chain {
+                first,
+                mut rest,
+                range,
+            } if additive(rest[0].0) == additive(op) => {
+                let range = range.to(other.range());
+                rest.push((op, other));
+                Expr::Chain { first, rest, range }
+            }
+            lhs => Expr::Chain {
+                range: lhs.range().to(other.range()),
+                first: Box::new(lhs),
+                rest: vec![(op, other)],
+            },
         }
     }
 }

@@ -8,32 +8,25 @@ use crate::derive::Equations;
 use crate::expr::{ExprId, Pool};
 use crate::model::{Model, SymKind};
 
-/// Whether a non-finite constant (a division by zero, `ln(0)`...) is part of `id`.
-fn has_non_finite_constant(pool: &Pool, id: ExprId) -> bool {
-    pool.post_order(&[id])
-        .into_iter()
-        .any(|x| pool.as_num(x).is_some_and(|v| !v.is_finite()))
-}
-
 /// No section may fold to an infinite or undefined constant.
 pub fn constants_are_finite(model: &mut Model) -> syn::Result<()> {
-    let mut sections: Vec<Expr> = vec![model.kinetic.ast.clone(), model.potential.ast.clone()];
-    sections.extend(model.dissipation.as_ref().map(|d| d.ast.clone()));
-    sections.extend(model.forces.iter().map(|f| f.ast.clone()));
-    for ast in sections {
-        let Some(id) = model.lower_section(&ast) else {
-            continue;
-        };
-        if has_non_finite_constant(&model.pool, id) {
-            let range = model.locate(&ast, &|pool: &mut Pool, id| {
-                has_non_finite_constant(pool, id)
-            });
-            return Err(range.error(
-                "this evaluates to an infinite or undefined constant (a division by zero, or a function outside its domain)",
-            ));
-        }
-    }
-    Ok(())
+    let mut sections: Vec<(&Expr, ExprId)> = vec![
+        (&model.kinetic.ast, model.kinetic.value),
+        (&model.potential.ast, model.potential.value),
+    ];
+    sections.extend(model.dissipation.as_ref().map(|d| (&d.ast, d.value)));
+    sections.extend(model.forces.iter().map(|f| (&f.ast, f.value)));
+    let Some(ast) = sections
+        .into_iter()
+        .find(|&(_, id)| model.pool.has_non_finite(id))
+        .map(|(ast, _)| ast.clone())
+    else {
+        return Ok(());
+    };
+    let range = model.locate(&ast, &|pool: &mut Pool, id| pool.has_non_finite(id));
+    Err(range.error(
+        "this evaluates to an infinite or undefined constant (a division by zero, or a function outside its domain)",
+    ))
 }
 
 /// V must be a function of t and q alone.
@@ -62,11 +55,18 @@ pub fn mass_matrix_is_regular(model: &mut Model, eq: &Equations) -> syn::Result<
     for i in 0..n {
         for j in i..n {
             let m = eq.mass[i][j];
-            if let Some(k) = s
-                .velocities
-                .iter()
-                .position(|&v| model.pool.depends_on(m, v))
-            {
+            // The first velocity `m` holds, read off its dependency set.
+            let velocity = model
+                .pool
+                .dependencies(m)
+                .find_map(|x| match model.symbols.kind(x) {
+                    SymKind::Velocity(k) => Some(k),
+                    _ => None,
+                });
+            if model.pool.exhausted() {
+                return Ok(());
+            }
+            if let Some(k) = velocity {
                 // Underline the smallest term whose ∂²/∂q̇_i∂q̇_j still holds q̇_k.
                 let (vi, vj, vk) = (s.velocities[i], s.velocities[j], s.velocities[k]);
                 let ast = model.kinetic.ast.clone();
@@ -97,6 +97,16 @@ pub fn mass_matrix_is_regular(model: &mut Model, eq: &Equations) -> syn::Result<
     }
     // Structurally full, but singular everywhere? Try two generic states; an
     // analytic M singular at both is singular identically (or nearly so).
+    // Evaluating M (n² entries, a few steps each) and eliminating (n³/3
+    // floating-point operations, a few nanoseconds each, a step per 8).
+    let n = n as u64;
+    model
+        .pool
+        .charge(n.saturating_mul(n).saturating_mul(n / 24 + 4));
+    let n = n as usize;
+    if model.pool.exhausted() {
+        return Ok(());
+    }
     let mut singular_everywhere = true;
     let mut rank = n;
     for seed in [1u64, 2] {

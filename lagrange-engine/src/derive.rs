@@ -47,11 +47,23 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
     let want_jacobians = model.options.jacobians;
     let pool = &mut model.pool;
 
+    // The matrices alone hold n² entries each: paid for before they are
+    // made. A pool exhausted here or below yields garbage, quickly, which
+    // the caller reports as the budget error.
+    let square = (n as u64).saturating_mul(n as u64);
+    pool.charge(square.saturating_mul(if want_jacobians { 3 } else { 1 }));
+    if pool.exhausted() {
+        return Equations::exhausted();
+    }
+
     let lagrangian = pool.sub(t_kin, v_pot);
     let momenta: Vec<ExprId> = s.velocities.iter().map(|&v| pool.diff(t_kin, v)).collect();
 
     let mut mass = vec![vec![Pool::ZERO; n]; n];
     for i in 0..n {
+        if pool.exhausted() {
+            return Equations::exhausted();
+        }
         for j in i..n {
             let m = pool.diff(momenta[i], s.velocities[j]);
             let m = pool.factored(m);
@@ -67,12 +79,16 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         .collect();
     let mut nonconservative = Vec::with_capacity(n);
     for i in 0..n {
+        if pool.exhausted() {
+            return Equations::exhausted();
+        }
         let mut terms = Vec::new();
         if let Some(r) = dissipation {
             let dr = pool.diff(r, s.velocities[i]);
             terms.push(pool.neg(dr));
         }
         // Virtual work: a force F along the position p does F·∂p/∂q_i.
+        pool.charge(forces.len() as u64);
         for &(position, force) in &forces {
             if pool.depends_on(position, s.coordinates[i]) {
                 let dp = pool.diff(position, s.coordinates[i]);
@@ -83,6 +99,9 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
     }
     let mut forcing = Vec::with_capacity(n);
     for i in 0..n {
+        if pool.exhausted() {
+            return Equations::exhausted();
+        }
         let mut terms = vec![lagrangian_gradient[i], nonconservative[i]];
         for j in 0..n {
             if pool.depends_on(momenta[i], s.coordinates[j]) {
@@ -129,5 +148,20 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         lagrangian_gradient,
         nonconservative,
         jacobians,
+    }
+}
+
+impl Equations {
+    /// What a derivation that ran out of budget returns: nothing to read.
+    fn exhausted() -> Self {
+        Equations {
+            mass: Vec::new(),
+            forcing: Vec::new(),
+            energy: Pool::ZERO,
+            momenta: Vec::new(),
+            lagrangian_gradient: Vec::new(),
+            nonconservative: Vec::new(),
+            jacobians: None,
+        }
     }
 }

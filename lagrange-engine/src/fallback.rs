@@ -68,7 +68,6 @@ impl Stub {
                 let signature = m.trait_signature(&types);
                 quote!(#signature { #stop })
             });
-        let names = vec![String::new(); self.dof];
         quote! {
             #error
             #item
@@ -81,7 +80,7 @@ impl Stub {
             #[allow(unused_variables, clippy::all)]
             impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::Lagrangian<#n> for #name<S> {
                 type Scalar = S;
-                const COORDINATES: [&'static str; #n] = [#(#names),*];
+                const COORDINATES: [&'static str; #n] = [""; #n];
                 #(#required)*
             }
         }

@@ -191,12 +191,12 @@ fn derived_double_pendulum_matches_its_closed_form_numerically() {
 }
 
 #[test]
-fn a_derivation_past_the_node_budget_is_an_error_naming_the_budget() {
-    let err = lagrange_engine::derive_with_budget(DOUBLE_PENDULUM.parse().unwrap(), 60)
+fn a_derivation_past_the_budget_is_an_error_naming_the_budget() {
+    let err = lagrange_engine::derive_with_budget(DOUBLE_PENDULUM.parse().unwrap(), 600)
         .err()
-        .expect("the double pendulum needs more than 60 nodes");
+        .expect("the double pendulum needs more than 600 steps");
     let msg = err.to_string();
-    assert!(msg.contains("size budget of 60 expression nodes"), "{msg}");
+    assert!(msg.contains("work budget of 600 steps"), "{msg}");
     // The default budget is ample for it.
     assert!(lagrange_engine::derive(DOUBLE_PENDULUM.parse().unwrap()).is_ok());
 }
@@ -389,14 +389,13 @@ fn the_indexed_chain_expands_to_the_same_code_every_time() {
 
 #[test]
 fn a_chain_past_the_budget_stops_with_the_budget_error() {
-    // A 40-link chain needs a few hundred thousand nodes; with a budget of
-    // 20 000 the derivation must stop and say so, not run on.
-    let err = lagrange_engine::derive_with_budget(indexed_chain(40).parse().unwrap(), 20_000)
+    // A 40-link chain needs some 16 million steps; with a budget of
+    // 200 000 the derivation must stop and say so, not run on.
+    let err = lagrange_engine::derive_with_budget(indexed_chain(40).parse().unwrap(), 200_000)
         .err()
-        .expect("40 links need more than 20 000 nodes");
+        .expect("40 links need more than 200 000 steps");
     assert!(
-        err.to_string()
-            .contains("size budget of 20000 expression nodes"),
+        err.to_string().contains("work budget of 200000 steps"),
         "{err}"
     );
 }

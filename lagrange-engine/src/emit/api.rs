@@ -350,10 +350,9 @@ impl Const {
                 let names = model.coordinates.iter().map(|c| c.to_string());
                 (quote!([&'static str; #n]), quote!([#(#names),*]))
             }
-            (ConstValue::CoordinateNames, None) => {
-                let names = vec![String::new(); outline.dof];
-                (quote!([&'static str; #n]), quote!([#(#names),*]))
-            }
+            // `[""; N]`, not N empty strings: a model with an error may
+            // declare a great many coordinates.
+            (ConstValue::CoordinateNames, None) => (quote!([&'static str; #n]), quote!([""; #n])),
             (ConstValue::ParameterNames, Some(_)) => {
                 let p = Literal::usize_unsuffixed(outline.fields.len());
                 let names = outline.fields.iter().map(|f| f.name.to_string());

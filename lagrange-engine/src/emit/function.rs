@@ -117,12 +117,14 @@ impl<'a> FnEmitter<'a> {
                 for (k, &x) in xs.iter().enumerate() {
                     let (c, factors) = self.split(x);
                     let term = self.product(c.abs(), &factors);
-                    out = match (k, c < 0.0) {
+                    // Extended in place: a sum of many terms is written in
+                    // time linear in its length.
+                    out.extend(match (k, c < 0.0) {
                         (0, false) => term,
                         (0, true) => quote!(-#term),
-                        (_, false) => quote!(#out + #term),
-                        (_, true) => quote!(#out - #term),
-                    };
+                        (_, false) => quote!(+ #term),
+                        (_, true) => quote!(- #term),
+                    });
                 }
                 (out, Prec::Sum)
             }
@@ -197,7 +199,7 @@ impl<'a> FnEmitter<'a> {
         }
         let mut out = numer[0].clone();
         for n in &numer[1..] {
-            out = quote!(#out * #n);
+            out.extend(quote!(* #n));
         }
         match denom.len() {
             0 => out,
@@ -212,7 +214,7 @@ impl<'a> FnEmitter<'a> {
             _ => {
                 let mut d = denom[0].0.clone();
                 for (n, _) in &denom[1..] {
-                    d = quote!(#d * #n);
+                    d.extend(quote!(* #n));
                 }
                 quote!(#out / (#d))
             }

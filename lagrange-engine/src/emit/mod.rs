@@ -56,6 +56,40 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
     }
 }
 
+/// Writing a node costs about this many steps of the budget per operand
+/// (its tokens, in each function that needs it), measured against the
+/// interning of a node; see [`charge`].
+const STEPS_PER_EMITTED_OPERAND: u64 = 24;
+
+/// Charges the pool's budget for emitting the model: the nodes and roots of
+/// every generated function and of the equations' text. Emitting is linear
+/// in these, so a model whose charge fits the budget is emitted within it;
+/// emitting itself charges nothing and checks nothing.
+pub fn charge(model: &Model, eq: &Equations) {
+    let pool = &model.pool;
+    let n = model.dof();
+    let text_roots: Vec<ExprId> = (0..n)
+        .flat_map(|i| (i..n).map(move |j| (i, j)))
+        .map(|(i, j)| eq.mass[i][j])
+        .chain(eq.forcing.iter().copied())
+        .collect();
+    let functions = METHODS
+        .iter()
+        .filter_map(|m| (m.roots)(model, eq))
+        .chain(std::iter::once(text_roots));
+    // A function's prelude may name every symbol (`let [x, _, z] = ...`).
+    let symbols = model.symbols.count() as u64;
+    for roots in functions {
+        if pool.exhausted() {
+            return;
+        }
+        let before = pool.spent();
+        pool.post_order(&roots);
+        let walked = pool.spent() - before + roots.len() as u64 + symbols;
+        pool.charge(STEPS_PER_EMITTED_OPERAND * walked);
+    }
+}
+
 /// `impl Name<S>`: the consts, `new`, and every method the model has.
 fn inherent_impl(cx: &Context, equations_text: &str) -> TokenStream {
     let na = nalgebra();

@@ -4,15 +4,25 @@ use crate::expr::SymId;
 use crate::model::{Model, Scalar, SymKind};
 use proc_macro2::{Ident, Span};
 use quote::format_ident;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
+use std::rc::Rc;
 
 /// Local names: the user's names for coordinates and parameters, `<q>_dot`
 /// for velocities, fresh `e<k>`/`k<k>` for intermediates and constants, none
 /// of which can collide with a user name or the function's arguments.
+///
+/// Each function's emitter clones the namer; the model's names are shared
+/// between the clones, not copied, since a model may have many.
 #[derive(Clone)]
 pub(super) struct Namer {
+    /// The names of the model (its symbols, `t`, `q`...), fixed once built.
+    model_names: Rc<HashSet<String>>,
+    /// The names given since (one function's `e<k>` and `k<k>`).
     taken: HashSet<String>,
-    pub(super) symbol: Vec<Ident>,
+    /// For each numbered base, the number every smaller one is taken below,
+    /// so that a function with many `let`s names each in constant time.
+    next: HashMap<String, usize>,
+    pub(super) symbol: Rc<Vec<Ident>>,
 }
 
 impl Namer {
@@ -27,8 +37,10 @@ impl Namer {
             taken.insert(n.name.to_string());
         }
         let mut namer = Namer {
+            model_names: Rc::default(),
             taken,
-            symbol: Vec::new(),
+            next: HashMap::new(),
+            symbol: Rc::default(),
         };
         let s = &model.symbols;
         let mut symbol = Vec::with_capacity(s.count());
@@ -55,25 +67,39 @@ impl Namer {
                 SymKind::Velocity(i) => namer.fresh(&format!("{}_dot", coordinates[i]), false),
             });
         }
-        namer.symbol = symbol;
+        namer.symbol = Rc::new(symbol);
+        namer.model_names = Rc::new(std::mem::take(&mut namer.taken));
         namer
+    }
+
+    fn is_taken(&self, name: &str) -> bool {
+        self.model_names.contains(name) || self.taken.contains(name)
     }
 
     /// `base` if free (and `numbered` is false), else `base<k>` or `base_`.
     pub(super) fn fresh(&mut self, base: &str, numbered: bool) -> Ident {
-        let mut k = 0usize;
+        // Names are only ever added, so the first free number is at or
+        // after the last one given.
+        let mut k = if numbered {
+            self.next.get(base).copied().unwrap_or(0)
+        } else {
+            0
+        };
         let mut name = if numbered {
             format!("{base}{k}")
         } else {
             base.to_string()
         };
-        while self.taken.contains(&name) {
+        while self.is_taken(&name) {
             k += 1;
             name = if numbered {
                 format!("{base}{k}")
             } else {
                 format!("{base}{}", "_".repeat(k))
             };
+        }
+        if numbered {
+            self.next.insert(base.to_string(), k + 1);
         }
         self.taken.insert(name.clone());
         Ident::new(&name, Span::call_site())

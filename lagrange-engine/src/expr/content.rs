@@ -12,6 +12,9 @@ impl Pool {
     /// then one product with the tail `Σ_{i ≥ b} m_i`, shared by every entry
     /// with the same tail, instead of a sum of N − b products.
     pub fn factored(&mut self, id: ExprId) -> ExprId {
+        if self.exhausted() {
+            return Pool::ZERO;
+        }
         match self.content(id) {
             None => id,
             Some((k, common, inner)) => {
@@ -37,6 +40,9 @@ impl Pool {
         if let Some(c) = self.content_memo.get(&id) {
             return c.clone();
         }
+        if self.exhausted() {
+            return None;
+        }
         let xs = xs.to_vec();
         let parts: Vec<(f64, ExprId)> = xs.iter().map(|&x| self.split_coeff(x)).collect();
         let sign = parts[0].0.signum();
@@ -58,13 +64,20 @@ impl Pool {
                 fs.into_iter().map(|f| self.split_pow(f)).collect()
             })
             .collect();
+        self.charge(factor_lists.iter().map(|fs| 1 + fs.len() as u64).sum());
         let mut common: Vec<(ExprId, f64)> = Vec::new();
         for &(base, e) in &factor_lists[0] {
+            if self.exhausted() {
+                return None;
+            }
             let Some(mut min) = self.as_num(e).filter(|&v| v > 0.0) else {
                 continue;
             };
+            // Looked for in every other term: comparisons of ids, 16 a step.
+            let mut compared = 0u64;
             let everywhere = factor_lists[1..].iter().all(|fs| {
                 fs.iter().any(|&(b, e2)| {
+                    compared += 1;
                     b == base
                         && self.as_num(e2).is_some_and(|v| {
                             min = min.min(v);
@@ -72,6 +85,7 @@ impl Pool {
                         })
                 })
             });
+            self.charge(compared / 16);
             if everywhere {
                 common.push((base, min));
             }

@@ -7,9 +7,10 @@ use super::{ExprId, Func, Node, Pool, SymId};
 impl Pool {
     /// `∂e/∂s`, simplified.
     pub fn diff(&mut self, e: ExprId, s: SymId) -> ExprId {
-        if !self.depends_on(e, s) {
+        if !self.depends_on(e, s) || self.exhausted() {
             return Pool::ZERO;
         }
+        self.charge(1);
         if let Some(&d) = self.diff_memo.get(&(e, s)) {
             return d;
         }
@@ -34,6 +35,7 @@ impl Pool {
                         continue;
                     }
                     let dk = self.diff(xs[k], s);
+                    self.charge(1 + xs.len() as u64 / 8);
                     let mut factors: Vec<ExprId> = xs.to_vec();
                     factors[k] = dk;
                     terms.push(self.mul(&factors));

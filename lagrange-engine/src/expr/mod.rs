@@ -7,7 +7,7 @@
 //! (`model`, `check`, `derive`, `emit`, `render`) build and read expressions
 //! only through [`Pool`]. One file per concern of `Pool`:
 //!
-//! - [`pool`]: the storage, hash-consing, dependency sets, the node budget;
+//! - [`pool`]: the storage, hash-consing, dependency sets, the work budget;
 //! - [`simplify`]: the simplifying constructors, the only way nodes are made,
 //!   which keep every node in a canonical form; [`content`] pulls the common
 //!   factors out of a sum;
@@ -22,7 +22,7 @@ pub mod eval;
 pub mod pool;
 pub mod simplify;
 
-pub use pool::{BudgetExceeded, Pool, DEFAULT_NODE_BUDGET};
+pub use pool::{Exceeded, Pool, DEFAULT_BUDGET, MAX_DEPTH};
 
 /// A node of the [`Pool`]. Ids are handed out in creation order, which is
 /// deterministic, so ordering by id gives deterministic output.

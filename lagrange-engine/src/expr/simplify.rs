@@ -89,11 +89,15 @@ impl Pool {
 
     /// A sum in canonical form.
     pub fn add(&mut self, terms: &[ExprId]) -> ExprId {
+        if self.exhausted() {
+            return Pool::ZERO;
+        }
         let mut constant = 0.0;
         let mut coeffs: Vec<(ExprId, f64)> = Vec::new();
         let mut slot: HashMap<ExprId, usize> = HashMap::new();
         let mut stack: Vec<ExprId> = terms.iter().rev().copied().collect();
         while let Some(t) = stack.pop() {
+            self.charge(1);
             if let Node::Add(xs) = self.node(t) {
                 stack.extend(xs.iter().rev());
                 continue;
@@ -126,6 +130,7 @@ impl Pool {
         }
         // Ordered by the coefficient-free part, so `a - b` and `b - a` list
         // their terms in the same order and differ only in signs.
+        self.charge(coeffs.len() as u64);
         coeffs.sort_by_key(|&(rest, _)| rest);
         let children: Vec<ExprId> = coeffs
             .into_iter()
@@ -163,10 +168,14 @@ impl Pool {
             if c == 0.0 {
                 continue;
             }
+            if self.exhausted() {
+                break;
+            }
             let factors: Vec<ExprId> = match self.node(rest) {
                 Node::Mul(xs) => xs.to_vec(),
                 _ => vec![rest],
             };
+            self.charge(factors.len() as u64);
             for (pos, &f) in factors.iter().enumerate() {
                 let Node::Pow(base, e) = *self.node(f) else {
                     continue;
@@ -184,6 +193,7 @@ impl Pool {
                 let Some(cos2) = self.lookup(&Node::Pow(cos, two)) else {
                     continue;
                 };
+                self.charge(2 * factors.len() as u64);
                 let mut others: Vec<ExprId> = factors.clone();
                 others.remove(pos);
                 let mut partner_factors = others.clone();
@@ -223,11 +233,15 @@ impl Pool {
 
     /// A product in canonical form.
     pub fn mul(&mut self, factors: &[ExprId]) -> ExprId {
+        if self.exhausted() {
+            return Pool::ZERO;
+        }
         let mut coeff = 1.0;
         let mut powers: Vec<(ExprId, Vec<ExprId>)> = Vec::new();
         let mut slot: HashMap<ExprId, usize> = HashMap::new();
         let mut stack: Vec<ExprId> = factors.iter().rev().copied().collect();
         while let Some(f) = stack.pop() {
+            self.charge(1);
             match self.node(f) {
                 Node::Mul(xs) => {
                     stack.extend(xs.iter().rev());
@@ -294,6 +308,7 @@ impl Pool {
         if coeff == 0.0 {
             return Pool::ZERO;
         }
+        self.charge(2 * out.len() as u64);
         out.sort();
         // Two factors with the same base can reappear only if `pow` produced a
         // product; merge them through another pass in that rare case.
@@ -319,6 +334,9 @@ impl Pool {
 
     /// `base ^ exp` in canonical form.
     pub fn pow(&mut self, base: ExprId, exp: ExprId) -> ExprId {
+        if self.exhausted() {
+            return Pool::ZERO;
+        }
         let e = self.as_num(exp);
         if e == Some(0.0) {
             return Pool::ONE;
@@ -373,6 +391,9 @@ impl Pool {
     }
 
     pub fn func(&mut self, f: Func, a: ExprId) -> ExprId {
+        if self.exhausted() {
+            return Pool::ZERO;
+        }
         if let Some(x) = self.as_num(a) {
             return self.num(f.apply(x));
         }

@@ -15,14 +15,18 @@ impl Lowering {
         let lo = self.int(&r.lo)?;
         let hi = self.int(&r.hi)?;
         let hi = if r.inclusive {
-            hi.saturating_add(1)
+            hi.checked_add(1).ok_or_else(|| {
+                r.hi.range()
+                    .error(format!("index arithmetic overflows: {hi} + 1 (the end of `..=`) is not a 64-bit integer"))
+            })?
         } else {
             hi
         };
-        if hi.saturating_sub(lo) > MAX_RANGE {
+        // In i128, where the difference of two i64 cannot overflow.
+        let count = i128::from(hi) - i128::from(lo);
+        if count > i128::from(MAX_RANGE) {
             return Err(r.range.error(format!(
-                "this range has {} elements, more than the limit of {MAX_RANGE}: sums and indexed names are unrolled at compile time",
-                hi.saturating_sub(lo)
+                "this range has {count} elements, more than the limit of {MAX_RANGE}: sums and indexed names are unrolled at compile time"
             )));
         }
         Ok((lo, hi.max(lo)))
@@ -45,9 +49,8 @@ impl Lowering {
     }
 
     /// An index or a size: integer arithmetic on integers, `const`s and
-    /// index variables.
+    /// index variables, in 64-bit integers, every step checked.
     pub(super) fn int(&self, e: &Expr) -> syn::Result<i64> {
-        let overflow = || e.range().error("index arithmetic overflows");
         match e {
             Expr::Num { value, .. } => {
                 if value.fract() != 0.0 {
@@ -83,25 +86,47 @@ impl Lowering {
                     )),
                 }
             }
-            Expr::Neg { inner, .. } => self.int(inner)?.checked_neg().ok_or_else(overflow),
-            Expr::Binary { op, lhs, rhs, .. } => {
-                let (a, b) = (self.int(lhs)?, self.int(rhs)?);
-                match op {
-                    BinOp::Add => a.checked_add(b).ok_or_else(overflow),
-                    BinOp::Sub => a.checked_sub(b).ok_or_else(overflow),
-                    BinOp::Mul => a.checked_mul(b).ok_or_else(overflow),
-                    BinOp::Div if b != 0 && a % b == 0 => Ok(a / b),
-                    BinOp::Div => Err(e.range().error(format!(
-                        "{a}/{b} is not an integer: index arithmetic is exact"
-                    ))),
-                    BinOp::Pow => Err(e
-                        .range()
-                        .error("index arithmetic has `+`, `-`, `*` and exact `/`, not `^`")),
-                }
+            Expr::Neg { inner, .. } => {
+                let a = self.int(inner)?;
+                a.checked_neg().ok_or_else(|| overflows(e, format!("-({a})")))
             }
+            Expr::Chain { first, rest, .. } => {
+                let mut a = self.int(first)?;
+                for (op, x) in rest {
+                    let b = self.int(x)?;
+                    // The step's own text: from the chain's start to `x`.
+                    let step = first.range().to(x.range());
+                    a = match op {
+                        BinOp::Add => a.checked_add(b).ok_or((a, "+", b)),
+                        BinOp::Sub => a.checked_sub(b).ok_or((a, "-", b)),
+                        BinOp::Mul => a.checked_mul(b).ok_or((a, "*", b)),
+                        BinOp::Div if b == 0 || a.checked_rem(b).is_some_and(|r| r != 0) => {
+                            return Err(step.error(format!(
+                                "{a}/{b} is not an integer: index arithmetic is exact"
+                            )))
+                        }
+                        BinOp::Div => a.checked_div(b).ok_or((a, "/", b)),
+                    }
+                    .map_err(|(a, op, b)| {
+                        step.error(format!(
+                            "index arithmetic overflows: {a} {op} {b} is not a 64-bit integer"
+                        ))
+                    })?;
+                }
+                Ok(a)
+            }
+            Expr::Power { .. } => Err(e
+                .range()
+                .error("index arithmetic has `+`, `-`, `*` and exact `/`, not `^`")),
             _ => Err(e.range().error(
                 "an index or a size must be integer arithmetic on integers, `const`s and index variables",
             )),
         }
     }
+}
+
+fn overflows(e: &Expr, what: String) -> syn::Error {
+    e.range().error(format!(
+        "index arithmetic overflows: {what} is not a 64-bit integer"
+    ))
 }

@@ -3,10 +3,10 @@
 
 use super::functions::FUNCTIONS;
 use super::scope::{Binding, Role};
-use super::{budget_error, SymKind, Symbols};
+use super::{limit_error, SymKind, Symbols};
 use crate::ast::{BinOp, Expr};
-use crate::expr::{ExprId, Pool};
-use std::collections::HashMap;
+use crate::expr::{Exceeded, ExprId, Pool, MAX_DEPTH};
+use std::collections::{HashMap, HashSet};
 use syn::Ident;
 
 /// The state of lowering: the pool, the names bound so far, the index
@@ -17,7 +17,7 @@ pub(super) struct Lowering {
     pub(super) names: HashMap<String, Binding>,
     /// The `let`s not lowered yet, to tell "used before its `let`" from
     /// "unknown".
-    pub(super) pending_lets: Vec<String>,
+    pub(super) pending_lets: HashSet<String>,
     /// The index variables in scope, innermost last.
     pub(super) env: Vec<(String, i64)>,
     /// The model's name, for the budget error.
@@ -31,13 +31,30 @@ impl Lowering {
             pool,
             symbols: Symbols::new(0, 0),
             names: HashMap::new(),
-            pending_lets: Vec::new(),
+            pending_lets: HashSet::new(),
             env: Vec::new(),
             model: model.clone(),
         }
     }
 
+    /// The node of `e`. Stops at the first error, or once the pool is
+    /// exhausted: a node too deep is an error on the smallest expression
+    /// that built it.
     pub(super) fn lower(&mut self, e: &Expr) -> syn::Result<ExprId> {
+        // Names are strings to look up: a lowering costs a few steps.
+        self.pool.charge(2);
+        let id = self.lower_node(e)?;
+        match self.pool.check_budget() {
+            Ok(()) => Ok(id),
+            Err(Exceeded::Depth) => Err(e.range().error(format!(
+                "this expression nests more than {MAX_DEPTH} levels deep, counting the `let`s it uses: \
+                 write the model with fewer nested `let`s and functions"
+            ))),
+            Err(x) => Err(limit_error(&self.model, x)),
+        }
+    }
+
+    fn lower_node(&mut self, e: &Expr) -> syn::Result<ExprId> {
         Ok(match e {
             Expr::Num { value, .. } => self.pool.num(*value),
             Expr::Name(name) => {
@@ -55,18 +72,19 @@ impl Lowering {
                             Role::Parameter => "an indexed parameter",
                             Role::Let => "an indexed `let`",
                         };
-                        let example = if self.env.is_empty() {
-                            format!("`{s}[{lo}]`")
-                        } else {
-                            format!("`{s}[{}]`", self.env[self.env.len() - 1].0)
-                        };
-                        return Err(syn::Error::new(
-                            name.span(),
+                        let message = if hi > lo {
+                            let example = match self.env.last() {
+                                None => format!("`{s}[{lo}]`"),
+                                Some((var, _)) => format!("`{s}[{var}]`"),
+                            };
                             format!(
-                                "`{s}` is {role} (`{s}[{lo}]` to `{s}[{}]`): write one element, e.g. {example}",
-                                hi - 1
-                            ),
-                        ));
+                                "`{s}` is {role} ({}): write one element, e.g. {example}",
+                                elements(&s, *lo, *hi)
+                            )
+                        } else {
+                            format!("`{s}` is {role} with no elements (its range `{lo}..{hi}` is empty)")
+                        };
+                        return Err(syn::Error::new(name.span(), message));
                     }
                     None => return Err(self.unknown_name(name)),
                 }
@@ -84,9 +102,6 @@ impl Lowering {
                     let term = self.lower(body);
                     self.env.pop();
                     terms.push(term?);
-                    self.pool
-                        .check_budget()
-                        .map_err(|b| budget_error(&self.model, b.budget))?;
                 }
                 self.pool.add(&terms)
             }
@@ -94,21 +109,35 @@ impl Lowering {
                 let x = self.lower(inner)?;
                 self.pool.neg(x)
             }
-            Expr::Binary { op, lhs, rhs, .. } => {
-                let a = self.lower(lhs)?;
-                let b = self.lower(rhs)?;
-                match op {
-                    BinOp::Add => self.pool.add2(a, b),
-                    BinOp::Sub => self.pool.sub(a, b),
-                    BinOp::Mul => self.pool.mul2(a, b),
-                    BinOp::Div => self.pool.div(a, b),
-                    BinOp::Pow => self.pool.pow(a, b),
+            Expr::Chain { first, rest, .. } => {
+                let mut acc = self.lower(first)?;
+                for (op, x) in rest {
+                    let b = self.lower(x)?;
+                    acc = self.combine(*op, acc, b);
                 }
+                acc
+            }
+            Expr::Power { base, exponent, .. } => {
+                let a = self.lower(base)?;
+                let b = self.lower(exponent)?;
+                self.pool.pow(a, b)
             }
             Expr::Call { func, range, args } => self.lower_call(func, *range, args)?,
         })
     }
 
+    /// `a op b`, one step of a chain.
+    pub(super) fn combine(&mut self, op: BinOp, a: ExprId, b: ExprId) -> ExprId {
+        match op {
+            BinOp::Add => self.pool.add2(a, b),
+            BinOp::Sub => self.pool.sub(a, b),
+            BinOp::Mul => self.pool.mul2(a, b),
+            BinOp::Div => self.pool.div(a, b),
+        }
+    }
+
+    /// The index of `base[index]`, checked against its range, and the
+    /// element's binding.
     pub(super) fn element(&self, base: &Ident, index: &Expr) -> syn::Result<(i64, Binding)> {
         let s = base.to_string();
         let (lo, hi) = match self.names.get(&s) {
@@ -129,10 +158,14 @@ impl Lowering {
         };
         let k = self.int(index)?;
         if k < lo || k >= hi {
-            return Err(index.range().error(format!(
-                "index {k} is out of range: `{s}` has elements `{s}[{lo}]` to `{s}[{}]`",
-                hi - 1
-            )));
+            let has = if hi > lo {
+                format!("has elements {}", elements(&s, lo, hi))
+            } else {
+                format!("has no elements (its range `{lo}..{hi}` is empty)")
+            };
+            return Err(index
+                .range()
+                .error(format!("index {k} is out of range: `{s}` {has}")));
         }
         match self.names.get(&format!("{s}[{k}]")) {
             Some(b) => Ok((k, *b)),
@@ -211,4 +244,10 @@ impl Lowering {
         };
         syn::Error::new(name.span(), msg)
     }
+}
+
+/// "`x[lo]` to `x[hi - 1]`", of a non-empty range (`hi > lo`, so `hi - 1`
+/// cannot overflow).
+fn elements(name: &str, lo: i64, hi: i64) -> String {
+    format!("`{name}[{lo}]` to `{name}[{}]`", hi - 1)
 }

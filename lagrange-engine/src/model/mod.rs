@@ -24,8 +24,9 @@ pub use index::MAX_RANGE;
 pub use passes::declared_shape;
 pub use symbols::{SymKind, Symbols};
 
+use crate::ast::MAX_BUDGET;
 use crate::ast::{Expr, ModelDef, SpanRange};
-use crate::expr::{ExprId, Pool};
+use crate::expr::{Exceeded, ExprId, Pool, MAX_DEPTH};
 use lowering::Lowering;
 use scope::{Binding, Declared};
 use std::collections::HashMap;
@@ -126,7 +127,7 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
     let sections = passes::sections(def.items, &def.name, &mut cx)?;
     cx.pool
         .check_budget()
-        .map_err(|b| budget_error(&def.name, b.budget))?;
+        .map_err(|x| limit_error(&def.name, x))?;
     Ok(Model {
         attrs: def.attrs,
         options: def.options,
@@ -145,15 +146,22 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
     })
 }
 
-/// The error of a derivation past the pool's budget, on the model's name.
-pub fn budget_error(name: &Ident, budget: usize) -> syn::Error {
-    syn::Error::new(
-        name.span(),
-        format!(
-            "the derivation of `{name}` exceeds the size budget of {budget} expression nodes: \
-             the model is too large to derive symbolically (simplify the positions, or split the model)"
+/// The error of a model that ran into a limit of the engine (its work
+/// budget, or the depth of its expressions), on the model's name.
+pub fn limit_error(name: &Ident, exceeded: Exceeded) -> syn::Error {
+    let message = match exceeded {
+        Exceeded::Budget(budget) => format!(
+            "the expansion of `{name}` exceeds the engine's work budget of {budget} steps: the model is too large \
+             to derive symbolically in reasonable time and memory (simplify it, or split it); if it really needs \
+             more, raise the budget with `#[lagrange(budget = {})]` on the struct",
+            budget.saturating_mul(4).min(MAX_BUDGET)
         ),
-    )
+        Exceeded::Depth => format!(
+            "the derivation of `{name}` nests expressions more than {MAX_DEPTH} levels deep: write the model with \
+             fewer nested `let`s and functions"
+        ),
+    };
+    syn::Error::new(name.span(), message)
 }
 
 impl Model {

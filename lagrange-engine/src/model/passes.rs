@@ -5,10 +5,18 @@
 
 use super::lowering::Lowering;
 use super::scope::{Binding, Declared, Role};
-use super::{Field, Force, Scalar, Section, Symbols};
+use super::{limit_error, Field, Force, Scalar, Section, Symbols};
 use crate::ast::{BinOp, Expr, Item, ModelDef};
 use crate::expr::Pool;
+use std::collections::HashSet;
 use syn::Ident;
+
+/// What a coordinate or parameter costs the budget, measured as the
+/// memory it holds through the stages (about a kilobyte).
+const STEPS_PER_SCALAR: u64 = 64;
+
+/// What a name costs the budget: the memory of its entry in the scope.
+const STEPS_PER_NAME: u64 = 16;
 
 /// Pass 1: the `const`s, in order; sizes and indices anywhere may use them.
 pub(super) fn consts(
@@ -61,6 +69,12 @@ pub(super) fn declarations(
                         None => None,
                         Some(e) => Some(cx.length(e)?),
                     };
+                    // Each element is a scalar of the model, with a name, a
+                    // symbol and a local in every generated function.
+                    cx.pool.charge(STEPS_PER_SCALAR * len.unwrap_or(1) as u64);
+                    cx.pool
+                        .check_budget()
+                        .map_err(|x| limit_error(&def.name, x))?;
                     let scalars = match role {
                         Role::Coordinate => &mut out.coordinates,
                         _ => &mut out.parameters,
@@ -180,6 +194,8 @@ pub(super) fn lets(def: &ModelDef, cx: &mut Lowering) -> syn::Result<()> {
                         },
                     );
                     for k in lo..hi {
+                        // Each element is a name kept to the end.
+                        cx.pool.charge(STEPS_PER_NAME);
                         cx.env.push((range.var.to_string(), k));
                         let id = cx.lower(value);
                         cx.env.pop();
@@ -187,7 +203,7 @@ pub(super) fn lets(def: &ModelDef, cx: &mut Lowering) -> syn::Result<()> {
                     }
                 }
             }
-            cx.pending_lets.retain(|n| n != &name.to_string());
+            cx.pending_lets.remove(&name.to_string());
         }
     }
     Ok(())
@@ -208,6 +224,7 @@ pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn
     let mut potential = None;
     let mut dissipation = None;
     let mut forces: Vec<Force> = Vec::new();
+    let mut targets: HashSet<String> = HashSet::new();
     for item in items {
         match item {
             Item::Kinetic { keyword, value } => add_to(&mut kinetic, cx, keyword, value)?,
@@ -215,7 +232,7 @@ pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn
             Item::Dissipation { keyword, value } => add_to(&mut dissipation, cx, keyword, value)?,
             Item::Forces { entries, .. } => {
                 for (target, value) in entries {
-                    forces.push(force(&forces, cx, target, value)?);
+                    forces.push(force(&mut targets, cx, target, value)?);
                 }
             }
             _ => {}
@@ -247,10 +264,15 @@ pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn
     })
 }
 
-/// One entry `target = value` of `forces:`.
-fn force(before: &[Force], cx: &mut Lowering, target: Expr, value: Expr) -> syn::Result<Force> {
+/// One entry `target = value` of `forces:`; `targets`, those before it.
+fn force(
+    targets: &mut HashSet<String>,
+    cx: &mut Lowering,
+    target: Expr,
+    value: Expr,
+) -> syn::Result<Force> {
     let (label, position) = cx.force_target(&target)?;
-    if before.iter().any(|f| f.label == label) {
+    if !targets.insert(label.clone()) {
         return Err(target.range().error(format!(
             "a second force on `{label}`: write the sum of the forces in one entry"
         )));
@@ -281,12 +303,7 @@ fn add_to(
         },
         Some(first) => Section {
             value: cx.pool.add2(first.value, value),
-            ast: Expr::Binary {
-                op: BinOp::Add,
-                range: first.ast.range().to(ast.range()),
-                lhs: Box::new(first.ast),
-                rhs: Box::new(ast),
-            },
+            ast: first.ast.then(BinOp::Add, ast),
             keyword: first.keyword,
         },
     });
@@ -308,7 +325,7 @@ pub fn declared_shape(def: &ModelDef) -> (usize, Vec<Field>) {
             }
         }
     }
-    let mut seen: Vec<String> = vec!["t".into()];
+    let mut seen: HashSet<String> = HashSet::from(["t".to_string()]);
     let mut dof = 0;
     let mut fields = Vec::new();
     for item in &def.items {
@@ -316,10 +333,9 @@ pub fn declared_shape(def: &ModelDef) -> (usize, Vec<Field>) {
             continue;
         };
         for d in names {
-            if seen.contains(&d.name.to_string()) {
+            if !seen.insert(d.name.to_string()) {
                 continue;
             }
-            seen.push(d.name.to_string());
             let len = d.len.as_ref().map(|e| cx.length(e).unwrap_or(1));
             if matches!(item, Item::Coordinates { .. }) {
                 dof += len.unwrap_or(1);

@@ -9,17 +9,53 @@
 //! primary := number | name | name '[' sum ']' | name '(' args ')'
 //!          | 'sum' '(' name 'in' sum ('..' | '..=') sum ',' sum ')' | '(' sum ')'
 //! ```
+//!
+//! The parser descends recursively, and so do lowering and the engine after
+//! it: an expression may nest at most [`MAX_NESTING`] levels (parentheses,
+//! calls, brackets, sums, unary minuses, exponents, method calls), far
+//! below what overflows a stack. Sums and products are chains, not nested,
+//! so `x + x + ... + x` may have any number of terms.
 
 use super::plain_name;
 use crate::ast::{BinOp, Expr, IndexRange, SpanRange};
 use syn::parse::ParseStream;
 use syn::{bracketed, parenthesized, Ident, LitFloat, LitInt, Token};
 
+/// The deepest an expression may nest. A textbook model nests a few levels.
+/// At this depth parsing and lowering take at most about 1.5 MiB of stack in
+/// a debug build of the engine (opt-level 0), 0.3 MiB optimized; rustc runs
+/// a proc macro on a thread of 8 MiB.
+pub const MAX_NESTING: usize = 128;
+
+/// `depth + 1`, or the error on the next token (the operator or the group)
+/// that would nest too deep.
+fn deeper(input: ParseStream, depth: usize) -> syn::Result<usize> {
+    if depth >= MAX_NESTING {
+        return Err(too_deep(input.span()));
+    }
+    Ok(depth + 1)
+}
+
+fn too_deep(span: proc_macro2::Span) -> syn::Error {
+    syn::Error::new(
+        span,
+        format!(
+            "this expression nests more than {MAX_NESTING} levels deep (parentheses, calls, unary minuses, \
+             exponents or method calls): write it in steps with `let`s"
+        ),
+    )
+}
+
 /// `[expr]` after a name, if there: the expression and the closing span.
 pub(super) fn parse_bracket(input: ParseStream) -> syn::Result<Option<(Expr, proc_macro2::Span)>> {
+    bracket(input, 0)
+}
+
+fn bracket(input: ParseStream, depth: usize) -> syn::Result<Option<(Expr, proc_macro2::Span)>> {
     if !input.peek(syn::token::Bracket) {
         return Ok(None);
     }
+    let depth = deeper(input, depth)?;
     let inner;
     let bracket = bracketed!(inner in input);
     if inner.is_empty() {
@@ -29,7 +65,7 @@ pub(super) fn parse_bracket(input: ParseStream) -> syn::Result<Option<(Expr, pro
         ));
     }
     let e = drain_on_error(&inner, |inner| {
-        let e = parse_expr(inner)?;
+        let e = expr(inner, depth)?;
         if !inner.is_empty() {
             return Err(inner.error("expected an operator or `]`"));
         }
@@ -40,6 +76,10 @@ pub(super) fn parse_bracket(input: ParseStream) -> syn::Result<Option<(Expr, pro
 
 /// `var in lo..hi` or `var in lo..=hi`.
 pub(super) fn parse_index_range(input: ParseStream) -> syn::Result<IndexRange> {
+    index_range(input, 0)
+}
+
+fn index_range(input: ParseStream, depth: usize) -> syn::Result<IndexRange> {
     let var = plain_name(input)?;
     if !input.peek(Token![in]) {
         return Err(input.error(format!(
@@ -47,7 +87,7 @@ pub(super) fn parse_index_range(input: ParseStream) -> syn::Result<IndexRange> {
         )));
     }
     input.parse::<Token![in]>()?;
-    let lo = parse_expr(input)?;
+    let lo = expr(input, depth)?;
     let inclusive = if input.peek(Token![..=]) {
         input.parse::<Token![..=]>()?;
         true
@@ -57,7 +97,7 @@ pub(super) fn parse_index_range(input: ParseStream) -> syn::Result<IndexRange> {
     } else {
         return Err(input.error("expected `..` or `..=`: a range is written `0..N` or `0..=i`"));
     };
-    let hi = parse_expr(input)?;
+    let hi = expr(input, depth)?;
     Ok(IndexRange {
         range: SpanRange::single(var.span()).to(hi.range()),
         var,
@@ -67,9 +107,14 @@ pub(super) fn parse_index_range(input: ParseStream) -> syn::Result<IndexRange> {
     })
 }
 
-/// `sum := product (('+' | '-') product)*`
+/// An expression at the top level of a section.
 pub fn parse_expr(input: ParseStream) -> syn::Result<Expr> {
-    let mut lhs = parse_product(input)?;
+    expr(input, 0)
+}
+
+/// `sum := product (('+' | '-') product)*`, at nesting `depth`.
+fn expr(input: ParseStream, depth: usize) -> syn::Result<Expr> {
+    let mut lhs = product(input, depth)?;
     loop {
         let op = if input.peek(Token![+]) {
             input.parse::<Token![+]>()?;
@@ -80,23 +125,14 @@ pub fn parse_expr(input: ParseStream) -> syn::Result<Expr> {
         } else {
             return Ok(lhs);
         };
-        let rhs = parse_product(input)?;
-        lhs = binary(op, lhs, rhs);
-    }
-}
-
-fn binary(op: BinOp, lhs: Expr, rhs: Expr) -> Expr {
-    Expr::Binary {
-        op,
-        range: lhs.range().to(rhs.range()),
-        lhs: Box::new(lhs),
-        rhs: Box::new(rhs),
+        let rhs = product(input, depth)?;
+        lhs = lhs.then(op, rhs);
     }
 }
 
 /// `product := unary (('*' | '/') unary)*`
-fn parse_product(input: ParseStream) -> syn::Result<Expr> {
-    let mut lhs = parse_unary(input)?;
+fn product(input: ParseStream, depth: usize) -> syn::Result<Expr> {
+    let mut lhs = unary(input, depth)?;
     loop {
         let op = if input.peek(Token![*]) {
             input.parse::<Token![*]>()?;
@@ -107,41 +143,52 @@ fn parse_product(input: ParseStream) -> syn::Result<Expr> {
         } else {
             return Ok(lhs);
         };
-        let rhs = parse_unary(input)?;
-        lhs = binary(op, lhs, rhs);
+        let rhs = unary(input, depth)?;
+        lhs = lhs.then(op, rhs);
     }
 }
 
 /// `unary := '-' unary | power`
-fn parse_unary(input: ParseStream) -> syn::Result<Expr> {
+fn unary(input: ParseStream, depth: usize) -> syn::Result<Expr> {
     if input.peek(Token![-]) {
+        let depth = deeper(input, depth)?;
         let minus = input.parse::<Token![-]>()?;
-        let inner = parse_unary(input)?;
+        let inner = unary(input, depth)?;
         return Ok(Expr::Neg {
             range: SpanRange::single(minus.span).to(inner.range()),
             inner: Box::new(inner),
         });
     }
-    parse_power(input)
+    power(input, depth)
 }
 
 /// `power := postfix ('^' unary)?` — right-associative through `unary`.
-fn parse_power(input: ParseStream) -> syn::Result<Expr> {
-    let base = parse_postfix(input)?;
+fn power(input: ParseStream, depth: usize) -> syn::Result<Expr> {
+    let base = postfix(input, depth)?;
     if input.peek(Token![^]) {
+        let depth = deeper(input, depth)?;
         input.parse::<Token![^]>()?;
-        let exponent = parse_unary(input)?;
-        return Ok(binary(BinOp::Pow, base, exponent));
+        let exponent = unary(input, depth)?;
+        return Ok(Expr::Power {
+            range: base.range().to(exponent.range()),
+            base: Box::new(base),
+            exponent: Box::new(exponent),
+        });
     }
     Ok(base)
 }
 
-/// `postfix := primary ('.' name '(' args ')')*`
-fn parse_postfix(input: ParseStream) -> syn::Result<Expr> {
-    let mut e = parse_primary(input)?;
+/// `postfix := primary ('.' name '(' args ')')*`; each call nests the
+/// receiver one level deeper.
+fn postfix(input: ParseStream, depth: usize) -> syn::Result<Expr> {
+    let mut e = primary(input, depth)?;
+    let mut depth = depth;
     while input.peek(Token![.]) && !input.peek(Token![..]) {
         input.parse::<Token![.]>()?;
         let method: Ident = input.parse()?;
+        if depth >= MAX_NESTING {
+            return Err(too_deep(method.span()));
+        }
         if !input.peek(syn::token::Paren) {
             return Err(syn::Error::new(
                 method.span(),
@@ -150,7 +197,8 @@ fn parse_postfix(input: ParseStream) -> syn::Result<Expr> {
                 ),
             ));
         }
-        let (mut args, close) = parse_args(input)?;
+        let (mut args, close) = call_args(input, depth)?;
+        depth += 1;
         args.insert(0, e);
         e = Expr::Call {
             range: args[0].range().to(SpanRange::single(close)),
@@ -161,13 +209,14 @@ fn parse_postfix(input: ParseStream) -> syn::Result<Expr> {
     Ok(e)
 }
 
-fn parse_args(input: ParseStream) -> syn::Result<(Vec<Expr>, proc_macro2::Span)> {
+fn call_args(input: ParseStream, depth: usize) -> syn::Result<(Vec<Expr>, proc_macro2::Span)> {
+    let depth = deeper(input, depth)?;
     let inner;
     let paren = parenthesized!(inner in input);
     let args = drain_on_error(&inner, |inner| {
         let mut args = Vec::new();
         while !inner.is_empty() {
-            args.push(parse_expr(inner)?);
+            args.push(expr(inner, depth)?);
             if inner.is_empty() {
                 break;
             }
@@ -200,7 +249,7 @@ pub(super) fn drain_on_error<T>(
 }
 
 /// `primary := number | name | name '(' args ')' | '(' sum ')'`
-fn parse_primary(input: ParseStream) -> syn::Result<Expr> {
+fn primary(input: ParseStream, depth: usize) -> syn::Result<Expr> {
     if input.peek(LitInt) {
         let lit: LitInt = input.parse()?;
         let value = lit
@@ -224,6 +273,7 @@ fn parse_primary(input: ParseStream) -> syn::Result<Expr> {
         });
     }
     if input.peek(syn::token::Paren) {
+        let depth = deeper(input, depth)?;
         let inner;
         let paren = parenthesized!(inner in input);
         if inner.is_empty() {
@@ -233,7 +283,7 @@ fn parse_primary(input: ParseStream) -> syn::Result<Expr> {
             ));
         }
         return drain_on_error(&inner, |inner| {
-            let e = parse_expr(inner)?;
+            let e = expr(inner, depth)?;
             if !inner.is_empty() {
                 return Err(inner.error("expected an operator or `)`"));
             }
@@ -243,9 +293,9 @@ fn parse_primary(input: ParseStream) -> syn::Result<Expr> {
     if input.peek(syn::Ident) {
         let name: Ident = plain_name(input)?;
         if name == "sum" && input.peek(syn::token::Paren) {
-            return parse_sum(input, name);
+            return sum(input, name, depth);
         }
-        if let Some((index, close)) = parse_bracket(input)? {
+        if let Some((index, close)) = bracket(input, depth)? {
             return Ok(Expr::Index {
                 range: SpanRange::single(name.span()).to(SpanRange::single(close)),
                 base: name,
@@ -253,7 +303,7 @@ fn parse_primary(input: ParseStream) -> syn::Result<Expr> {
             });
         }
         if input.peek(syn::token::Paren) {
-            let (args, close) = parse_args(input)?;
+            let (args, close) = call_args(input, depth)?;
             return Ok(Expr::Call {
                 range: SpanRange::single(name.span()).to(SpanRange::single(close)),
                 func: name,
@@ -269,7 +319,8 @@ fn parse_primary(input: ParseStream) -> syn::Result<Expr> {
 }
 
 /// `sum(j in a..b, body)`.
-fn parse_sum(input: ParseStream, keyword: Ident) -> syn::Result<Expr> {
+fn sum(input: ParseStream, keyword: Ident, depth: usize) -> syn::Result<Expr> {
+    let depth = deeper(input, depth)?;
     let inner;
     let paren = parenthesized!(inner in input);
     let (index, body) = drain_on_error(&inner, |inner| {
@@ -277,14 +328,14 @@ fn parse_sum(input: ParseStream, keyword: Ident) -> syn::Result<Expr> {
             return Err(inner
                 .error("expected an index and a term: a sum is written `sum(i in 0..N, term)`"));
         }
-        let index = parse_index_range(inner)?;
+        let index = index_range(inner, depth)?;
         if !inner.peek(Token![,]) {
             return Err(
                 inner.error("expected `,` and the term: a sum is written `sum(i in 0..N, term)`")
             );
         }
         inner.parse::<Token![,]>()?;
-        let body = parse_expr(inner)?;
+        let body = expr(inner, depth)?;
         if inner.peek(Token![,]) {
             inner.parse::<Token![,]>()?;
         }
@@ -314,16 +365,20 @@ mod tests {
             Expr::Num { value, .. } => format!("{value}"),
             Expr::Name(n) => n.to_string(),
             Expr::Neg { inner, .. } => format!("(-{})", show(inner)),
-            Expr::Binary { op, lhs, rhs, .. } => {
-                let o = match op {
-                    BinOp::Add => "+",
-                    BinOp::Sub => "-",
-                    BinOp::Mul => "*",
-                    BinOp::Div => "/",
-                    BinOp::Pow => "^",
-                };
-                format!("({} {o} {})", show(lhs), show(rhs))
+            Expr::Chain { first, rest, .. } => {
+                let mut out = show(first);
+                for (op, x) in rest {
+                    let o = match op {
+                        BinOp::Add => "+",
+                        BinOp::Sub => "-",
+                        BinOp::Mul => "*",
+                        BinOp::Div => "/",
+                    };
+                    out = format!("({out} {o} {})", show(x));
+                }
+                out
             }
+            Expr::Power { base, exponent, .. } => format!("({} ^ {})", show(base), show(exponent)),
             Expr::Call { func, args, .. } => {
                 let a: Vec<String> = args.iter().map(show).collect();
                 format!("{func}({})", a.join(", "))

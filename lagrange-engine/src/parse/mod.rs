@@ -16,11 +16,12 @@ pub mod expression;
 
 pub use expression::parse_expr;
 
-use crate::ast::{Decl, Expr, Item, ModelDef, Options, SpanRange};
+use crate::ast::{Decl, Expr, Item, ModelDef, Options, SpanRange, MAX_BUDGET};
+use crate::expr::DEFAULT_BUDGET;
 use expression::{drain_on_error, parse_bracket, parse_index_range};
 use proc_macro2::{TokenStream, TokenTree};
 use syn::parse::{ParseStream, Parser};
-use syn::{braced, bracketed, Attribute, Ident, Token, Visibility};
+use syn::{braced, bracketed, Attribute, Ident, LitInt, Token, Visibility};
 
 /// The sections a model may contain, for error messages.
 pub const SECTIONS: &str =
@@ -95,9 +96,22 @@ fn take_options(attrs: &mut Vec<Attribute>) -> (Options, Option<syn::Error>) {
             if meta.path.is_ident("jacobians") {
                 options.jacobians = true;
                 Ok(())
+            } else if meta.path.is_ident("budget") {
+                let lit: LitInt = meta.value()?.parse()?;
+                match lit.base10_parse::<u64>() {
+                    Ok(n) if (1..=MAX_BUDGET).contains(&n) => {
+                        options.budget = Some(n);
+                        Ok(())
+                    }
+                    _ => Err(syn::Error::new(
+                        lit.span(),
+                        format!("the budget is a number of steps from 1 to {MAX_BUDGET} (the default is {DEFAULT_BUDGET})"),
+                    )),
+                }
             } else {
                 Err(meta.error(
-                    "unknown option: `#[lagrange(...)]` takes `jacobians` (exact residual Jacobians for implicit integrators)",
+                    "unknown option: `#[lagrange(...)]` takes `jacobians` (exact residual Jacobians for implicit integrators) \
+                     and `budget = N` (the engine's work budget, in steps)",
                 ))
             }
         });
