@@ -73,14 +73,13 @@ impl Renderer<'_> {
                     (term, 1)
                 }
             }
-            Node::Pow(b, e) => {
-                let base = self.text(*b, 2);
-                match pool.as_num(*e) {
-                    Some(0.5) => (format!("sqrt({})", self.text(*b, 0)), 2),
-                    Some(v) if v < 0.0 => (format!("{base}^({v})"), 1),
-                    _ => (format!("{base}^{}", self.text(*e, 2)), 1),
-                }
-            }
+            // The base is written once: writing it twice per level would
+            // take 2^depth time on nested roots.
+            Node::Pow(b, e) => match pool.as_num(*e) {
+                Some(0.5) => (format!("sqrt({})", self.text(*b, 0)), 2),
+                Some(v) if v < 0.0 => (format!("{}^({v})", self.text(*b, 2)), 1),
+                _ => (format!("{}^{}", self.text(*b, 2), self.text(*e, 2)), 1),
+            },
             Node::Func(f, a) => (format!("{}({})", f.name(), self.text(*a, 0)), 2),
             Node::Atan2(y, x) => (
                 format!("atan2({}, {})", self.text(*y, 0), self.text(*x, 0)),

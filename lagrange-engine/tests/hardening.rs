@@ -315,3 +315,19 @@ fn the_budget_attribute_raises_the_budget_of_one_model() {
     let raised = chain(8).replacen("pub struct", "#[lagrange(budget = 5000000)] pub struct", 1);
     assert!(derive(raised, small).is_ok());
 }
+
+/// Found by the long fuzz run: roots nested 30–45 deep (`sqrt(sqrt(..))` in
+/// a force, a length or an energy) once took 2^depth steps to write as
+/// `EQUATIONS` text (each level wrote its base twice), over 10 s from depth
+/// 27. Writing them is linear now; at depth 100 (within the nesting limit)
+/// the 2^100 of before would never end.
+#[test]
+fn deeply_nested_roots_are_written_as_text_in_linear_time() {
+    let depth = 100;
+    let force = format!("{}atan(dot(y)){}", "sqrt(".repeat(depth), ")".repeat(depth));
+    let model = format!(
+        "struct M {{ coordinates: y; kinetic: dot(y)^2; potential: 0; forces: y = {force}; }}"
+    );
+    let text = derive(model, DEFAULT_BUDGET).expect("the model derives");
+    assert_eq!(text.matches("sqrt(").count(), depth, "{text}");
+}
