@@ -20,6 +20,8 @@ pub struct EngineStats {
     pub reps: usize,
     /// Expression nodes in the pool (each costs the work budget a few steps).
     pub nodes: usize,
+    /// Steps of the engine's work budget spent by derive and emit together.
+    pub steps: u64,
     /// Operations of `M` (upper triangle) and `f`, as emitted with sharing.
     pub shared: OpCount,
     /// Of which `M` alone (sharing only within `M`).
@@ -59,6 +61,8 @@ pub fn measure(source: &str) -> Result<EngineStats, EngineFailure> {
     let shared_mass = cse::shared_ops(&derived.model.pool, &mass);
     let shared_forcing = cse::shared_ops(&derived.model.pool, &derived.equations.forcing);
     let nodes = derived.model.pool.len();
+    drop(derived.tokens());
+    let steps = derived.model.pool.spent();
     drop(derived);
 
     let mut expand = Vec::new();
@@ -96,6 +100,7 @@ pub fn measure(source: &str) -> Result<EngineStats, EngineFailure> {
         derive: median(&mut derive),
         emit: median(&mut emit),
         nodes,
+        steps,
         shared,
         shared_mass,
         shared_forcing,

@@ -161,12 +161,13 @@ fn run(options: &Options) -> Result<(), String> {
         match &engine {
             Ok(e) => println!(
                 "  N = {n:>2}: expand {:>9.4} s (derive {:.4} s, emit {:.4} s; {} runs), {} nodes, \
-                 {} ops shared, {} as a tree",
+                 {} steps, {} ops shared, {} as a tree",
                 e.expand.as_secs_f64(),
                 e.derive.as_secs_f64(),
                 e.emit.as_secs_f64(),
                 e.reps,
                 e.nodes,
+                e.steps,
                 e.shared.total(),
                 e.tree.total()
             ),
@@ -349,8 +350,9 @@ Columns:
 built in release (median of up to 5 runs). **derive** (parse, lower, check, differentiate) \
 and **emit** (`Derived::tokens`: schedule the shared nodes, write the items) are the same \
 work split in two.
-- **nodes**: expression nodes in the engine's hash-consed pool (each costs the work budget \
-a few steps). **code**: the emitted items as text.
+- **nodes**: expression nodes in the engine's hash-consed pool. **steps**: the engine's work \
+budget spent by derive and emit together (the default budget is 50,000,000 steps). **code**: \
+the emitted items as text.
 - **ops, shared**: arithmetic operations and function calls of `M` (upper triangle) and `f` \
 as emitted, every shared subexpression computed once (`Derived::op_counts`). **of which \
 M / f**: the same for `M` alone and `f` alone (each with its own sharing, so the two add up to \

@@ -151,21 +151,22 @@ fn ns(x: f64) -> String {
 pub fn table(rows: &[Row]) -> String {
     let mut s = String::new();
     s.push_str(
-        "| N | expand (s) | derive (s) | emit (s) | nodes | code (KB) | ops, shared | of which M / f | ops, tree \
+        "| N | expand (s) | derive (s) | emit (s) | nodes | steps | code (KB) | ops, shared | of which M / f | ops, tree \
          | check (s) | build (s) | M+f (ns) | AD (ns) | AD / generated | AD max rel. diff |\n",
     );
-    s.push_str(&"|---:".repeat(15));
+    s.push_str(&"|---:".repeat(16));
     s.push_str("|\n");
     for r in rows {
         write!(s, "| {} ", r.n).unwrap();
         match &r.engine {
             Ok(e) => write!(
                 s,
-                "| {} | {} | {} | {} | {:.0} | {} | {} / {} | {} ",
+                "| {} | {} | {} | {} | {} | {:.0} | {} | {} / {} | {} ",
                 secs(e.expand),
                 secs(e.derive),
                 secs(e.emit),
                 e.nodes,
+                count(e.steps),
                 e.code_bytes as f64 / 1024.0,
                 count(e.shared.total()),
                 count(e.shared_mass.total()),
@@ -174,10 +175,10 @@ pub fn table(rows: &[Row]) -> String {
             )
             .unwrap(),
             Err(f) if f.over_budget => s.push_str(&format!(
-                "| over the work budget ({} steps) | | | | | | | ",
+                "| over the work budget ({} steps) | | | | | | | | ",
                 crate::engine::budget()
             )),
-            Err(f) => write!(s, "| error: {} | | | | | | | ", one_line(&f.message)).unwrap(),
+            Err(f) => write!(s, "| error: {} | | | | | | | | ", one_line(&f.message)).unwrap(),
         }
         match &r.build {
             None => s.push_str("| | | | | | |"),
