@@ -220,12 +220,29 @@ fn fuzz(o: &Options) -> ExitCode {
         worker::STACK >> 20,
         starts.into_inner()
     );
+    let (own, workers) = (usage(libc::RUSAGE_SELF), usage(libc::RUSAGE_CHILDREN));
+    let header = format!(
+        "{header}\n  cpu: workers {:.1} s, supervisor {:.1} s; largest worker resident set {:.0} MiB",
+        workers.0,
+        own.0,
+        workers.1 as f64 / 1024.0
+    );
     print!("{}", report.summary(&header, &determinism));
     if report.failures() > 0 {
         ExitCode::FAILURE
     } else {
         ExitCode::SUCCESS
     }
+}
+
+/// CPU seconds (user + system) and peak resident set (KiB) of this process
+/// or of its reaped children (for children: the largest one's).
+fn usage(who: libc::c_int) -> (f64, i64) {
+    // SAFETY: getrusage fills the zeroed struct it is given.
+    let mut u: libc::rusage = unsafe { std::mem::zeroed() };
+    unsafe { libc::getrusage(who, &mut u) };
+    let secs = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
+    (secs(u.ru_utime) + secs(u.ru_stime), u.ru_maxrss)
 }
 
 /// The sampled valid models (hashed in the run) and every repository model
