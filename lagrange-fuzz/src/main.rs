@@ -35,6 +35,7 @@
 mod families;
 mod generate;
 mod inputs;
+mod minimize;
 mod mutate;
 mod report;
 mod rng;
@@ -64,6 +65,7 @@ usage: lagrange-fuzz [--inputs N] [--seed S] [--jobs J] [--timeout-ms T] [--mem-
                      [--out DIR] [--determinism N] [--max-findings N]
        lagrange-fuzz --replay FILE...   [--timeout-ms T] [--mem-mb M]
        lagrange-fuzz --show INDEX       [--seed S]
+       lagrange-fuzz --minimize FILE    [--timeout-ms T] [--mem-mb M]
 
   --inputs N        inputs to run (10000)
   --seed S          the input stream (1)
@@ -74,7 +76,8 @@ usage: lagrange-fuzz [--inputs N] [--seed S] [--jobs J] [--timeout-ms T] [--mem-
   --determinism N   valid sampled models to re-expand in a fresh process (200; 0: off)
   --max-findings N  finding files to write; index.tsv lists all (1000)
   --replay FILE...  run saved inputs again and print their outcomes
-  --show INDEX      print input INDEX of the seed's stream";
+  --show INDEX      print input INDEX of the seed's stream
+  --minimize FILE   shrink a finding while it fails the same way; writes FILE.min";
 
 struct Options {
     inputs: u64,
@@ -86,6 +89,7 @@ struct Options {
     max_findings: usize,
     replay: Vec<PathBuf>,
     show: Option<u64>,
+    minimize: Option<PathBuf>,
     worker: bool,
 }
 
@@ -103,6 +107,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         max_findings: 1000,
         replay: Vec::new(),
         show: None,
+        minimize: None,
         worker: false,
     };
     let mut it = args.iter();
@@ -127,6 +132,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
             "--determinism" => o.determinism = number(value()?)? as usize,
             "--max-findings" => o.max_findings = number(value()?)? as usize,
             "--show" => o.show = Some(number(value()?)?),
+            "--minimize" => o.minimize = Some(PathBuf::from(value()?)),
             "--worker" => o.worker = true,
             "--replay" => {
                 let rest = it.as_slice();
@@ -169,6 +175,9 @@ fn main() -> ExitCode {
     }
     if !o.replay.is_empty() {
         return replay(&o);
+    }
+    if let Some(path) = &o.minimize {
+        return minimize(&o, path);
     }
     fuzz(&o)
 }
@@ -329,5 +338,36 @@ fn replay(o: &Options) -> ExitCode {
         ExitCode::FAILURE
     } else {
         ExitCode::SUCCESS
+    }
+}
+
+fn minimize(o: &Options, path: &std::path::Path) -> ExitCode {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("{}: {e}", path.display());
+            return ExitCode::from(2);
+        }
+    };
+    let mut worker = Worker::new(o.limits);
+    match minimize::minimize(&mut worker, &text, 5000) {
+        None => {
+            println!("{}: does not fail", path.display());
+            ExitCode::SUCCESS
+        }
+        Some((small, runs)) => {
+            let out = path.with_extension("min");
+            let outcome = worker.run(&small, false);
+            println!(
+                "{}: {} bytes after {runs} runs, {} in {:.1} ms: {}\n{small}",
+                out.display(),
+                small.len(),
+                outcome.class.name(),
+                outcome.nanos as f64 / 1e6,
+                outcome.message.lines().next().unwrap_or("")
+            );
+            let _ = std::fs::write(&out, format!("{small}\n"));
+            ExitCode::FAILURE
+        }
     }
 }

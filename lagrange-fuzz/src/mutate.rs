@@ -144,6 +144,23 @@ pub fn balanced(toks: &[Tok]) -> bool {
     stack.is_empty()
 }
 
+/// For each delimiter, the index of its partner (in a balanced sequence).
+pub fn partners(toks: &[Tok]) -> Vec<Option<usize>> {
+    let mut partner = vec![None; toks.len()];
+    let mut open = Vec::new();
+    for (k, t) in toks.iter().enumerate() {
+        if is_open(&t.text) {
+            open.push(k);
+        } else if is_close(&t.text) {
+            if let Some(o) = open.pop() {
+                partner[o] = Some(k);
+                partner[k] = Some(o);
+            }
+        }
+    }
+    partner
+}
+
 /// The index of the delimiter closing the one opened at `open`.
 fn matching(toks: &[Tok], open: usize) -> Option<usize> {
     let mut depth = 0usize;
@@ -169,7 +186,7 @@ fn tok(text: &str) -> Tok {
 
 /// The model's sections: token ranges `start..end` (the `;` included)
 /// inside the first brace group.
-fn sections(toks: &[Tok]) -> Vec<(usize, usize)> {
+pub fn sections(toks: &[Tok]) -> Vec<(usize, usize)> {
     let Some(open) = toks.iter().position(|t| t.text == "{") else {
         return Vec::new();
     };

@@ -45,7 +45,13 @@ impl Worker {
 
     fn start(&mut self) -> std::io::Result<&mut Running> {
         if self.running.is_none() {
-            let exe = std::env::current_exe()?;
+            // This very binary, even if a rebuild has replaced it since.
+            let proc_exe = std::path::Path::new("/proc/self/exe");
+            let exe = if proc_exe.exists() {
+                proc_exe.to_path_buf()
+            } else {
+                std::env::current_exe()?
+            };
             let mut child = Command::new(exe)
                 .args(["--worker", "--mem-mb", &self.limits.mem_mb.to_string()])
                 .stdin(Stdio::piped())
@@ -96,14 +102,20 @@ impl Worker {
     pub fn run(&mut self, text: &str, twice: bool) -> Outcome {
         let limits = self.limits;
         let frame = format!("{} {}\n", if twice { "D" } else { "E" }, text.len());
-        let sent = self.start().and_then(|r| {
-            r.stdin.write_all(frame.as_bytes())?;
-            r.stdin.write_all(text.as_bytes())?;
-            r.stdin.flush()
-        });
-        if let Err(e) = sent {
+        let send = |w: &mut Worker| {
+            w.start().and_then(|r| {
+                r.stdin.write_all(frame.as_bytes())?;
+                r.stdin.write_all(text.as_bytes())?;
+                r.stdin.flush()
+            })
+        };
+        if send(self).is_err() {
+            // A worker gone between inputs (killed from outside): once more.
             self.stop();
-            return outcome(Class::Abort, 0, format!("could not reach a worker: {e}"));
+            if let Err(e) = send(self) {
+                eprintln!("lagrange-fuzz: could not start or reach a worker process: {e}");
+                std::process::exit(3);
+            }
         }
         let start = Instant::now();
         let mut oom = false;
