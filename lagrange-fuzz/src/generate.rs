@@ -2,7 +2,7 @@
 //! section the language has (`const`, indexed coordinates and parameters,
 //! constants, scalar and indexed `let`s, sums, `dot`, repeated sections,
 //! dissipation, forces on coordinates and along positions, the `jacobians`
-//! option, doc comments, visibility). Names are declared before they are
+//! and `budget` options, doc comments, visibility). Names are declared before they are
 //! drawn and indices stay in range, so that most models expand and the
 //! mutator has valid programs to break.
 
@@ -52,8 +52,23 @@ impl Gen<'_> {
         if self.rng.chance(0.3) {
             head.push_str("/// A generated model.\n");
         }
+        let mut options = Vec::new();
         if self.rng.chance(0.15) {
-            head.push_str("#[lagrange(jacobians)]\n");
+            options.push("jacobians".to_string());
+        }
+        if self.rng.chance(0.03) {
+            let steps = [
+                "1",
+                "1000",
+                "100000",
+                "50000000",
+                "0",
+                "18446744073709551615",
+            ];
+            options.push(format!("budget = {}", self.rng.pick(&steps)));
+        }
+        if !options.is_empty() {
+            head.push_str(&format!("#[lagrange({})]\n", options.join(", ")));
         }
         let vis = *self.rng.pick(&["pub ", "pub ", "", "pub(crate) "]);
         head.push_str(vis);

@@ -207,7 +207,7 @@ pub fn sections(toks: &[Tok]) -> Vec<(usize, usize)> {
     out
 }
 
-const VOCABULARY: [&str; 40] = [
+const VOCABULARY: [&str; 42] = [
     "+",
     "-",
     "*",
@@ -248,6 +248,8 @@ const VOCABULARY: [&str; 40] = [
     "!",
     "_",
     "&",
+    "budget",
+    "jacobians",
 ];
 
 const OPERATORS: [&str; 5] = ["+", "-", "*", "/", "^"];
