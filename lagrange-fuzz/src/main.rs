@@ -2,7 +2,8 @@
 //! must answer every input with items or a `compile_error!`: never a panic,
 //! a stack overflow, a runaway in time or in memory (issue 10).
 //!
-//! Inputs are a pure function of `--seed` and their index: generated models
+//! Inputs are a pure function of `--seed`, their index and the repository's
+//! models: generated models
 //! ([`generate`]), the repository's own models (extracted by `build.rs`),
 //! their mutants ([`mutate`]) and pathological families ([`families`]),
 //! mixed as [`inputs`] says. Each runs in a worker process (this binary with
