@@ -1,6 +1,7 @@
 //! The input stream: input `index` under `seed` is a pure function of the
-//! two, drawn from a fixed mix of generated models, the repository's models,
-//! their mutants and the pathological families.
+//! two (and of the corpus of repository models), drawn from a fixed mix of
+//! generated models, the repository's models, their mutants and the
+//! pathological families.
 
 use crate::rng::Rng;
 use crate::{families, generate, mutate};

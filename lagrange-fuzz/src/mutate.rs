@@ -207,50 +207,8 @@ pub fn sections(toks: &[Tok]) -> Vec<(usize, usize)> {
     out
 }
 
-const VOCABULARY: [&str; 42] = [
-    "+",
-    "-",
-    "*",
-    "/",
-    "^",
-    ",",
-    ";",
-    ":",
-    "=",
-    ".",
-    "..",
-    "..=",
-    "in",
-    "sum",
-    "dot",
-    "t",
-    "let",
-    "const",
-    "kinetic",
-    "potential",
-    "dissipation",
-    "forces",
-    "coordinates",
-    "parameters",
-    "constants",
-    "x",
-    "N",
-    "i",
-    "0",
-    "1",
-    "2.5",
-    "sin",
-    "powi",
-    "atan2",
-    "r#type",
-    "struct",
-    "#",
-    "!",
-    "_",
-    "&",
-    "budget",
-    "jacobians",
-];
+/// Tokens the mutator inserts (from `sum` on: the words it renames to).
+const VOCABULARY: &str = "+ - * / ^ , ; : = . .. ..= in sum dot t let const kinetic potential dissipation forces coordinates parameters constants x N i 0 1 2.5 sin powi atan2 r#type struct # ! _ & budget jacobians";
 
 const OPERATORS: [&str; 5] = ["+", "-", "*", "/", "^"];
 
@@ -330,7 +288,7 @@ fn edit(rng: &mut Rng, toks: &mut Vec<Tok>, donor: &[Tok]) -> Option<&'static st
                 "swap"
             }
             3 => {
-                let v = *rng.pick(&VOCABULARY);
+                let v = *rng.pick(&VOCABULARY.split(' ').collect::<Vec<_>>());
                 if rng.chance(0.15) {
                     let (open, close) = *rng.pick(&[("(", ")"), ("[", "]"), ("{", "}")]);
                     toks.insert(k, tok(close));
@@ -365,7 +323,8 @@ fn edit(rng: &mut Rng, toks: &mut Vec<Tok>, donor: &[Tok]) -> Option<&'static st
                 let other = if rng.chance(0.7) {
                     toks[*pick(rng, &words)?].text.clone()
                 } else {
-                    rng.pick(&VOCABULARY[13..]).to_string()
+                    let words: Vec<&str> = VOCABULARY.split(" ").skip(13).collect();
+                    rng.pick(&words).to_string()
                 };
                 toks[p] = tok(&other);
                 "rename"

@@ -207,7 +207,7 @@ fn over_memory(limits: Limits, start: Instant) -> Outcome {
     )
 }
 
-/// "signal 6 (SIGABRT): thread '<unnamed>' has overflowed its stack".
+/// `signal 6 (SIGABRT): thread '<unnamed>' has overflowed its stack`.
 fn death(status: Option<ExitStatus>, stderr: &str) -> String {
     use std::os::unix::process::ExitStatusExt;
     let how = match status {
