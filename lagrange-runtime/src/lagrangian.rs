@@ -160,6 +160,20 @@ pub trait Lagrangian<const N: usize> {
         Self::CONSERVATIVE.then(SVector::zeros)
     }
 
+    /// Hands `visitor` this model as a [`Holonomic`](crate::Holonomic)
+    /// model with its number of constraints `C`, if it has constraints:
+    /// how the integrators reach them (see [`constraints`](crate::constraints)).
+    /// `None`, the default, is a model in minimal coordinates. A model with
+    /// a `constraints:` section overrides it with one line,
+    /// `Some(visitor.visit::<Self, C>(self))`.
+    fn visit_constraints<V>(&self, visitor: V) -> Option<V::Output>
+    where
+        V: crate::constraints::Visitor<Self::Scalar, N>,
+    {
+        let _ = visitor;
+        None
+    }
+
     /// Whether every runtime parameter of the model is finite. Integrators
     /// reject a model with a NaN or infinite parameter before the first step.
     fn parameters_are_finite(&self) -> bool {

@@ -248,6 +248,7 @@
 
 #![warn(missing_docs)]
 
+pub mod constraints;
 mod driver;
 pub mod error;
 pub mod integrators;
@@ -255,6 +256,7 @@ mod lagrangian;
 mod linalg;
 mod trajectory;
 
+pub use constraints::Holonomic;
 pub use error::{Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue};
 pub use integrators::{
     integrate, Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, Integrator, Radau5,
