@@ -389,10 +389,10 @@ fn parse_constraints(
             None
         };
         if !input.peek(Token![:]) || input.peek(Token![::]) {
-            return Err(input.error(format!(
-                "expected `:` after the constraint's name: a constraint is named, `{name}: x^2 + y^2 = l^2` \
-                 (or `{name}: expression`, meaning expression = 0)"
-            )));
+            return Err(input.error(
+                "expected `:` after the constraint's name: each constraint is named, as in \
+                 `rod: x^2 + y^2 = l^2` (or `rod: expression`, meaning expression = 0)",
+            ));
         }
         input.parse::<Token![:]>()?;
         let lhs = parse_expr(input)?;
