@@ -134,6 +134,29 @@ pub enum Item {
         keyword: Ident,
         entries: Vec<(Expr, Expr)>,
     },
+    /// `constraints: rod: x^2 + y^2 = l^2, link[i in 0..N]: ...;`.
+    Constraints {
+        keyword: Ident,
+        entries: Vec<ConstraintDef>,
+    },
+}
+
+/// One entry of `constraints:`: `name: lhs` (meaning `lhs = 0`) or
+/// `name: lhs = rhs`, or an indexed family `name[i in a..b]: ...`, one
+/// constraint per index.
+pub struct ConstraintDef {
+    pub name: Ident,
+    pub index: Option<IndexRange>,
+    pub lhs: Expr,
+    pub rhs: Option<Expr>,
+}
+
+impl ConstraintDef {
+    /// From the name to the end of the last expression.
+    pub fn range(&self) -> SpanRange {
+        let end = self.rhs.as_ref().unwrap_or(&self.lhs).range();
+        SpanRange::single(self.name.span()).to(end)
+    }
 }
 
 /// An operator of a [`Expr::Chain`].

@@ -1,7 +1,10 @@
 //! Physics checks, at compile time, each a spanned error that names the
 //! problem: a potential that depends on a velocity, a kinetic energy that is
 //! not quadratic in the velocities, a coordinate without kinetic energy, a
-//! mass matrix that is singular at every state.
+//! mass matrix that is singular at every state. The constraints' checks are
+//! in [`constraints`].
+
+pub mod constraints;
 
 use crate::ast::Expr;
 use crate::derive::Equations;
@@ -21,7 +24,7 @@ pub fn constants_are_finite(model: &mut Model) -> syn::Result<()> {
         .find(|&(_, id)| model.pool.has_non_finite(id))
         .map(|(ast, _)| ast.clone())
     else {
-        return Ok(());
+        return constraints::constants_are_finite(model);
     };
     let range = model.locate(&ast, &|pool: &mut Pool, id| pool.has_non_finite(id));
     Err(range.error(
@@ -135,15 +138,21 @@ fn generic_value(seed: u64, k: usize, lo: f64, hi: f64) -> f64 {
     lo + (hi - lo) * ((x >> 11) as f64 / (1u64 << 53) as f64)
 }
 
-/// The numerical rank of M at a generic state, `None` if M is not finite there.
-fn numeric_rank(model: &Model, eq: &Equations, seed: u64) -> Option<usize> {
-    let n = model.dof();
-    let values: Vec<f64> = (0..model.symbols.count())
+/// A generic state: a value for every symbol, parameters in `[0.5, 2)`,
+/// the rest in `[0.1, 1.3)`.
+fn generic_state(model: &Model, seed: u64) -> Vec<f64> {
+    (0..model.symbols.count())
         .map(|k| match model.symbols.kind(crate::expr::SymId(k as u32)) {
             SymKind::Parameter(_) => generic_value(seed, k, 0.5, 2.0),
             _ => generic_value(seed, k, 0.1, 1.3),
         })
-        .collect();
+        .collect()
+}
+
+/// The numerical rank of M at a generic state, `None` if M is not finite there.
+fn numeric_rank(model: &Model, eq: &Equations, seed: u64) -> Option<usize> {
+    let n = model.dof();
+    let values = generic_state(model, seed);
     let mut memo = std::collections::HashMap::new();
     let mut a: Vec<Vec<f64>> = (0..n)
         .map(|i| {

@@ -11,9 +11,22 @@
 //! so that `M q̈ = f`. `M` is never inverted symbolically: the runtime solves.
 //! On request, the Jacobians of the residual `r = M q̈ − f` with respect to
 //! `q` and `q̇`, for the Newton iterations of implicit integrators.
+//!
+//! A model with holonomic constraints `φ(t, q) = 0` also gets what the
+//! runtime's saddle-point system `M q̈ + Gᵀλ = f, G q̈ = −γ` needs:
+//!
+//! ```text
+//! G   = ∂φ/∂q                               (C × N)
+//! φ̇   = G q̇ + ∂φ/∂t
+//! γ   = Σ_j ∂φ̇/∂q_j q̇_j + ∂φ̇/∂t              so that  φ̈ = G q̈ + γ
+//! ```
+//!
+//! `γ` is the total time derivative of `φ̇` with `q̇` held: `∂φ̇/∂q̇ = G` is
+//! the part that multiplies `q̈`. Rheonomic constraints (`x = a sin(ω t)`)
+//! need nothing more: their `∂/∂t` terms are in `φ̇` and `γ`.
 
 use crate::expr::{ExprId, Pool};
-use crate::model::Model;
+use crate::model::{Model, Symbols};
 
 /// A matrix of expressions, row-major.
 pub type ExprMatrix = Vec<Vec<ExprId>>;
@@ -33,6 +46,23 @@ pub struct Equations {
     pub nonconservative: Vec<ExprId>,
     /// `(∂r/∂q, ∂r/∂q̇)` of `r = M q̈ − f`, row-major, if the model asked.
     pub jacobians: Option<(ExprMatrix, ExprMatrix)>,
+    /// The constraints' terms, for a constrained model only.
+    pub constraints: Option<ConstraintEquations>,
+}
+
+/// What holonomic constraints `φ(t, q) = 0` contribute, each vector in the
+/// order of `φ`.
+pub struct ConstraintEquations {
+    /// `φ`.
+    pub values: Vec<ExprId>,
+    /// `G = ∂φ/∂q`, `C × N`, row-major.
+    pub jacobian: ExprMatrix,
+    /// `∂φ/∂t` (zero for scleronomic constraints).
+    pub time: Vec<ExprId>,
+    /// `φ̇ = G q̇ + ∂φ/∂t`.
+    pub velocities: Vec<ExprId>,
+    /// `γ`, with `φ̈ = G q̈ + γ`.
+    pub bias: Vec<ExprId>,
 }
 
 #[allow(clippy::needless_range_loop)] // (i, j) index M, symmetric: the clearest form
@@ -45,6 +75,7 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
     let forces: Vec<(ExprId, ExprId)> =
         model.forces.iter().map(|f| (f.position, f.value)).collect();
     let want_jacobians = model.options.jacobians;
+    let phi: Vec<ExprId> = model.constraints.iter().map(|c| c.value).collect();
     let pool = &mut model.pool;
 
     // The matrices alone hold n² entries each: paid for before they are
@@ -140,6 +171,14 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         };
         (block(pool, &s.coordinates), block(pool, &s.velocities))
     });
+    let constraints = if phi.is_empty() {
+        None
+    } else {
+        match holonomic(pool, &s, phi) {
+            Some(c) => Some(c),
+            None => return Equations::exhausted(),
+        }
+    };
     Equations {
         mass,
         forcing,
@@ -148,7 +187,44 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         lagrangian_gradient,
         nonconservative,
         jacobians,
+        constraints,
     }
+}
+
+/// `G`, `φ_t`, `φ̇` and `γ` of the constraints `phi`; `None` if the budget
+/// ran out on the way.
+fn holonomic(pool: &mut Pool, s: &Symbols, phi: Vec<ExprId>) -> Option<ConstraintEquations> {
+    // C × N entries of G, and as many terms of φ̇ and γ each: paid for
+    // before they are made, like the n² of M.
+    let (c, n) = (phi.len() as u64, s.coordinates.len() as u64);
+    pool.charge(c.saturating_mul(n).saturating_mul(3));
+    let mut out = ConstraintEquations {
+        jacobian: Vec::with_capacity(phi.len()),
+        time: Vec::with_capacity(phi.len()),
+        velocities: Vec::with_capacity(phi.len()),
+        bias: Vec::with_capacity(phi.len()),
+        values: phi,
+    };
+    for &p in &out.values {
+        if pool.exhausted() {
+            return None;
+        }
+        let row = s
+            .coordinates
+            .iter()
+            .map(|&q| {
+                let d = pool.diff(p, q);
+                pool.factored(d)
+            })
+            .collect();
+        out.jacobian.push(row);
+        out.time.push(pool.diff(p, s.time));
+        let velocity = pool.total_time_derivative(p, &s.coordinates, &s.velocities, s.time);
+        let bias = pool.total_time_derivative(velocity, &s.coordinates, &s.velocities, s.time);
+        out.velocities.push(pool.factored(velocity));
+        out.bias.push(pool.factored(bias));
+    }
+    (!pool.exhausted()).then_some(out)
 }
 
 impl Equations {
@@ -162,6 +238,7 @@ impl Equations {
             lagrangian_gradient: Vec::new(),
             nonconservative: Vec::new(),
             jacobians: None,
+            constraints: None,
         }
     }
 }

@@ -4,7 +4,8 @@
 //!
 //! The stub has the struct, the consts and every method of
 //! [`api`](crate::emit::api), each method's body `unreachable!()`, and the
-//! `Lagrangian` impl's required methods.
+//! `Lagrangian` impl's required methods; a model that declares constraints
+//! also gets their methods and the `Holonomic` impl's required ones.
 
 use crate::ast::ModelDef;
 use crate::emit::api::{InTrait, CONSTS, METHODS};
@@ -21,17 +22,19 @@ pub struct Stub {
     name: Ident,
     dof: usize,
     fields: Vec<Field>,
+    constraints: usize,
 }
 
 impl Stub {
     pub fn of(def: &ModelDef) -> Self {
-        let (dof, fields) = declared_shape(def);
+        let (dof, fields, constraints) = declared_shape(def);
         Stub {
             attrs: def.attrs.clone(),
             vis: def.vis.clone(),
             name: def.name.clone(),
             dof,
             fields,
+            constraints,
         }
     }
 
@@ -43,6 +46,7 @@ impl Stub {
             name: &self.name,
             dof: self.dof,
             fields: &self.fields,
+            constraints: self.constraints,
         };
         let item = outline.struct_item();
         if self.dof == 0 {
@@ -50,17 +54,21 @@ impl Stub {
         }
         let na = nalgebra();
         let name = &self.name;
-        let types = Types::new(self.dof);
+        let types = Types::new(self.dof, self.constraints);
         let n = &types.n;
         let stop = quote!(::core::unreachable!(
             "`lagrangian!` reported a compile error for this model"
         ));
+        let constrained = self.constraints > 0;
         let consts = CONSTS.iter().filter_map(|c| c.item(&outline, None));
         let new = outline.constructor();
-        let methods = METHODS.iter().map(|m| {
-            let signature = m.signature(&types);
-            quote!(pub #signature { #stop })
-        });
+        let methods = METHODS
+            .iter()
+            .filter(|m| constrained || !matches!(m.in_trait, InTrait::Holonomic { .. }))
+            .map(|m| {
+                let signature = m.signature(&types);
+                quote!(pub #signature { #stop })
+            });
         let required = METHODS
             .iter()
             .filter(|m| m.in_trait == InTrait::Required)
@@ -68,6 +76,23 @@ impl Stub {
                 let signature = m.trait_signature(&types);
                 quote!(#signature { #stop })
             });
+        let holonomic = constrained.then(|| {
+            let c = &types.c;
+            let required = METHODS
+                .iter()
+                .filter(|m| m.in_trait == InTrait::Holonomic { required: true })
+                .map(|m| {
+                    let signature = m.trait_signature(&types);
+                    quote!(#signature { #stop })
+                });
+            quote! {
+                #[allow(unused_variables, clippy::all)]
+                impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::Holonomic<#n, #c> for #name<S> {
+                    const CONSTRAINTS: [&'static str; #c] = [""; #c];
+                    #(#required)*
+                }
+            }
+        });
         quote! {
             #error
             #item
@@ -83,6 +108,7 @@ impl Stub {
                 const COORDINATES: [&'static str; #n] = [""; #n];
                 #(#required)*
             }
+            #holonomic
         }
     }
 }

@@ -8,9 +8,11 @@
 //! 2. [`model`]: names resolved, `let`s and `dot` expanded, every section
 //!    lowered into the expression DAG, one pass per function;
 //! 3. [`check`]: the physics (V free of velocities, T quadratic in them, a
-//!    regular mass matrix), each failure a spanned error;
+//!    regular mass matrix; constraints holonomic, fewer than the
+//!    coordinates and independent), each failure a spanned error;
 //! 4. [`derive`](mod@derive): `M = ∂²T/∂q̇²` and
-//!    `f = ∂L/∂q − (∂²L/∂q̇∂q) q̇ − ∂²L/∂q̇∂t − ∂R/∂q̇ + Q`;
+//!    `f = ∂L/∂q − (∂²L/∂q̇∂q) q̇ − ∂²L/∂q̇∂t − ∂R/∂q̇ + Q`, and for
+//!    constraints `φ = 0` their Jacobian `G` and bias `γ`;
 //! 5. [`emit`]: straight-line, allocation-free Rust for each const and
 //!    method listed in [`emit::api`]; [`render`] the same equations as text.
 //!    On any error, [`fallback`] emits the error and a stub of the same API,
@@ -159,6 +161,35 @@ impl Derived {
         self.model.pool.eval(self.equations.energy, &v)
     }
 
+    /// Evaluates any of the equations' expressions numerically (the
+    /// constraints' `φ`, `G`, `γ`, ...), for tests.
+    pub fn eval(
+        &self,
+        ids: &[expr::ExprId],
+        t: f64,
+        q: &[f64],
+        qdot: &[f64],
+        params: &[f64],
+    ) -> Vec<f64> {
+        let v = self.values(t, q, qdot, params);
+        let mut memo = Default::default();
+        ids.iter()
+            .map(|&id| self.model.pool.eval_memo(id, &v, &mut memo))
+            .collect()
+    }
+
+    /// Operation counts of `G` and `γ` together, as emitted (with sharing)
+    /// and as a tree; `None` for a model without constraints.
+    pub fn constraint_op_counts(&self) -> Option<(expr::cse::OpCount, expr::cse::OpCount)> {
+        let c = self.equations.constraints.as_ref()?;
+        let mut roots: Vec<expr::ExprId> = c.jacobian.iter().flatten().copied().collect();
+        roots.extend(&c.bias);
+        Some((
+            expr::cse::shared_ops(&self.model.pool, &roots),
+            expr::cse::tree_ops(&self.model.pool, &roots),
+        ))
+    }
+
     /// Operation counts of `M` and `f` as emitted (with sharing) and as a
     /// tree without sharing would need.
     pub fn op_counts(&self) -> (expr::cse::OpCount, expr::cse::OpCount) {
@@ -200,9 +231,13 @@ fn derive_model(def: ast::ModelDef, budget: u64) -> syn::Result<Derived> {
     within_budget(&model, r)?;
     let r = check::potential_has_no_velocity(&mut model);
     within_budget(&model, r)?;
+    let r = check::constraints::constraints_are_holonomic(&mut model);
+    within_budget(&model, r)?;
     let equations = derive::euler_lagrange(&mut model);
     within_budget(&model, Ok(()))?;
     let r = check::mass_matrix_is_regular(&mut model, &equations);
+    within_budget(&model, r)?;
+    let r = check::constraints::constraints_are_independent(&mut model, &equations);
     within_budget(&model, r)?;
     // Emitting is linear in what it writes: charged now, so that a model
     // within its budget is one whose code is written within it too.

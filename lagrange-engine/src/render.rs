@@ -1,6 +1,7 @@
 //! A readable rendering of the derived equations, for docs and debugging:
 //! the shared subexpressions first (`e0 = ...`), then each entry of `M` and
-//! `f`. Velocities read `dot(x)`, as in the model.
+//! `f`, and for a constrained model of `φ`, `G` and `γ`. Velocities read
+//! `dot(x)`, as in the model.
 
 use crate::derive::Equations;
 use crate::expr::cse::schedule;
@@ -135,6 +136,18 @@ impl Renderer<'_> {
     }
 }
 
+/// The roots the text shows beyond `M` and `f`: `φ`, `G` row by row, `γ`
+/// (none for a model without constraints).
+pub fn constraint_roots(eq: &Equations) -> Vec<ExprId> {
+    let Some(c) = &eq.constraints else {
+        return Vec::new();
+    };
+    let mut roots = c.values.clone();
+    roots.extend(c.jacobian.iter().flatten());
+    roots.extend(&c.bias);
+    roots
+}
+
 pub fn render(model: &Model, eq: &Equations) -> String {
     let n = model.dof();
     let mut roots = Vec::new();
@@ -144,6 +157,7 @@ pub fn render(model: &Model, eq: &Equations) -> String {
         }
     }
     roots.extend(&eq.forcing);
+    roots.extend(constraint_roots(eq));
     let sched = schedule(&model.pool, &roots);
     let mut r = Renderer {
         model,
@@ -171,6 +185,20 @@ pub fn render(model: &Model, eq: &Equations) -> String {
     }
     for (ci, &fi) in c.iter().zip(&eq.forcing) {
         writeln!(out, "f[{ci}] = {}", r.text(fi, 0)).unwrap();
+    }
+    if let Some(ce) = &eq.constraints {
+        let labels: Vec<&str> = model.constraints.iter().map(|k| k.label.as_str()).collect();
+        for (name, &phi) in labels.iter().zip(&ce.values) {
+            writeln!(out, "φ[{name}] = {}", r.text(phi, 0)).unwrap();
+        }
+        for (name, row) in labels.iter().zip(&ce.jacobian) {
+            for (cj, &g) in c.iter().zip(row) {
+                writeln!(out, "G[{name}, {cj}] = {}", r.text(g, 0)).unwrap();
+            }
+        }
+        for (name, &gamma) in labels.iter().zip(&ce.bias) {
+            writeln!(out, "γ[{name}] = {}", r.text(gamma, 0)).unwrap();
+        }
     }
     out
 }

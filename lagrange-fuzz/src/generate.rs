@@ -1,7 +1,7 @@
 //! Grammar-based models: small, mostly valid programs in the DSL, with every
 //! section the language has (`const`, indexed coordinates and parameters,
 //! constants, scalar and indexed `let`s, sums, `dot`, repeated sections,
-//! dissipation, forces on coordinates and along positions, the `jacobians`
+//! dissipation, forces on coordinates and along positions, constraints, the `jacobians`
 //! and `budget` options, doc comments, visibility). Names are declared before they are
 //! drawn and indices stay in range, so that most models expand and the
 //! mutator has valid programs to break.
@@ -133,6 +133,9 @@ impl Gen<'_> {
         }
         if self.rng.chance(0.25) {
             energy.push(self.forces());
+        }
+        if self.rng.chance(0.2) {
+            energy.push(self.constraints());
         }
 
         // Sections may come in any order, `let`s in theirs.
@@ -302,6 +305,30 @@ impl Gen<'_> {
             entries.push(format!("{} = {value}", self.reference(&target)));
         }
         format!("forces: {};", entries.join(", "))
+    }
+
+    /// `constraints:` of a coordinate against an expression in t and q,
+    /// sometimes indexed over an indexed coordinate's elements.
+    fn constraints(&mut self) -> String {
+        let mut entries = Vec::new();
+        for name in ["c1", "c2"].iter().take(self.rng.range(1, 2)) {
+            let c = self.rng.pick(&self.scope.coordinates).clone();
+            let (head, target) = match &c.len {
+                Some((len_text, _)) if self.rng.chance(0.5) => (
+                    format!("{name}[i in 0..{len_text}]"),
+                    format!("{}[i]", c.name),
+                ),
+                _ => (name.to_string(), self.reference(&c)),
+            };
+            let d = self.depth();
+            let value = self.expr(d, false);
+            entries.push(match self.rng.below(3) {
+                0 => format!("{head}: {target} - {value}"),
+                1 => format!("{head}: {target}^2 = {value}"),
+                _ => format!("{head}: {target} = {value}"),
+            });
+        }
+        format!("constraints: {};", entries.join(", "))
     }
 
     /// `name` or one element of it, with an index in range.

@@ -7,6 +7,7 @@
 mod support;
 
 mod compile_errors;
+mod constrained_models;
 mod generated_derivatives;
 mod indexed_models;
 mod more_models;

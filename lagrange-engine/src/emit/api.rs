@@ -11,11 +11,12 @@
 //! `Lagrangian` impl and the stub follow. (A method new to the `Lagrangian`
 //! trait is also declared there, in `lagrange-runtime`.)
 
-use super::outline::{Outline, Types};
+pub use super::consts::{Const, ConstValue, Doc, CONSTS};
+use super::outline::Types;
 use crate::derive::{Equations, ExprMatrix};
 use crate::expr::ExprId;
 use crate::model::Model;
-use proc_macro2::{Ident, Literal, Span, TokenStream};
+use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
 
 /// An argument of a generated method, after `&self`.
@@ -66,6 +67,13 @@ pub enum Returns {
     MatrixAndVector,
     /// `(SMatrix<S, N, N>, SMatrix<S, N, N>)`: `N²` roots, then `N²`.
     TwoMatrices,
+    /// `SVector<S, C>`, `C` the number of constraints: `C` roots.
+    ConstraintVector,
+    /// `SMatrix<S, C, N>`: `C·N` roots.
+    ConstraintMatrix,
+    /// `(SMatrix<S, N, N>, SVector<S, N>, SMatrix<S, C, N>, SVector<S, C>)`:
+    /// `N²`, `N`, `C·N` and `C` roots.
+    ConstrainedSystem,
 }
 
 impl Returns {
@@ -77,6 +85,12 @@ impl Returns {
             Returns::Matrix => quote!(#matrix),
             Returns::MatrixAndVector => quote!((#matrix, #vector)),
             Returns::TwoMatrices => quote!((#matrix, #matrix)),
+            Returns::ConstraintVector => ty.constraint_vector.clone(),
+            Returns::ConstraintMatrix => ty.constraint_matrix.clone(),
+            Returns::ConstrainedSystem => {
+                let (cv, cm) = (&ty.constraint_vector, &ty.constraint_matrix);
+                quote!((#matrix, #vector, #cm, #cv))
+            }
         }
     }
 
@@ -101,6 +115,28 @@ impl Returns {
                 let (a, b) = outs.split_at(square);
                 quote!((#new_matrix(&[#(#a),*]), #new_matrix(&[#(#b),*])))
             }
+            Returns::ConstraintVector => {
+                let new = &ty.new_constraint_vector;
+                quote!(#new(&[#(#outs),*]))
+            }
+            Returns::ConstraintMatrix => {
+                let new = &ty.new_constraint_matrix;
+                quote!(#new(&[#(#outs),*]))
+            }
+            Returns::ConstrainedSystem => {
+                let (new_cv, new_cm) = (&ty.new_constraint_vector, &ty.new_constraint_matrix);
+                let (m, rest) = outs.split_at(square);
+                let (f, rest) = rest.split_at(ty.dof);
+                let (g, gamma) = rest.split_at(ty.constraints * ty.dof);
+                quote! {
+                    (
+                        #new_matrix(&[#(#m),*]),
+                        #new_vector(&[#(#f),*]),
+                        #new_cm(&[#(#g),*]),
+                        #new_cv(&[#(#gamma),*]),
+                    )
+                }
+            }
         }
     }
 }
@@ -119,6 +155,10 @@ pub enum InTrait {
     Optional {
         flag_if_absent: Option<&'static str>,
     },
+    /// Not a method of `Lagrangian` but of `Holonomic<N, C>`, which only a
+    /// constrained model implements: its impl calls the inherent one.
+    /// `required` methods are implemented by the stub too.
+    Holonomic { required: bool },
 }
 
 /// A generated method `fn name(&self, args) -> returns`.
@@ -237,12 +277,78 @@ pub const METHODS: &[Method] = &[
             flag_if_absent: None,
         },
     },
+    // Only a model with `constraints:` has the rest.
+    Method {
+        name: "constraints",
+        doc: &["The holonomic constraints `φ(t, q)`, zero on the constraint manifold."],
+        args: &[Arg::T, Arg::Q],
+        returns: Returns::ConstraintVector,
+        roots: |_, eq| Some(eq.constraints.as_ref()?.values.clone()),
+        in_trait: InTrait::Holonomic { required: true },
+    },
+    Method {
+        name: "constraint_jacobian",
+        doc: &["The constraint Jacobian `G(t, q) = ∂φ/∂q`."],
+        args: &[Arg::T, Arg::Q],
+        returns: Returns::ConstraintMatrix,
+        roots: |model, eq| {
+            Some(column_major_of(
+                &eq.constraints.as_ref()?.jacobian,
+                model.dof(),
+            ))
+        },
+        in_trait: InTrait::Holonomic { required: true },
+    },
+    Method {
+        name: "constraint_velocities",
+        doc: &["The constraint velocities `φ̇ = G q̇ + ∂φ/∂t`."],
+        args: &[Arg::T, Arg::Q, Arg::Qdot],
+        returns: Returns::ConstraintVector,
+        roots: |_, eq| Some(eq.constraints.as_ref()?.velocities.clone()),
+        in_trait: InTrait::Holonomic { required: true },
+    },
+    Method {
+        name: "constraint_bias",
+        doc: &["The bias `γ(t, q, q̇)` of the constraint accelerations, `φ̈ = G q̈ + γ`."],
+        args: &[Arg::T, Arg::Q, Arg::Qdot],
+        returns: Returns::ConstraintVector,
+        roots: |_, eq| Some(eq.constraints.as_ref()?.bias.clone()),
+        in_trait: InTrait::Holonomic { required: true },
+    },
+    Method {
+        name: "constrained_system",
+        doc: &[
+            "`M`, `f`, `G` and `γ` together, sharing their common subexpressions:",
+            "the saddle-point system `M q̈ + Gᵀλ = f`, `G q̈ = −γ`.",
+        ],
+        args: &[Arg::T, Arg::Q, Arg::Qdot],
+        returns: Returns::ConstrainedSystem,
+        roots: |model, eq| {
+            let c = eq.constraints.as_ref()?;
+            Some(
+                [
+                    column_major(&eq.mass),
+                    eq.forcing.clone(),
+                    column_major_of(&c.jacobian, model.dof()),
+                    c.bias.clone(),
+                ]
+                .concat(),
+            )
+        },
+        in_trait: InTrait::Holonomic { required: false },
+    },
 ];
 
 /// The entries of a square matrix, column by column.
 fn column_major(m: &ExprMatrix) -> Vec<ExprId> {
-    let n = m.len();
-    (0..n).flat_map(|j| (0..n).map(move |i| m[i][j])).collect()
+    column_major_of(m, m.len())
+}
+
+/// The entries of a matrix with `columns` columns, column by column.
+fn column_major_of(m: &ExprMatrix, columns: usize) -> Vec<ExprId> {
+    (0..columns)
+        .flat_map(|j| m.iter().map(move |row| row[j]))
+        .collect()
 }
 
 impl Method {
@@ -263,7 +369,9 @@ impl Method {
             InTrait::Optional { .. } => {
                 self.signature_returning(ty, quote!(::core::option::Option<#returns>))
             }
-            InTrait::Required | InTrait::Provided => self.signature_returning(ty, returns),
+            InTrait::Required | InTrait::Provided | InTrait::Holonomic { .. } => {
+                self.signature_returning(ty, returns)
+            }
         }
     }
 
@@ -279,116 +387,6 @@ impl Method {
     }
 }
 
-/// A generated associated `const`.
-pub struct Const {
-    pub name: &'static str,
-    pub doc: Doc,
-    pub value: ConstValue,
-}
-
-/// A doc comment.
-pub enum Doc {
-    /// Written as `///` lines.
-    Lines(&'static [&'static str]),
-    /// Written as one `#[doc = "..."]`.
-    Attribute(&'static str),
-}
-
-/// What a generated `const` holds.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ConstValue {
-    /// `usize`: the number of coordinates.
-    Dof,
-    /// `[&'static str; N]`: the coordinates' names (empty in the stub).
-    CoordinateNames,
-    /// `[&'static str; P]`: the parameter fields' names (not in the stub).
-    ParameterNames,
-    /// `&'static str`: the derived equations as text (empty in the stub).
-    EquationsText,
-}
-
-/// Every generated `const`, in the order of the generated impl.
-pub const CONSTS: &[Const] = &[
-    Const {
-        name: "DOF",
-        doc: Doc::Lines(&["Number of degrees of freedom (generalized coordinates)."]),
-        value: ConstValue::Dof,
-    },
-    Const {
-        name: "COORDINATES",
-        doc: Doc::Lines(&["Names of the generalized coordinates, in the order of `q`."]),
-        value: ConstValue::CoordinateNames,
-    },
-    Const {
-        name: "PARAMETERS",
-        doc: Doc::Lines(&[
-            "Names of the runtime parameters (the struct's fields; an",
-            "indexed parameter `m[N]` is one field `m: [S; N]`), in",
-            "declaration order.",
-        ]),
-        value: ConstValue::ParameterNames,
-    },
-    Const {
-        name: "EQUATIONS",
-        doc: Doc::Attribute(
-            "The derived equations `M q̈ = f`, readable: shared subexpressions first, then each entry.",
-        ),
-        value: ConstValue::EquationsText,
-    },
-];
-
-impl Const {
-    /// `const NAME: type = value;`, with the values of a derived model
-    /// (`derived`: its coordinates' names and equations text) or of the
-    /// stub (`None`); `None` if the stub has no such const.
-    pub fn item(&self, outline: &Outline, derived: Option<(&Model, &str)>) -> Option<TokenStream> {
-        let name = Ident::new(self.name, Span::call_site());
-        let n = Literal::usize_unsuffixed(outline.dof);
-        let (ty, value) = match (self.value, derived) {
-            (ConstValue::Dof, _) => (quote!(usize), quote!(#n)),
-            (ConstValue::CoordinateNames, Some((model, _))) => {
-                let names = model.coordinates.iter().map(|c| c.to_string());
-                (quote!([&'static str; #n]), quote!([#(#names),*]))
-            }
-            // `[""; N]`, not N empty strings: a model with an error may
-            // declare a great many coordinates.
-            (ConstValue::CoordinateNames, None) => (quote!([&'static str; #n]), quote!([""; #n])),
-            (ConstValue::ParameterNames, Some(_)) => {
-                let p = Literal::usize_unsuffixed(outline.fields.len());
-                let names = outline.fields.iter().map(|f| f.name.to_string());
-                (quote!([&'static str; #p]), quote!([#(#names),*]))
-            }
-            (ConstValue::ParameterNames, None) => return None,
-            (ConstValue::EquationsText, Some((_, text))) => (quote!(&'static str), quote!(#text)),
-            (ConstValue::EquationsText, None) => (quote!(&'static str), quote!("")),
-        };
-        Some(quote!(pub const #name: #ty = #value;))
-    }
-}
-
-impl Doc {
-    /// The doc attributes, token for token what `///` lines (or
-    /// `#[doc = "..."]`) written in a `quote!` give.
-    pub fn attributes(&self) -> TokenStream {
-        match self {
-            Doc::Lines(lines) => lines.iter().map(|l| line_doc(l)).collect(),
-            Doc::Attribute(text) => quote!(#[doc = #text]),
-        }
-    }
-}
-
-/// `/// line` as the compiler desugars it: `#[doc = r" line"]`.
-fn line_doc(line: &str) -> TokenStream {
-    // The fewest `#` that no `"` in the line is followed by.
-    let hashes = (0..)
-        .find(|&k| !line.contains(&format!("\"{}", "#".repeat(k))))
-        .map_or(String::new(), |k| "#".repeat(k));
-    let literal: Literal = format!("r{hashes}\" {line}\"{hashes}")
-        .parse()
-        .expect("a raw string of static doc text lexes");
-    quote!(#[doc = #literal])
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -402,7 +400,7 @@ mod tests {
             assert!(!c.doc.attributes().is_empty(), "{}", c.name);
         }
         assert_eq!(
-            line_doc(r#"say "hi""#).to_string(),
+            Doc::Lines(&[r#"say "hi""#]).attributes().to_string(),
             r####"# [doc = r#" say "hi""#]"####
         );
     }

@@ -7,6 +7,7 @@
 //! stack. No heap allocation, no branch, no symbolic work at run time.
 
 pub mod api;
+mod consts;
 mod function;
 mod names;
 pub mod outline;
@@ -41,18 +42,21 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
             name: &model.name,
             dof: model.dof(),
             fields: &model.fields,
+            constraints: model.constraints.len(),
         },
-        types: Types::new(model.dof()),
+        types: Types::new(model.dof(), model.constraints.len()),
         namer: Namer::new(model),
         roots: METHODS.iter().map(|m| (m.roots)(model, eq)).collect(),
     };
     let item = cx.outline.struct_item();
     let inherent = inherent_impl(&cx, equations_text);
     let lagrangian = lagrangian_impl(&cx);
+    let holonomic = holonomic_impl(&cx);
     quote! {
         #item
         #inherent
         #lagrangian
+        #holonomic
     }
 }
 
@@ -72,6 +76,7 @@ pub fn charge(model: &Model, eq: &Equations) {
         .flat_map(|i| (i..n).map(move |j| (i, j)))
         .map(|(i, j)| eq.mass[i][j])
         .chain(eq.forcing.iter().copied())
+        .chain(crate::render::constraint_roots(eq))
         .collect();
     let functions = METHODS
         .iter()
@@ -145,6 +150,17 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
         .zip(&cx.roots)
         .map(|(m, roots)| trait_method(cx, m, roots.is_some()));
     let finite = parameters_are_finite(cx);
+    // A constrained model hands itself, with its number of constraints, to
+    // the runtime's visitor: how a generic integrator reaches `Holonomic`.
+    let visit = (cx.types.constraints > 0).then(|| {
+        let c = &cx.types.c;
+        quote! {
+            #[inline]
+            fn visit_constraints<V: ::lagrange::constraints::Visitor<S, #n>>(&self, visitor: V) -> ::core::option::Option<V::Output> {
+                ::core::option::Option::Some(visitor.visit::<Self, #c>(self))
+            }
+        }
+    });
     quote! {
         impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::Lagrangian<#n> for #name<S> {
             type Scalar = S;
@@ -154,6 +170,39 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
             fn parameters_are_finite(&self) -> bool {
                 #finite
             }
+            #visit
+        }
+    }
+}
+
+/// `impl Holonomic<N, C> for Name<S>`, for a constrained model only: each
+/// method calls the inherent one.
+fn holonomic_impl(cx: &Context) -> TokenStream {
+    if cx.types.constraints == 0 {
+        return TokenStream::new();
+    }
+    let na = nalgebra();
+    let name = cx.outline.name;
+    let (n, c) = (&cx.types.n, &cx.types.c);
+    let methods = METHODS
+        .iter()
+        .zip(&cx.roots)
+        .filter(|(m, roots)| matches!(m.in_trait, InTrait::Holonomic { .. }) && roots.is_some())
+        .map(|(m, _)| {
+            let signature = m.trait_signature(&cx.types);
+            let method = m.ident();
+            let args = m.arg_idents();
+            quote! {
+                #[inline]
+                #signature {
+                    #name::#method(self, #(#args),*)
+                }
+            }
+        });
+    quote! {
+        impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::Holonomic<#n, #c> for #name<S> {
+            const CONSTRAINTS: [&'static str; #c] = Self::CONSTRAINTS;
+            #(#methods)*
         }
     }
 }
@@ -161,6 +210,9 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
 /// A method of the `Lagrangian` impl: a call of the inherent one, or, where
 /// the model has none, the trait's flag for its absence.
 fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
+    if matches!(m.in_trait, InTrait::Holonomic { .. }) {
+        return TokenStream::new();
+    }
     if !present {
         return match m.in_trait {
             InTrait::Optional {
@@ -184,7 +236,7 @@ fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
                 ::core::option::Option::Some(#call)
             }
         },
-        InTrait::Required | InTrait::Provided => quote! {
+        InTrait::Required | InTrait::Provided | InTrait::Holonomic { .. } => quote! {
             #[inline]
             #signature {
                 #call

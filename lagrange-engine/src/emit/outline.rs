@@ -7,27 +7,44 @@ use proc_macro2::{Ident, Literal, TokenStream};
 use quote::quote;
 use syn::{Attribute, Visibility};
 
-/// The types of a model with `dof` coordinates.
+/// The types of a model with `dof` coordinates and `constraints`
+/// holonomic constraints.
 pub struct Types {
     pub dof: usize,
+    pub constraints: usize,
     pub n: Literal,
+    /// The number of constraints, `C`.
+    pub c: Literal,
     pub vector: TokenStream,
     pub matrix: TokenStream,
     pub new_vector: TokenStream,
     pub new_matrix: TokenStream,
+    /// `SVector<S, C>`.
+    pub constraint_vector: TokenStream,
+    /// `SMatrix<S, C, N>`.
+    pub constraint_matrix: TokenStream,
+    pub new_constraint_vector: TokenStream,
+    pub new_constraint_matrix: TokenStream,
 }
 
 impl Types {
-    pub fn new(dof: usize) -> Self {
+    pub fn new(dof: usize, constraints: usize) -> Self {
         let na = nalgebra();
         let n = Literal::usize_unsuffixed(dof);
+        let c = Literal::usize_unsuffixed(constraints);
         Types {
             dof,
+            constraints,
             vector: quote!(#na::SVector<S, #n>),
             matrix: quote!(#na::SMatrix<S, #n, #n>),
             new_vector: quote!(#na::SVector::<S, #n>::from_column_slice),
             new_matrix: quote!(#na::SMatrix::<S, #n, #n>::from_column_slice),
+            constraint_vector: quote!(#na::SVector<S, #c>),
+            constraint_matrix: quote!(#na::SMatrix<S, #c, #n>),
+            new_constraint_vector: quote!(#na::SVector::<S, #c>::from_column_slice),
+            new_constraint_matrix: quote!(#na::SMatrix::<S, #c, #n>::from_column_slice),
             n,
+            c,
         }
     }
 }
@@ -45,6 +62,9 @@ pub struct Outline<'a> {
     pub name: &'a Ident,
     pub dof: usize,
     pub fields: &'a [Field],
+    /// The number of holonomic constraints (0 for a model in minimal
+    /// coordinates, which then has no constraint items).
+    pub constraints: usize,
 }
 
 impl Outline<'_> {

@@ -32,7 +32,19 @@ impl Model {
     /// into `a + b` or `c`, as if it were written `(a + b) + c`. A search
     /// that runs out of budget stops where it is.
     pub fn locate(&mut self, e: &Expr, bad: &dyn Fn(&mut Pool, ExprId) -> bool) -> SpanRange {
+        self.locate_in(e, &[], bad)
+    }
+
+    /// [`Model::locate`] in an expression under index variables (the body
+    /// of an indexed constraint): `env`, their values.
+    pub fn locate_in(
+        &mut self,
+        e: &Expr,
+        env: &[(String, i64)],
+        bad: &dyn Fn(&mut Pool, ExprId) -> bool,
+    ) -> SpanRange {
         let mut cx = self.lowering();
+        cx.env = env.to_vec();
         let range = descend(&mut cx, e, bad);
         self.restore(cx);
         range

@@ -93,6 +93,22 @@ pub struct Force {
     pub value: ExprId,
 }
 
+/// A holonomic constraint `φ(t, q) = 0`: an entry of `constraints:`, or
+/// one element of an indexed entry.
+pub struct Constraint {
+    /// As `EQUATIONS` and `CONSTRAINTS` name it: `rod`, `link[2]`.
+    pub label: String,
+    /// Which entry of [`Model::constraint_defs`] it comes from.
+    pub entry: usize,
+    /// The value of the entry's index variable, for an indexed entry.
+    pub index: Option<i64>,
+    /// The sides as lowered, for the checks to tell which is at fault.
+    pub lhs: ExprId,
+    pub rhs: Option<ExprId>,
+    /// `φ = lhs − rhs`.
+    pub value: ExprId,
+}
+
 /// The lowered model.
 pub struct Model {
     pub attrs: Vec<Attribute>,
@@ -109,6 +125,11 @@ pub struct Model {
     pub potential: Section,
     pub dissipation: Option<Section>,
     pub forces: Vec<Force>,
+    /// The `constraints:` entries as written, for the checks' errors.
+    pub constraint_defs: Vec<crate::ast::ConstraintDef>,
+    /// The holonomic constraints, in the order of `φ`; empty for a model
+    /// in minimal coordinates.
+    pub constraints: Vec<Constraint>,
     pub pool: Pool,
     /// Every name as lowering left it, so that `locate` can lower a piece
     /// of a section again.
@@ -141,6 +162,8 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
         potential: sections.potential,
         dissipation: sections.dissipation,
         forces: sections.forces,
+        constraint_defs: sections.constraint_defs,
+        constraints: sections.constraints,
         pool: cx.pool,
         scope: cx.names,
     })
@@ -167,6 +190,20 @@ pub fn limit_error(name: &Ident, exceeded: Exceeded) -> syn::Error {
 impl Model {
     pub fn dof(&self) -> usize {
         self.coordinates.len()
+    }
+
+    /// The entry a constraint comes from, and the index variable bound as
+    /// it was when the constraint was lowered (for [`Model::locate_in`]).
+    pub fn constraint_def(
+        &self,
+        c: &Constraint,
+    ) -> (&crate::ast::ConstraintDef, Vec<(String, i64)>) {
+        let def = &self.constraint_defs[c.entry];
+        let env = match (&def.index, c.index) {
+            (Some(range), Some(k)) => vec![(range.var.to_string(), k)],
+            _ => Vec::new(),
+        };
+        (def, env)
     }
 }
 

@@ -5,8 +5,8 @@
 
 use super::lowering::Lowering;
 use super::scope::{Binding, Declared, Role};
-use super::{limit_error, Field, Force, Scalar, Section, Symbols};
-use crate::ast::{BinOp, Expr, Item, ModelDef};
+use super::{limit_error, Constraint, Field, Force, Scalar, Section, Symbols};
+use crate::ast::{BinOp, ConstraintDef, Expr, Item, ModelDef};
 use crate::expr::Pool;
 use std::collections::HashSet;
 use syn::Ident;
@@ -113,6 +113,11 @@ pub(super) fn declarations(
                 }
             }
             Item::Let { name, .. } => declared.declare(name, "`let`")?,
+            Item::Constraints { entries, .. } => {
+                for e in entries {
+                    declared.declare(&e.name, "constraint")?;
+                }
+            }
             _ => {}
         }
     }
@@ -215,6 +220,8 @@ pub(super) struct Sections {
     pub(super) potential: Section,
     pub(super) dissipation: Option<Section>,
     pub(super) forces: Vec<Force>,
+    pub(super) constraint_defs: Vec<ConstraintDef>,
+    pub(super) constraints: Vec<Constraint>,
 }
 
 /// Pass 6: the sections, in order; a section written twice is the sum of
@@ -225,6 +232,8 @@ pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn
     let mut dissipation = None;
     let mut forces: Vec<Force> = Vec::new();
     let mut targets: HashSet<String> = HashSet::new();
+    let mut constraint_defs = Vec::new();
+    let mut constraints = Vec::new();
     for item in items {
         match item {
             Item::Kinetic { keyword, value } => add_to(&mut kinetic, cx, keyword, value)?,
@@ -233,6 +242,12 @@ pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn
             Item::Forces { entries, .. } => {
                 for (target, value) in entries {
                     forces.push(force(&mut targets, cx, target, value)?);
+                }
+            }
+            Item::Constraints { entries, .. } => {
+                for def in entries {
+                    constraints.extend(constraint(cx, &def, constraint_defs.len())?);
+                    constraint_defs.push(def);
                 }
             }
             _ => {}
@@ -261,7 +276,55 @@ pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn
         potential,
         dissipation,
         forces,
+        constraint_defs,
+        constraints,
     })
+}
+
+/// The constraints of one entry `name: lhs = rhs` (the `def`-th), `φ = lhs
+/// − rhs`: one, or one per index of `name[i in a..b]`.
+fn constraint(
+    cx: &mut Lowering,
+    def: &ConstraintDef,
+    entry: usize,
+) -> syn::Result<Vec<Constraint>> {
+    let lower = |cx: &mut Lowering, index: Option<i64>| -> syn::Result<Constraint> {
+        let lhs = cx.lower(&def.lhs)?;
+        let rhs = match &def.rhs {
+            None => None,
+            Some(rhs) => Some(cx.lower(rhs)?),
+        };
+        let value = match rhs {
+            None => lhs,
+            Some(rhs) => cx.pool.sub(lhs, rhs),
+        };
+        let label = match index {
+            None => def.name.to_string(),
+            Some(k) => format!("{}[{k}]", def.name),
+        };
+        Ok(Constraint {
+            label,
+            entry,
+            index,
+            lhs,
+            rhs,
+            value,
+        })
+    };
+    let Some(range) = &def.index else {
+        return Ok(vec![lower(cx, None)?]);
+    };
+    let (lo, hi) = cx.range(range)?;
+    let mut out = Vec::new();
+    for k in lo..hi {
+        // Each element is a name kept to the end, like an indexed `let`'s.
+        cx.pool.charge(STEPS_PER_NAME);
+        cx.env.push((range.var.to_string(), k));
+        let c = lower(cx, Some(k));
+        cx.env.pop();
+        out.push(c?);
+    }
+    Ok(out)
 }
 
 /// One entry `target = value` of `forces:`; `targets`, those before it.
@@ -310,11 +373,12 @@ fn add_to(
     Ok(())
 }
 
-/// For the stub of a model with an error: its number of coordinates and
-/// its parameter fields, counted as lowering will count them once the error
-/// is fixed (a duplicated name or `t` is the error, not an extra one; a size
-/// that cannot be evaluated counts as one).
-pub fn declared_shape(def: &ModelDef) -> (usize, Vec<Field>) {
+/// For the stub of a model with an error: its number of coordinates, its
+/// parameter fields and its number of constraints, counted as lowering will
+/// count them once the error is fixed (a duplicated name or `t` is the
+/// error, not an extra one; a size or range that cannot be evaluated counts
+/// as one).
+pub fn declared_shape(def: &ModelDef) -> (usize, Vec<Field>, usize) {
     let mut cx = Lowering::new(Pool::default(), &def.name);
     for item in &def.items {
         if let Item::Const { name, value } = item {
@@ -328,7 +392,23 @@ pub fn declared_shape(def: &ModelDef) -> (usize, Vec<Field>) {
     let mut seen: HashSet<String> = HashSet::from(["t".to_string()]);
     let mut dof = 0;
     let mut fields = Vec::new();
+    let mut constraints = 0usize;
+    // Apart from the other names: a constraint named like a coordinate is
+    // the error, and the coordinate still counts.
+    let mut seen_constraints: HashSet<String> = HashSet::new();
     for item in &def.items {
+        if let Item::Constraints { entries, .. } = item {
+            for e in entries {
+                if !seen_constraints.insert(e.name.to_string()) {
+                    continue;
+                }
+                constraints += match &e.index {
+                    None => 1,
+                    Some(range) => cx.range(range).map_or(1, |(lo, hi)| (hi - lo) as usize),
+                };
+            }
+            continue;
+        }
         let (Item::Coordinates { names, .. } | Item::Parameters { names, .. }) = item else {
             continue;
         };
@@ -347,5 +427,5 @@ pub fn declared_shape(def: &ModelDef) -> (usize, Vec<Field>) {
             }
         }
     }
-    (dof, fields)
+    (dof, fields, constraints)
 }

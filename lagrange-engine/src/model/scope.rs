@@ -48,11 +48,17 @@ impl Declared {
             } else {
                 format!(", as a {first} and as a {what}")
             };
+            // A constraint's name is a label, not a quantity, but it is
+            // still one of the model's names: in `EQUATIONS`, in
+            // `CONSTRAINTS` and in the errors.
+            let rule = if *first == "constraint" || what == "constraint" {
+                "each constraint needs its own name, distinct from the coordinates, parameters, constants and `let`s"
+            } else {
+                "each coordinate, parameter, constant and `let` needs its own name"
+            };
             return Err(syn::Error::new(
                 name.span(),
-                format!(
-                    "`{name}` is declared twice{roles}: each coordinate, parameter, constant and `let` needs its own name"
-                ),
+                format!("`{name}` is declared twice{roles}: {rule}"),
             ));
         }
         self.0.insert(name.to_string(), what);

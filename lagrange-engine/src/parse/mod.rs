@@ -16,7 +16,7 @@ pub mod expression;
 
 pub use expression::parse_expr;
 
-use crate::ast::{Decl, Expr, Item, ModelDef, Options, SpanRange, MAX_BUDGET};
+use crate::ast::{ConstraintDef, Decl, Expr, Item, ModelDef, Options, SpanRange, MAX_BUDGET};
 use crate::expr::DEFAULT_BUDGET;
 use expression::{drain_on_error, parse_bracket, parse_index_range};
 use proc_macro2::{TokenStream, TokenTree};
@@ -26,7 +26,7 @@ use syn::{braced, bracketed, Attribute, Ident, LitInt, Token, Visibility};
 /// The sections a model may contain, for error messages.
 pub const SECTIONS: &str =
     "`const`, `coordinates:`, `parameters:`, `constants:`, `let`, `kinetic:`, \
-     `potential:`, `dissipation:` or `forces:`";
+     `potential:`, `dissipation:`, `forces:` or `constraints:`";
 
 /// A parsed model and the first error met inside its body, if any.
 pub struct Parsed {
@@ -208,6 +208,7 @@ fn parse_item(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result
         "potential",
         "dissipation",
         "forces",
+        "constraints",
     ];
     if !known.contains(&section.as_str()) {
         return Err(syn::Error::new(
@@ -240,6 +241,10 @@ fn parse_item(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result
                     (target, value)
                 })
                 .collect(),
+            keyword,
+        },
+        "constraints" => Item::Constraints {
+            entries: parse_constraints(input, error)?,
             keyword,
         },
         "constants" => Item::Constants {
@@ -354,6 +359,64 @@ fn parse_entries(
             return Ok(entries);
         } else {
             return Err(input.error("expected an operator, `,` or `;`"));
+        }
+    }
+}
+
+/// `name: lhs [= rhs], name[i in a..b]: lhs [= rhs], ...;`.
+fn parse_constraints(
+    input: ParseStream,
+    error: &mut Option<syn::Error>,
+) -> syn::Result<Vec<ConstraintDef>> {
+    let mut entries = Vec::new();
+    loop {
+        if input.peek(Token![;]) && !entries.is_empty() {
+            input.parse::<Token![;]>()?;
+            return Ok(entries);
+        }
+        let name: Ident = plain_name(input)?;
+        let index = if input.peek(syn::token::Bracket) {
+            let inner;
+            bracketed!(inner in input);
+            Some(drain_on_error(&inner, |inner| {
+                let range = parse_index_range(inner)?;
+                if !inner.is_empty() {
+                    return Err(inner.error("expected `]` after the range"));
+                }
+                Ok(range)
+            })?)
+        } else {
+            None
+        };
+        if !input.peek(Token![:]) || input.peek(Token![::]) {
+            return Err(input.error(
+                "expected `:` after the constraint's name: each constraint is named, as in \
+                 `rod: x^2 + y^2 = l^2` (or `rod: expression`, meaning expression = 0)",
+            ));
+        }
+        input.parse::<Token![:]>()?;
+        let lhs = parse_expr(input)?;
+        let rhs = if input.peek(Token![=]) {
+            input.parse::<Token![=]>()?;
+            Some(parse_expr(input)?)
+        } else {
+            None
+        };
+        entries.push(ConstraintDef {
+            name,
+            index,
+            lhs,
+            rhs,
+        });
+        if input.peek(Token![,]) {
+            input.parse::<Token![,]>()?;
+        } else if input.peek(Token![;]) {
+            input.parse::<Token![;]>()?;
+            return Ok(entries);
+        } else if recover_missing_semicolon(input, error) {
+            return Ok(entries);
+        } else {
+            return Err(input.error("expected an operator, `=`, `,` or `;`"));
         }
     }
 }

@@ -1,0 +1,136 @@
+//! The generated consts, described once like the methods of
+//! [`api`](super::api): name, docs, and the value of a derived model or of
+//! the error stub.
+
+use super::outline::Outline;
+use crate::model::Model;
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::quote;
+
+/// A generated associated `const`.
+pub struct Const {
+    pub name: &'static str,
+    pub doc: Doc,
+    pub value: ConstValue,
+}
+
+/// A doc comment.
+pub enum Doc {
+    /// Written as `///` lines.
+    Lines(&'static [&'static str]),
+    /// Written as one `#[doc = "..."]`.
+    Attribute(&'static str),
+}
+
+/// What a generated `const` holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ConstValue {
+    /// `usize`: the number of coordinates.
+    Dof,
+    /// `[&'static str; N]`: the coordinates' names (empty in the stub).
+    CoordinateNames,
+    /// `[&'static str; P]`: the parameter fields' names (not in the stub).
+    ParameterNames,
+    /// `[&'static str; C]`: the constraints' names (empty in the stub;
+    /// absent from a model without constraints).
+    ConstraintNames,
+    /// `&'static str`: the derived equations as text (empty in the stub).
+    EquationsText,
+}
+
+/// Every generated `const`, in the order of the generated impl.
+pub const CONSTS: &[Const] = &[
+    Const {
+        name: "DOF",
+        doc: Doc::Lines(&["Number of degrees of freedom (generalized coordinates)."]),
+        value: ConstValue::Dof,
+    },
+    Const {
+        name: "COORDINATES",
+        doc: Doc::Lines(&["Names of the generalized coordinates, in the order of `q`."]),
+        value: ConstValue::CoordinateNames,
+    },
+    Const {
+        name: "CONSTRAINTS",
+        doc: Doc::Lines(&["Names of the holonomic constraints, in the order of `φ`."]),
+        value: ConstValue::ConstraintNames,
+    },
+    Const {
+        name: "PARAMETERS",
+        doc: Doc::Lines(&[
+            "Names of the runtime parameters (the struct's fields; an",
+            "indexed parameter `m[N]` is one field `m: [S; N]`), in",
+            "declaration order.",
+        ]),
+        value: ConstValue::ParameterNames,
+    },
+    Const {
+        name: "EQUATIONS",
+        doc: Doc::Attribute(
+            "The derived equations `M q̈ = f`, readable: shared subexpressions first, then each entry.",
+        ),
+        value: ConstValue::EquationsText,
+    },
+];
+
+impl Const {
+    /// `const NAME: type = value;`, with the values of a derived model
+    /// (`derived`: its coordinates' names and equations text) or of the
+    /// stub (`None`); `None` if the stub has no such const.
+    pub fn item(&self, outline: &Outline, derived: Option<(&Model, &str)>) -> Option<TokenStream> {
+        let name = Ident::new(self.name, Span::call_site());
+        let n = Literal::usize_unsuffixed(outline.dof);
+        let (ty, value) = match (self.value, derived) {
+            (ConstValue::Dof, _) => (quote!(usize), quote!(#n)),
+            (ConstValue::CoordinateNames, Some((model, _))) => {
+                let names = model.coordinates.iter().map(|c| c.to_string());
+                (quote!([&'static str; #n]), quote!([#(#names),*]))
+            }
+            // `[""; N]`, not N empty strings: a model with an error may
+            // declare a great many coordinates.
+            (ConstValue::CoordinateNames, None) => (quote!([&'static str; #n]), quote!([""; #n])),
+            (ConstValue::ParameterNames, Some(_)) => {
+                let p = Literal::usize_unsuffixed(outline.fields.len());
+                let names = outline.fields.iter().map(|f| f.name.to_string());
+                (quote!([&'static str; #p]), quote!([#(#names),*]))
+            }
+            (ConstValue::ParameterNames, None) => return None,
+            (ConstValue::ConstraintNames, _) if outline.constraints == 0 => return None,
+            (ConstValue::ConstraintNames, Some((model, _))) => {
+                let c = Literal::usize_unsuffixed(outline.constraints);
+                let names = model.constraints.iter().map(|c| &c.label);
+                (quote!([&'static str; #c]), quote!([#(#names),*]))
+            }
+            (ConstValue::ConstraintNames, None) => {
+                let c = Literal::usize_unsuffixed(outline.constraints);
+                (quote!([&'static str; #c]), quote!([""; #c]))
+            }
+            (ConstValue::EquationsText, Some((_, text))) => (quote!(&'static str), quote!(#text)),
+            (ConstValue::EquationsText, None) => (quote!(&'static str), quote!("")),
+        };
+        Some(quote!(pub const #name: #ty = #value;))
+    }
+}
+
+impl Doc {
+    /// The doc attributes, token for token what `///` lines (or
+    /// `#[doc = "..."]`) written in a `quote!` give.
+    pub fn attributes(&self) -> TokenStream {
+        match self {
+            Doc::Lines(lines) => lines.iter().map(|l| line_doc(l)).collect(),
+            Doc::Attribute(text) => quote!(#[doc = #text]),
+        }
+    }
+}
+
+/// `/// line` as the compiler desugars it: `#[doc = r" line"]`.
+fn line_doc(line: &str) -> TokenStream {
+    // The fewest `#` that no `"` in the line is followed by.
+    let hashes = (0..)
+        .find(|&k| !line.contains(&format!("\"{}", "#".repeat(k))))
+        .map_or(String::new(), |k| "#".repeat(k));
+    let literal: Literal = format!("r{hashes}\" {line}\"{hashes}")
+        .parse()
+        .expect("a raw string of static doc text lexes");
+    quote!(#[doc = #literal])
+}

@@ -1,0 +1,233 @@
+//! Holonomic constraints in the engine: what `constraints:` derives (`φ`,
+//! `G = ∂φ/∂q`, `φ̇`, `γ`) against closed forms, the items it adds, the
+//! errors it gives, and that it changes nothing for a model without it.
+
+use lagrange_engine::derive::ConstraintEquations;
+use lagrange_engine::Derived;
+
+fn derive(src: &str) -> Derived {
+    match lagrange_engine::derive(src.parse().unwrap()) {
+        Ok(d) => d,
+        Err(e) => panic!("{e}"),
+    }
+}
+
+fn error(src: &str) -> String {
+    match lagrange_engine::derive(src.parse().unwrap()) {
+        Ok(_) => panic!("expected an error from {src}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn constraints(d: &Derived) -> &ConstraintEquations {
+    d.equations
+        .constraints
+        .as_ref()
+        .expect("a constrained model")
+}
+
+const CARTESIAN_PENDULUM: &str = "
+    pub struct CartesianPendulum {
+        coordinates: x, y;
+        parameters: m, l, g;
+        kinetic: m/2*(dot(x)^2 + dot(y)^2);
+        potential: m*g*y;
+        constraints: rod: x^2 + y^2 = l^2;
+    }";
+
+/// A few states `(t, q, q̇)`, off the manifold too: the formulas hold
+/// everywhere.
+const STATES: [(f64, [f64; 2], [f64; 2]); 3] = [
+    (0.0, [0.3, -0.9], [1.1, 0.2]),
+    (1.5, [-0.7, 0.4], [-0.3, 2.0]),
+    (-2.0, [1.2, 0.05], [0.0, -0.8]),
+];
+
+#[test]
+fn cartesian_pendulum_has_the_rod_jacobian_and_bias() {
+    let d = derive(CARTESIAN_PENDULUM);
+    let c = constraints(&d);
+    let (m, l, g) = (1.3, 0.8, 9.81);
+    for (t, [x, y], [vx, vy]) in STATES {
+        let at = |ids: &[_]| d.eval(ids, t, &[x, y], &[vx, vy], &[m, l, g]);
+        let phi = at(&c.values);
+        assert!((phi[0] - (x * x + y * y - l * l)).abs() < 1e-12);
+        let gj = at(&c.jacobian[0]);
+        assert!((gj[0] - 2.0 * x).abs() < 1e-12 && (gj[1] - 2.0 * y).abs() < 1e-12);
+        let gamma = at(&c.bias);
+        assert!((gamma[0] - 2.0 * (vx * vx + vy * vy)).abs() < 1e-12);
+        let phidot = at(&c.velocities);
+        assert!((phidot[0] - 2.0 * (x * vx + y * vy)).abs() < 1e-12);
+        assert_eq!(at(&c.time), vec![0.0]);
+    }
+}
+
+#[test]
+fn a_rheonomic_constraint_carries_its_time_terms() {
+    let d = derive(
+        "pub struct Driven {
+            coordinates: x, y;
+            parameters: m, a, w;
+            kinetic: m/2*(dot(x)^2 + dot(y)^2);
+            potential: 0;
+            constraints: drive: x = a*sin(w*t);
+        }",
+    );
+    let c = constraints(&d);
+    let (m, a, w) = (2.0, 0.4, 3.0);
+    for (t, q, [vx, vy]) in STATES {
+        let at = |ids: &[_]| d.eval(ids, t, &q, &[vx, vy], &[m, a, w]);
+        assert_eq!(at(&c.jacobian[0]), vec![1.0, 0.0]);
+        let phi_t = at(&c.time)[0];
+        assert!((phi_t + a * w * (w * t).cos()).abs() < 1e-12);
+        let phidot = at(&c.velocities)[0];
+        assert!((phidot - (vx - a * w * (w * t).cos())).abs() < 1e-12);
+        // φ̈ = ẍ + a w² sin(w t): γ = a w² sin(w t).
+        let gamma = at(&c.bias)[0];
+        assert!((gamma - a * w * w * (w * t).sin()).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn indexed_constraints_are_one_per_index() {
+    let d = derive(
+        "pub struct Beads {
+            const N = 3;
+            coordinates: x[N], y[N];
+            parameters: m, l;
+            kinetic: sum(i in 0..N, m/2*(dot(x[i])^2 + dot(y[i])^2));
+            potential: 0;
+            constraints: ring[i in 0..N]: x[i]^2 + y[i]^2 = l^2, rail: y[0] = 0;
+        }",
+    );
+    let labels: Vec<&str> = d
+        .model
+        .constraints
+        .iter()
+        .map(|c| c.label.as_str())
+        .collect();
+    assert_eq!(labels, ["ring[0]", "ring[1]", "ring[2]", "rail"]);
+    let tokens = d.tokens().to_string();
+    assert!(
+        tokens.contains(r#"[& 'static str ; 4] = ["ring[0]" , "ring[1]" , "ring[2]" , "rail"]"#)
+    );
+    assert!(tokens.contains(":: lagrange :: Holonomic < 6 , 4 >"));
+}
+
+#[test]
+fn a_constrained_model_gets_the_holonomic_items() {
+    let d = derive(CARTESIAN_PENDULUM);
+    let tokens = d.tokens().to_string();
+    for item in [
+        "pub const CONSTRAINTS : [& 'static str ; 1] = [\"rod\"]",
+        "pub fn constraints (& self , t : S , q : & :: lagrange :: nalgebra :: SVector < S , 2 >) -> :: lagrange :: nalgebra :: SVector < S , 1 >",
+        "pub fn constraint_jacobian (& self , t : S , q : & :: lagrange :: nalgebra :: SVector < S , 2 >) -> :: lagrange :: nalgebra :: SMatrix < S , 1 , 2 >",
+        "pub fn constraint_velocities (",
+        "pub fn constraint_bias (",
+        "pub fn constrained_system (",
+        "impl < S : :: lagrange :: nalgebra :: RealField + :: core :: marker :: Copy > :: lagrange :: Holonomic < 2 , 1 > for CartesianPendulum < S >",
+        "fn visit_constraints < V : :: lagrange :: constraints :: Visitor < S , 2 >> (& self , visitor : V) -> :: core :: option :: Option < V :: Output > { :: core :: option :: Option :: Some (visitor . visit :: < Self , 1 > (self)) }",
+    ] {
+        assert!(tokens.contains(item), "missing `{item}` in\n{tokens}");
+    }
+    let text = d.equations_text();
+    for line in [
+        "φ[rod] = ",
+        "G[rod, x] = 2*x",
+        "G[rod, y] = 2*y",
+        "γ[rod] = ",
+    ] {
+        assert!(text.contains(line), "missing `{line}` in\n{text}");
+    }
+    // Valid Rust, whatever the runtime makes of it.
+    syn::parse_file(&tokens).expect("the expansion parses as Rust");
+}
+
+#[test]
+fn a_model_without_constraints_gets_no_constraint_items() {
+    let d = derive(&CARTESIAN_PENDULUM.replace("constraints: rod: x^2 + y^2 = l^2;", ""));
+    assert!(d.equations.constraints.is_none());
+    let tokens = d.tokens().to_string();
+    for absent in [
+        "CONSTRAINTS",
+        "Holonomic",
+        "visit_constraints",
+        "constraint_",
+    ] {
+        assert!(!tokens.contains(absent), "`{absent}` in {tokens}");
+    }
+}
+
+#[test]
+fn the_same_constrained_model_expands_to_the_same_tokens() {
+    let once = || derive(CARTESIAN_PENDULUM).tokens().to_string();
+    assert_eq!(once(), once());
+    let expand = || lagrange_engine::expand(CARTESIAN_PENDULUM.parse().unwrap()).to_string();
+    assert_eq!(expand(), expand());
+}
+
+#[test]
+fn constraint_operation_counts_are_reported() {
+    let d = derive(CARTESIAN_PENDULUM);
+    let (shared, tree) = d.constraint_op_counts().unwrap();
+    println!(
+        "Cartesian pendulum, G and γ: {} operations emitted ({} as a tree)",
+        shared.total(),
+        tree.total()
+    );
+    assert!(shared.total() <= tree.total());
+    assert!(shared.total() > 0 && shared.total() < 20);
+}
+
+#[test]
+fn constraint_mistakes_are_errors_in_physics_terms() {
+    let model = |constraints: &str| {
+        format!(
+            "pub struct P {{
+                coordinates: x, y, z;
+                parameters: m, l;
+                constants: c0 = 0;
+                let r = x^2 + y^2;
+                kinetic: m/2*(dot(x)^2 + dot(y)^2 + dot(z)^2);
+                potential: 0;
+                constraints: {constraints};
+            }}"
+        )
+    };
+    for (constraints, expected) in [
+        ("a: dot(x) - y", "non-holonomic (velocity) constraint"),
+        ("a: l - 1", "names no coordinate: it constrains nothing"),
+        ("a: x, b: y, c: z", "3 constraints on 3 coordinates leave no motion (`c` removes"),
+        ("a: x - y, b: 2*x = 2*y", "constraint `b` is redundant"),
+        ("a: x, a: y", "`a` is declared twice as a constraint"),
+        ("x: y", "`x` is declared twice, as a coordinate and as a constraint"),
+        ("l: y", "as a parameter and as a constraint"),
+        ("r: y", "as a `let` and as a constraint"),
+        ("c0: y", "as a constant and as a constraint"),
+        ("a: x/c0", "infinite or undefined constant"),
+        ("a: r = ", "expected"),
+        ("x^2 + y^2 = l^2", "expected `:` after the constraint's name"),
+        ("a[i in 0..4]: x - i", "4 constraints on 3 coordinates"),
+        ("a: x - y, b: y - x + l", "at every state its gradient ∂φ/∂q is a combination of the gradients of the constraints before it (`a`)"),
+        ("t: x", "`t` is time and is reserved"),
+    ] {
+        let e = error(&model(constraints));
+        assert!(e.contains(expected), "`{constraints}`: {e}");
+    }
+    // Under an index, the error still names the element.
+    let e = error(&model("a[i in 1..2]: x + i*dot(y)"));
+    assert!(
+        e.contains("constraint `a[1]` depends on the velocity `dot(y)`"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_model_with_a_constraint_error_stubs_the_constraint_items() {
+    let src = CARTESIAN_PENDULUM.replace("x^2 + y^2 = l^2", "dot(x)");
+    let tokens = lagrange_engine::expand(src.parse().unwrap()).to_string();
+    assert_eq!(tokens.matches("compile_error").count(), 1, "{tokens}");
+    assert!(tokens.contains(":: lagrange :: Holonomic < 2 , 1 >"));
+    assert!(tokens.contains("pub fn constraint_jacobian"));
+    syn::parse_file(&tokens).expect("the stub parses as Rust");
+}
