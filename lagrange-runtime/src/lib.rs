@@ -257,7 +257,9 @@ mod linalg;
 mod trajectory;
 
 pub use constraints::Holonomic;
-pub use error::{Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue};
+pub use error::{
+    ConstraintLevel, Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue,
+};
 pub use integrators::{
     integrate, Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, Integrator, Radau5,
     Rk4, SymplecticEuler, Variational,
