@@ -58,7 +58,7 @@ pub(crate) fn worst_violation<S: RealField + Copy, const C: usize>(
     tolerance: &SVector<S, C>,
 ) -> Option<usize> {
     (0..C)
-        .filter(|&i| !(residual[i].abs() <= tolerance[i]))
+        .filter(|&i| !residual[i].is_finite() || residual[i].abs() > tolerance[i])
         .max_by(|&i, &j| {
             let (a, b) = (residual[i].abs(), residual[j].abs());
             a.partial_cmp(&b).unwrap_or(core::cmp::Ordering::Greater)
@@ -148,6 +148,7 @@ where
 }
 
 /// `q` then `q̇` projected.
+#[allow(clippy::type_complexity)]
 pub(crate) fn project<H, const N: usize, const C: usize>(
     model: &H,
     t: H::Scalar,

@@ -96,7 +96,8 @@ impl<S: RealField + Copy, const N: usize, const C: usize> Schur<S, N, C> {
         let unit = unit.cholesky().ok_or(SaddleError::Singular)?;
         let pivots = unit.l_dirty().diagonal().map(|l| l * l);
         let c: S = nalgebra::convert(C as f64);
-        if C > 0 && !(pivots.min() > c * S::default_epsilon() * pivots.max()) {
+        let smallest = pivots.min();
+        if C > 0 && (!smallest.is_finite() || smallest <= c * S::default_epsilon() * pivots.max()) {
             return Err(SaddleError::Singular);
         }
         if !x.iter().all(|v| v.is_finite()) {
@@ -150,6 +151,7 @@ fn solve_saddle<S: RealField + Copy, const N: usize, const C: usize>(
 /// `(q̈, λ)` of `model` at `(t, q, q̇)`: one right-hand side. With
 /// `baumgarte`, the bias carries the model's Baumgarte terms
 /// `2α φ̇ + β² φ` if it has them.
+#[allow(clippy::type_complexity)]
 pub(crate) fn constrained_accelerations<H, const N: usize, const C: usize>(
     model: &H,
     t: H::Scalar,

@@ -5,11 +5,12 @@ use nalgebra::RealField;
 
 /// How the drift of `φ` and `φ̇` away from zero is controlled (see
 /// [the module](super#drift-and-how-to-control-it) for what each costs).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Drift<S> {
     /// Project `q` onto `φ = 0` and `q̇` onto `φ̇ = 0`, in the metric of
     /// `M`, after every accepted step and at every sample from dense
     /// output: residuals at rounding level. The default.
+    #[default]
     Projection,
     /// Replace `φ̈ = 0` by `φ̈ + 2α φ̇ + β² φ = 0`: drift damped at rate `β`,
     /// with damping `α` (`α = β` is critical damping). Both must be finite
@@ -46,12 +47,6 @@ pub struct ConstraintSettings<S> {
     pub drift: Drift<S>,
     /// The rule for an inconsistent start.
     pub initial: InitialConditions,
-}
-
-impl<S> Default for Drift<S> {
-    fn default() -> Self {
-        Self::Projection
-    }
 }
 
 impl<S> Default for ConstraintSettings<S> {

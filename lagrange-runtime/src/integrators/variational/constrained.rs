@@ -36,6 +36,7 @@ impl<S: RealField + Copy> Variational<S> {
     /// `(v̄, ∂L/∂q + Q, Gᵀ λ)` of one constrained step from `del`'s
     /// `(q_k, p_k)` to `t_next`, the force `Gᵀ λ` guessed as `force` (the
     /// previous step's).
+    #[allow(clippy::type_complexity)]
     pub(super) fn rattle<L: Lagrangian<N, Scalar = S>, const N: usize>(
         &self,
         rec: &mut Recorder<'_, S, N>,
