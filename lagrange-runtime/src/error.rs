@@ -168,6 +168,53 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         qdot: SVector<S, N>,
     },
 
+    /// The constraints' Jacobian `G` has lost rank in the metric of the
+    /// masses: `G M⁻¹ Gᵀ` cannot be inverted, so the constraint forces are
+    /// not determined (a linkage at a dead centre, two constraints that have
+    /// become parallel, a constraint whose gradient vanishes). Judged scale
+    /// free, on `G`'s rows equilibrated in the `M⁻¹` metric.
+    #[error(
+        "the constraints are singular or redundant at t = {t:?} (q = {}, q̇ = {}): G M⁻¹ Gᵀ \
+         cannot be inverted, so the constraint forces are not determined (e.g. a linkage at \
+         a dead centre, or two constraints that have become parallel)",
+        Row(.q), Row(.qdot)
+    )]
+    SingularConstraints {
+        /// Time of the evaluation.
+        t: S,
+        /// Generalized coordinates at `t`.
+        q: SVector<S, N>,
+        /// Generalized velocities at `t`.
+        qdot: SVector<S, N>,
+    },
+
+    /// The projection of the state back onto `φ(t, q) = 0` after a step did
+    /// not bring the residual to rounding level: the step left the
+    /// constraint manifold too far for Newton's method to return, or the
+    /// constraints are nearly singular there. Take a smaller step or a
+    /// tighter tolerance.
+    #[error(
+        "projection onto the constraints failed at t = {t:?} (q = {}, q̇ = {}): constraint \
+         `{constraint}` is still {residual:?} after {iterations} Newton iterations; take a \
+         smaller step or a tighter tolerance",
+        Row(.q), Row(.qdot)
+    )]
+    ProjectionFailed {
+        /// Time of the projection.
+        t: S,
+        /// The constraint furthest from zero, from
+        /// [`Holonomic::CONSTRAINTS`](crate::Holonomic::CONSTRAINTS).
+        constraint: &'static str,
+        /// Its value `φ_i` after the last iteration.
+        residual: S,
+        /// Newton iterations done.
+        iterations: usize,
+        /// Generalized coordinates where the projection stopped.
+        q: SVector<S, N>,
+        /// Generalized velocities at `t`, not yet projected.
+        qdot: SVector<S, N>,
+    },
+
     /// The call itself was wrong; nothing was integrated.
     #[error("invalid input: {0}")]
     InvalidInput(InvalidInput<S>),
@@ -199,6 +246,9 @@ pub enum NonFiniteValue {
     /// The Jacobians `∂q̈/∂q`, `∂q̈/∂q̇` an implicit method needs (from the
     /// model's exact residual Jacobians, or overflowing finite differences).
     Jacobian,
+    /// The constraints `φ`, their Jacobian `G`, velocities `φ̇` or bias `γ`
+    /// returned by the model.
+    Constraints,
 }
 
 impl fmt::Display for NonFiniteValue {
@@ -213,6 +263,9 @@ impl fmt::Display for NonFiniteValue {
                 "the non-conservative forces Q - ∂R/∂q̇ returned by the model are NaN or infinite"
             }
             Self::Jacobian => "the Jacobians ∂q̈/∂q, ∂q̈/∂q̇ are NaN or infinite",
+            Self::Constraints => {
+                "the constraints φ, G, φ̇ or γ returned by the model are NaN or infinite"
+            }
         })
     }
 }
@@ -335,6 +388,58 @@ pub enum InvalidInput<S: RealField + Copy> {
         /// The missing trait method.
         needs: &'static str,
     },
+
+    /// The initial state is off the constraints beyond rounding, and the
+    /// model asked for such states to be refused rather than projected
+    /// ([`InitialConditions::Reject`](crate::constraints::InitialConditions::Reject)).
+    #[error(
+        "the initial state violates constraint `{constraint}`: {level} = {residual:?}, beyond \
+         the rounding-level tolerance {tolerance:?}; give a consistent state, or let it be \
+         projected (InitialConditions::Project)"
+    )]
+    InconsistentInitialConditions {
+        /// The first violated constraint, from
+        /// [`Holonomic::CONSTRAINTS`](crate::Holonomic::CONSTRAINTS).
+        constraint: &'static str,
+        /// Whether its position `φ` or its velocity `φ̇` is off.
+        level: ConstraintLevel,
+        /// The residual.
+        residual: S,
+        /// What rounding alone could explain (see
+        /// [`constraints`](crate::constraints#initial-conditions)).
+        tolerance: S,
+    },
+
+    /// Baumgarte stabilization with a negative or non-finite rate: it would
+    /// amplify the drift instead of damping it.
+    #[error(
+        "Baumgarte stabilization needs finite, non-negative alpha and beta, got alpha = \
+         {alpha:?}, beta = {beta:?}"
+    )]
+    InvalidBaumgarte {
+        /// The damping rate given.
+        alpha: S,
+        /// The stiffness rate given.
+        beta: S,
+    },
+}
+
+/// Which level of a constraint a residual belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ConstraintLevel {
+    /// The position constraint `φ(t, q) = 0`.
+    Position,
+    /// The velocity constraint `φ̇ = G q̇ + ∂φ/∂t = 0`.
+    Velocity,
+}
+
+impl fmt::Display for ConstraintLevel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::Position => "φ",
+            Self::Velocity => "φ̇",
+        })
+    }
 }
 
 /// An integration that stopped early: the reason, and every requested

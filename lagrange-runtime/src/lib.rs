@@ -224,6 +224,11 @@
 //! # Map of the crate
 //!
 //! - [`Lagrangian`] (`lagrangian.rs`): the contract a model fulfils.
+//! - [`constraints`]: models with holonomic constraints, [`Holonomic`]:
+//!   the saddle-point accelerations, drift control (projection by
+//!   default, Baumgarte, none), consistent initial conditions, the
+//!   multipliers; every method runs them, [`Variational`] by its own
+//!   constrained (RATTLE) step.
 //! - [`integrators`]: the [`Integrator`] trait, [`integrate`], and one file
 //!   or folder per method: [`ExplicitEuler`], [`SymplecticEuler`] and
 //!   [`Rk4`] (fixed step), [`Dopri5`] (adaptive, the default) and [`Dop853`]
@@ -257,7 +262,9 @@ mod linalg;
 mod trajectory;
 
 pub use constraints::Holonomic;
-pub use error::{Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue};
+pub use error::{
+    ConstraintLevel, Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue,
+};
 pub use integrators::{
     integrate, Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, Integrator, Radau5,
     Rk4, SymplecticEuler, Variational,

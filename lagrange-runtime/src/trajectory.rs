@@ -36,7 +36,11 @@ pub struct Sample<S, const N: usize> {
 }
 
 /// The work an integration did, for comparing methods and tolerances.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+///
+/// For a model with [constraints](crate::constraints) it also tells how
+/// well they were kept; those fields are zero for a model in minimal
+/// coordinates.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 #[non_exhaustive]
 pub struct Stats {
     /// Steps kept.
@@ -62,6 +66,24 @@ pub struct Stats {
     pub linear_solves: usize,
     /// Newton iterations of implicit methods, over all steps.
     pub newton_iterations: usize,
+    /// The largest `|φ_i(t, q)|` at the end of an accepted step, before
+    /// drift control (the projection) touched it, in the units of the
+    /// constraint: the drift one step produces with
+    /// [`Drift::Projection`](crate::constraints::Drift::Projection), the
+    /// drift accumulated over the run with the other choices.
+    pub max_position_residual: f64,
+    /// The same for the velocity constraints, the largest `|φ̇_i|`.
+    pub max_velocity_residual: f64,
+    /// How far the initial position was moved onto the constraints, the
+    /// largest `|Δq_i|` (zero when it was consistent to rounding).
+    pub initial_position_correction: f64,
+    /// How far the initial velocity was moved onto `φ̇ = 0`, the largest
+    /// `|Δq̇_i|`.
+    pub initial_velocity_correction: f64,
+    /// Newton iterations of the projections onto `φ = 0` (after each step
+    /// and of samples from dense output), each one evaluation of `φ` and
+    /// `G` and a `C × C` solve.
+    pub projection_iterations: usize,
 }
 
 impl<S: RealField + Copy, const N: usize> Trajectory<S, N> {

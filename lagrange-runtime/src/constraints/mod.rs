@@ -12,6 +12,92 @@
 //! whose multipliers `λ` are the constraint forces, in the units of the
 //! constraint (a constraint written in metres gives newtons).
 //!
+//! # The solve
+//!
+//! Every right-hand side ([`acceleration`](crate::solve::acceleration))
+//! eliminates `q̈` on the stack: the Cholesky factor `L` of `M` (with the
+//! checks of [`solve_mass_matrix`](crate::solve::solve_mass_matrix)),
+//! `Y = L⁻¹ Gᵀ`, the Schur complement `G M⁻¹ Gᵀ = Yᵀ Y` (`C × C`) and its
+//! Cholesky factor, then
+//!
+//! ```text
+//! λ = (G M⁻¹ Gᵀ)⁻¹ (G M⁻¹ f + γ),        q̈ = M⁻¹ (f − Gᵀ λ).
+//! ```
+//!
+//! That costs, beside `M q̈ = f`, `C` triangular solves of size `N` and a
+//! `C × C` Cholesky factorization. The Schur complement is judged with the
+//! rows of `G` equilibrated in the `M⁻¹` metric (unit diagonal), so its
+//! rank is decided free of the constraints' units and scales: a zero
+//! diagonal (a constraint whose gradient vanishes) or a pivot below `C ε`
+//! (constraints that have become parallel) is
+//! [`SingularConstraints`](crate::IntegrationError::SingularConstraints)
+//! at that `t` and state, never a NaN.
+//!
+//! # Drift, and how to control it
+//!
+//! Integrating `q̈` keeps `φ̈ = 0` only to the method's error, so `φ` and `φ̇`
+//! drift away from zero, linearly and quadratically in time. The choice is
+//! per run, through [`Holonomic::constraint_settings`]; a generated model
+//! has the default, and [`Holonomic::with_drift`] wraps it with another
+//! ([`Constrained`]):
+//!
+//! - [`Drift::Projection`] (the default): after every accepted step, `q` is
+//!   moved back onto `φ = 0` by Newton's method on the orthogonal
+//!   projection in the metric of `M`, `Δq = −M⁻¹Gᵀ (G M⁻¹ Gᵀ)⁻¹ φ`, to
+//!   rounding level (usually one or two iterations), and then `q̇` onto
+//!   `φ̇ = 0` in the same metric, in one linear step. Samples from dense
+//!   output are projected the same way. Cost per step: two evaluations of
+//!   `M`, one of `φ̇`, one of `φ` and `G` per iteration, and the same small
+//!   solves as one right-hand side; the residuals stay at rounding level
+//!   for any run length. The smallest change that restores the
+//!   constraints, in the kinetic energy's norm: it moves the energy by
+//!   the same order as the step's own error.
+//! - [`Drift::Baumgarte`]: no projection; the accelerations satisfy
+//!   `φ̈ + 2α φ̇ + β² φ = 0` instead of `φ̈ = 0` (γ replaced by
+//!   `γ + 2α φ̇ + β² φ`), so the drift is damped like an oscillator of rate
+//!   `β` and damping `α`. Cost: one evaluation of `φ` and `φ̇` per
+//!   right-hand side. The residuals stay bounded, at the size of the
+//!   method's error divided by `β²`, not at rounding; rates comparable to
+//!   the fast motions of the model make it stiff.
+//! - [`Drift::None`]: the index-1 equations alone, for measuring the drift.
+//!
+//! [`Variational`](crate::Variational) needs none of this: its constrained
+//! discrete equations (RATTLE) satisfy `φ = 0` and `φ̇ = 0` at every step
+//! by construction, whatever the setting.
+//!
+//! The first-same-as-last slope of [`Dopri5`](crate::Dopri5) and
+//! [`Dop853`](crate::Dop853) was evaluated at the end of the step before
+//! the projection moved it, by `δ`, the size of the step's local error.
+//! It is kept rather than re-evaluated (which would cost one right-hand
+//! side per step): it perturbs the next step by `O(h δ)`, below the
+//! tolerance it is held to.
+//!
+//! [`Stats`](crate::Stats) reports the largest residuals `|φ_i|` and
+//! `|φ̇_i|` met at the end of accepted steps, before the projection: one
+//! step's drift with projection, the accumulated drift without.
+//!
+//! # Initial conditions
+//!
+//! A start `(q0, q̇0)` is consistent when each `|φ_i|` is within
+//! `100 ε ‖G_i‖₁ ‖q‖∞` and each `|φ̇_i|` within
+//! `100 ε (‖G_i‖₁ ‖q̇‖∞ + |∂φ_i/∂t|)`: the rounding of evaluating them,
+//! whatever the units. A consistent start is integrated as given. An
+//! inconsistent one is, as [`ConstraintSettings::initial`] says, projected
+//! as after a step ([`InitialConditions::Project`], the default; the
+//! sizes of the corrections are in [`Stats`](crate::Stats), and the sample
+//! at `t0` is the corrected state), or refused with
+//! [`InconsistentInitialConditions`](crate::InvalidInput::InconsistentInitialConditions)
+//! naming the constraint and its residual ([`InitialConditions::Reject`]).
+//!
+//! # Multipliers
+//!
+//! The constraint force on the coordinates is `−Gᵀ λ`, so `λ` depends on
+//! how the constraint is written: `φ = x² + y² − l²` (`G = 2 (x, y)`) for a
+//! bob on a rod gives `λ = T / (2 l)` for a rod tension `T`, `φ = √(x² +
+//! y²) − l` gives `λ = T` itself. [`Holonomic::multipliers`] gives them at
+//! a state, [`annotate`] for every sample of a trajectory, with the
+//! residuals `φ` and `φ̇` beside them.
+//!
 //! # How the integrators reach a model's constraints
 //!
 //! The integrators are generic over [`Lagrangian<N>`] alone, and the number
@@ -22,10 +108,34 @@
 //! constrained code is monomorphized for the model's own sizes and nothing
 //! is allocated. `lagrangian!` writes that one line; a model in minimal
 //! coordinates keeps the default (`None`) and pays nothing.
+//!
+//! The files, one concern each: `saddle.rs` (the solve, the accelerations
+//! and multipliers), `projection.rs` (the tolerances, the projections and
+//! drift control after a step), `initial.rs` (the start),
+//! `settings.rs` ([`Drift`], [`InitialConditions`]), `constrained.rs`
+//! ([`Constrained`]), `annotate.rs` ([`annotate`]), `rattle.rs` (the
+//! multipliers of the constrained variational step).
 
 use nalgebra::{RealField, SMatrix, SVector};
 
-use crate::Lagrangian;
+use crate::{IntegrationError, Lagrangian};
+
+mod annotate;
+mod constrained;
+mod initial;
+mod projection;
+mod rattle;
+mod saddle;
+mod settings;
+
+pub use annotate::{annotate, ConstrainedSample};
+pub use constrained::Constrained;
+pub use settings::{ConstraintSettings, Drift, InitialConditions};
+
+pub(crate) use initial::StartOnManifold;
+pub(crate) use projection::{DriftControl, ProjectSample, VelocityProjection};
+pub(crate) use rattle::{Multipliers, Outer, RattleStep};
+pub(crate) use saddle::Accelerations;
 
 /// A model with `C` holonomic constraints `φ(t, q) = 0` on its `N`
 /// coordinates (`C < N`).
@@ -92,6 +202,62 @@ pub trait Holonomic<const N: usize, const C: usize>: Lagrangian<N> {
             self.constraint_bias(t, q, qdot),
         )
     }
+
+    /// How this model's constraints are kept during integration: the drift
+    /// control and what to do with an inconsistent start. The default,
+    /// [`ConstraintSettings::default`], projects both; [`Constrained`]
+    /// overrides it.
+    fn constraint_settings(&self) -> ConstraintSettings<Self::Scalar> {
+        ConstraintSettings::default()
+    }
+
+    /// This model with another drift control, for one run:
+    /// `method.integrate(&model.with_drift(Drift::None), ..)`.
+    fn with_drift(&self, drift: Drift<Self::Scalar>) -> Constrained<'_, Self, Self::Scalar, C>
+    where
+        Self: Sized,
+    {
+        Constrained::new(self).drift(drift)
+    }
+
+    /// This model with another rule for inconsistent initial conditions.
+    fn with_initial_conditions(
+        &self,
+        initial: InitialConditions,
+    ) -> Constrained<'_, Self, Self::Scalar, C>
+    where
+        Self: Sized,
+    {
+        Constrained::new(self).initial_conditions(initial)
+    }
+
+    /// The multipliers `λ` of the constrained motion through `(t, q, q̇)`:
+    /// the constraint force on the coordinates is `−Gᵀ λ` (see
+    /// [the module](crate::constraints#multipliers) for their units). They
+    /// use `γ` itself, not a Baumgarte-modified bias: the forces of the
+    /// exact constrained motion.
+    fn multipliers(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> Result<SVector<Self::Scalar, C>, IntegrationError<Self::Scalar, N>> {
+        saddle::constrained_accelerations(self, t, q, qdot, false).map(|(_, lambda)| lambda)
+    }
+}
+
+/// Whether `model` has constraints: a visit that does nothing.
+pub(crate) fn is_constrained<L: Lagrangian<N>, const N: usize>(model: &L) -> bool {
+    struct Probe;
+    impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Probe {
+        type Output = ();
+        fn visit<H, const C: usize>(self, _: &H)
+        where
+            H: Holonomic<N, C, Scalar = S> + ?Sized,
+        {
+        }
+    }
+    model.visit_constraints(Probe).is_some()
 }
 
 /// What the integrators do with a constrained model, written once for

@@ -131,7 +131,7 @@ where
         max_steps,
     } = settings;
     check_tolerances(rtol, atol).map_err(invalid)?;
-    let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
+    let (mut rec, (q0, qdot0)) = Recorder::start(model, t0, &q0, &qdot0, times)?;
     let (Some(_), Some(t_end)) = (rec.pending(), rec.end()) else {
         return Ok(rec.finish());
     };
@@ -212,7 +212,13 @@ where
         rejected_last = false;
         stage_failure = None;
 
-        let (q_new, qdot_new) = P::end(&step);
+        // A constrained model's end state is projected; the pair keeps its
+        // last slope, evaluated before that (see `constraints`).
+        let (q_end, qdot_end) = P::end(&step);
+        let (q_new, qdot_new) = match rec.control_drift(model, t_new, q_end, qdot_end) {
+            Ok(state) => state,
+            Err(error) => return Err(rec.fail(error)),
+        };
         if let Some(steps) = growth.unstable((q, qdot), (&q_new, &qdot_new), h) {
             let (t, q, qdot) = (t_new, q_new, qdot_new);
             let error = IntegrationError::Unstable {
@@ -229,7 +235,9 @@ where
             if ts < t_new {
                 let dense = dense.get_or_insert_with(|| pair.dense(h, (&q, &qdot), &step));
                 let (qs, qdots) = P::dense_at(dense, (ts - t) / h);
-                rec.record(ts, qs, qdots);
+                if let Err(error) = rec.record_dense(model, ts, qs, qdots) {
+                    return Err(rec.fail(error));
+                }
             } else {
                 rec.record(ts, q_new, qdot_new);
             }

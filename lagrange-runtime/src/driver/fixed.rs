@@ -17,7 +17,8 @@ use crate::{IntegrationError, IntegrationResult, Lagrangian, NonFiniteValue};
 /// `h` ([`Interval`]). `step(rec, model, t, q, q̇, h)` advances one step,
 /// evaluating the model through `rec` so that its work is counted; its error
 /// ends the integration with the samples so far. Every step counts against
-/// `max_steps`.
+/// `max_steps`. A constrained model's state is brought back onto its
+/// constraints after each step ([`Recorder::control_drift`]).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fixed_step<S, L, const N: usize, F>(
     model: &L,
@@ -42,7 +43,7 @@ where
     ) -> Result<State<S, N>, IntegrationError<S, N>>,
 {
     check_step_size(h).map_err(invalid)?;
-    let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
+    let (mut rec, (q0, qdot0)) = Recorder::start(model, t0, &q0, &qdot0, times)?;
     let (mut t, mut q, mut qdot) = (t0, q0, qdot0);
     let mut growth = GrowthGuard::new(&q0, &qdot0);
 
@@ -74,7 +75,9 @@ where
             }
             let t_next = interval.time(k, steps);
             let (before, dt) = ((q, qdot), t_next - t);
-            match step(&mut rec, model, t, &q, &qdot, dt) {
+            let stepped = step(&mut rec, model, t, &q, &qdot, dt)
+                .and_then(|(q, qdot)| rec.control_drift(model, t_next, q, qdot));
+            match stepped {
                 Ok((q_next, qdot_next)) => (q, qdot) = (q_next, qdot_next),
                 Err(error) => return Err(rec.fail(error)),
             }

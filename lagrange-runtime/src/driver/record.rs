@@ -5,6 +5,7 @@
 use nalgebra::{RealField, SVector};
 
 use super::validate::{invalid, validate};
+use crate::constraints::{DriftControl, ProjectSample, StartOnManifold};
 use crate::solve::acceleration;
 use crate::{Failure, IntegrationError, Lagrangian, Stats, Trajectory};
 
@@ -18,14 +19,19 @@ pub(crate) struct Recorder<'a, S: RealField + Copy, const N: usize> {
 }
 
 impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
-    /// Validates the call and records the samples at `t0`.
+    /// Validates the call, brings a constrained model's initial state onto
+    /// its constraints (or refuses it, as the model's settings say; see
+    /// [`constraints`](crate::constraints#initial-conditions)) and records
+    /// the samples at `t0`. Integration starts from the state returned:
+    /// `(q0, q̇0)` as given for a model in minimal coordinates.
+    #[allow(clippy::type_complexity)]
     pub(crate) fn start<L: Lagrangian<N, Scalar = S>>(
         model: &L,
         t0: S,
         q0: &SVector<S, N>,
         qdot0: &SVector<S, N>,
         times: &'a [S],
-    ) -> Result<Self, Box<Failure<S, N>>> {
+    ) -> Result<(Self, State<S, N>), Box<Failure<S, N>>> {
         validate(model, t0, q0, qdot0, times).map_err(invalid)?;
         let mut recorder = Self {
             times,
@@ -33,10 +39,20 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
             trajectory: Trajectory::with_capacity(times.len()),
             stats: Stats::default(),
         };
+        let (q0, qdot0) = match model.visit_constraints(StartOnManifold {
+            t0,
+            q0: *q0,
+            qdot0: *qdot0,
+            stats: &mut recorder.stats,
+        }) {
+            None => (*q0, *qdot0),
+            Some(Ok(start)) => start,
+            Some(Err(error)) => return Err(recorder.fail(error)),
+        };
         while recorder.pending() == Some(t0) {
-            recorder.record(t0, *q0, *qdot0);
+            recorder.record(t0, q0, qdot0);
         }
-        Ok(recorder)
+        Ok((recorder, (q0, qdot0)))
     }
 
     /// The next sample time not yet recorded.
@@ -64,6 +80,64 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     ) -> Result<SVector<S, N>, IntegrationError<S, N>> {
         self.stats.rhs_evals += 1;
         acceleration(model, t, q, qdot)
+    }
+
+    /// The end of an accepted step of a constrained model: its residuals
+    /// recorded, then the state projected if its drift control says so.
+    /// `(q, q̇)` unchanged for a model in minimal coordinates.
+    pub(crate) fn control_drift<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        model: &L,
+        t: S,
+        q: SVector<S, N>,
+        qdot: SVector<S, N>,
+    ) -> Result<State<S, N>, IntegrationError<S, N>> {
+        let stats = &mut self.stats;
+        let control = DriftControl {
+            t,
+            q,
+            qdot,
+            stats,
+            project: true,
+        };
+        model.visit_constraints(control).unwrap_or(Ok((q, qdot)))
+    }
+
+    /// The residuals of a constrained model's state, recorded without any
+    /// drift control (for a method whose equations keep the constraints).
+    pub(crate) fn record_residuals<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        model: &L,
+        t: S,
+        q: SVector<S, N>,
+        qdot: SVector<S, N>,
+    ) -> Result<(), IntegrationError<S, N>> {
+        let stats = &mut self.stats;
+        let control = DriftControl {
+            t,
+            q,
+            qdot,
+            stats,
+            project: false,
+        };
+        model.visit_constraints(control).unwrap_or(Ok((q, qdot)))?;
+        Ok(())
+    }
+
+    /// Records a sample from dense output, projected onto the constraints
+    /// if the model's drift control projects.
+    pub(crate) fn record_dense<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        model: &L,
+        t: S,
+        q: SVector<S, N>,
+        qdot: SVector<S, N>,
+    ) -> Result<(), IntegrationError<S, N>> {
+        let stats = &mut self.stats;
+        let sample = ProjectSample { t, q, qdot, stats };
+        let (q, qdot) = model.visit_constraints(sample).unwrap_or(Ok((q, qdot)))?;
+        self.record(t, q, qdot);
+        Ok(())
     }
 
     pub(crate) fn finish(mut self) -> Trajectory<S, N> {

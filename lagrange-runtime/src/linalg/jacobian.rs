@@ -4,11 +4,14 @@
 //! `∂q̈/∂q̇ = −M⁻¹ ∂r/∂q̇`. With the model's exact residual Jacobians
 //! (`#[lagrange(jacobians)]`) Newton converges quadratically; without them
 //! they come from forward differences of `q̈`, `N` extra right-hand sides per
-//! block, counted in [`Stats::rhs_evals`](crate::Stats).
+//! block, counted in [`Stats::rhs_evals`](crate::Stats). A constrained
+//! model always takes the differences: its `q̈` comes from the saddle-point
+//! system, which the residual Jacobians do not describe.
 
 use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use super::solve::{acceleration, solve_mass_matrix, SolveError};
+use crate::constraints::is_constrained;
 use crate::{IntegrationError, Lagrangian, NonFiniteValue, Stats};
 
 /// `(∂q̈/∂q, ∂q̈/∂q̇)` at `(t, q, q̇)`, where `qddot` is `q̈` there.
@@ -22,7 +25,15 @@ pub fn acceleration_jacobians<L: Lagrangian<N>, const N: usize>(
     stats: &mut Stats,
 ) -> Result<(SMatrix<L::Scalar, N, N>, SMatrix<L::Scalar, N, N>), IntegrationError<L::Scalar, N>> {
     stats.jacobian_evals += 1;
-    if let Some((jq, jv)) = model.residual_jacobians(t, q, qdot, qddot) {
+    // The residual Jacobians describe `M q̈ − f` alone; a constrained
+    // model's `q̈` also depends on `q` and `q̇` through `G` and `γ`, so it
+    // is differentiated numerically.
+    let exact = if is_constrained(model) {
+        None
+    } else {
+        model.residual_jacobians(t, q, qdot, qddot)
+    };
+    if let Some((jq, jv)) = exact {
         let m = model.mass_matrix(t, q);
         let mut out = [SMatrix::<L::Scalar, N, N>::zeros(); 2];
         for (block, j) in out.iter_mut().zip([jq, jv]) {

@@ -5,8 +5,9 @@
 
 use core::cmp::Ordering;
 
-use nalgebra::{ComplexField, RealField, SMatrix, SVector};
+use nalgebra::{Cholesky, ComplexField, Const, RealField, SMatrix, SVector};
 
+use crate::constraints::Accelerations;
 use crate::{IntegrationError, Lagrangian, NonFiniteValue};
 
 /// Why `M q̈ = f` has no usable solution.
@@ -71,22 +72,55 @@ pub fn solve_mass_matrix<S: RealField + Copy, const N: usize>(
     if !all_finite(f.iter()) {
         return Err(SolveError::NonFiniteForcing);
     }
+    factor_mass_matrix(m)?.solve(f)
+}
+
+/// `M` factored once for several right-hand sides, as
+/// [`solve_mass_matrix`] decides: Cholesky when its pivots are acceptable,
+/// else the matrix itself for LU with partial pivoting (the rare fallback,
+/// which refactors per solve). The constrained accelerations solve with
+/// `M` for `f` and for each row of `G` through one of these.
+pub(crate) enum MassFactor<S: RealField + Copy, const N: usize> {
+    Cholesky(Cholesky<S, Const<N>>),
+    Lu(SMatrix<S, N, N>),
+}
+
+/// Factors `M` with the checks of [`solve_mass_matrix`]: non-finite,
+/// indefinite and (for Cholesky) ill-conditioned cases decided here, LU's
+/// own pivots at each solve.
+pub(crate) fn factor_mass_matrix<S: RealField + Copy, const N: usize>(
+    m: &SMatrix<S, N, N>,
+) -> Result<MassFactor<S, N>, SolveError> {
+    if !all_finite(m.iter()) {
+        return Err(SolveError::NonFiniteMassMatrix);
+    }
     // In exact arithmetic LU without pivoting of an SPD matrix has pivots
     // L_ii², so both factorizations are judged on the same scale.
-    let solution = match m.cholesky() {
+    Ok(match m.cholesky() {
         Some(chol)
             if well_conditioned::<S, N>(chol.l_dirty().diagonal().iter().map(|&l| l * l)) =>
         {
-            chol.solve(f)
+            MassFactor::Cholesky(chol)
         }
-        Some(_) => lu_solve(*m, *f)?,
+        Some(_) => MassFactor::Lu(*m),
         None if !positive_semidefinite(m) => return Err(SolveError::Indefinite),
-        None => lu_solve(*m, *f)?,
-    };
-    if all_finite(solution.iter()) {
-        Ok(solution)
-    } else {
-        Err(SolveError::Singular)
+        None => MassFactor::Lu(*m),
+    })
+}
+
+impl<S: RealField + Copy, const N: usize> MassFactor<S, N> {
+    /// `M⁻¹ b`; a non-finite result from finite input (overflow) counts as
+    /// singular.
+    pub(crate) fn solve(&self, b: &SVector<S, N>) -> Result<SVector<S, N>, SolveError> {
+        let solution = match self {
+            Self::Cholesky(chol) => chol.solve(b),
+            Self::Lu(m) => lu_solve(*m, *b)?,
+        };
+        if all_finite(solution.iter()) {
+            Ok(solution)
+        } else {
+            Err(SolveError::Singular)
+        }
     }
 }
 
@@ -177,7 +211,10 @@ pub(crate) fn lu_solve<S: RealField + Copy, const N: usize>(
 
 /// `q̈` of `model` in the state `(t, q, q̇)`: one right-hand side evaluation.
 ///
-/// Errors carry `t` and the state, as the integrators report them.
+/// For a model with constraints (see [`constraints`](crate::constraints))
+/// this is the saddle-point solve of `M q̈ + Gᵀ λ = f`, `G q̈ = −γ`; a
+/// model in minimal coordinates solves `M q̈ = f` as ever. Errors carry `t`
+/// and the state, as the integrators report them.
 pub fn acceleration<L: Lagrangian<N>, const N: usize>(
     model: &L,
     t: L::Scalar,
@@ -193,21 +230,28 @@ pub fn acceleration<L: Lagrangian<N>, const N: usize>(
     if !t.is_finite() || !all_finite(q.iter()) || !all_finite(qdot.iter()) {
         return Err(non_finite(NonFiniteValue::State));
     }
+    if let Some(constrained) = model.visit_constraints(Accelerations { t, q, qdot }) {
+        return constrained;
+    }
     let (m, f) = model.mass_matrix_and_forcing(t, q, qdot);
-    solve_mass_matrix(&m, &f).map_err(|err| match err {
+    solve_mass_matrix(&m, &f).map_err(|err| mass_error(err, t, q, qdot))
+}
+
+/// A failed solve with `M` as the integrators report it, at `(t, q, q̇)`.
+pub(crate) fn mass_error<S: RealField + Copy, const N: usize>(
+    err: SolveError,
+    t: S,
+    q: &SVector<S, N>,
+    qdot: &SVector<S, N>,
+) -> IntegrationError<S, N> {
+    let (q, qdot) = (*q, *qdot);
+    let non_finite = |value| IntegrationError::NonFiniteState { t, q, qdot, value };
+    match err {
         SolveError::NonFiniteMassMatrix => non_finite(NonFiniteValue::MassMatrix),
         SolveError::NonFiniteForcing => non_finite(NonFiniteValue::Forcing),
-        SolveError::Singular => IntegrationError::SingularMassMatrix {
-            t,
-            q: *q,
-            qdot: *qdot,
-        },
-        SolveError::Indefinite => IntegrationError::IndefiniteMassMatrix {
-            t,
-            q: *q,
-            qdot: *qdot,
-        },
-    })
+        SolveError::Singular => IntegrationError::SingularMassMatrix { t, q, qdot },
+        SolveError::Indefinite => IntegrationError::IndefiniteMassMatrix { t, q, qdot },
+    }
 }
 
 /// How much solving `M x = b` may amplify rounding: the ratio of the

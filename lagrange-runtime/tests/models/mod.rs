@@ -7,6 +7,7 @@
 
 mod breaking;
 mod cart_pole;
+mod constrained;
 mod elastic_pendulum;
 mod light_joint;
 mod oscillators;
@@ -15,6 +16,7 @@ mod without;
 
 pub use breaking::{BlowUp, ExponentialWell, ForcingBreaksDown, InertiaVanishes};
 pub use cart_pole::CartPole;
+pub use constrained::{CartesianPendulum, ParallelAtOne, VanishingGradient};
 pub use elastic_pendulum::ElasticPendulum;
 pub use light_joint::LightJoint;
 pub use oscillators::{CoupledOscillator, DrivenOscillator};

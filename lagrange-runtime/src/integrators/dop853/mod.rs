@@ -301,7 +301,7 @@ mod tests {
     fn fixed_steps(h: f64, steps: usize) -> (State, State) {
         let (tab, model) = (Tableau::<f64>::new(), DoublePendulum);
         let (mut q, mut qdot) = (Vector2::new(0.5, -0.3), Vector2::new(0.0, 0.4));
-        let mut rec = Recorder::start(&model, 0.0, &q, &qdot, &[]).unwrap();
+        let (mut rec, _) = Recorder::start(&model, 0.0, &q, &qdot, &[]).unwrap();
         let (mut t, mut mid) = (0.0, (q, qdot));
         for _ in 0..steps {
             let qddot = rec.rhs(&model, t, &q, &qdot).unwrap();

@@ -5,6 +5,7 @@ use nalgebra::{RealField, SVector};
 
 use super::run::{split, Run};
 use crate::driver::Recorder;
+use crate::{IntegrationError, Lagrangian};
 
 impl<S: RealField + Copy, const N: usize> Run<S, N> {
     /// Moves to the end of an accepted step and keeps its collocation
@@ -26,17 +27,42 @@ impl<S: RealField + Copy, const N: usize> Run<S, N> {
         self.update_scale();
     }
 
+    /// A constrained model's state at the end of the accepted step brought
+    /// back onto its constraints ([`Recorder::control_drift`]). The
+    /// collocation polynomial ends at `y`, so it moves with it; samples
+    /// inside the step are projected on their own.
+    pub(super) fn control_drift<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        model: &L,
+        rec: &mut Recorder<'_, S, N>,
+        t_new: S,
+    ) -> Result<(), IntegrationError<S, N>> {
+        let (q, qdot) = split(&self.y);
+        let (q, qdot) = rec.control_drift(model, t_new, q, qdot)?;
+        self.y.rows_mut(0, N).copy_from(&q);
+        self.y.rows_mut(N, N).copy_from(&qdot);
+        Ok(())
+    }
+
     /// Records the samples up to `t_new`, the end of the accepted step of
     /// size `h` whose state is now `y`.
-    pub(super) fn record(&self, rec: &mut Recorder<'_, S, N>, t_new: S, h: S) {
+    pub(super) fn record<L: Lagrangian<N, Scalar = S>>(
+        &self,
+        model: &L,
+        rec: &mut Recorder<'_, S, N>,
+        t_new: S,
+        h: S,
+    ) -> Result<(), IntegrationError<S, N>> {
         while let Some(ts) = rec.pending().filter(|&ts| ts <= t_new) {
-            let (q, qdot) = if ts == t_new {
-                split(&self.y)
+            if ts == t_new {
+                let (q, qdot) = split(&self.y);
+                rec.record(ts, q, qdot);
             } else {
-                self.dense((ts - t_new) / h)
-            };
-            rec.record(ts, q, qdot);
+                let (q, qdot) = self.dense((ts - t_new) / h);
+                rec.record_dense(model, ts, q, qdot)?;
+            }
         }
+        Ok(())
     }
 
     /// The collocation polynomial at `t_new + s h`, `s ∈ [−1, 0]`.

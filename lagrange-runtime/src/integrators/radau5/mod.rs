@@ -199,7 +199,7 @@ impl<S: RealField + Copy> Integrator<S> for Radau5<S> {
         L: Lagrangian<N, Scalar = S>,
     {
         check_tolerances(self.rtol, self.atol).map_err(invalid)?;
-        let mut rec = Recorder::start(model, t0, &q0, &qdot0, times)?;
+        let (mut rec, (q0, qdot0)) = Recorder::start(model, t0, &q0, &qdot0, times)?;
         let (Some(_), Some(t_end)) = (rec.pending(), rec.end()) else {
             return Ok(rec.finish());
         };

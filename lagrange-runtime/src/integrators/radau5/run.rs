@@ -224,7 +224,8 @@ impl<S: RealField + Copy, const N: usize> Run<S, N> {
             (h_acc, err_acc) = (h, err.max(c(1e-2)));
             h_old = h;
             self.accept();
-            self.record(rec, t_new, h);
+            self.control_drift(model, rec, t_new)?;
+            self.record(model, rec, t_new, h)?;
             if last {
                 return Ok(());
             }
