@@ -4,24 +4,32 @@
 //! with its usual starting states and, where one exists, its exact
 //! solution. Also every integrator by name ([`Method`]), for studies that
 //! run them all, and [`WithoutJacobians`], for the finite-difference path
-//! of the implicit methods.
+//! of the implicit methods. Three are constrained models, closed loops in
+//! redundant coordinates: [`CartesianPendulum`], [`SliderCrank`] (with its
+//! minimal-coordinate twin) and [`FourBar`].
 
+mod cartesian_pendulum;
 mod chain;
 mod double_pendulum;
+mod four_bar;
 mod kepler;
 mod methods;
 mod oscillator;
 mod pendulum;
+mod slider_crank;
 mod stiff_chain;
 mod two_mass_chain;
 mod without_jacobians;
 
+pub use cartesian_pendulum::CartesianPendulum;
 pub use chain::Chain;
 pub use double_pendulum::DoublePendulum;
+pub use four_bar::FourBar;
 pub use kepler::{Kepler, PolarKepler};
 pub use methods::{AnyIntegrator, Method};
 pub use oscillator::Oscillator;
 pub use pendulum::Pendulum;
+pub use slider_crank::{slider_crank_kinematics, MinimalSliderCrank, SliderCrank};
 pub use stiff_chain::StiffChain;
 pub use two_mass_chain::{RayleighTwoMassChain, TwoMassChain};
 pub use without_jacobians::WithoutJacobians;

@@ -277,8 +277,8 @@ pub use trajectory::{Sample, Samples, Stats, Trajectory};
 /// The names a simulation needs: `use lagrange_runtime::prelude::*;`.
 pub mod prelude {
     pub use crate::{
-        integrate, Dop853, Dopri5, ExplicitEuler, Failure, GaussLegendre, ImplicitMidpoint,
-        IntegrationError, Integrator, Lagrangian, Radau5, Rk4, SymplecticEuler, Trajectory,
-        Variational,
+        integrate, Dop853, Dopri5, ExplicitEuler, Failure, GaussLegendre, Holonomic,
+        ImplicitMidpoint, IntegrationError, Integrator, Lagrangian, Radau5, Rk4, SymplecticEuler,
+        Trajectory, Variational,
     };
 }

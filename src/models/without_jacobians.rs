@@ -1,5 +1,6 @@
 //! A model seen without its exact Jacobians.
 
+use lagrange_runtime::constraints::Visitor;
 use lagrange_runtime::Lagrangian;
 use nalgebra::{SMatrix, SVector};
 
@@ -79,5 +80,10 @@ impl<M: Lagrangian<N>, const N: usize> Lagrangian<N> for WithoutJacobians<M> {
     }
     fn parameters_are_finite(&self) -> bool {
         self.0.parameters_are_finite()
+    }
+    /// The model's own constraints, if any: seen without Jacobians, a
+    /// constrained model is still constrained.
+    fn visit_constraints<V: Visitor<M::Scalar, N>>(&self, visitor: V) -> Option<V::Output> {
+        self.0.visit_constraints(visitor)
     }
 }
