@@ -4,5 +4,6 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod constrained;
 mod integrator_suite;
 mod reference_trajectories;
