@@ -51,6 +51,15 @@
 //! limits and every generated item: [`language`], the one reference (also
 //! `docs/language.md` in the repository).
 //!
+//! ## Closed loops
+//!
+//! A `constraints:` section holds a model in redundant coordinates on its
+//! holonomic constraints (`rod: x^2 + y^2 = l^2`): the macro derives their
+//! Jacobian and bias beside `M` and `f`, every integrator runs the
+//! saddle-point system with the state projected back after each step, and
+//! the multipliers are the constraint forces: [`language`](language#constraints),
+//! [`constraints`].
+//!
 //! ## Mistakes are compile errors that speak physics
 //!
 //! A model that is not mechanics (a coordinate without kinetic energy, a

@@ -276,6 +276,7 @@ pub use trajectory::{Sample, Samples, Stats, Trajectory};
 
 /// The names a simulation needs: `use lagrange_runtime::prelude::*;`.
 pub mod prelude {
+    pub use crate::constraints::{Drift, InitialConditions};
     pub use crate::{
         integrate, Dop853, Dopri5, ExplicitEuler, Failure, GaussLegendre, Holonomic,
         ImplicitMidpoint, IntegrationError, Integrator, Lagrangian, Radau5, Rk4, SymplecticEuler,
