@@ -255,6 +255,7 @@
 
 pub mod constraints;
 mod driver;
+pub mod inputs;
 pub mod error;
 pub mod integrators;
 mod lagrangian;
@@ -262,6 +263,7 @@ mod linalg;
 mod trajectory;
 
 pub use constraints::Holonomic;
+pub use inputs::Actuated;
 pub use error::{
     ConstraintLevel, Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue,
 };
