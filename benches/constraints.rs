@@ -69,7 +69,6 @@ fn main() {
 /// models' own source files (`src/models/`), as the macro runs it.
 mod op_counts {
     use lagrange_engine::expr::cse;
-    use proc_macro2::{Delimiter, TokenStream, TokenTree};
 
     const SOURCES: [&str; 4] = [
         include_str!("../src/models/cartesian_pendulum.rs"),
@@ -78,23 +77,6 @@ mod op_counts {
         include_str!("../src/models/four_bar.rs"),
     ];
 
-    /// The bodies of the `lagrangian! { .. }` invocations in a file.
-    fn invocations(stream: TokenStream, found: &mut Vec<TokenStream>) {
-        let tokens: Vec<TokenTree> = stream.into_iter().collect();
-        for (i, tt) in tokens.iter().enumerate() {
-            if let TokenTree::Group(g) = tt {
-                let after_bang = i >= 2
-                    && matches!(&tokens[i - 1], TokenTree::Punct(p) if p.as_char() == '!')
-                    && matches!(&tokens[i - 2], TokenTree::Ident(id) if id == "lagrangian");
-                if after_bang && g.delimiter() == Delimiter::Brace {
-                    found.push(g.stream());
-                } else {
-                    invocations(g.stream(), found);
-                }
-            }
-        }
-    }
-
     pub fn print() {
         println!("Operations of the generated code (after sharing; arithmetic + calls):");
         println!(
@@ -102,9 +84,8 @@ mod op_counts {
             "model", "N", "C", "M + f", "G + gamma", "M + f + G + gamma"
         );
         for source in SOURCES {
-            let mut found = Vec::new();
-            invocations(source.parse().expect("a model file lexes"), &mut found);
-            for tokens in found {
+            let file = source.parse().expect("a model file lexes");
+            for tokens in lagrange_engine::invocations(file) {
                 let derived = lagrange_engine::derive(tokens).expect("a shared model derives");
                 let name = derived.model.name.to_string();
                 let (mf, _) = derived.op_counts();

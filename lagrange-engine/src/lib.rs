@@ -208,6 +208,31 @@ impl Derived {
     }
 }
 
+/// The bodies of the `lagrangian! { .. }` invocations in a token stream
+/// (a source file), at any depth: what tools outside rustc hand to
+/// [`derive`](fn@derive) or [`expand`] to study the repository's own models.
+pub fn invocations(source: TokenStream) -> Vec<TokenStream> {
+    fn walk(stream: TokenStream, found: &mut Vec<TokenStream>) {
+        use proc_macro2::{Delimiter, TokenTree};
+        let tokens: Vec<TokenTree> = stream.into_iter().collect();
+        for (i, tt) in tokens.iter().enumerate() {
+            if let TokenTree::Group(g) = tt {
+                let after_bang = i >= 2
+                    && matches!(&tokens[i - 1], TokenTree::Punct(p) if p.as_char() == '!')
+                    && matches!(&tokens[i - 2], TokenTree::Ident(id) if id == "lagrangian");
+                if after_bang && g.delimiter() == Delimiter::Brace {
+                    found.push(g.stream());
+                } else {
+                    walk(g.stream(), found);
+                }
+            }
+        }
+    }
+    let mut found = Vec::new();
+    walk(source, &mut found);
+    found
+}
+
 /// Parses, lowers, checks and differentiates a model.
 pub fn derive(input: TokenStream) -> syn::Result<Derived> {
     derive_with_budget(input, expr::DEFAULT_BUDGET)

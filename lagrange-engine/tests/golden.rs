@@ -17,7 +17,7 @@
 //! (`tests/data/double_pendulum.expanded.rs`), so that a change shows as a
 //! readable diff.
 
-use proc_macro2::{Delimiter, TokenStream, TokenTree};
+use proc_macro2::{TokenStream, TokenTree};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -43,23 +43,6 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
             }
         } else if name.ends_with(".rs") {
             out.push(path);
-        }
-    }
-}
-
-/// The bodies of `lagrangian! { .. }` invocations in a token stream, at any depth.
-fn invocations(stream: TokenStream, found: &mut Vec<TokenStream>) {
-    let tokens: Vec<TokenTree> = stream.into_iter().collect();
-    for (i, tt) in tokens.iter().enumerate() {
-        if let TokenTree::Group(g) = tt {
-            let after_bang = i >= 2
-                && matches!(&tokens[i - 1], TokenTree::Punct(p) if p.as_char() == '!')
-                && matches!(&tokens[i - 2], TokenTree::Ident(id) if id == "lagrangian");
-            if after_bang && g.delimiter() == Delimiter::Brace {
-                found.push(g.stream());
-            } else {
-                invocations(g.stream(), found);
-            }
         }
     }
 }
@@ -129,9 +112,7 @@ fn expansions() -> BTreeMap<String, String> {
         let Ok(stream) = text.parse::<TokenStream>() else {
             continue;
         };
-        let mut found = Vec::new();
-        invocations(stream, &mut found);
-        for body in found {
+        for body in lagrange_engine::invocations(stream) {
             let k = key(&body);
             out.insert(k, lagrange_engine::expand(body).to_string());
         }

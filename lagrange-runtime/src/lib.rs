@@ -255,18 +255,18 @@
 
 pub mod constraints;
 mod driver;
-pub mod inputs;
 pub mod error;
+pub mod inputs;
 pub mod integrators;
 mod lagrangian;
 mod linalg;
 mod trajectory;
 
 pub use constraints::Holonomic;
-pub use inputs::Actuated;
 pub use error::{
     ConstraintLevel, Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue,
 };
+pub use inputs::Actuated;
 pub use integrators::{
     integrate, Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, Integrator, Radau5,
     Rk4, SymplecticEuler, Variational,
