@@ -28,12 +28,14 @@ pub struct ConstrainedSample<S, const N: usize, const C: usize> {
 /// saddle-point solve each. Fails where a solve does (a sample at a dead
 /// centre, say), with that sample's time and state.
 ///
-/// ```ignore
+/// ```text
 /// let run = Dop853::new().integrate(&pendulum, 0.0, q0, v0, &times)?;
 /// for s in constraints::annotate(&pendulum, &run)? {
 ///     let tension = 2.0 * l * s.multipliers[0]; // φ = x² + y² − l²
 /// }
 /// ```
+///
+/// (Compiled and run on `lagrange::models::CartesianPendulum`.)
 #[allow(clippy::type_complexity)]
 pub fn annotate<H, const N: usize, const C: usize>(
     model: &H,

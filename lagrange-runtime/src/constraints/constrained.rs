@@ -10,10 +10,13 @@ use crate::Lagrangian;
 /// [`Holonomic::with_drift`], [`Holonomic::with_initial_conditions`] or
 /// [`Constrained::new`], and integrate it like the model itself:
 ///
-/// ```ignore
+/// ```text
 /// let measured = Rk4::new(1e-3).integrate(&pendulum.with_drift(Drift::None), t0, q0, v0, &times)?;
 /// let strict = pendulum.with_drift(Drift::Projection).initial_conditions(InitialConditions::Reject);
 /// ```
+///
+/// (A model needs `lagrangian!` or a page of hand-written code; the
+/// compiled example is on `lagrange::models::CartesianPendulum`.)
 ///
 /// `S` is the model's scalar and `C` its number of constraints; both are
 /// inferred.
