@@ -16,7 +16,10 @@ use crate::Lagrangian;
 /// differences) and solves one `N × N` system on the stack. It stops when
 /// a correction is at rounding level, `|Δq_k| ≤ 4 ε max(1, |q_k|)`, or when
 /// corrections stop shrinking (they have reached the noise of evaluating
-/// `f`) at a point that passes [`is_equilibrium`] with `tolerance`.
+/// `f`) at a point that passes [`is_equilibrium`] with `tolerance`. It
+/// gives up, with [`AnalysisError::NotConverged`], when the corrections
+/// more than double three times in a row (overshooting ever further: a
+/// guess outside the basin of attraction) or the iterations run out.
 /// Models with inputs are searched at the inputs they hold.
 ///
 /// ```
@@ -80,6 +83,8 @@ impl<S: RealField + Copy> EquilibriumSearch<S> {
         let four: S = nalgebra::convert(4.0);
         let mut q = *guess;
         let mut previous = None;
+        let mut growth = 0;
+        let mut previous_length = None;
         let mut residual = SVector::zeros();
         for iteration in 1..=self.max_iterations {
             let (f, jacobian, _) = forcing_at_rest(model, t, &q)?;
@@ -101,6 +106,27 @@ impl<S: RealField + Copy> EquilibriumSearch<S> {
                 m.max(step[k].abs() / S::one().max(next[k].abs()))
             });
             let stalled = previous.is_some_and(|p: S| size + size >= p);
+            // Corrections that more than double three times running (in
+            // the fixed scale of the guess) are Newton overshooting further
+            // each time (a guess outside the basin), not the start of
+            // convergence.
+            let length = (0..N).fold(S::zero(), |m, k| {
+                m.max(step[k].abs() / S::one().max(guess[k].abs()))
+            });
+            growth = match previous_length {
+                Some(p) if length > p + p => growth + 1,
+                _ => 0,
+            };
+            previous_length = Some(length);
+            if growth == 3 {
+                let iterations = iteration;
+                return Err(AnalysisError::NotConverged {
+                    t,
+                    q,
+                    residual: f,
+                    iterations,
+                });
+            }
             if size <= four * S::default_epsilon()
                 || (stalled && within(&f, &jacobian, &q, self.tolerance))
             {
