@@ -166,21 +166,21 @@ fn bench(c: &mut Criterion) {
     let chain10 = Chain10::new(m, l);
     let (q10, v10) = state::<10>();
     group.bench_function("chain10/exact", |b| {
-        b.iter(|| linearize(&chain10, 0.0, black_box(&q10), black_box(&v10)))
+        b.iter(|| linearize(&chain10, 0.0, black_box(&q10), black_box(&v10)).unwrap())
     });
     let numeric10 = WithoutJacobians(chain10);
     group.bench_function("chain10/central_differences", |b| {
-        b.iter(|| linearize(&numeric10, 0.0, black_box(&q10), black_box(&v10)))
+        b.iter(|| linearize(&numeric10, 0.0, black_box(&q10), black_box(&v10)).unwrap())
     });
     let (m, l) = m_l::<20>();
     let chain20 = Chain20::new(m, l);
     let (q20, v20) = state::<20>();
     group.bench_function("chain20/exact", |b| {
-        b.iter(|| linearize(&chain20, 0.0, black_box(&q20), black_box(&v20)))
+        b.iter(|| linearize(&chain20, 0.0, black_box(&q20), black_box(&v20)).unwrap())
     });
     let numeric20 = WithoutJacobians(chain20);
     group.bench_function("chain20/central_differences", |b| {
-        b.iter(|| linearize(&numeric20, 0.0, black_box(&q20), black_box(&v20)))
+        b.iter(|| linearize(&numeric20, 0.0, black_box(&q20), black_box(&v20)).unwrap())
     });
     let dual20 = Chain20::new(dual::<20, 40>(m), dual(l));
     group.bench_function("chain20/forward_ad", |b| {

@@ -3,7 +3,6 @@
 use lagrange::models::{DoublePendulum, TwoMassChain, WithoutJacobians};
 use lagrange_runtime::analysis::{modes, AnalysisError, Derivatives, ModeKind, Modes};
 use lagrange_runtime::nalgebra::{Matrix2, Vector2};
-use lagrange_runtime::Lagrangian;
 
 use super::models::Circulatory;
 
