@@ -46,6 +46,10 @@ fn hanging_double_pendulum_swings_at_g_two_minus_and_plus_root_two() {
         // Exact Jacobians: the eigenvalues of L⁻¹ K L⁻ᵀ carry a few ε of
         // relative error (cond(M) ≈ 7); 1e-12 as the brief asks.
         assert!(relative(mode.omega_squared, w2) < 1e-12, "{mode:?} vs {w2}");
+        println!(
+            "hanging ω² relative error {:e}",
+            relative(mode.omega_squared, w2)
+        );
         let ModeKind::Oscillating { frequency } = mode.kind else {
             panic!("{mode:?} does not oscillate");
         };
@@ -73,6 +77,10 @@ fn upright_double_pendulum_falls_along_both_modes() {
     for (mode, w2) in found.modes.iter().zip(expected) {
         // As hanging, plus sin(π) ≈ 1.2e-16 ≠ 0 in K and M: ε-sized.
         assert!(relative(mode.omega_squared, w2) < 1e-12, "{mode:?} vs {w2}");
+        println!(
+            "upright ω² relative error {:e}",
+            relative(mode.omega_squared, w2)
+        );
         let ModeKind::Unstable { growth_rate } = mode.kind else {
             panic!("{mode:?} is not unstable");
         };
@@ -100,6 +108,10 @@ fn two_mass_chain_modes_are_the_roots_of_its_characteristic_quadratic() {
     for (mode, w2) in found.modes.iter().zip(expected) {
         // Exact Jacobians of a linear model, cond(M) = 3: rounding only.
         assert!(relative(mode.omega_squared, w2) < 1e-12, "{mode:?} vs {w2}");
+        println!(
+            "chain ω² relative error {:e}",
+            relative(mode.omega_squared, w2)
+        );
     }
     let m = Matrix2::new(m1, 0.0, 0.0, m2);
     let k = Matrix2::new(k1 + k2, -k2, -k2, k2 + k3);
@@ -118,6 +130,7 @@ fn modes_by_differences_agree_with_exact_ones_to_their_error() {
     assert_eq!(numeric.derivatives, Derivatives::CentralDifferences);
     for (a, b) in numeric.modes.iter().zip(&exact.modes) {
         let error = relative(a.omega_squared, b.omega_squared);
+        println!("ω² by differences, relative error {error:e}");
         assert!(error < 1e-9, "{error:e}");
         assert!((a.shape - b.shape).amax() < 1e-9 * b.shape.amax());
     }
