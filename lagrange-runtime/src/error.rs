@@ -482,7 +482,7 @@ pub type IntegrationResult<S, const N: usize> = Result<Trajectory<S, N>, Box<Fai
 /// Formats a vector on one line, `[1.0, -0.5]`, instead of nalgebra's boxed
 /// multi-line matrix layout. Scalars use `Debug`, which switches to
 /// exponents for tiny and huge values (`2.2e-15`, not 17 zeros).
-struct Row<'a, S, const N: usize>(&'a SVector<S, N>);
+pub(crate) struct Row<'a, S, const N: usize>(pub(crate) &'a SVector<S, N>);
 
 impl<S: RealField + Copy, const N: usize> fmt::Display for Row<'_, S, N> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

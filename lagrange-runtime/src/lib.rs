@@ -245,6 +245,10 @@
 //!   caught; [`jacobian`], `∂q̈/∂q` and `∂q̈/∂q̇` for the implicit methods'
 //!   Newton iterations; beside them the heap LU and the block solve of the
 //!   implicit Runge–Kutta methods.
+//! - [`analysis`]: small motions, [`linearize`](analysis::linearize) at
+//!   any state (`A`, and `B` for models with inputs), equilibria by
+//!   Newton's method, normal modes about them; exact with a model's
+//!   residual Jacobians, else by central differences.
 //! - [`Trajectory`] (`trajectory.rs`): the samples and the [`Stats`] of the
 //!   work done.
 //! - [`error`]: [`IntegrationError`], [`InvalidInput`], [`Failure`].
@@ -253,6 +257,7 @@
 
 #![warn(missing_docs)]
 
+pub mod analysis;
 pub mod constraints;
 mod driver;
 pub mod error;

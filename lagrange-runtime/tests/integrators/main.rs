@@ -6,6 +6,7 @@
 #[path = "../models/mod.rs"]
 mod models;
 
+mod analysis;
 mod constraints;
 mod dop853;
 mod euler_methods;

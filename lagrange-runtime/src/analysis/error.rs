@@ -1,0 +1,139 @@
+//! Why a linearization, an equilibrium search or a modal analysis has no
+//! answer, with the time and the configuration it was asked about.
+
+use nalgebra::{RealField, SVector};
+
+use crate::error::Row;
+use crate::IntegrationError;
+
+/// Why [`linearize`](super::linearize), [`equilibrium`](super::equilibrium)
+/// or [`modes`](super::modes) gave no result.
+///
+/// ```
+/// use lagrange::models::DoublePendulum;
+/// use lagrange_runtime::analysis::{modes, AnalysisError};
+/// use lagrange_runtime::nalgebra::Vector2;
+///
+/// // A swinging-out configuration is no equilibrium: no modes there.
+/// let pendulum = DoublePendulum::unit();
+/// let err = modes(&pendulum, 0.0, &Vector2::new(0.3, 0.0)).unwrap_err();
+/// assert!(matches!(err, AnalysisError::NotAnEquilibrium { .. }));
+/// ```
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum AnalysisError<S: RealField + Copy, const N: usize> {
+    /// Evaluating the model failed: a singular or indefinite mass matrix,
+    /// a NaN in `M`, `f` or the Jacobians, with `t` and the state, as an
+    /// integrator would report it.
+    #[error(transparent)]
+    Model(#[from] IntegrationError<S, N>),
+
+    /// The model has holonomic constraints. Its motion lives on
+    /// `φ(t, q) = 0`, and linearizing it needs independent coordinates on
+    /// that manifold (a null-space basis of `G`), which is not implemented
+    /// yet; linearizing the redundant coordinates as if they were free
+    /// would be wrong.
+    #[error(
+        "the model has holonomic constraints at t = {t:?} (q = {}): linearization, \
+         equilibria and modes on the constraint manifold are not supported yet",
+        Row(.q)
+    )]
+    Constrained {
+        /// Time asked about.
+        t: S,
+        /// Configuration asked about.
+        q: SVector<S, N>,
+    },
+
+    /// The Newton iteration for an equilibrium did not converge: it ran out
+    /// of iterations, or its iterate left the finite numbers. `q` is the
+    /// last finite iterate and `residual` the forcing `f(t, q, 0)` there.
+    #[error(
+        "no equilibrium found from the guess: Newton stopped after {iterations} iterations \
+         at t = {t:?} with q = {} and residual forcing f(t, q, 0) = {}; try another guess",
+        Row(.q), Row(.residual)
+    )]
+    NotConverged {
+        /// Time of the search.
+        t: S,
+        /// The last finite iterate.
+        q: SVector<S, N>,
+        /// `f(t, q, 0)` at that iterate.
+        residual: SVector<S, N>,
+        /// Iterations done.
+        iterations: usize,
+    },
+
+    /// `∂f/∂q` at rest is singular at `q`: some displacement changes no
+    /// force to first order (a neutral direction: a cyclic coordinate, a
+    /// free body, a force that does not depend on position), so Newton's
+    /// step is not determined. If `residual` is not zero, a constant force
+    /// along that direction means there may be no equilibrium at all.
+    #[error(
+        "∂f/∂q is singular at t = {t:?}, q = {} (residual forcing {}): a neutral direction \
+         (a cyclic coordinate, a free body or a position-independent force) leaves the \
+         equilibrium undetermined, or there is none",
+        Row(.q), Row(.residual)
+    )]
+    SingularStiffness {
+        /// Time of the evaluation.
+        t: S,
+        /// Configuration where `∂f/∂q` was singular.
+        q: SVector<S, N>,
+        /// `f(t, q, 0)` there.
+        residual: SVector<S, N>,
+    },
+
+    /// Modes were asked for at a configuration that is not an equilibrium:
+    /// the forcing at rest is beyond the tolerance
+    /// ([`is_equilibrium`](super::is_equilibrium)), so small motions about
+    /// it are not oscillations about `q`. Find one with
+    /// [`equilibrium`](super::equilibrium) first.
+    #[error(
+        "t = {t:?}, q = {} is not an equilibrium: the forcing at rest is f(t, q, 0) = {}; \
+         find one with `equilibrium` first",
+        Row(.q), Row(.residual)
+    )]
+    NotAnEquilibrium {
+        /// Time asked about.
+        t: S,
+        /// Configuration asked about.
+        q: SVector<S, N>,
+        /// `f(t, q, 0)` there.
+        residual: SVector<S, N>,
+    },
+
+    /// The stiffness `K = −∂f/∂q` is not symmetric beyond the error of its
+    /// evaluation: position-dependent forces that are not the gradient of a
+    /// potential (follower or circulatory forces). Such a system has no
+    /// real modes (it can flutter); study the eigenvalues of the
+    /// [`Linearization`](super::Linearization)'s state matrix instead.
+    #[error(
+        "the stiffness −∂f/∂q at t = {t:?}, q = {} is not symmetric (relative asymmetry \
+         {asymmetry:?}): the forces are not conservative, so there are no real modes; use \
+         the eigenvalues of the linearization instead",
+        Row(.q)
+    )]
+    NonConservative {
+        /// Time asked about.
+        t: S,
+        /// Configuration asked about.
+        q: SVector<S, N>,
+        /// `max |K − Kᵀ| / max |K|`.
+        asymmetry: S,
+    },
+
+    /// The model's `∂f/∂u` has a NaN or infinite entry at this state.
+    #[error(
+        "the input Jacobian ∂f/∂u is NaN or infinite at t = {t:?} (q = {}, q̇ = {})",
+        Row(.q), Row(.qdot)
+    )]
+    NonFiniteInputJacobian {
+        /// Time of the evaluation.
+        t: S,
+        /// Generalized coordinates.
+        q: SVector<S, N>,
+        /// Generalized velocities.
+        qdot: SVector<S, N>,
+    },
+}

@@ -1,0 +1,119 @@
+//! Small motions: linearization at any state, equilibria, normal modes.
+//!
+//! The equations of motion `M(t, q) q̈ = f(t, q, q̇)` are a first-order
+//! system `ẋ = F(t, x)` in `x = (q, q̇)`. Near a state, a small deviation
+//! `δx` evolves by the linearization
+//!
+//! ```text
+//! δẋ = A δx (+ B δu),   A = [[0, I], [∂q̈/∂q, ∂q̈/∂q̇]],   B = [[0], [M⁻¹ ∂f/∂u]],
+//! ```
+//!
+//! what controller design (LQR, pole placement), stability of a motion
+//! and the Newton iterations of implicit methods all start from.
+//!
+//! # The blocks, and the term that is easy to forget
+//!
+//! Differentiating the residual `r = M(t, q) q̈ − f(t, q, q̇) = 0` along a
+//! motion gives `∂q̈/∂q = −M⁻¹ ∂r/∂q` and `∂q̈/∂q̇ = −M⁻¹ ∂r/∂q̇`, with
+//!
+//! ```text
+//! ∂r/∂q = ∂(M q̈)/∂q − ∂f/∂q,
+//! ```
+//!
+//! evaluated at the state's own `q̈`. At an equilibrium `q̈ = 0` and the
+//! first term vanishes; at any other operating point (a pendulum held at an
+//! angle by a motor, a swinging arm) it does not, and `−M⁻¹ ∂f/∂q` alone is
+//! wrong. [`linearize`] includes it.
+//!
+//! # Exact or by differences
+//!
+//! A model written with `#[lagrange(jacobians)]` provides `∂r/∂q` and
+//! `∂r/∂q̇` symbolically ([`Lagrangian::residual_jacobians`]): then every
+//! analysis here is exact up to rounding ([`Derivatives::Exact`]), and a
+//! linearization costs one `M` factorization and `2N` triangular solves.
+//! Otherwise the derivatives are central differences
+//! ([`Derivatives::CentralDifferences`]): `4N` right-hand sides for
+//! [`linearize`], `2N` forcings for equilibria and modes, with steps
+//! `h = ε^(1/3) max(1, |x|)` that balance truncation `O(h²)` against
+//! rounding `O(ε / h)`, leaving a relative error `≈ ε^(2/3)` (`4·10⁻¹¹` in
+//! `f64`, times the ratio of the model's third to first derivatives).
+//! Each result says which it is. `B` always comes from the model's exact
+//! [`input_jacobian`](crate::Actuated::input_jacobian).
+//!
+//! # Equilibria and modes
+//!
+//! An equilibrium is a `q` where the model can stay at rest:
+//! `f(t, q, 0) = 0` (for a model with inputs, at the inputs it holds).
+//! [`equilibrium`] finds one by Newton's method from a guess, with
+//! `∂f/∂q` at rest as above; [`is_equilibrium`] tests a point with a
+//! tolerance relative to the model's own stiffness, free of units.
+//!
+//! About an equilibrium, `M δq̈ = −K δq` with the stiffness
+//! `K = −∂f/∂q`, symmetric for conservative forces (`K = ∇²V`). Its
+//! [`modes`] solve `K v = ω² M v`: `ω² > 0` oscillates at `ω`, `ω² < 0`
+//! grows at `√−ω²` (an unstable equilibrium), `ω² ≈ 0` is neutral. Damping
+//! and gyroscopic forces are not in `K`; the eigenvalues of `A`
+//! ([`Linearization::state_matrix`]) include them.
+//!
+//! ```
+//! use lagrange::models::DoublePendulum;
+//! use lagrange_runtime::analysis::{equilibrium, linearize, modes};
+//! use lagrange_runtime::nalgebra::Vector2;
+//!
+//! let pendulum = DoublePendulum::unit();
+//! let hanging = equilibrium(&pendulum, 0.0, &Vector2::new(0.2, -0.1))?;
+//! let modes = modes(&pendulum, 0.0, &hanging)?;
+//! assert!(modes.is_stable());
+//!
+//! // Away from equilibrium: swinging through the bottom.
+//! let lin = linearize(&pendulum, 0.0, &Vector2::new(0.3, 0.1), &Vector2::new(2.0, -1.0))?;
+//! assert!(lin.dqddot_dqdot.amax() > 0.0); // Coriolis terms
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # Not yet
+//!
+//! Models with holonomic constraints are refused
+//! ([`AnalysisError::Constrained`]): their motion lives on `φ(t, q) = 0`,
+//! and their linearization needs independent coordinates on it (a
+//! null-space basis of `G` at the point).
+//!
+//! The files: `linearize.rs` ([`linearize`], [`linearize_with_inputs`]),
+//! `equilibrium.rs` ([`equilibrium`], [`EquilibriumSearch`],
+//! [`is_equilibrium`]), `modes.rs` ([`modes`]), `derivatives.rs` (the
+//! derivatives they share), `error.rs` ([`AnalysisError`]).
+
+mod derivatives;
+mod equilibrium;
+mod error;
+mod linearize;
+mod modes;
+
+pub use equilibrium::{equilibrium, is_equilibrium, EquilibriumSearch};
+pub use error::AnalysisError;
+pub use linearize::{linearize, linearize_with_inputs, InputLinearization, Linearization};
+pub use modes::{modes, Mode, ModeKind, Modes};
+
+#[cfg(doc)]
+use crate::Lagrangian;
+
+/// How the derivatives of a result were obtained, and so how accurate it
+/// is.
+///
+/// ```
+/// use lagrange::models::{DoublePendulum, WithoutJacobians};
+/// use lagrange_runtime::analysis::{linearize, Derivatives};
+/// use lagrange_runtime::nalgebra::Vector2;
+///
+/// let (q, v) = (Vector2::new(0.1, 0.2), Vector2::zeros());
+/// let plain = WithoutJacobians(DoublePendulum::unit());
+/// assert_eq!(linearize(&plain, 0.0, &q, &v)?.derivatives, Derivatives::CentralDifferences);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Derivatives {
+    /// From the model's symbolic Jacobians: exact up to rounding.
+    Exact,
+    /// Central differences: relative error `≈ ε^(2/3)`.
+    CentralDifferences,
+}
