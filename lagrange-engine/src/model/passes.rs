@@ -427,6 +427,7 @@ pub fn declared_shape(def: &ModelDef) -> Shape {
     // Apart from the other names: a constraint named like a coordinate is
     // the error, and the coordinate still counts.
     let mut seen_constraints: HashSet<String> = HashSet::new();
+    let mut field_names: HashSet<String> = HashSet::new();
     for item in &def.items {
         if let Item::Constraints { entries, .. } = item {
             for e in entries {
@@ -447,7 +448,17 @@ pub fn declared_shape(def: &ModelDef) -> Shape {
             continue;
         };
         for d in names {
-            if !seen.insert(d.name.to_string()) {
+            // An input clashes only with another field: an input named
+            // like a coordinate is still the input the code using it means.
+            let fresh = match item {
+                Item::Inputs { .. } => field_names.insert(d.name.to_string()),
+                Item::Parameters { .. } => {
+                    field_names.insert(d.name.to_string());
+                    seen.insert(d.name.to_string())
+                }
+                _ => seen.insert(d.name.to_string()),
+            };
+            if !fresh {
                 continue;
             }
             let len = d.len.as_ref().map(|e| cx.length(e).unwrap_or(1));
