@@ -6,8 +6,10 @@
 //! run them all, and [`WithoutJacobians`], for the finite-difference path
 //! of the implicit methods. Three are constrained models, closed loops in
 //! redundant coordinates: [`CartesianPendulum`], [`SliderCrank`] (with its
-//! minimal-coordinate twin) and [`FourBar`].
+//! minimal-coordinate twin) and [`FourBar`]. One has a control input:
+//! [`CartPole`], pushed by a motor force.
 
+mod cart_pole;
 mod cartesian_pendulum;
 mod chain;
 mod double_pendulum;
@@ -21,6 +23,7 @@ mod stiff_chain;
 mod two_mass_chain;
 mod without_jacobians;
 
+pub use cart_pole::CartPole;
 pub use cartesian_pendulum::CartesianPendulum;
 pub use chain::Chain;
 pub use double_pendulum::DoublePendulum;

@@ -105,6 +105,12 @@ pub enum Item {
         keyword: Ident,
         names: Vec<Decl>,
     },
+    /// `inputs: force, tau[N];`: control inputs, declared like parameters
+    /// but set during a run (by a controller) rather than at construction.
+    Inputs {
+        keyword: Ident,
+        names: Vec<Decl>,
+    },
     /// `constants: g = 9.81;`: values folded into the generated code.
     Constants {
         keyword: Ident,

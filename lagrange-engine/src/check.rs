@@ -2,9 +2,10 @@
 //! problem: a potential that depends on a velocity, a kinetic energy that is
 //! not quadratic in the velocities, a coordinate without kinetic energy, a
 //! mass matrix that is singular at every state. The constraints' checks are
-//! in [`constraints`].
+//! in [`constraints`], the control inputs' in [`inputs`].
 
 pub mod constraints;
+pub mod inputs;
 
 use crate::ast::Expr;
 use crate::derive::Equations;

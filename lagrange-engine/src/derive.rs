@@ -24,6 +24,12 @@
 //! `γ` is the total time derivative of `φ̇` with `q̇` held: `∂φ̇/∂q̇ = G` is
 //! the part that multiplies `q̈`. Rheonomic constraints (`x = a sin(ω t)`)
 //! need nothing more: their `∂/∂t` terms are in `φ̇` and `γ`.
+//!
+//! A model with control inputs `u` (`inputs:`) also gets `∂f/∂u` (N × K),
+//! how the forcing responds to each input: what a controller designer
+//! linearizes. The inputs are symbols like the parameters; the checks keep
+//! them out of the momenta and the constraints, the only places where their
+//! time derivatives would be needed.
 
 use crate::expr::{ExprId, Pool};
 use crate::model::{Model, Symbols};
@@ -48,6 +54,8 @@ pub struct Equations {
     pub jacobians: Option<(ExprMatrix, ExprMatrix)>,
     /// The constraints' terms, for a constrained model only.
     pub constraints: Option<ConstraintEquations>,
+    /// `∂f/∂u`, `N × K` row-major, for a model with inputs only.
+    pub input_jacobian: Option<ExprMatrix>,
 }
 
 /// What holonomic constraints `φ(t, q) = 0` contribute, each vector in the
@@ -171,6 +179,25 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         };
         (block(pool, &s.coordinates), block(pool, &s.velocities))
     });
+    let input_jacobian = if s.inputs.is_empty() {
+        None
+    } else {
+        // N × K entries, paid for before they are made like M's.
+        pool.charge((n as u64).saturating_mul(s.inputs.len() as u64));
+        let rows = forcing
+            .iter()
+            .map(|&f| {
+                s.inputs
+                    .iter()
+                    .map(|&u| {
+                        let d = pool.diff(f, u);
+                        pool.factored(d)
+                    })
+                    .collect()
+            })
+            .collect();
+        Some(rows)
+    };
     let constraints = if phi.is_empty() {
         None
     } else {
@@ -188,6 +215,7 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         nonconservative,
         jacobians,
         constraints,
+        input_jacobian,
     }
 }
 
@@ -239,6 +267,7 @@ impl Equations {
             nonconservative: Vec::new(),
             jacobians: None,
             constraints: None,
+            input_jacobian: None,
         }
     }
 }

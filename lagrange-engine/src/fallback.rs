@@ -5,10 +5,13 @@
 //! The stub has the struct, the consts and every method of
 //! [`api`](crate::emit::api), each method's body `unreachable!()`, and the
 //! `Lagrangian` impl's required methods; a model that declares constraints
-//! also gets their methods and the `Holonomic` impl's required ones.
+//! also gets their methods and the `Holonomic` impl's required ones, and a
+//! model that declares inputs their fields, `INPUTS`, the methods that read
+//! and set them and the `Actuated` impl.
 
 use crate::ast::ModelDef;
 use crate::emit::api::{InTrait, CONSTS, METHODS};
+use crate::emit::inputs;
 use crate::emit::outline::{nalgebra, Outline, Types};
 use crate::model::{declared_shape, Field};
 use proc_macro2::TokenStream;
@@ -22,19 +25,21 @@ pub struct Stub {
     name: Ident,
     dof: usize,
     fields: Vec<Field>,
+    inputs: Vec<Field>,
     constraints: usize,
 }
 
 impl Stub {
     pub fn of(def: &ModelDef) -> Self {
-        let (dof, fields, constraints) = declared_shape(def);
+        let shape = declared_shape(def);
         Stub {
             attrs: def.attrs.clone(),
             vis: def.vis.clone(),
             name: def.name.clone(),
-            dof,
-            fields,
-            constraints,
+            dof: shape.dof,
+            fields: shape.fields,
+            inputs: shape.inputs,
+            constraints: shape.constraints,
         }
     }
 
@@ -46,6 +51,7 @@ impl Stub {
             name: &self.name,
             dof: self.dof,
             fields: &self.fields,
+            inputs: &self.inputs,
             constraints: self.constraints,
         };
         let item = outline.struct_item();
@@ -54,17 +60,20 @@ impl Stub {
         }
         let na = nalgebra();
         let name = &self.name;
-        let types = Types::new(self.dof, self.constraints);
+        let k: usize = self.inputs.iter().map(|f| f.len.unwrap_or(1)).sum();
+        let types = Types::new(self.dof, self.constraints, k);
         let n = &types.n;
         let stop = quote!(::core::unreachable!(
             "`lagrangian!` reported a compile error for this model"
         ));
         let constrained = self.constraints > 0;
+        let actuated = k > 0;
         let consts = CONSTS.iter().filter_map(|c| c.item(&outline, None));
         let new = outline.constructor();
         let methods = METHODS
             .iter()
             .filter(|m| constrained || !matches!(m.in_trait, InTrait::Holonomic { .. }))
+            .filter(|m| actuated || m.in_trait != InTrait::Actuated)
             .map(|m| {
                 let signature = m.signature(&types);
                 quote!(pub #signature { #stop })
@@ -93,6 +102,18 @@ impl Stub {
                 }
             }
         });
+        let input_methods = inputs::inherent_methods(&outline, &types);
+        let jacobian = METHODS
+            .iter()
+            .filter(|m| m.in_trait == InTrait::Actuated)
+            .map(|m| {
+                let signature = m.trait_signature(&types);
+                quote!(#signature { #stop })
+            })
+            .collect();
+        let actuated = inputs::actuated_impl(&outline, &types, jacobian);
+        let actuated = (!actuated.is_empty())
+            .then(|| quote!(#[allow(unused_variables, clippy::all)] #actuated));
         quote! {
             #error
             #item
@@ -101,6 +122,7 @@ impl Stub {
                 #(#consts)*
                 pub #new
                 #(#methods)*
+                #input_methods
             }
             #[allow(unused_variables, clippy::all)]
             impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::Lagrangian<#n> for #name<S> {
@@ -109,6 +131,7 @@ impl Stub {
                 #(#required)*
             }
             #holonomic
+            #actuated
         }
     }
 }

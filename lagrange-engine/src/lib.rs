@@ -113,19 +113,40 @@ impl Derived {
         render::render(&self.model, &self.equations)
     }
 
-    /// Values of the symbols in the order `t, q, q̇, parameters`.
+    /// Values of the symbols in the order `t, q, q̇, parameters`. A model
+    /// with inputs takes their values after the parameters' in `params`.
     fn values(&self, t: f64, q: &[f64], qdot: &[f64], params: &[f64]) -> Vec<f64> {
+        let p = self.model.parameters.len().min(params.len());
         let mut v = vec![t];
         v.extend_from_slice(q);
         v.extend_from_slice(qdot);
-        v.extend_from_slice(params);
+        v.extend_from_slice(&params[..p]);
         v.extend(std::iter::repeat_n(0.0, q.len())); // accelerations
+        v.extend_from_slice(&params[p..]); // inputs
         assert_eq!(
             v.len(),
             self.model.symbols.count(),
             "wrong number of values"
         );
         v
+    }
+
+    /// Evaluates `∂f/∂u` numerically (row-major, `N × K`), for tests;
+    /// `params` holds the parameters, then the inputs. Empty for a model
+    /// without inputs.
+    pub fn eval_input_jacobian(
+        &self,
+        t: f64,
+        q: &[f64],
+        qdot: &[f64],
+        params: &[f64],
+    ) -> Vec<Vec<f64>> {
+        let Some(rows) = &self.equations.input_jacobian else {
+            return Vec::new();
+        };
+        rows.iter()
+            .map(|row| self.eval(row, t, q, qdot, params))
+            .collect()
     }
 
     /// Evaluates `M` numerically (row-major), for tests.
@@ -258,8 +279,12 @@ fn derive_model(def: ast::ModelDef, budget: u64) -> syn::Result<Derived> {
     within_budget(&model, r)?;
     let r = check::constraints::constraints_are_holonomic(&mut model);
     within_budget(&model, r)?;
+    let r = check::inputs::constraints_hold_no_input(&mut model);
+    within_budget(&model, r)?;
     let equations = derive::euler_lagrange(&mut model);
     within_budget(&model, Ok(()))?;
+    let r = check::inputs::momenta_hold_no_input(&mut model, &equations);
+    within_budget(&model, r)?;
     let r = check::mass_matrix_is_regular(&mut model, &equations);
     within_budget(&model, r)?;
     let r = check::constraints::constraints_are_independent(&mut model, &equations);

@@ -1,7 +1,7 @@
 //! A readable rendering of the derived equations, for docs and debugging:
 //! the shared subexpressions first (`e0 = ...`), then each entry of `M` and
-//! `f`, and for a constrained model of `φ`, `G` and `γ`. Velocities read
-//! `dot(x)`, as in the model.
+//! `f`, for a constrained model of `φ`, `G` and `γ`, and for a model with
+//! inputs of `∂f/∂u`. Velocities read `dot(x)`, as in the model.
 
 use crate::derive::Equations;
 use crate::expr::cse::schedule;
@@ -48,6 +48,7 @@ impl Renderer<'_> {
                     SymKind::Velocity(i) => format!("dot({})", m.coordinates[i]),
                     SymKind::Parameter(k) => m.parameters[k].to_string(),
                     SymKind::Acceleration(i) => format!("ddot({})", m.coordinates[i]),
+                    SymKind::Input(k) => m.inputs[k].to_string(),
                 };
                 (name, 2)
             }
@@ -148,6 +149,16 @@ pub fn constraint_roots(eq: &Equations) -> Vec<ExprId> {
     roots
 }
 
+/// The entries of `∂f/∂u` row by row (none for a model without inputs).
+pub fn input_roots(eq: &Equations) -> Vec<ExprId> {
+    eq.input_jacobian
+        .iter()
+        .flatten()
+        .flatten()
+        .copied()
+        .collect()
+}
+
 pub fn render(model: &Model, eq: &Equations) -> String {
     let n = model.dof();
     let mut roots = Vec::new();
@@ -158,6 +169,7 @@ pub fn render(model: &Model, eq: &Equations) -> String {
     }
     roots.extend(&eq.forcing);
     roots.extend(constraint_roots(eq));
+    roots.extend(input_roots(eq));
     let sched = schedule(&model.pool, &roots);
     let mut r = Renderer {
         model,
@@ -198,6 +210,13 @@ pub fn render(model: &Model, eq: &Equations) -> String {
         }
         for (name, &gamma) in labels.iter().zip(&ce.bias) {
             writeln!(out, "γ[{name}] = {}", r.text(gamma, 0)).unwrap();
+        }
+    }
+    if let Some(rows) = &eq.input_jacobian {
+        for (ci, row) in c.iter().zip(rows) {
+            for (u, &d) in model.inputs.iter().zip(row) {
+                writeln!(out, "∂f/∂u[{ci}, {u}] = {}", r.text(d, 0)).unwrap();
+            }
         }
     }
     out

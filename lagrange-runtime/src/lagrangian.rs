@@ -179,4 +179,37 @@ pub trait Lagrangian<const N: usize> {
     fn parameters_are_finite(&self) -> bool {
         true
     }
+
+    /// Whether every control input of the model holds a value (see
+    /// [`Actuated`](crate::Actuated)). A model from `lagrangian!` with
+    /// `inputs:` starts with its inputs NaN, meaning "not set", and
+    /// integrators refuse it before the first step
+    /// ([`InvalidInput::InputsNotSet`](crate::InvalidInput::InputsNotSet))
+    /// rather than run on NaN or on a default nobody chose. A model without
+    /// inputs, and a model under a controller, are always set.
+    fn inputs_are_set(&self) -> bool {
+        true
+    }
+
+    /// The names of the model's control inputs, for the error that says
+    /// which were never set (empty for a model without inputs).
+    fn input_names(&self) -> &'static [&'static str] {
+        &[]
+    }
+
+    /// Whether the control inputs that drive the model at `(t, q, q̇)` are
+    /// finite. Only a model under a controller
+    /// ([`Controlled`](crate::inputs::Controlled)) can answer `false`; the
+    /// integrators ask when an evaluation came back non-finite, to report
+    /// [`NonFiniteValue::Inputs`](crate::NonFiniteValue::Inputs) instead of
+    /// blaming the forcing.
+    fn inputs_are_finite_at(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> bool {
+        let _ = (t, q, qdot);
+        true
+    }
 }

@@ -252,6 +252,9 @@
 //! - [`Trajectory`] (`trajectory.rs`): the samples and the [`Stats`] of the
 //!   work done.
 //! - [`error`]: [`IntegrationError`], [`InvalidInput`], [`Failure`].
+//! - [`inputs`]: control inputs, the [`Actuated`] trait of models with an
+//!   `inputs:` section and the [`Controlled`](inputs::Controlled) model a
+//!   controller drives; inputs never set are refused before the first step.
 //!
 //! Everything is generic over the model's scalar: `f64` and `f32` both work.
 
@@ -285,7 +288,7 @@ pub use trajectory::{Sample, Samples, Stats, Trajectory};
 pub mod prelude {
     pub use crate::constraints::{Drift, InitialConditions};
     pub use crate::{
-        integrate, Dop853, Dopri5, ExplicitEuler, Failure, GaussLegendre, Holonomic,
+        integrate, Actuated, Dop853, Dopri5, ExplicitEuler, Failure, GaussLegendre, Holonomic,
         ImplicitMidpoint, IntegrationError, Integrator, Lagrangian, Radau5, Rk4, SymplecticEuler,
         Trajectory, Variational,
     };

@@ -10,6 +10,7 @@ mod compile_errors;
 mod constrained_models;
 mod generated_derivatives;
 mod indexed_models;
+mod inputs;
 mod more_models;
 mod readme;
 mod textbook_models;

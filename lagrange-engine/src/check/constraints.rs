@@ -13,7 +13,11 @@ use crate::model::{Constraint, Model};
 
 /// The tokens of the side of constraint `k` that is `bad`, narrowed to the
 /// smallest piece at fault; the whole entry if neither side alone is.
-fn locate_side(model: &mut Model, k: usize, bad: &dyn Fn(&mut Pool, ExprId) -> bool) -> SpanRange {
+pub(super) fn locate_side(
+    model: &mut Model,
+    k: usize,
+    bad: &dyn Fn(&mut Pool, ExprId) -> bool,
+) -> SpanRange {
     let c = &model.constraints[k];
     let (def, env) = model.constraint_def(c);
     let sides: Vec<(Expr, ExprId)> = std::iter::once((def.lhs.clone(), c.lhs))

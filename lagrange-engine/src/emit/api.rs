@@ -74,6 +74,8 @@ pub enum Returns {
     /// `(SMatrix<S, N, N>, SVector<S, N>, SMatrix<S, C, N>, SVector<S, C>)`:
     /// `N²`, `N`, `C·N` and `C` roots.
     ConstrainedSystem,
+    /// `SMatrix<S, N, K>`, `K` the number of inputs: `N·K` roots.
+    InputMatrix,
 }
 
 impl Returns {
@@ -91,6 +93,7 @@ impl Returns {
                 let (cv, cm) = (&ty.constraint_vector, &ty.constraint_matrix);
                 quote!((#matrix, #vector, #cm, #cv))
             }
+            Returns::InputMatrix => ty.input_matrix.clone(),
         }
     }
 
@@ -137,6 +140,10 @@ impl Returns {
                     )
                 }
             }
+            Returns::InputMatrix => {
+                let new = &ty.new_input_matrix;
+                quote!(#new(&[#(#outs),*]))
+            }
         }
     }
 }
@@ -159,6 +166,10 @@ pub enum InTrait {
     /// constrained model implements: its impl calls the inherent one.
     /// `required` methods are implemented by the stub too.
     Holonomic { required: bool },
+    /// Not a method of `Lagrangian` but of `Actuated<N, K>`, which only a
+    /// model with inputs implements: its impl calls the inherent one, and
+    /// the stub implements it too.
+    Actuated,
 }
 
 /// A generated method `fn name(&self, args) -> returns`.
@@ -337,6 +348,23 @@ pub const METHODS: &[Method] = &[
         },
         in_trait: InTrait::Holonomic { required: false },
     },
+    // Only a model with `inputs:` has this one.
+    Method {
+        name: "input_jacobian",
+        doc: &[
+            "`∂f/∂u`, `N × K`: how the forcing responds to each control input, at",
+            "`(t, q, q̇)` and the inputs the model holds.",
+        ],
+        args: &[Arg::T, Arg::Q, Arg::Qdot],
+        returns: Returns::InputMatrix,
+        roots: |model, eq| {
+            Some(column_major_of(
+                eq.input_jacobian.as_ref()?,
+                model.inputs.len(),
+            ))
+        },
+        in_trait: InTrait::Actuated,
+    },
 ];
 
 /// The entries of a square matrix, column by column.
@@ -369,9 +397,10 @@ impl Method {
             InTrait::Optional { .. } => {
                 self.signature_returning(ty, quote!(::core::option::Option<#returns>))
             }
-            InTrait::Required | InTrait::Provided | InTrait::Holonomic { .. } => {
-                self.signature_returning(ty, returns)
-            }
+            InTrait::Required
+            | InTrait::Provided
+            | InTrait::Holonomic { .. }
+            | InTrait::Actuated => self.signature_returning(ty, returns),
         }
     }
 

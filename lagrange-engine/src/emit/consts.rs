@@ -31,6 +31,9 @@ pub enum ConstValue {
     CoordinateNames,
     /// `[&'static str; P]`: the parameter fields' names (not in the stub).
     ParameterNames,
+    /// `[&'static str; K]`: the inputs' names, flattened (`tau[0]`, ...);
+    /// empty in the stub, absent from a model without inputs.
+    InputNames,
     /// `[&'static str; C]`: the constraints' names (empty in the stub;
     /// absent from a model without constraints).
     ConstraintNames,
@@ -65,6 +68,14 @@ pub const CONSTS: &[Const] = &[
         value: ConstValue::ParameterNames,
     },
     Const {
+        name: "INPUTS",
+        doc: Doc::Lines(&[
+            "Names of the control inputs, in the order of `u` (an indexed",
+            "input `tau[N]` is `tau[0]` … `tau[N-1]`).",
+        ]),
+        value: ConstValue::InputNames,
+    },
+    Const {
         name: "EQUATIONS",
         doc: Doc::Attribute(
             "The derived equations `M q̈ = f`, readable: shared subexpressions first, then each entry.",
@@ -95,6 +106,17 @@ impl Const {
                 (quote!([&'static str; #p]), quote!([#(#names),*]))
             }
             (ConstValue::ParameterNames, None) => return None,
+            (ConstValue::InputNames, _) if outline.inputs.is_empty() => return None,
+            (ConstValue::InputNames, Some((model, _))) => {
+                let k = Literal::usize_unsuffixed(model.inputs.len());
+                let names = model.inputs.iter().map(|u| u.to_string());
+                (quote!([&'static str; #k]), quote!([#(#names),*]))
+            }
+            (ConstValue::InputNames, None) => {
+                let len: usize = outline.inputs.iter().map(|f| f.len.unwrap_or(1)).sum();
+                let k = Literal::usize_unsuffixed(len);
+                (quote!([&'static str; #k]), quote!([""; #k]))
+            }
             (ConstValue::ConstraintNames, _) if outline.constraints == 0 => return None,
             (ConstValue::ConstraintNames, Some((model, _))) => {
                 let c = Literal::usize_unsuffixed(outline.constraints);

@@ -291,14 +291,24 @@ impl<'a> FnEmitter<'a> {
             }
             _ => out.extend(quote!(let (#(#patterns),*) = (#(#sources),*);)),
         }
-        // Parameters: one destructuring of `self`, scalar fields by name,
-        // array fields by element pattern (`m: [m_0, _, m_2]`).
+        // Parameters and inputs: one destructuring of `self`, scalar fields
+        // by name, array fields by element pattern (`m: [m_0, _, m_2]`).
         let mut params: Vec<TokenStream> = Vec::new();
-        let mut k = 0;
-        for field in &model.fields {
-            let len = field.len.unwrap_or(1);
-            let syms = &s.parameters[k..k + len];
-            k += len;
+        // Each field with its symbols: the parameters' fields hold the
+        // parameter symbols in order, the inputs' fields the input symbols.
+        let mut fields: Vec<(&crate::model::Field, &[crate::expr::SymId])> = Vec::new();
+        for (group, syms) in [
+            (&model.fields, &s.parameters),
+            (&model.input_fields, &s.inputs),
+        ] {
+            let mut k = 0;
+            for field in group {
+                let len = field.len.unwrap_or(1);
+                fields.push((field, &syms[k..k + len]));
+                k += len;
+            }
+        }
+        for (field, syms) in fields {
             if !syms.iter().any(|x| used[x.0 as usize]) {
                 continue;
             }

@@ -9,6 +9,7 @@
 pub mod api;
 mod consts;
 mod function;
+pub(crate) mod inputs;
 mod names;
 pub mod outline;
 
@@ -42,9 +43,10 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
             name: &model.name,
             dof: model.dof(),
             fields: &model.fields,
+            inputs: &model.input_fields,
             constraints: model.constraints.len(),
         },
-        types: Types::new(model.dof(), model.constraints.len()),
+        types: Types::new(model.dof(), model.constraints.len(), model.inputs.len()),
         namer: Namer::new(model),
         roots: METHODS.iter().map(|m| (m.roots)(model, eq)).collect(),
     };
@@ -52,11 +54,13 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
     let inherent = inherent_impl(&cx, equations_text);
     let lagrangian = lagrangian_impl(&cx);
     let holonomic = holonomic_impl(&cx);
+    let actuated = actuated_impl(&cx);
     quote! {
         #item
         #inherent
         #lagrangian
         #holonomic
+        #actuated
     }
 }
 
@@ -77,6 +81,7 @@ pub fn charge(model: &Model, eq: &Equations) {
         .map(|(i, j)| eq.mass[i][j])
         .chain(eq.forcing.iter().copied())
         .chain(crate::render::constraint_roots(eq))
+        .chain(crate::render::input_roots(eq))
         .collect();
     let functions = METHODS
         .iter()
@@ -110,6 +115,7 @@ fn inherent_impl(cx: &Context, equations_text: &str) -> TokenStream {
         .iter()
         .zip(&cx.roots)
         .filter_map(|(m, roots)| Some(method(cx, m, roots.as_ref()?)));
+    let inputs = inputs::inherent_methods(&cx.outline, &cx.types);
     quote! {
         #[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]
         impl<S: #na::RealField + ::core::marker::Copy> #name<S> {
@@ -120,8 +126,31 @@ fn inherent_impl(cx: &Context, equations_text: &str) -> TokenStream {
             pub #new
 
             #(#methods)*
+            #inputs
         }
     }
+}
+
+/// `impl Actuated<N, K>`, for a model with inputs only.
+fn actuated_impl(cx: &Context) -> TokenStream {
+    let name = cx.outline.name;
+    let jacobian = METHODS
+        .iter()
+        .zip(&cx.roots)
+        .filter(|(m, roots)| m.in_trait == InTrait::Actuated && roots.is_some())
+        .map(|(m, _)| {
+            let signature = m.trait_signature(&cx.types);
+            let method = m.ident();
+            let args = m.arg_idents();
+            quote! {
+                #[inline]
+                #signature {
+                    #name::#method(self, #(#args),*)
+                }
+            }
+        })
+        .collect();
+    inputs::actuated_impl(&cx.outline, &cx.types, jacobian)
 }
 
 /// One inherent method: its docs, signature and straight-line body.
@@ -150,6 +179,7 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
         .zip(&cx.roots)
         .map(|(m, roots)| trait_method(cx, m, roots.is_some()));
     let finite = parameters_are_finite(cx);
+    let inputs_are_set = inputs::inputs_are_set(&cx.outline);
     // A constrained model hands itself, with its number of constraints, to
     // the runtime's visitor: how a generic integrator reaches `Holonomic`.
     let visit = (cx.types.constraints > 0).then(|| {
@@ -170,6 +200,7 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
             fn parameters_are_finite(&self) -> bool {
                 #finite
             }
+            #inputs_are_set
             #visit
         }
     }
@@ -210,7 +241,7 @@ fn holonomic_impl(cx: &Context) -> TokenStream {
 /// A method of the `Lagrangian` impl: a call of the inherent one, or, where
 /// the model has none, the trait's flag for its absence.
 fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
-    if matches!(m.in_trait, InTrait::Holonomic { .. }) {
+    if matches!(m.in_trait, InTrait::Holonomic { .. } | InTrait::Actuated) {
         return TokenStream::new();
     }
     if !present {
@@ -236,16 +267,20 @@ fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
                 ::core::option::Option::Some(#call)
             }
         },
-        InTrait::Required | InTrait::Provided | InTrait::Holonomic { .. } => quote! {
-            #[inline]
-            #signature {
-                #call
+        InTrait::Required | InTrait::Provided | InTrait::Holonomic { .. } | InTrait::Actuated => {
+            quote! {
+                #[inline]
+                #signature {
+                    #call
+                }
             }
-        },
+        }
     }
 }
 
-/// Whether every parameter field is finite, for the runtime's input checks.
+/// Whether every parameter field is finite, for the runtime's input checks
+/// (not the inputs' fields: unset inputs are NaN, and `inputs_are_set`
+/// reports them in their own words).
 fn parameters_are_finite(cx: &Context) -> TokenStream {
     let fields = cx.outline.fields;
     if fields.is_empty() {

@@ -7,7 +7,7 @@ use quote::format_ident;
 use std::collections::{HashMap, HashSet};
 use std::rc::Rc;
 
-/// Local names: the user's names for coordinates and parameters, `<q>_dot`
+/// Local names: the user's names for coordinates, parameters and inputs, `<q>_dot`
 /// for velocities, fresh `e<k>`/`k<k>` for intermediates and constants, none
 /// of which can collide with a user name or the function's arguments.
 ///
@@ -33,7 +33,12 @@ impl Namer {
             .collect();
         // The user's scalar names are kept as they are; elements of indexed
         // names become `theta_0`, `theta_1`, ... (renamed if that is taken).
-        for n in model.coordinates.iter().chain(&model.parameters) {
+        for n in model
+            .coordinates
+            .iter()
+            .chain(&model.parameters)
+            .chain(&model.inputs)
+        {
             taken.insert(n.name.to_string());
         }
         let mut namer = Namer {
@@ -58,6 +63,7 @@ impl Namer {
             .iter()
             .map(|p| local(&mut namer, p))
             .collect();
+        let inputs: Vec<Ident> = model.inputs.iter().map(|u| local(&mut namer, u)).collect();
         for k in 0..s.count() {
             symbol.push(match s.kind(SymId(k as u32)) {
                 SymKind::Time => format_ident!("t"),
@@ -65,6 +71,7 @@ impl Namer {
                 SymKind::Parameter(p) => parameters[p].clone(),
                 SymKind::Acceleration(i) => namer.fresh(&format!("{}_ddot", coordinates[i]), false),
                 SymKind::Velocity(i) => namer.fresh(&format!("{}_dot", coordinates[i]), false),
+                SymKind::Input(k) => inputs[k].clone(),
             });
         }
         namer.symbol = Rc::new(symbol);

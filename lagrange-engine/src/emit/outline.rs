@@ -7,14 +7,22 @@ use proc_macro2::{Ident, Literal, TokenStream};
 use quote::quote;
 use syn::{Attribute, Visibility};
 
-/// The types of a model with `dof` coordinates and `constraints`
-/// holonomic constraints.
+/// The types of a model with `dof` coordinates, `constraints` holonomic
+/// constraints and `inputs` control inputs.
 pub struct Types {
     pub dof: usize,
     pub constraints: usize,
+    pub inputs: usize,
     pub n: Literal,
     /// The number of constraints, `C`.
     pub c: Literal,
+    /// The number of inputs, `K`.
+    pub k: Literal,
+    /// `SVector<S, K>`.
+    pub input_vector: TokenStream,
+    /// `SMatrix<S, N, K>`.
+    pub input_matrix: TokenStream,
+    pub new_input_matrix: TokenStream,
     pub vector: TokenStream,
     pub matrix: TokenStream,
     pub new_vector: TokenStream,
@@ -28,13 +36,19 @@ pub struct Types {
 }
 
 impl Types {
-    pub fn new(dof: usize, constraints: usize) -> Self {
+    pub fn new(dof: usize, constraints: usize, inputs: usize) -> Self {
         let na = nalgebra();
         let n = Literal::usize_unsuffixed(dof);
         let c = Literal::usize_unsuffixed(constraints);
+        let k = Literal::usize_unsuffixed(inputs);
         Types {
             dof,
             constraints,
+            inputs,
+            input_vector: quote!(#na::SVector<S, #k>),
+            input_matrix: quote!(#na::SMatrix<S, #n, #k>),
+            new_input_matrix: quote!(#na::SMatrix::<S, #n, #k>::from_column_slice),
+            k,
             vector: quote!(#na::SVector<S, #n>),
             matrix: quote!(#na::SMatrix<S, #n, #n>),
             new_vector: quote!(#na::SVector::<S, #n>::from_column_slice),
@@ -62,6 +76,9 @@ pub struct Outline<'a> {
     pub name: &'a Ident,
     pub dof: usize,
     pub fields: &'a [Field],
+    /// The control inputs' fields (after the parameters'), which `new` does
+    /// not take: they start unset (NaN).
+    pub inputs: &'a [Field],
     /// The number of holonomic constraints (0 for a model in minimal
     /// coordinates, which then has no constraint items).
     pub constraints: usize,
@@ -74,11 +91,12 @@ impl Outline<'_> {
         let Outline {
             attrs, vis, name, ..
         } = self;
-        let fields = if self.fields.is_empty() {
+        let fields = if self.fields.is_empty() && self.inputs.is_empty() {
             quote!({ _scalar: ::core::marker::PhantomData<S> })
         } else {
-            let params = self.fields.iter().map(|f| &f.name);
-            let types = self.fields.iter().map(Field::rust_type);
+            let all = || self.fields.iter().chain(self.inputs);
+            let params = all().map(|f| &f.name);
+            let types = all().map(Field::rust_type);
             quote!({ #(pub #params: #types,)* })
         };
         quote! {
@@ -88,10 +106,27 @@ impl Outline<'_> {
         }
     }
 
-    /// `const fn new(fields) -> Self`.
+    /// `const fn new(fields) -> Self`. A model with inputs gets a plain
+    /// `fn`: its inputs start as NaN ("not set", which the runtime refuses
+    /// to integrate), and a NaN of a generic `S` is not a constant.
     pub fn constructor(&self) -> TokenStream {
         let params: Vec<&Ident> = self.fields.iter().map(|f| &f.name).collect();
         let types = self.fields.iter().map(Field::rust_type);
+        if !self.inputs.is_empty() {
+            let na = nalgebra();
+            let nan = quote!(#na::convert::<f64, S>(::core::f64::NAN));
+            let inputs = self.inputs.iter().map(|f| {
+                let name = &f.name;
+                match f.len {
+                    None => quote!(#name: #nan),
+                    Some(len) => {
+                        let len = Literal::usize_unsuffixed(len);
+                        quote!(#name: [#nan; #len])
+                    }
+                }
+            });
+            return quote!(fn new(#(#params: #types),*) -> Self { Self { #(#params,)* #(#inputs,)* } });
+        }
         let body = if params.is_empty() {
             quote!(Self {
                 _scalar: ::core::marker::PhantomData
@@ -112,7 +147,7 @@ impl Outline<'_> {
                 Some(len) => format!("`{}: [S; {len}]`", f.name),
             })
             .collect();
-        format!(
+        let mut doc = format!(
             "A `{}` with the given parameters ({}).",
             self.name,
             if parameters.is_empty() {
@@ -120,6 +155,13 @@ impl Outline<'_> {
             } else {
                 parameters.join(", ")
             }
-        )
+        );
+        if !self.inputs.is_empty() {
+            doc.push_str(
+                " Its control inputs start unset (NaN): set them with `with_inputs` or drive them \
+                 with `with_controller` before integrating.",
+            );
+        }
+        doc
     }
 }

@@ -76,6 +76,26 @@ impl Lowering {
                         "`dot` of an expression that already holds a velocity: the model is written in positions and velocities, accelerations are not allowed",
                     ));
                 }
+                // An input is set from outside at each instant and has no
+                // time derivative the model could know: `dot` would silently
+                // take it as constant.
+                if let Some(&u) = self
+                    .symbols
+                    .inputs
+                    .iter()
+                    .find(|&&u| p.depends_on(xs[0], u))
+                {
+                    let name = self
+                        .names
+                        .iter()
+                        .find(|(_, b)| matches!(b, super::scope::Binding::Symbol(s) if *s == u))
+                        .map_or_else(String::new, |(n, _)| n.clone());
+                    return Err(range.error(format!(
+                        "`dot` of an expression that holds the input `{name}`: an input is set from outside at each \
+                         instant and has no time derivative the model could know; use inputs in forces, \
+                         potentials and `let`s, not under `dot`"
+                    )));
+                }
                 let s = &self.symbols;
                 p.total_time_derivative(xs[0], &s.coordinates, &s.velocities, s.time)
             }

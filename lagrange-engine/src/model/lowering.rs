@@ -29,7 +29,7 @@ impl Lowering {
     pub(super) fn new(pool: Pool, model: &Ident) -> Self {
         Lowering {
             pool,
-            symbols: Symbols::new(0, 0),
+            symbols: Symbols::new(0, 0, 0),
             names: HashMap::new(),
             pending_lets: HashSet::new(),
             env: Vec::new(),
@@ -70,6 +70,7 @@ impl Lowering {
                         let role = match role {
                             Role::Coordinate => "an indexed coordinate",
                             Role::Parameter => "an indexed parameter",
+                            Role::Input => "an indexed input",
                             Role::Let => "an indexed `let`",
                         };
                         let message = if hi > lo {
@@ -202,6 +203,7 @@ impl Lowering {
             Binding::Symbol(s) if s == self.symbols.time => return Err(not_a_position("time")),
             Binding::Symbol(s) => match self.symbols.kind(s) {
                 SymKind::Coordinate(_) => self.pool.sym(s),
+                SymKind::Input(_) => return Err(not_a_position("an input")),
                 _ => return Err(not_a_position("a parameter")),
             },
             Binding::Const(_) => return Err(not_a_position("a `const`")),

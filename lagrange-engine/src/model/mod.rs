@@ -21,7 +21,7 @@ pub mod symbols;
 
 pub use functions::FUNCTIONS;
 pub use index::MAX_RANGE;
-pub use passes::declared_shape;
+pub use passes::{declared_shape, Shape};
 pub use symbols::{SymKind, Symbols};
 
 use crate::ast::MAX_BUDGET;
@@ -120,6 +120,12 @@ pub struct Model {
     pub parameters: Vec<Scalar>,
     /// The parameters as struct fields, in declaration order.
     pub fields: Vec<Field>,
+    /// The control inputs, one scalar each, in the order of `u` and of
+    /// their symbols; empty for a model without `inputs:`.
+    pub inputs: Vec<Scalar>,
+    /// The inputs as struct fields (after the parameters' fields), in
+    /// declaration order.
+    pub input_fields: Vec<Field>,
     pub symbols: Symbols,
     pub kinetic: Section,
     pub potential: Section,
@@ -157,6 +163,8 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
         coordinates: decls.coordinates,
         parameters: decls.parameters,
         fields: decls.fields,
+        inputs: decls.inputs,
+        input_fields: decls.input_fields,
         symbols,
         kinetic: sections.kinetic,
         potential: sections.potential,

@@ -34,11 +34,13 @@ pub(super) fn consts(
     Ok(())
 }
 
-/// The coordinates and parameters as declared, element by element.
+/// The coordinates, parameters and inputs as declared, element by element.
 pub(super) struct Declarations {
     pub(super) coordinates: Vec<Scalar>,
     pub(super) parameters: Vec<Scalar>,
     pub(super) fields: Vec<Field>,
+    pub(super) inputs: Vec<Scalar>,
+    pub(super) input_fields: Vec<Field>,
     /// The indexed names among them, with their ranges.
     arrays: Vec<(String, Binding)>,
 }
@@ -54,13 +56,18 @@ pub(super) fn declarations(
         coordinates: Vec::new(),
         parameters: Vec::new(),
         fields: Vec::new(),
+        inputs: Vec::new(),
+        input_fields: Vec::new(),
         arrays: Vec::new(),
     };
     for item in &def.items {
         match item {
-            Item::Coordinates { names, .. } | Item::Parameters { names, .. } => {
+            Item::Coordinates { names, .. }
+            | Item::Parameters { names, .. }
+            | Item::Inputs { names, .. } => {
                 let (role, what) = match item {
                     Item::Coordinates { .. } => (Role::Coordinate, "coordinate"),
+                    Item::Inputs { .. } => (Role::Input, "input"),
                     _ => (Role::Parameter, "parameter"),
                 };
                 for d in names {
@@ -77,6 +84,7 @@ pub(super) fn declarations(
                         .map_err(|x| limit_error(&def.name, x))?;
                     let scalars = match role {
                         Role::Coordinate => &mut out.coordinates,
+                        Role::Input => &mut out.inputs,
                         _ => &mut out.parameters,
                     };
                     match len {
@@ -99,11 +107,14 @@ pub(super) fn declarations(
                             }));
                         }
                     }
-                    if role == Role::Parameter {
-                        out.fields.push(Field {
-                            name: d.name.clone(),
-                            len,
-                        });
+                    let field = Field {
+                        name: d.name.clone(),
+                        len,
+                    };
+                    match role {
+                        Role::Parameter => out.fields.push(field),
+                        Role::Input => out.input_fields.push(field),
+                        _ => {}
                     }
                 }
             }
@@ -133,10 +144,15 @@ pub(super) fn declarations(
     Ok(out)
 }
 
-/// Pass 3: a symbol for `t` and for each coordinate and parameter, bound to
-/// its name (`x`, `theta[2]`); the indexed names bound to their ranges.
+/// Pass 3: a symbol for `t` and for each coordinate, parameter and input,
+/// bound to its name (`x`, `theta[2]`); the indexed names bound to their
+/// ranges.
 pub(super) fn bind_symbols(def: &ModelDef, decls: &mut Declarations, cx: &mut Lowering) -> Symbols {
-    let symbols = Symbols::new(decls.coordinates.len(), decls.parameters.len());
+    let symbols = Symbols::new(
+        decls.coordinates.len(),
+        decls.parameters.len(),
+        decls.inputs.len(),
+    );
     cx.symbols = symbols.clone();
     cx.names.insert("t".into(), Binding::Symbol(symbols.time));
     for (i, c) in decls.coordinates.iter().enumerate() {
@@ -146,6 +162,10 @@ pub(super) fn bind_symbols(def: &ModelDef, decls: &mut Declarations, cx: &mut Lo
     for (k, p) in decls.parameters.iter().enumerate() {
         cx.names
             .insert(p.to_string(), Binding::Symbol(symbols.parameters[k]));
+    }
+    for (k, u) in decls.inputs.iter().enumerate() {
+        cx.names
+            .insert(u.to_string(), Binding::Symbol(symbols.inputs[k]));
     }
     cx.names.extend(std::mem::take(&mut decls.arrays));
     cx.pending_lets = def
@@ -373,12 +393,22 @@ fn add_to(
     Ok(())
 }
 
+/// What the stub of a model with an error knows of its shape.
+pub struct Shape {
+    pub dof: usize,
+    /// The parameter fields.
+    pub fields: Vec<Field>,
+    /// The input fields.
+    pub inputs: Vec<Field>,
+    pub constraints: usize,
+}
+
 /// For the stub of a model with an error: its number of coordinates, its
-/// parameter fields and its number of constraints, counted as lowering will
-/// count them once the error is fixed (a duplicated name or `t` is the
-/// error, not an extra one; a size or range that cannot be evaluated counts
-/// as one).
-pub fn declared_shape(def: &ModelDef) -> (usize, Vec<Field>, usize) {
+/// parameter and input fields and its number of constraints, counted as
+/// lowering will count them once the error is fixed (a duplicated name or
+/// `t` is the error, not an extra one; a size or range that cannot be
+/// evaluated counts as one).
+pub fn declared_shape(def: &ModelDef) -> Shape {
     let mut cx = Lowering::new(Pool::default(), &def.name);
     for item in &def.items {
         if let Item::Const { name, value } = item {
@@ -392,10 +422,12 @@ pub fn declared_shape(def: &ModelDef) -> (usize, Vec<Field>, usize) {
     let mut seen: HashSet<String> = HashSet::from(["t".to_string()]);
     let mut dof = 0;
     let mut fields = Vec::new();
+    let mut inputs = Vec::new();
     let mut constraints = 0usize;
     // Apart from the other names: a constraint named like a coordinate is
     // the error, and the coordinate still counts.
     let mut seen_constraints: HashSet<String> = HashSet::new();
+    let mut field_names: HashSet<String> = HashSet::new();
     for item in &def.items {
         if let Item::Constraints { entries, .. } = item {
             for e in entries {
@@ -409,23 +441,42 @@ pub fn declared_shape(def: &ModelDef) -> (usize, Vec<Field>, usize) {
             }
             continue;
         }
-        let (Item::Coordinates { names, .. } | Item::Parameters { names, .. }) = item else {
+        let (Item::Coordinates { names, .. }
+        | Item::Parameters { names, .. }
+        | Item::Inputs { names, .. }) = item
+        else {
             continue;
         };
         for d in names {
-            if !seen.insert(d.name.to_string()) {
+            // An input clashes only with another field: an input named
+            // like a coordinate is still the input the code using it means.
+            let fresh = match item {
+                Item::Inputs { .. } => field_names.insert(d.name.to_string()),
+                Item::Parameters { .. } => {
+                    field_names.insert(d.name.to_string());
+                    seen.insert(d.name.to_string())
+                }
+                _ => seen.insert(d.name.to_string()),
+            };
+            if !fresh {
                 continue;
             }
             let len = d.len.as_ref().map(|e| cx.length(e).unwrap_or(1));
-            if matches!(item, Item::Coordinates { .. }) {
-                dof += len.unwrap_or(1);
-            } else {
-                fields.push(Field {
-                    name: d.name.clone(),
-                    len,
-                });
+            let field = Field {
+                name: d.name.clone(),
+                len,
+            };
+            match item {
+                Item::Coordinates { .. } => dof += len.unwrap_or(1),
+                Item::Inputs { .. } => inputs.push(field),
+                _ => fields.push(field),
             }
         }
     }
-    (dof, fields, constraints)
+    Shape {
+        dof,
+        fields,
+        inputs,
+        constraints,
+    }
 }

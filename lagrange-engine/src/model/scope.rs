@@ -25,6 +25,7 @@ pub(super) enum Binding {
 pub(super) enum Role {
     Coordinate,
     Parameter,
+    Input,
     Let,
 }
 
@@ -43,15 +44,18 @@ impl Declared {
             ));
         }
         if let Some(first) = self.0.get(&name.to_string()) {
+            let a = |role: &str| if role == "input" { "an" } else { "a" };
             let roles = if *first == what {
-                format!(" as a {what}")
+                format!(" as {} {what}", a(what))
             } else {
-                format!(", as a {first} and as a {what}")
+                format!(", as {} {first} and as {} {what}", a(first), a(what))
             };
             // A constraint's name is a label, not a quantity, but it is
             // still one of the model's names: in `EQUATIONS`, in
             // `CONSTRAINTS` and in the errors.
-            let rule = if *first == "constraint" || what == "constraint" {
+            let rule = if *first == "input" || what == "input" {
+                "each input needs its own name, distinct from the coordinates, parameters, constants, constraints and `let`s"
+            } else if *first == "constraint" || what == "constraint" {
                 "each constraint needs its own name, distinct from the coordinates, parameters, constants and `let`s"
             } else {
                 "each coordinate, parameter, constant and `let` needs its own name"

@@ -4,7 +4,9 @@ use crate::expr::SymId;
 
 /// What a symbol id stands for. Symbol ids are dense: `t`, then the
 /// coordinates, then the velocities, then the parameters, so a numeric state
-/// is one slice in that order.
+/// is one slice in that order. The accelerations and the control inputs
+/// come last, the inputs after the accelerations, so that a model without
+/// inputs numbers its symbols (and orders its nodes) as before they existed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SymKind {
     Time,
@@ -13,6 +15,8 @@ pub enum SymKind {
     Parameter(usize),
     /// Only in the residual `M q̈ − f` of the Jacobians.
     Acceleration(usize),
+    /// A control input `u_k` (`inputs:`).
+    Input(usize),
 }
 
 /// The symbols of a model.
@@ -23,10 +27,11 @@ pub struct Symbols {
     pub velocities: Vec<SymId>,
     pub parameters: Vec<SymId>,
     pub accelerations: Vec<SymId>,
+    pub inputs: Vec<SymId>,
 }
 
 impl Symbols {
-    pub(super) fn new(n: usize, p: usize) -> Self {
+    pub(super) fn new(n: usize, p: usize, inputs: usize) -> Self {
         let id = |k: usize| SymId(k as u32);
         Symbols {
             time: id(0),
@@ -34,11 +39,12 @@ impl Symbols {
             velocities: (0..n).map(|i| id(1 + n + i)).collect(),
             parameters: (0..p).map(|k| id(1 + 2 * n + k)).collect(),
             accelerations: (0..n).map(|i| id(1 + 2 * n + p + i)).collect(),
+            inputs: (0..inputs).map(|k| id(1 + 3 * n + p + k)).collect(),
         }
     }
 
     pub fn count(&self) -> usize {
-        1 + 3 * self.coordinates.len() + self.parameters.len()
+        1 + 3 * self.coordinates.len() + self.parameters.len() + self.inputs.len()
     }
 
     pub fn kind(&self, s: SymId) -> SymKind {
@@ -52,8 +58,10 @@ impl Symbols {
             SymKind::Velocity(k - 1 - n)
         } else if k <= 2 * n + self.parameters.len() {
             SymKind::Parameter(k - 1 - 2 * n)
-        } else {
+        } else if k <= 3 * n + self.parameters.len() {
             SymKind::Acceleration(k - 1 - 2 * n - self.parameters.len())
+        } else {
+            SymKind::Input(k - 1 - 3 * n - self.parameters.len())
         }
     }
 }

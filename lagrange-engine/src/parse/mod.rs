@@ -25,7 +25,7 @@ use syn::{braced, bracketed, Attribute, Ident, LitInt, Token, Visibility};
 
 /// The sections a model may contain, for error messages.
 pub const SECTIONS: &str =
-    "`const`, `coordinates:`, `parameters:`, `constants:`, `let`, `kinetic:`, \
+    "`const`, `coordinates:`, `parameters:`, `inputs:`, `constants:`, `let`, `kinetic:`, \
      `potential:`, `dissipation:`, `forces:` or `constraints:`";
 
 /// A parsed model and the first error met inside its body, if any.
@@ -203,6 +203,7 @@ fn parse_item(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result
     let known = [
         "coordinates",
         "parameters",
+        "inputs",
         "constants",
         "kinetic",
         "potential",
@@ -223,6 +224,10 @@ fn parse_item(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result
             keyword,
         },
         "parameters" => Item::Parameters {
+            names: parse_names(input, error)?,
+            keyword,
+        },
+        "inputs" => Item::Inputs {
             names: parse_names(input, error)?,
             keyword,
         },

@@ -13,9 +13,11 @@ pub(crate) fn invalid<S: RealField + Copy, const N: usize>(
     Failure::boxed(invalid.into(), Trajectory::with_capacity(0))
 }
 
-/// The checks every method shares: a finite start time, finite parameters
-/// and initial state, and finite, non-decreasing sample times none before
-/// `t0`.
+/// The checks every method shares: a finite start time, finite parameters,
+/// control inputs that were set, a finite initial state, and finite,
+/// non-decreasing sample times none before `t0`. Unset inputs are NaN
+/// fields of the model, but not parameters: `parameters_are_finite` does
+/// not look at them, so they are reported in their own words.
 pub(super) fn validate<L: Lagrangian<N>, const N: usize>(
     model: &L,
     t0: L::Scalar,
@@ -28,6 +30,10 @@ pub(super) fn validate<L: Lagrangian<N>, const N: usize>(
     }
     if !model.parameters_are_finite() {
         return Err(InvalidInput::NonFiniteParameters);
+    }
+    if !model.inputs_are_set() {
+        let inputs = model.input_names();
+        return Err(InvalidInput::InputsNotSet { inputs });
     }
     for (i, coordinate) in L::COORDINATES.into_iter().enumerate() {
         if !q0[i].is_finite() {

@@ -234,7 +234,17 @@ pub fn acceleration<L: Lagrangian<N>, const N: usize>(
         return constrained;
     }
     let (m, f) = model.mass_matrix_and_forcing(t, q, qdot);
-    solve_mass_matrix(&m, &f).map_err(|err| mass_error(err, t, q, qdot))
+    solve_mass_matrix(&m, &f).map_err(|err| match err {
+        // A controller's non-finite inputs show as a non-finite forcing.
+        SolveError::NonFiniteForcing => non_finite(crate::inputs::blame(
+            model,
+            NonFiniteValue::Forcing,
+            t,
+            q,
+            qdot,
+        )),
+        err => mass_error(err, t, q, qdot),
+    })
 }
 
 /// A failed solve with `M` as the integrators report it, at `(t, q, q̇)`.

@@ -126,11 +126,12 @@ impl<L: Lagrangian<N>, const N: usize> DiscreteEulerLagrange<'_, L, N> {
     {
         stats.rhs_evals += 1;
         let (t, q) = (self.t_mid, self.q + v * self.half_h);
+        let model = self.model;
         let non_finite = |value| IntegrationError::NonFiniteState {
             t,
             q,
             qdot: *v,
-            value,
+            value: crate::inputs::blame(model, value, t, &q, v),
         };
         if !all_finite(&q) || !all_finite(v) {
             return Err(non_finite(NonFiniteValue::State));

@@ -10,6 +10,10 @@ use nalgebra::{RealField, SVector};
 
 use crate::Trajectory;
 
+mod non_finite;
+
+pub use non_finite::NonFiniteValue;
+
 /// Why an integration stopped before the last requested sample time.
 ///
 /// `t`, `q` and `qdot` are where the model was being evaluated (or the
@@ -226,50 +230,6 @@ impl<S: RealField + Copy, const N: usize> From<InvalidInput<S>> for IntegrationE
     }
 }
 
-/// Which value of an evaluation was NaN or infinite.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum NonFiniteValue {
-    /// The state `(q, q̇)` handed to the model, e.g. after an overflow.
-    State,
-    /// The mass matrix `M(t, q)` returned by the model.
-    MassMatrix,
-    /// The forcing `f(t, q, q̇)` returned by the model.
-    Forcing,
-    /// The momenta `p = ∂L/∂q̇` returned by the model, or carried by a
-    /// variational integrator after an overflow.
-    Momentum,
-    /// `∂L/∂q` returned by the model.
-    LagrangianGradient,
-    /// The non-conservative forces `Q − ∂R/∂q̇` returned by the model.
-    NonconservativeForces,
-    /// The Jacobians `∂q̈/∂q`, `∂q̈/∂q̇` an implicit method needs (from the
-    /// model's exact residual Jacobians, or overflowing finite differences).
-    Jacobian,
-    /// The constraints `φ`, their Jacobian `G`, velocities `φ̇` or bias `γ`
-    /// returned by the model.
-    Constraints,
-}
-
-impl fmt::Display for NonFiniteValue {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Self::State => "the state is NaN or infinite",
-            Self::MassMatrix => "the mass matrix M(t, q) returned by the model is NaN or infinite",
-            Self::Forcing => "the forcing f(t, q, q̇) returned by the model is NaN or infinite",
-            Self::Momentum => "the momenta p = ∂L/∂q̇ are NaN or infinite",
-            Self::LagrangianGradient => "∂L/∂q returned by the model is NaN or infinite",
-            Self::NonconservativeForces => {
-                "the non-conservative forces Q - ∂R/∂q̇ returned by the model are NaN or infinite"
-            }
-            Self::Jacobian => "the Jacobians ∂q̈/∂q, ∂q̈/∂q̇ are NaN or infinite",
-            Self::Constraints => {
-                "the constraints φ, G, φ̇ or γ returned by the model are NaN or infinite"
-            }
-        })
-    }
-}
-
 /// A call that cannot be integrated as given, and what is wrong with it.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -303,6 +263,21 @@ pub enum InvalidInput<S: RealField + Copy> {
     /// returned `false`.
     #[error("a parameter of the model is NaN or infinite")]
     NonFiniteParameters,
+
+    /// The model has control inputs that were never set (they start as
+    /// NaN): integrating it would silently run on NaN, or on whatever value
+    /// a default would pick. [`Lagrangian::inputs_are_set`](crate::Lagrangian::inputs_are_set)
+    /// returned `false`.
+    #[error(
+        "the model has control inputs ({}) that were never set: integrate \
+         `model.with_controller(..)` or `model.with_inputs(..)`",
+        .inputs.join(", ")
+    )]
+    InputsNotSet {
+        /// The names of the model's inputs, from
+        /// [`Lagrangian::input_names`](crate::Lagrangian::input_names).
+        inputs: &'static [&'static str],
+    },
 
     /// A sample time is NaN or infinite.
     #[error("sample time times[{index}] = {time:?} is not finite")]

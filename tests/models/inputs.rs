@@ -1,0 +1,152 @@
+//! Control inputs end to end on the cart-pole (`lagrange::models::CartPole`,
+//! a motor force on the cart): unset inputs refused by every method, a
+//! constant input against the hand-computed acceleration, a feedback
+//! controller run and counted, a controller's NaN reported where it happened.
+
+use lagrange::models::{CartPole, Method};
+use lagrange::nalgebra::{Matrix2, Vector1, Vector2};
+use lagrange::prelude::*;
+use lagrange::{InvalidInput, NonFiniteValue};
+
+fn cart() -> CartPole {
+    CartPole::new(1.2, 0.3, 0.8, 9.81)
+}
+
+/// `M q̈ = f` solved by hand for the cart-pole:
+/// `M = [[mc + mp, mp l cos θ], [mp l cos θ, mp l²]]`,
+/// `f = (u + mp l sin θ θ̇², mp g l sin θ)`.
+fn hand_acceleration(c: &CartPole, u: f64, q: Vector2<f64>, v: Vector2<f64>) -> Vector2<f64> {
+    let (s, co) = (q[1].sin(), q[1].cos());
+    let m = Matrix2::new(
+        c.mc + c.mp,
+        c.mp * c.l * co,
+        c.mp * c.l * co,
+        c.mp * c.l * c.l,
+    );
+    let f = Vector2::new(u + c.mp * c.l * s * v[1] * v[1], c.mp * c.g * c.l * s);
+    m.try_inverse().unwrap() * f
+}
+
+#[test]
+fn unset_inputs_are_refused_by_every_method() {
+    let model = cart();
+    assert!(model.force.is_nan(), "inputs start unset");
+    assert_eq!(CartPole::<f64>::INPUTS, ["force"]);
+    for method in Method::ALL {
+        let failure = method
+            .integrator(1e-3, 1e-8)
+            .integrate(
+                &model,
+                0.0,
+                Vector2::new(0.0, 0.1),
+                Vector2::zeros(),
+                &[0.1],
+            )
+            .unwrap_err();
+        assert_eq!(
+            failure.error,
+            IntegrationError::InvalidInput(InvalidInput::InputsNotSet { inputs: &["force"] }),
+            "{method:?}"
+        );
+        assert!(failure.trajectory.is_empty());
+        let message = failure.error.to_string();
+        assert!(
+            message.contains("control inputs (force) that were never set"),
+            "{message}"
+        );
+    }
+}
+
+#[test]
+fn a_constant_input_gives_the_hand_computed_acceleration() {
+    let model = cart().with_inputs(&Vector1::new(3.0));
+    assert_eq!(model.inputs(), Vector1::new(3.0));
+    let (q, v) = (Vector2::new(0.4, 0.7), Vector2::new(-0.2, 1.3));
+    let qdd = lagrange::solve::acceleration(&model, 0.0, &q, &v).unwrap();
+    let expected = hand_acceleration(&model, 3.0, q, v);
+    // A 2 × 2 solve of entries of order 10: rounding ~1e-15, 1e-12 is ample.
+    assert!((qdd - expected).norm() < 1e-12, "{qdd} vs {expected}");
+    assert_eq!(
+        Actuated::input_jacobian(&model, 0.0, &q, &v),
+        lagrange::nalgebra::Matrix2x1::new(1.0, 0.0)
+    );
+    // And a short run with every method reaches the same state as Rk4.
+    let times = [0.2];
+    let reference = Rk4::new(1e-4).integrate(&model, 0.0, q, v, &times).unwrap();
+    for method in Method::ALL {
+        let run = method
+            .integrator(1e-4, 1e-10)
+            .integrate(&model, 0.0, q, v, &times)
+            .unwrap();
+        // First-order Euler methods err by ~h·t·|q̈| ≈ 1e-4 · 0.2 · 10;
+        // the others agree far closer.
+        let d = (run.last().unwrap().q - reference.last().unwrap().q).norm();
+        assert!(d < 1e-3, "{method:?}: {d}");
+    }
+}
+
+#[test]
+fn a_pd_controller_balances_the_pole_and_its_calls_are_counted() {
+    let model = cart();
+    let controlled = model.with_controller(|_, q: &Vector2<f64>, v: &Vector2<f64>| {
+        Vector1::new(60.0 * q[1] + 12.0 * v[1] + 1.0 * q[0] + 2.5 * v[0])
+    });
+    let times: Vec<f64> = (1..=50).map(|k| 0.1 * k as f64).collect();
+    let h = 1e-3;
+    let run = Rk4::new(h)
+        .integrate(
+            &controlled,
+            0.0,
+            Vector2::new(0.0, 0.2),
+            Vector2::zeros(),
+            &times,
+        )
+        .unwrap();
+    // Rk4 evaluates four right-hand sides per step, each one call.
+    assert_eq!(controlled.controller_calls(), run.stats().rhs_evals);
+    assert!(run.stats().rhs_evals >= 4 * 5000);
+    let last = run.last().unwrap();
+    assert!(last.q[1].abs() < 1e-2, "the pole falls: θ = {}", last.q[1]);
+    // Without the controller the same start falls past horizontal.
+    let free = Rk4::new(h)
+        .integrate(
+            &model.with_inputs(&Vector1::new(0.0)),
+            0.0,
+            Vector2::new(0.0, 0.2),
+            Vector2::zeros(),
+            &[2.0],
+        )
+        .unwrap();
+    assert!(free.last().unwrap().q[1].abs() > 1.0);
+}
+
+#[test]
+fn a_non_finite_controller_output_is_a_typed_error_with_its_time() {
+    let model = cart();
+    let controlled =
+        model.with_controller(|t: f64, _, _| Vector1::new(if t < 0.5 { 1.0 } else { f64::NAN }));
+    for method in Method::ALL {
+        let failure = method
+            .integrator(1e-2, 1e-8)
+            .integrate(
+                &controlled,
+                0.0,
+                Vector2::new(0.0, 0.1),
+                Vector2::zeros(),
+                &[0.3, 1.0],
+            )
+            .unwrap_err();
+        match failure.error {
+            IntegrationError::NonFiniteState { t, value, .. } => {
+                assert_eq!(value, NonFiniteValue::Inputs, "{method:?}");
+                assert!((0.5..1.0).contains(&t), "{method:?}: t = {t}");
+            }
+            other => panic!("{method:?}: {other}"),
+        }
+        assert_eq!(
+            failure.trajectory.len(),
+            1,
+            "{method:?}: the sample at 0.3 is kept"
+        );
+    }
+}
