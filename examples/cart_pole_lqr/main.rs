@@ -27,7 +27,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     let modes = modes(&at_rest, 0.0, &upright.0)?;
     for mode in &modes.modes {
         println!(
-            "mode: omega^2 = {:.6} /s^2, {:?}",
+            "mode at rest upright: ω² = {:.6} /s², {:?}",
             mode.omega_squared, mode.kind
         );
     }
