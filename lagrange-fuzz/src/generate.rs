@@ -1,7 +1,8 @@
 //! Grammar-based models: small, mostly valid programs in the DSL, with every
 //! section the language has (`const`, indexed coordinates and parameters,
 //! constants, scalar and indexed `let`s, sums, `dot`, repeated sections,
-//! dissipation, forces on coordinates and along positions, constraints, the `jacobians`
+//! dissipation, forces on coordinates and along positions, constraints,
+//! control inputs driving a coordinate, the `jacobians`
 //! and `budget` options, doc comments, visibility). Names are declared before they are
 //! drawn and indices stay in range, so that most models expand and the
 //! mutator has valid programs to break.
@@ -136,6 +137,9 @@ impl Gen<'_> {
         }
         if self.rng.chance(0.2) {
             energy.push(self.constraints());
+        }
+        if self.rng.chance(0.15) {
+            energy.push(self.inputs());
         }
 
         // Sections may come in any order, `let`s in theirs.
@@ -329,6 +333,21 @@ impl Gen<'_> {
             });
         }
         format!("constraints: {};", entries.join(", "))
+    }
+
+    /// `inputs:` (scalar or indexed) and a force on a coordinate scaled by
+    /// one of them: a motor. The force section is its own, so it may clash
+    /// with another force on the same target (one spanned error).
+    fn inputs(&mut self) -> String {
+        let c = self.rng.pick(&self.scope.coordinates).clone();
+        let target = self.reference(&c);
+        let d = self.depth();
+        let gain = self.expr(d, false);
+        if self.rng.chance(0.5) {
+            format!("inputs: u_in; forces: {target} = u_in*({gain});")
+        } else {
+            format!("inputs: w_in[2]; forces: {target} = w_in[0] + w_in[1]*({gain});")
+        }
     }
 
     /// `name` or one element of it, with an index in range.
