@@ -87,11 +87,14 @@ mod derivatives;
 mod equilibrium;
 mod error;
 mod linearize;
+mod manifold;
 mod modes;
+mod rest;
 
 pub use equilibrium::{equilibrium, is_equilibrium, EquilibriumSearch};
 pub use error::AnalysisError;
 pub use linearize::{linearize, linearize_with_inputs, InputLinearization, Linearization};
+pub use manifold::{linearize_on_manifold, ManifoldLinearization};
 pub use modes::{modes, Mode, ModeKind, Modes};
 
 #[cfg(doc)]
