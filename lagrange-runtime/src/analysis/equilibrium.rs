@@ -23,6 +23,12 @@ use crate::Lagrangian;
 /// guess outside the basin of attraction) or the iterations run out.
 /// Models with inputs are searched at the inputs they hold.
 ///
+/// A constrained model's guess is first projected onto `φ = 0`; each
+/// iteration then solves `K_z δz = Tᵀ f` in the coordinates tangent to the
+/// constraints (`K_z` by central differences of the saddle-point `q̈`,
+/// see [the module](super#constrained-models)), moves by `T δz` and
+/// projects back; the residuals it reports are `f − Gᵀ λ`.
+///
 /// ```
 /// use lagrange::models::DoublePendulum;
 /// use lagrange_runtime::analysis::EquilibriumSearch;
@@ -231,6 +237,10 @@ pub fn equilibrium<L: Lagrangian<N>, const N: usize>(
 /// one or more, of the coordinates. An equilibrium within `tol` is that
 /// close to an exact one (to first order, where `∂f/∂q` is regular). Costs
 /// one forcing and its Jacobian.
+///
+/// For a constrained model: `false` off the constraints (beyond `√ε`),
+/// else the same test on the tangent force `Tᵀ f` with the tangent
+/// stiffness `K_z` (see [`modes`](super::modes)).
 ///
 /// ```
 /// use lagrange::models::DoublePendulum;

@@ -116,10 +116,17 @@ impl<S: RealField + Copy, const N: usize> Modes<S, N> {
 /// [`AnalysisError::NotAnEquilibrium`]); a `K` whose asymmetry exceeds the
 /// error of its evaluation (`100 N ε` exact, `100 ε^(2/3)` by differences,
 /// relative to its largest entry: non-conservative forces,
-/// [`AnalysisError::NonConservative`]); a constrained model; `M` not
-/// positive definite. `K` is symmetrized before the solve. A mode is
+/// [`AnalysisError::NonConservative`]); `M` not positive definite. `K` is symmetrized before the solve. A mode is
 /// [`ModeKind::Neutral`] when `|ω²|` is within that same relative error of
 /// the largest `|ω²|`.
+///
+/// A constrained model has `N − C` modes, from `K_z w = ω² M_z w` in the
+/// independent coordinates `δq = T δz` tangent to `φ = 0` (`M_z = Tᵀ M T`,
+/// `K_z = −Tᵀ M ∂q̈/∂q T` with the saddle-point `q̈`, by central
+/// differences), shapes `T w` in the model's coordinates, `M`-orthonormal
+/// and tangent to the constraints; `q` must be on them to `√ε`
+/// ([`AnalysisError::OffConstraints`]). See
+/// [the module](super#constrained-models).
 ///
 /// Cost: one `f` and its Jacobian, one Cholesky, a symmetric eigensolve of
 /// order `N`. The eigensolve runs on a heap matrix (nalgebra's symmetric
