@@ -3,7 +3,8 @@
 
 use nalgebra::{RealField, SMatrix, SVector};
 
-use super::derivatives::{forcing_at_rest, refuse_constrained};
+use super::derivatives::forcing_at_rest;
+use super::rest::{ManifoldSearch, ManifoldTest};
 use super::AnalysisError;
 use crate::linalg::solve::lu_solve;
 use crate::Lagrangian;
@@ -21,6 +22,12 @@ use crate::Lagrangian;
 /// more than double three times in a row (overshooting ever further: a
 /// guess outside the basin of attraction) or the iterations run out.
 /// Models with inputs are searched at the inputs they hold.
+///
+/// A constrained model's guess is first projected onto `φ = 0`; each
+/// iteration then solves `K_z δz = Tᵀ f` in the coordinates tangent to the
+/// constraints (`K_z` by central differences of the saddle-point `q̈`,
+/// see [the module](super#constrained-models)), moves by `T δz` and
+/// projects back; the residuals it reports are `f − Gᵀ λ`.
 ///
 /// ```
 /// use lagrange::models::DoublePendulum;
@@ -79,12 +86,15 @@ impl<S: RealField + Copy> EquilibriumSearch<S> {
         t: S,
         guess: &SVector<S, N>,
     ) -> Result<SVector<S, N>, AnalysisError<S, N>> {
-        refuse_constrained(model, t, guess)?;
-        let four: S = nalgebra::convert(4.0);
+        if let Some(result) = model.visit_constraints(ManifoldSearch {
+            search: self,
+            t,
+            guess,
+        }) {
+            return result;
+        }
         let mut q = *guess;
-        let mut previous = None;
-        let mut growth = 0;
-        let mut previous_length = None;
+        let mut progress = Progress::new(guess);
         let mut residual = SVector::zeros();
         for iteration in 1..=self.max_iterations {
             let (f, jacobian, _) = forcing_at_rest(model, t, &q)?;
@@ -93,46 +103,18 @@ impl<S: RealField + Copy> EquilibriumSearch<S> {
                 return Err(AnalysisError::SingularStiffness { t, q, residual: f });
             };
             let next = q + step;
-            if next.iter().any(|x| !x.is_finite()) {
-                let iterations = iteration;
-                return Err(AnalysisError::NotConverged {
-                    t,
-                    q,
-                    residual: f,
-                    iterations,
-                });
-            }
-            let size = (0..N).fold(S::zero(), |m, k| {
-                m.max(step[k].abs() / S::one().max(next[k].abs()))
-            });
-            let stalled = previous.is_some_and(|p: S| size + size >= p);
-            // Corrections that more than double three times running (in
-            // the fixed scale of the guess) are Newton overshooting further
-            // each time (a guess outside the basin), not the start of
-            // convergence.
-            let length = (0..N).fold(S::zero(), |m, k| {
-                m.max(step[k].abs() / S::one().max(guess[k].abs()))
-            });
-            growth = match previous_length {
-                Some(p) if length > p + p => growth + 1,
-                _ => 0,
+            let not_converged = AnalysisError::NotConverged {
+                t,
+                q,
+                residual: f,
+                iterations: iteration,
             };
-            previous_length = Some(length);
-            if growth == 3 {
-                let iterations = iteration;
-                return Err(AnalysisError::NotConverged {
-                    t,
-                    q,
-                    residual: f,
-                    iterations,
-                });
+            match progress.update(&step, &next) {
+                Verdict::Diverging => return Err(not_converged),
+                Verdict::Rounding => return Ok(next),
+                Verdict::Stalled if within(&f, &jacobian, &q, self.tolerance) => return Ok(next),
+                _ => {}
             }
-            if size <= four * S::default_epsilon()
-                || (stalled && within(&f, &jacobian, &q, self.tolerance))
-            {
-                return Ok(next);
-            }
-            previous = Some(size);
             q = next;
         }
         let iterations = self.max_iterations;
@@ -142,6 +124,84 @@ impl<S: RealField + Copy> EquilibriumSearch<S> {
             residual,
             iterations,
         })
+    }
+
+    /// The iteration limit.
+    pub(super) fn iterations(&self) -> usize {
+        self.max_iterations
+    }
+
+    /// The tolerance of a stalled iterate.
+    pub(super) fn tolerance_of(&self) -> S {
+        self.tolerance
+    }
+}
+
+/// What a Newton correction says about the search.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Verdict {
+    /// Still converging.
+    Going,
+    /// The correction is at rounding level: converged.
+    Rounding,
+    /// The correction did not halve: at the noise of the evaluation.
+    Stalled,
+    /// Overshooting ever further, or left the finite numbers.
+    Diverging,
+}
+
+/// The stopping rules of Newton's method for an equilibrium, shared by the
+/// free and the constrained searches: a correction at rounding level
+/// (`|Δq_k| ≤ 4 ε max(1, |q_k|)`), corrections that stop shrinking
+/// (stalled at the noise of the evaluation, accepted if the iterate passes
+/// the equilibrium test), or corrections that more than double three times
+/// running in the fixed scale of the guess (Newton overshooting further
+/// each time: a guess outside the basin).
+pub(super) struct Progress<'a, S, const N: usize> {
+    guess: &'a SVector<S, N>,
+    previous: Option<S>,
+    previous_length: Option<S>,
+    growth: usize,
+}
+
+impl<'a, S: RealField + Copy, const N: usize> Progress<'a, S, N> {
+    pub(super) fn new(guess: &'a SVector<S, N>) -> Self {
+        Self {
+            guess,
+            previous: None,
+            previous_length: None,
+            growth: 0,
+        }
+    }
+
+    /// The verdict on the correction `step` that led to `next`.
+    pub(super) fn update(&mut self, step: &SVector<S, N>, next: &SVector<S, N>) -> Verdict {
+        if next.iter().any(|x| !x.is_finite()) {
+            return Verdict::Diverging;
+        }
+        let four: S = nalgebra::convert(4.0);
+        let size = (0..N).fold(S::zero(), |m, k| {
+            m.max(step[k].abs() / S::one().max(next[k].abs()))
+        });
+        let stalled = self.previous.is_some_and(|p: S| size + size >= p);
+        let length = (0..N).fold(S::zero(), |m, k| {
+            m.max(step[k].abs() / S::one().max(self.guess[k].abs()))
+        });
+        self.growth = match self.previous_length {
+            Some(p) if length > p + p => self.growth + 1,
+            _ => 0,
+        };
+        self.previous_length = Some(length);
+        self.previous = Some(size);
+        if self.growth == 3 {
+            Verdict::Diverging
+        } else if size <= four * S::default_epsilon() {
+            Verdict::Rounding
+        } else if stalled {
+            Verdict::Stalled
+        } else {
+            Verdict::Going
+        }
     }
 }
 
@@ -178,6 +238,10 @@ pub fn equilibrium<L: Lagrangian<N>, const N: usize>(
 /// close to an exact one (to first order, where `∂f/∂q` is regular). Costs
 /// one forcing and its Jacobian.
 ///
+/// For a constrained model: `false` off the constraints (beyond `√ε`),
+/// else the same test on the tangent force `Tᵀ f` with the tangent
+/// stiffness `K_z` (see [`modes`](super::modes)).
+///
 /// ```
 /// use lagrange::models::DoublePendulum;
 /// use lagrange_runtime::analysis::is_equilibrium;
@@ -195,7 +259,9 @@ pub fn is_equilibrium<L: Lagrangian<N>, const N: usize>(
     q: &SVector<L::Scalar, N>,
     tol: L::Scalar,
 ) -> Result<bool, AnalysisError<L::Scalar, N>> {
-    refuse_constrained(model, t, q)?;
+    if let Some(result) = model.visit_constraints(ManifoldTest { t, q, tol }) {
+        return result;
+    }
     let (f, jacobian, _) = forcing_at_rest(model, t, q)?;
     Ok(within(&f, &jacobian, q, tol))
 }

@@ -4,7 +4,7 @@
 use nalgebra::{RealField, SVector};
 
 use crate::error::Row;
-use crate::IntegrationError;
+use crate::{ConstraintLevel, IntegrationError};
 
 /// Why [`linearize`](super::linearize), [`equilibrium`](super::equilibrium)
 /// or [`modes`](super::modes) gave no result.
@@ -28,14 +28,17 @@ pub enum AnalysisError<S: RealField + Copy, const N: usize> {
     #[error(transparent)]
     Model(#[from] IntegrationError<S, N>),
 
-    /// The model has holonomic constraints. Its motion lives on
-    /// `φ(t, q) = 0`, and linearizing it needs independent coordinates on
-    /// that manifold (a null-space basis of `G`), which is not implemented
-    /// yet; linearizing the redundant coordinates as if they were free
-    /// would be wrong.
+    /// [`linearize`](super::linearize) or
+    /// [`linearize_with_inputs`](super::linearize_with_inputs) was asked
+    /// for a model with holonomic constraints. Their `A` is in the model's
+    /// `N` coordinates, which are not independent on `φ(t, q) = 0`:
+    /// linearizing them as if they were free would be wrong. Use
+    /// [`linearize_on_manifold`](super::linearize_on_manifold), in
+    /// independent coordinates; inputs on the manifold are not supported
+    /// yet.
     #[error(
-        "the model has holonomic constraints at t = {t:?} (q = {}): linearization, \
-         equilibria and modes on the constraint manifold are not supported yet",
+        "the model has holonomic constraints at t = {t:?} (q = {}): its coordinates are not \
+         independent; use `linearize_on_manifold` (inputs on the manifold are not supported yet)",
         Row(.q)
     )]
     Constrained {
@@ -43,6 +46,32 @@ pub enum AnalysisError<S: RealField + Copy, const N: usize> {
         t: S,
         /// Configuration asked about.
         q: SVector<S, N>,
+    },
+
+    /// A constrained model was asked about a state off its constraints:
+    /// `φ(t, q)` (or, for a linearization, `φ̇ = G q̇ + ∂φ/∂t`) is beyond
+    /// `√ε` relative (see
+    /// [`linearize_on_manifold`](super::linearize_on_manifold)). Project
+    /// it first, or search with [`equilibrium`](super::equilibrium), which
+    /// projects its guess.
+    #[error(
+        "the state at t = {t:?} (q = {}, q̇ = {}) is off the constraints: {level} residual \
+         of constraint `{constraint}` is {residual:?}",
+        Row(.q), Row(.qdot)
+    )]
+    OffConstraints {
+        /// Time asked about.
+        t: S,
+        /// Configuration asked about.
+        q: SVector<S, N>,
+        /// Velocities asked about (zero for a question about rest).
+        qdot: SVector<S, N>,
+        /// The constraint found off, by name.
+        constraint: &'static str,
+        /// Position (`φ`) or velocity (`φ̇`).
+        level: ConstraintLevel,
+        /// Its `φ_i` or `φ̇_i`.
+        residual: S,
     },
 
     /// The Newton iteration for an equilibrium did not converge: it ran out
@@ -58,13 +87,15 @@ pub enum AnalysisError<S: RealField + Copy, const N: usize> {
         t: S,
         /// The last finite iterate.
         q: SVector<S, N>,
-        /// `f(t, q, 0)` at that iterate.
+        /// `f(t, q, 0)` at that iterate; for a constrained model the part
+        /// the constraints do not hold, `f − Gᵀ λ`.
         residual: SVector<S, N>,
         /// Iterations done.
         iterations: usize,
     },
 
-    /// `∂f/∂q` at rest is singular at `q`: some displacement changes no
+    /// `∂f/∂q` at rest (for a constrained model, its tangent part
+    /// `−K_z`, see [`modes`](super::modes)) is singular at `q`: some displacement changes no
     /// force to first order (a neutral direction: a cyclic coordinate, a
     /// free body, a force that does not depend on position), so Newton's
     /// step is not determined. If `residual` is not zero, a constant force
@@ -80,7 +111,8 @@ pub enum AnalysisError<S: RealField + Copy, const N: usize> {
         t: S,
         /// Configuration where `∂f/∂q` was singular.
         q: SVector<S, N>,
-        /// `f(t, q, 0)` there.
+        /// `f(t, q, 0)` there; for a constrained model the part the
+        /// constraints do not hold, `f − Gᵀ λ`.
         residual: SVector<S, N>,
     },
 
@@ -99,7 +131,8 @@ pub enum AnalysisError<S: RealField + Copy, const N: usize> {
         t: S,
         /// Configuration asked about.
         q: SVector<S, N>,
-        /// `f(t, q, 0)` there.
+        /// `f(t, q, 0)` there; for a constrained model the part the
+        /// constraints do not hold, `f − Gᵀ λ`.
         residual: SVector<S, N>,
     },
 

@@ -155,7 +155,9 @@ impl<S: RealField + Copy, const N: usize, const K: usize> InputLinearization<S, 
 /// `q̈`, `4N` right-hand sides, relative error `≈ ε^(2/3)`.
 ///
 /// A model with holonomic constraints is refused
-/// ([`AnalysisError::Constrained`]); failures of `M` come back as
+/// ([`AnalysisError::Constrained`]): its coordinates are not independent;
+/// [`linearize_on_manifold`](super::linearize_on_manifold) linearizes it
+/// in independent ones. Failures of `M` come back as
 /// [`AnalysisError::Model`] with the state.
 ///
 /// ```

@@ -71,14 +71,53 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
+//! # Constrained models
+//!
+//! A model with holonomic constraints moves on `φ(t, q) = 0`, and its `N`
+//! coordinates are not independent there. The analyses work in
+//! independent coordinates on that manifold: `δq = T δz` for an
+//! orthonormal basis `T` of the null space of `G = ∂φ/∂q` at the point
+//! (`N − C` columns), with velocities kept on `φ̇ = 0`, and the constrained
+//! (saddle-point) accelerations, which carry how the constraint forces
+//! change with the state (a hanging Cartesian pendulum is stiffened by its
+//! rod's tension, not by gravity). [`linearize_on_manifold`] gives the
+//! reduced `A` with `T` to map back ([`ManifoldLinearization`]);
+//! [`equilibrium`] projects its guess onto `φ = 0` and runs Newton on the
+//! tangent force `Tᵀ f` (`f − Gᵀ λ = 0` with `λ` from the saddle system at
+//! rest), projecting back after each step; [`modes`] solves
+//! `K_z v = ω² M_z v` with `M_z = Tᵀ M T`, `K_z = −Tᵀ M ∂q̈/∂q T`, one mode
+//! per degree of freedom, shapes `T v` in the model's coordinates. The
+//! derivatives are central differences of the saddle-point `q̈`
+//! ([`Derivatives::CentralDifferences`]) whatever the model provides.
+//! Rank-deficient constraints (a change point) are the saddle solve's
+//! [`SingularConstraints`](crate::IntegrationError::SingularConstraints),
+//! with the state.
+//!
+//! ```
+//! use lagrange::models::CartesianPendulum;
+//! use lagrange_runtime::analysis::{equilibrium, modes};
+//! use lagrange_runtime::nalgebra::Vector2;
+//!
+//! let (g, l): (f64, f64) = (9.81, 2.0);
+//! let pendulum = CartesianPendulum::new(1.0, l, g);
+//! let hanging = equilibrium(&pendulum, 0.0, &Vector2::new(0.3, -1.8))?; // off the circle
+//! assert!((hanging - Vector2::new(0.0, -l)).amax() < 1e-14);
+//! let swing = &modes(&pendulum, 0.0, &hanging)?.modes[0];
+//! assert!((swing.omega_squared - g / l).abs() < 1e-8);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
 //! # Not yet
 //!
-//! Models with holonomic constraints are refused
-//! ([`AnalysisError::Constrained`]): their motion lives on `φ(t, q) = 0`,
-//! and their linearization needs independent coordinates on it (a
-//! null-space basis of `G` at the point).
+//! [`linearize`] and [`linearize_with_inputs`] stay in the model's own
+//! coordinates and refuse a constrained model
+//! ([`AnalysisError::Constrained`]); an input matrix `B` on the manifold
+//! is not implemented. Exact (symbolic) derivatives of the constrained
+//! accelerations are not either: the constrained analyses difference `q̈`.
 //!
 //! The files: `linearize.rs` ([`linearize`], [`linearize_with_inputs`]),
+//! `manifold.rs` (the tangent basis, [`linearize_on_manifold`]), `rest.rs`
+//! (equilibria and modes of a constrained model),
 //! `equilibrium.rs` ([`equilibrium`], [`EquilibriumSearch`],
 //! [`is_equilibrium`]), `modes.rs` ([`modes`]), `derivatives.rs` (the
 //! derivatives they share), `error.rs` ([`AnalysisError`]).
@@ -87,11 +126,14 @@ mod derivatives;
 mod equilibrium;
 mod error;
 mod linearize;
+mod manifold;
 mod modes;
+mod rest;
 
 pub use equilibrium::{equilibrium, is_equilibrium, EquilibriumSearch};
 pub use error::AnalysisError;
 pub use linearize::{linearize, linearize_with_inputs, InputLinearization, Linearization};
+pub use manifold::{linearize_on_manifold, ManifoldLinearization};
 pub use modes::{modes, Mode, ModeKind, Modes};
 
 #[cfg(doc)]

@@ -2,10 +2,11 @@
 
 use core::cmp::Ordering;
 
-use nalgebra::{ComplexField, DMatrix, RealField, SVector};
+use nalgebra::{DMatrix, RealField, SVector};
 
-use super::derivatives::{forcing_at_rest, refuse_constrained, relative_noise, sqrt_epsilon};
+use super::derivatives::{forcing_at_rest, relative_noise, sqrt_epsilon};
 use super::equilibrium::within;
+use super::rest::ManifoldModes;
 use super::{AnalysisError, Derivatives};
 use crate::linalg::solve::{factor_mass_matrix, mass_error, MassFactor, SolveError};
 use crate::Lagrangian;
@@ -59,10 +60,12 @@ pub struct Mode<S: RealField + Copy, const N: usize> {
 /// assert!(!modes.is_stable());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Modes<S: RealField + Copy, const N: usize> {
-    /// The modes, `ω²` ascending.
-    pub modes: [Mode<S, N>; N],
+    /// The modes, `ω²` ascending: one per degree of freedom, `N` for a
+    /// model in independent coordinates, `N − C` for one with `C`
+    /// constraints (their shapes tangent to the constraints).
+    pub modes: Vec<Mode<S, N>>,
     /// How `K` was obtained.
     pub derivatives: Derivatives,
 }
@@ -113,10 +116,17 @@ impl<S: RealField + Copy, const N: usize> Modes<S, N> {
 /// [`AnalysisError::NotAnEquilibrium`]); a `K` whose asymmetry exceeds the
 /// error of its evaluation (`100 N ε` exact, `100 ε^(2/3)` by differences,
 /// relative to its largest entry: non-conservative forces,
-/// [`AnalysisError::NonConservative`]); a constrained model; `M` not
-/// positive definite. `K` is symmetrized before the solve. A mode is
+/// [`AnalysisError::NonConservative`]); `M` not positive definite. `K` is symmetrized before the solve. A mode is
 /// [`ModeKind::Neutral`] when `|ω²|` is within that same relative error of
 /// the largest `|ω²|`.
+///
+/// A constrained model has `N − C` modes, from `K_z w = ω² M_z w` in the
+/// independent coordinates `δq = T δz` tangent to `φ = 0` (`M_z = Tᵀ M T`,
+/// `K_z = −Tᵀ M ∂q̈/∂q T` with the saddle-point `q̈`, by central
+/// differences), shapes `T w` in the model's coordinates, `M`-orthonormal
+/// and tangent to the constraints; `q` must be on them to `√ε`
+/// ([`AnalysisError::OffConstraints`]). See
+/// [the module](super#constrained-models).
 ///
 /// Cost: one `f` and its Jacobian, one Cholesky, a symmetric eigensolve of
 /// order `N`. The eigensolve runs on a heap matrix (nalgebra's symmetric
@@ -142,7 +152,9 @@ pub fn modes<L: Lagrangian<N>, const N: usize>(
     t: L::Scalar,
     q: &SVector<L::Scalar, N>,
 ) -> Result<Modes<L::Scalar, N>, AnalysisError<L::Scalar, N>> {
-    refuse_constrained(model, t, q)?;
+    if let Some(result) = model.visit_constraints(ManifoldModes { t, q }) {
+        return result;
+    }
     let (f, jacobian, derivatives) = forcing_at_rest(model, t, q)?;
     let tolerance = sqrt_epsilon();
     if !within(&f, &jacobian, q, tolerance) {
@@ -179,40 +191,51 @@ pub fn modes<L: Lagrangian<N>, const N: usize>(
     };
     let l = chol.l();
     let singular = || AnalysisError::from(mass_error(SolveError::Singular, t, q, &zero));
-    // C = L⁻¹ K L⁻ᵀ = L⁻¹ (L⁻¹ K)ᵀ, K symmetric.
-    let x = l.solve_lower_triangular(&k).ok_or_else(singular)?;
-    let c = l
-        .solve_lower_triangular(&x.transpose())
-        .ok_or_else(singular)?;
-    let c = DMatrix::from_fn(N, N, |i, j| (c[(i, j)] + c[(j, i)]) * half);
-    let eigen = c.symmetric_eigen();
-
-    let mut order: [usize; N] = core::array::from_fn(|i| i);
-    let values = &eigen.eigenvalues;
-    order.sort_by(|&i, &j| values[i].partial_cmp(&values[j]).unwrap_or(Ordering::Equal));
-    let largest = values
-        .iter()
-        .fold(nalgebra::zero(), |m: L::Scalar, v| m.max(v.abs()));
-    let lt = l.transpose();
-    let mut modes = [Mode {
-        omega_squared: nalgebra::zero(),
-        shape: SVector::zeros(),
-        kind: ModeKind::Neutral,
-    }; N];
-    for (mode, &i) in modes.iter_mut().zip(order.iter()) {
-        let w = SVector::<L::Scalar, N>::from_fn(|r, _| eigen.eigenvectors[(r, i)]);
-        let mut shape = lt.solve_upper_triangular(&w).ok_or_else(singular)?;
-        if shape.max() < -shape.min() {
-            shape = -shape;
-        }
-        let omega_squared = values[i];
-        *mode = Mode {
-            omega_squared,
-            shape,
-            kind: classify(omega_squared, noise * largest),
-        };
-    }
+    let k = DMatrix::from_fn(N, N, |i, j| k[(i, j)]);
+    let l = DMatrix::from_fn(N, N, |i, j| l[(i, j)]);
+    let modes = solve_modes(&k, &l, &DMatrix::identity(N, N), noise).ok_or_else(singular)?;
     Ok(Modes { modes, derivatives })
+}
+
+/// The modes of `K v = ω² M v` with `K` symmetric (`D × D`) and `M = L Lᵀ`,
+/// shapes mapped to the model's coordinates by `to_q` (`N × D`): through
+/// the symmetric `L⁻¹ K L⁻ᵀ w = ω² w`, `v = L⁻ᵀ w`, so the shapes are
+/// `M`-orthonormal; `ω²` ascending, each classified against `noise`
+/// relative to the largest `|ω²|`. `None` if a triangular solve fails.
+pub(super) fn solve_modes<S: RealField + Copy, const N: usize>(
+    k: &DMatrix<S>,
+    l: &DMatrix<S>,
+    to_q: &DMatrix<S>,
+    noise: S,
+) -> Option<Vec<Mode<S, N>>> {
+    let half: S = nalgebra::convert(0.5);
+    // C = L⁻¹ K L⁻ᵀ = L⁻¹ (L⁻¹ K)ᵀ, K symmetric.
+    let x = l.solve_lower_triangular(k)?;
+    let c = l.solve_lower_triangular(&x.transpose())?;
+    let c = (&c + c.transpose()) * half;
+    let eigen = c.symmetric_eigen();
+    let values = &eigen.eigenvalues;
+    let mut order: Vec<usize> = (0..values.len()).collect();
+    order.sort_by(|&i, &j| values[i].partial_cmp(&values[j]).unwrap_or(Ordering::Equal));
+    let largest = values.iter().fold(S::zero(), |m, v| m.max(v.abs()));
+    let lt = l.transpose();
+    order
+        .into_iter()
+        .map(|i| {
+            let w = eigen.eigenvectors.column(i).into_owned();
+            let v = to_q * lt.solve_upper_triangular(&w)?;
+            let mut shape = SVector::<S, N>::from_fn(|r, _| v[r]);
+            if shape.max() < -shape.min() {
+                shape = -shape;
+            }
+            let omega_squared = values[i];
+            Some(Mode {
+                omega_squared,
+                shape,
+                kind: classify(omega_squared, noise * largest),
+            })
+        })
+        .collect()
 }
 
 /// The kind of a mode whose `ω²` is known to within `noise`.

@@ -133,9 +133,9 @@ pub use constrained::Constrained;
 pub use settings::{ConstraintSettings, Drift, InitialConditions};
 
 pub(crate) use initial::StartOnManifold;
-pub(crate) use projection::{DriftControl, ProjectSample, VelocityProjection};
+pub(crate) use projection::{project_position, DriftControl, ProjectSample, VelocityProjection};
 pub(crate) use rattle::{Multipliers, Outer, RattleStep};
-pub(crate) use saddle::Accelerations;
+pub(crate) use saddle::{constrained_accelerations, Accelerations};
 
 /// A model with `C` holonomic constraints `φ(t, q) = 0` on its `N`
 /// coordinates (`C < N`).

@@ -110,8 +110,11 @@ fn linearization_without_jacobians_is_by_central_differences() {
     assert!((numeric.dqddot_dqdot - exact.dqddot_dqdot).amax() < tolerance(&qdot));
 }
 
+/// `linearize` works in the model's own coordinates, which a constrained
+/// model's are not free to vary: refused, pointing to
+/// `linearize_on_manifold` (tested in `manifold.rs`).
 #[test]
-fn constrained_model_linearization_is_refused_until_supported() {
+fn constrained_model_is_refused_in_redundant_coordinates() {
     let pendulum = crate::models::CartesianPendulum::unit();
     let (q, qdot) = pendulum.state(0.3, 0.0);
     let err = linearize(&pendulum, 0.0, &q, &qdot).unwrap_err();

@@ -5,6 +5,7 @@
 mod actuated;
 mod equilibria;
 mod linearization;
+mod manifold;
 mod models;
 mod modes;
 

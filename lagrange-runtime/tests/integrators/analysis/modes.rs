@@ -157,10 +157,3 @@ fn circulatory_force_is_refused_as_non_conservative() {
     // max |K − Kᵀ| / max |K| = 2c / k.
     assert!((asymmetry - 0.25).abs() < 1e-9);
 }
-
-#[test]
-fn constrained_model_is_refused_until_supported() {
-    let pendulum = crate::models::CartesianPendulum::unit();
-    let err = modes(&pendulum, 0.0, &Vector2::new(0.0, -1.0)).unwrap_err();
-    assert!(matches!(err, AnalysisError::Constrained { .. }), "{err}");
-}
