@@ -9,6 +9,8 @@
 
 use crate::rng::Rng;
 
+mod sections;
+
 /// A declared name: scalar, or indexed with its length (as written, and its
 /// value).
 #[derive(Clone)]
@@ -309,45 +311,6 @@ impl Gen<'_> {
             entries.push(format!("{} = {value}", self.reference(&target)));
         }
         format!("forces: {};", entries.join(", "))
-    }
-
-    /// `constraints:` of a coordinate against an expression in t and q,
-    /// sometimes indexed over an indexed coordinate's elements.
-    fn constraints(&mut self) -> String {
-        let mut entries = Vec::new();
-        for name in ["c1", "c2"].iter().take(self.rng.range(1, 2)) {
-            let c = self.rng.pick(&self.scope.coordinates).clone();
-            let (head, target) = match &c.len {
-                Some((len_text, _)) if self.rng.chance(0.5) => (
-                    format!("{name}[i in 0..{len_text}]"),
-                    format!("{}[i]", c.name),
-                ),
-                _ => (name.to_string(), self.reference(&c)),
-            };
-            let d = self.depth();
-            let value = self.expr(d, false);
-            entries.push(match self.rng.below(3) {
-                0 => format!("{head}: {target} - {value}"),
-                1 => format!("{head}: {target}^2 = {value}"),
-                _ => format!("{head}: {target} = {value}"),
-            });
-        }
-        format!("constraints: {};", entries.join(", "))
-    }
-
-    /// `inputs:` (scalar or indexed) and a force on a coordinate scaled by
-    /// one of them: a motor. The force section is its own, so it may clash
-    /// with another force on the same target (one spanned error).
-    fn inputs(&mut self) -> String {
-        let c = self.rng.pick(&self.scope.coordinates).clone();
-        let target = self.reference(&c);
-        let d = self.depth();
-        let gain = self.expr(d, false);
-        if self.rng.chance(0.5) {
-            format!("inputs: u_in; forces: {target} = u_in*({gain});")
-        } else {
-            format!("inputs: w_in[2]; forces: {target} = w_in[0] + w_in[1]*({gain});")
-        }
     }
 
     /// `name` or one element of it, with an index in range.
