@@ -100,3 +100,50 @@ fn cart_pole_linearization_matches_differences_of_the_right_hand_side_anywhere()
     println!("largest gap between exact A, B and differences at 20 states: {worst:.1e}");
     assert!(worst < 1e-6, "{worst:.2e}");
 }
+
+lagrange::lagrangian! {
+    /// A bob on a rod in x, y, driven by forces `fx`, `fy` along the axes.
+    struct PushedPendulum {
+        coordinates: x, y;
+        parameters: m, l, g;
+        inputs: fx, fy;
+        kinetic: m/2*(dot(x)^2 + dot(y)^2);
+        potential: m*g*y;
+        forces: x = fx, y = fy;
+        constraints: rod: x^2 + y^2 = l^2;
+    }
+}
+
+/// On the constraint manifold, `B` keeps only the inputs' tangential part:
+/// at angle θ from the downward vertical the bob moves along the circle,
+/// unit tangent `(cos θ, sin θ)`, so in the arc coordinate `z` (the
+/// orthonormal basis, up to its sign) `z̈ = (fx cos θ + fy sin θ) / m`, as
+/// the θ pendulum's `l θ̈` says. The multiplier solve is exact, so the
+/// entries agree to rounding (1e-12 of `1/m`).
+#[test]
+fn pushed_pendulum_input_matrix_on_its_manifold_is_the_tangential_force() {
+    use lagrange::analysis::linearize_on_manifold_with_inputs;
+    let (m, l) = (1.7, 0.9);
+    let model: PushedPendulum = PushedPendulum::new(m, l, 9.81);
+    for theta in [0.0f64, 0.4, -1.1, 2.5] {
+        let (s, c) = theta.sin_cos();
+        let q = Vector2::new(l * s, -l * c);
+        let lin = linearize_on_manifold_with_inputs(
+            &model,
+            0.0,
+            &q,
+            &Vector2::zeros(),
+            &Vector2::zeros(),
+        )
+        .unwrap();
+        let b = &lin.input_matrix;
+        assert_eq!((b.nrows(), b.ncols()), (2, 2));
+        assert!(b[(0, 0)] == 0.0 && b[(0, 1)] == 0.0);
+        let err_x = (b[(1, 0)].abs() - c.abs() / m).abs();
+        let err_y = (b[(1, 1)].abs() - s.abs() / m).abs();
+        // The two entries share the sign of the basis direction.
+        let same = (b[(1, 0)] * c + b[(1, 1)] * s).abs() - 1.0 / m;
+        println!("θ = {theta}: |B_x| err {err_x:.1e}, |B_y| err {err_y:.1e}, tangent {same:.1e}");
+        assert!(err_x < 1e-12 / m && err_y < 1e-12 / m && same.abs() < 1e-12 / m);
+    }
+}

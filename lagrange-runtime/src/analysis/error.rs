@@ -38,7 +38,7 @@ pub enum AnalysisError<S: RealField + Copy, const N: usize> {
     /// yet.
     #[error(
         "the model has holonomic constraints at t = {t:?} (q = {}): its coordinates are not \
-         independent; use `linearize_on_manifold` (inputs on the manifold are not supported yet)",
+         independent; use `linearize_on_manifold` (`linearize_on_manifold_with_inputs` with inputs)",
         Row(.q)
     )]
     Constrained {

@@ -111,12 +111,14 @@
 //!
 //! [`linearize`] and [`linearize_with_inputs`] stay in the model's own
 //! coordinates and refuse a constrained model
-//! ([`AnalysisError::Constrained`]); an input matrix `B` on the manifold
-//! is not implemented. Exact (symbolic) derivatives of the constrained
-//! accelerations are not either: the constrained analyses difference `q̈`.
+//! ([`AnalysisError::Constrained`]): use [`linearize_on_manifold`] and
+//! [`linearize_on_manifold_with_inputs`] (whose `B` is exact). Exact
+//! (symbolic) derivatives of the constrained accelerations are not
+//! generated: the constrained `A` differences the saddle-point `q̈`.
 //!
 //! The files: `linearize.rs` ([`linearize`], [`linearize_with_inputs`]),
-//! `manifold.rs` (the tangent basis, [`linearize_on_manifold`]), `rest.rs`
+//! `manifold.rs` (the tangent basis, [`linearize_on_manifold`],
+//! [`linearize_on_manifold_with_inputs`]), `rest.rs`
 //! (equilibria and modes of a constrained model),
 //! `equilibrium.rs` ([`equilibrium`], [`EquilibriumSearch`],
 //! [`is_equilibrium`]), `modes.rs` ([`modes`]), `derivatives.rs` (the
@@ -133,7 +135,10 @@ mod rest;
 pub use equilibrium::{equilibrium, is_equilibrium, EquilibriumSearch};
 pub use error::AnalysisError;
 pub use linearize::{linearize, linearize_with_inputs, InputLinearization, Linearization};
-pub use manifold::{linearize_on_manifold, ManifoldLinearization};
+pub use manifold::{
+    linearize_on_manifold, linearize_on_manifold_with_inputs, ManifoldInputLinearization,
+    ManifoldLinearization,
+};
 pub use modes::{modes, Mode, ModeKind, Modes};
 
 #[cfg(doc)]

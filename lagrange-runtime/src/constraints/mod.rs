@@ -135,7 +135,7 @@ pub use settings::{ConstraintSettings, Drift, InitialConditions};
 pub(crate) use initial::StartOnManifold;
 pub(crate) use projection::{project_position, DriftControl, ProjectSample, VelocityProjection};
 pub(crate) use rattle::{Multipliers, Outer, RattleStep};
-pub(crate) use saddle::{constrained_accelerations, Accelerations};
+pub(crate) use saddle::{constrained_accelerations, Accelerations, Schur};
 
 /// A model with `C` holonomic constraints `φ(t, q) = 0` on its `N`
 /// coordinates (`C < N`).
