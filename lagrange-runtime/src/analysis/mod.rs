@@ -117,8 +117,8 @@
 //! generated: the constrained `A` differences the saddle-point `q̈`.
 //!
 //! The files: `linearize.rs` ([`linearize`], [`linearize_with_inputs`]),
-//! `manifold.rs` (the tangent basis, [`linearize_on_manifold`],
-//! [`linearize_on_manifold_with_inputs`]), `rest.rs`
+//! `manifold.rs` (the tangent basis, [`linearize_on_manifold`]),
+//! `manifold_inputs.rs` ([`linearize_on_manifold_with_inputs`]), `rest.rs`
 //! (equilibria and modes of a constrained model),
 //! `equilibrium.rs` ([`equilibrium`], [`EquilibriumSearch`],
 //! [`is_equilibrium`]), `modes.rs` ([`modes`]), `derivatives.rs` (the
@@ -129,16 +129,15 @@ mod equilibrium;
 mod error;
 mod linearize;
 mod manifold;
+mod manifold_inputs;
 mod modes;
 mod rest;
 
 pub use equilibrium::{equilibrium, is_equilibrium, EquilibriumSearch};
 pub use error::AnalysisError;
 pub use linearize::{linearize, linearize_with_inputs, InputLinearization, Linearization};
-pub use manifold::{
-    linearize_on_manifold, linearize_on_manifold_with_inputs, ManifoldInputLinearization,
-    ManifoldLinearization,
-};
+pub use manifold::{linearize_on_manifold, ManifoldLinearization};
+pub use manifold_inputs::{linearize_on_manifold_with_inputs, ManifoldInputLinearization};
 pub use modes::{modes, Mode, ModeKind, Modes};
 
 #[cfg(doc)]
