@@ -16,7 +16,9 @@ pub mod expression;
 
 pub use expression::parse_expr;
 
-use crate::ast::{ConstraintDef, Decl, Expr, Item, ModelDef, Options, SpanRange, MAX_BUDGET};
+use crate::ast::{
+    ConstraintDef, Decl, Expr, IndexRange, Item, ModelDef, Options, SpanRange, MAX_BUDGET,
+};
 use crate::expr::DEFAULT_BUDGET;
 use expression::{drain_on_error, parse_bracket, parse_index_range};
 use proc_macro2::{TokenStream, TokenTree};
@@ -161,19 +163,7 @@ fn parse_item(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result
     if input.peek(Token![let]) {
         input.parse::<Token![let]>()?;
         let name: Ident = plain_name(input)?;
-        let index = if input.peek(syn::token::Bracket) {
-            let inner;
-            bracketed!(inner in input);
-            Some(drain_on_error(&inner, |inner| {
-                let range = parse_index_range(inner)?;
-                if !inner.is_empty() {
-                    return Err(inner.error("expected `]` after the range"));
-                }
-                Ok(range)
-            })?)
-        } else {
-            None
-        };
+        let index = optional_index_range(input)?;
         if !input.peek(Token![=]) {
             return Err(input.error(
                 "expected `=`: a `let` is written `let x = expression;` or `let x[i in 0..N] = expression;`",
@@ -380,19 +370,7 @@ fn parse_constraints(
             return Ok(entries);
         }
         let name: Ident = plain_name(input)?;
-        let index = if input.peek(syn::token::Bracket) {
-            let inner;
-            bracketed!(inner in input);
-            Some(drain_on_error(&inner, |inner| {
-                let range = parse_index_range(inner)?;
-                if !inner.is_empty() {
-                    return Err(inner.error("expected `]` after the range"));
-                }
-                Ok(range)
-            })?)
-        } else {
-            None
-        };
+        let index = optional_index_range(input)?;
         if !input.peek(Token![:]) || input.peek(Token![::]) {
             return Err(input.error(
                 "expected `:` after the constraint's name: each constraint is named, as in \
@@ -424,4 +402,21 @@ fn parse_constraints(
             return Err(input.error("expected an operator, `=`, `,` or `;`"));
         }
     }
+}
+
+/// `[i in a..b]` after an indexed `let`'s or constraint's name, if there.
+fn optional_index_range(input: ParseStream) -> syn::Result<Option<IndexRange>> {
+    if !input.peek(syn::token::Bracket) {
+        return Ok(None);
+    }
+    let inner;
+    bracketed!(inner in input);
+    let range = drain_on_error(&inner, |inner| {
+        let range = parse_index_range(inner)?;
+        if !inner.is_empty() {
+            return Err(inner.error("expected `]` after the range"));
+        }
+        Ok(range)
+    })?;
+    Ok(Some(range))
 }
