@@ -209,6 +209,54 @@ where
     }
 }
 
+/// A constrained model under a controller is constrained: its `φ`, `G`,
+/// `φ̇` and `γ` are the model's (inputs are kept out of constraints), its
+/// `M` and `f` go through the controller, so
+/// `controlled.with_drift(..)` and `controlled.multipliers(..)` work as on
+/// the model itself.
+impl<M, F, const N: usize, const C: usize, const K: usize> Holonomic<N, C>
+    for Controlled<'_, M, F, K>
+where
+    M: Actuated<N, K> + Holonomic<N, C> + Copy,
+    F: Fn(M::Scalar, &SVector<M::Scalar, N>, &SVector<M::Scalar, N>) -> SVector<M::Scalar, K>,
+{
+    const CONSTRAINTS: [&'static str; C] = <M as Holonomic<N, C>>::CONSTRAINTS;
+
+    fn constraints(&self, t: M::Scalar, q: &SVector<M::Scalar, N>) -> SVector<M::Scalar, C> {
+        self.model.constraints(t, q)
+    }
+
+    fn constraint_jacobian(
+        &self,
+        t: M::Scalar,
+        q: &SVector<M::Scalar, N>,
+    ) -> SMatrix<M::Scalar, C, N> {
+        self.model.constraint_jacobian(t, q)
+    }
+
+    fn constraint_velocities(
+        &self,
+        t: M::Scalar,
+        q: &SVector<M::Scalar, N>,
+        qdot: &SVector<M::Scalar, N>,
+    ) -> SVector<M::Scalar, C> {
+        self.model.constraint_velocities(t, q, qdot)
+    }
+
+    fn constraint_bias(
+        &self,
+        t: M::Scalar,
+        q: &SVector<M::Scalar, N>,
+        qdot: &SVector<M::Scalar, N>,
+    ) -> SVector<M::Scalar, C> {
+        self.model.constraint_bias(t, q, qdot)
+    }
+
+    fn constraint_settings(&self) -> ConstraintSettings<M::Scalar> {
+        self.model.constraint_settings()
+    }
+}
+
 /// The visitor that meets a controlled model's constraints: it hands its
 /// own visitor the constraints (which hold no input) joined to the
 /// controlled dynamics.
