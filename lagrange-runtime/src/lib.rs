@@ -268,6 +268,7 @@ pub mod inputs;
 pub mod integrators;
 mod lagrangian;
 mod linalg;
+pub mod stepper;
 mod trajectory;
 
 pub use constraints::Holonomic;
@@ -282,6 +283,7 @@ pub use integrators::{
 pub use lagrangian::Lagrangian;
 pub use linalg::{jacobian, solve};
 pub use nalgebra;
+pub use stepper::{StepMethod, Stepper};
 pub use trajectory::{Sample, Samples, Stats, Trajectory};
 
 /// The names a simulation needs: `use lagrange_runtime::prelude::*;`.
@@ -289,7 +291,7 @@ pub mod prelude {
     pub use crate::constraints::{Drift, InitialConditions};
     pub use crate::{
         integrate, Actuated, Dop853, Dopri5, ExplicitEuler, Failure, GaussLegendre, Holonomic,
-        ImplicitMidpoint, IntegrationError, Integrator, Lagrangian, Radau5, Rk4, SymplecticEuler,
-        Trajectory, Variational,
+        ImplicitMidpoint, IntegrationError, Integrator, Lagrangian, Radau5, Rk4, Stepper,
+        SymplecticEuler, Trajectory, Variational,
     };
 }

@@ -37,7 +37,7 @@ use super::record::State;
 /// Growth that is smooth and slower than 2× per step (a physical
 /// instability, or explicit Euler's slow energy gain at small `hω`) is not
 /// an instability of the step and is left alone.
-pub(super) struct GrowthGuard<S> {
+pub(crate) struct GrowthGuard<S> {
     floor: S,
     last: S,
     run: usize,
@@ -55,7 +55,7 @@ impl<S: RealField + Copy> GrowthGuard<S> {
     const STEPS: usize = 8;
     const FOLD: f64 = 8.0;
 
-    pub(super) fn new<const N: usize>(q: &SVector<S, N>, qdot: &SVector<S, N>) -> Self {
+    pub(crate) fn new<const N: usize>(q: &SVector<S, N>, qdot: &SVector<S, N>) -> Self {
         let size = Self::size(q, qdot);
         Self {
             floor: nalgebra::convert::<f64, S>(1000.0) * size.max(S::one()),
@@ -77,7 +77,7 @@ impl<S: RealField + Copy> GrowthGuard<S> {
     /// After a step of length `h` from `before` to `after`: `Some(steps)`
     /// once either signature has lasted long enough to stop, `steps` being
     /// how long.
-    pub(super) fn unstable<const N: usize>(
+    pub(crate) fn unstable<const N: usize>(
         &mut self,
         before: State<S, N>,
         after: (&SVector<S, N>, &SVector<S, N>),

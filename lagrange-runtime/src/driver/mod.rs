@@ -25,7 +25,8 @@ mod validate;
 
 pub(crate) use adaptive::{adaptive, Controller, EmbeddedPair, Outcome, Tolerances};
 pub(crate) use fixed::{fixed_step, Interval};
+pub(crate) use growth::GrowthGuard;
 pub(crate) use newton::newton_noise_floor;
 pub(crate) use record::{Recorder, State};
-pub(crate) use step_control::{advances, default_tolerance};
+pub(crate) use step_control::{advances, default_tolerance, initial_step};
 pub(crate) use validate::{check_step_size, check_tolerances, invalid};

@@ -224,6 +224,25 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
     InvalidInput(InvalidInput<S>),
 }
 
+impl<S: RealField + Copy, const N: usize> IntegrationError<S, N> {
+    /// The time at which the integration stopped; `None` for an input
+    /// refused before the first step.
+    pub fn time(&self) -> Option<S> {
+        match self {
+            Self::SingularMassMatrix { t, .. }
+            | Self::IndefiniteMassMatrix { t, .. }
+            | Self::NonFiniteState { t, .. }
+            | Self::StepSizeUnderflow { t, .. }
+            | Self::TooManySteps { t, .. }
+            | Self::NewtonDivergence { t, .. }
+            | Self::Unstable { t, .. }
+            | Self::SingularConstraints { t, .. }
+            | Self::ProjectionFailed { t, .. } => Some(*t),
+            Self::InvalidInput(_) => None,
+        }
+    }
+}
+
 impl<S: RealField + Copy, const N: usize> From<InvalidInput<S>> for IntegrationError<S, N> {
     fn from(invalid: InvalidInput<S>) -> Self {
         Self::InvalidInput(invalid)
@@ -315,6 +334,20 @@ pub enum InvalidInput<S: RealField + Copy> {
         time: S,
         /// The start time.
         t0: S,
+    },
+
+    /// A [`Stepper`](crate::Stepper) asked to move to a time that is not
+    /// after its own (it advances forward only), or not finite; also a
+    /// `dt` too small to change `t`.
+    #[error(
+        "the stepper is at t = {t:?} and cannot advance to {target:?}: \
+         the target must be finite and later than t"
+    )]
+    TargetNotAhead {
+        /// The stepper's time.
+        t: S,
+        /// The time asked for.
+        target: S,
     },
 
     /// A fixed step size that is zero, negative or not finite.

@@ -58,6 +58,11 @@ impl<S: RealField + Copy> ExplicitEuler<S> {
     pub fn step_size(&self) -> S {
         self.h
     }
+
+    /// The step budget, for a [`Stepper`](crate::Stepper).
+    pub(crate) fn step_budget(&self) -> usize {
+        self.max_steps
+    }
 }
 
 impl<S: RealField + Copy> Integrator<S> for ExplicitEuler<S> {
@@ -78,7 +83,7 @@ impl<S: RealField + Copy> Integrator<S> for ExplicitEuler<S> {
 }
 
 /// `q ← q + h q̇`, `q̇ ← q̇ + h q̈`, both from the state at `t`.
-fn euler_step<L: Lagrangian<N>, const N: usize>(
+pub(crate) fn euler_step<L: Lagrangian<N>, const N: usize>(
     rec: &mut Recorder<'_, L::Scalar, N>,
     model: &L,
     t: L::Scalar,

@@ -64,6 +64,13 @@ pub use rk4::Rk4;
 pub use symplectic_euler::SymplecticEuler;
 pub use variational::Variational;
 
+// What a `Stepper` drives: the explicit methods' steps and pairs.
+pub(crate) use dop853::{Pair as Dop853Pair, CONTROL as DOP853_CONTROL};
+pub(crate) use dopri5::{Pair as Dopri5Pair, CONTROL as DOPRI5_CONTROL};
+pub(crate) use euler::euler_step;
+pub(crate) use rk4::rk4_step;
+pub(crate) use symplectic_euler::symplectic_step;
+
 use nalgebra::{RealField, SVector};
 
 use crate::{IntegrationResult, Lagrangian};

@@ -51,6 +51,11 @@ impl<S: RealField + Copy> Rk4<S> {
     pub fn step_size(&self) -> S {
         self.h
     }
+
+    /// The step budget, for a [`Stepper`](crate::Stepper).
+    pub(crate) fn step_budget(&self) -> usize {
+        self.max_steps
+    }
 }
 
 impl<S: RealField + Copy> Integrator<S> for Rk4<S> {
@@ -71,7 +76,7 @@ impl<S: RealField + Copy> Integrator<S> for Rk4<S> {
 }
 
 /// One RK4 step for `y = (q, q̇)`, `ẏ = (q̇, q̈)`.
-fn rk4_step<L: Lagrangian<N>, const N: usize>(
+pub(crate) fn rk4_step<L: Lagrangian<N>, const N: usize>(
     rec: &mut Recorder<'_, L::Scalar, N>,
     model: &L,
     t: L::Scalar,

@@ -70,6 +70,11 @@ impl<S: RealField + Copy> SymplecticEuler<S> {
     pub fn step_size(&self) -> S {
         self.h
     }
+
+    /// The step budget, for a [`Stepper`](crate::Stepper).
+    pub(crate) fn step_budget(&self) -> usize {
+        self.max_steps
+    }
 }
 
 impl<S: RealField + Copy> Integrator<S> for SymplecticEuler<S> {
@@ -90,7 +95,7 @@ impl<S: RealField + Copy> Integrator<S> for SymplecticEuler<S> {
 }
 
 /// The kick `q̇ ← q̇ + h q̈(t, q, q̇)`, then the drift `q ← q + h q̇`.
-fn symplectic_step<L: Lagrangian<N>, const N: usize>(
+pub(crate) fn symplectic_step<L: Lagrangian<N>, const N: usize>(
     rec: &mut Recorder<'_, L::Scalar, N>,
     model: &L,
     t: L::Scalar,

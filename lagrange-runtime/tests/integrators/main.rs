@@ -6,6 +6,7 @@
 #[path = "../models/mod.rs"]
 mod models;
 
+mod allocations;
 mod analysis;
 mod constraints;
 mod dop853;
@@ -18,5 +19,5 @@ mod instability;
 mod newton_failures;
 mod properties;
 mod radau5;
-mod radau5_allocations;
+mod stepper;
 mod variational;

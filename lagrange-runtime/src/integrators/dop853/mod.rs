@@ -119,7 +119,7 @@ impl<S: RealField + Copy> Default for Dop853<S> {
 /// `dop853.f`): `fac_min` is Hairer's 0.333, and there is no Lund
 /// stabilization by default (`BETA = 0`), a pure I-controller with exponent
 /// 1/8; `β` is kept so the formula reads as Hairer's.
-const CONTROL: Controller = Controller {
+pub(crate) const CONTROL: Controller = Controller {
     safety: 0.9,
     fac_min: 0.333,
     fac_max: 6.0,
@@ -142,22 +142,36 @@ impl<S: RealField + Copy> Integrator<S> for Dop853<S> {
     where
         L: Lagrangian<N, Scalar = S>,
     {
-        let settings = self.settings;
-        // One set of slopes for the whole integration, overwritten by each
-        // attempt: nothing of this size is copied per step.
-        let pair = |qdot: &SVector<S, N>, qddot: &SVector<S, N>| Pair {
+        let pair = |qdot: &SVector<S, N>, qddot: &SVector<S, N>| self.pair(qdot, qddot);
+        adaptive(&CONTROL, self.settings, model, t0, q0, qdot0, times, pair)
+    }
+}
+
+impl<S: RealField + Copy> Dop853<S> {
+    /// The pair for one run (or one [`Stepper`](crate::Stepper)) from
+    /// `(q̇, q̈)` at its start. One set of slopes for the whole run,
+    /// overwritten by each attempt: nothing of this size is copied per step.
+    pub(crate) fn pair<const N: usize>(
+        &self,
+        qdot: &SVector<S, N>,
+        qddot: &SVector<S, N>,
+    ) -> Pair<S, N> {
+        Pair {
             tab: Tableau::new(),
-            rtol: settings.rtol,
-            atol: settings.atol,
+            rtol: self.settings.rtol,
+            atol: self.settings.atol,
             k: Stages::new(qdot, qddot),
-        };
-        adaptive(&CONTROL, settings, model, t0, q0, qdot0, times, pair)
+        }
+    }
+
+    pub(crate) fn settings(&self) -> Tolerances<S> {
+        self.settings
     }
 }
 
 /// One integration's tableau, tolerances and slopes; stage 1 of `k` is `f`
 /// at the current state.
-struct Pair<S, const N: usize> {
+pub(crate) struct Pair<S, const N: usize> {
     tab: Tableau<S>,
     rtol: S,
     atol: S,

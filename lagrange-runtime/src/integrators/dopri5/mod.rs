@@ -91,7 +91,7 @@ impl<S: RealField + Copy> Default for Dopri5<S> {
 
 /// DOPRI5's step-size controller: its defaults, with Lund stabilization
 /// (`β = 0.04`).
-const CONTROL: Controller = Controller {
+pub(crate) const CONTROL: Controller = Controller {
     safety: 0.9,
     fac_min: 0.2,
     fac_max: 10.0,
@@ -114,20 +114,31 @@ impl<S: RealField + Copy> Integrator<S> for Dopri5<S> {
     where
         L: Lagrangian<N, Scalar = S>,
     {
-        let settings = self.settings;
-        let pair = |_: &SVector<S, N>, qddot: &SVector<S, N>| Pair {
+        let pair = |_: &SVector<S, N>, qddot: &SVector<S, N>| self.pair(qddot);
+        adaptive(&CONTROL, self.settings, model, t0, q0, qdot0, times, pair)
+    }
+}
+
+impl<S: RealField + Copy> Dopri5<S> {
+    /// The pair for one run (or one [`Stepper`](crate::Stepper)) from `q̈`
+    /// at its start.
+    pub(crate) fn pair<const N: usize>(&self, qddot: &SVector<S, N>) -> Pair<S, N> {
+        Pair {
             tab: Tableau::new(),
-            rtol: settings.rtol,
-            atol: settings.atol,
+            rtol: self.settings.rtol,
+            atol: self.settings.atol,
             qddot: *qddot,
-        };
-        adaptive(&CONTROL, settings, model, t0, q0, qdot0, times, pair)
+        }
+    }
+
+    pub(crate) fn settings(&self) -> Tolerances<S> {
+        self.settings
     }
 }
 
 /// One integration's tableau, tolerances, and `q̈` at the current state
 /// (the last stage of the previous step: first same as last).
-struct Pair<S, const N: usize> {
+pub(crate) struct Pair<S, const N: usize> {
     tab: Tableau<S>,
     rtol: S,
     atol: S,

@@ -8,7 +8,7 @@ use crate::{IntegrationError, Lagrangian};
 
 /// One attempted step: the fifth-order solution, the embedded error
 /// estimate, and the stages the continuous extension needs.
-pub(super) struct Step<S, const N: usize> {
+pub(crate) struct Step<S, const N: usize> {
     pub(super) q: SVector<S, N>,
     pub(super) qdot: SVector<S, N>,
     pub(super) err_q: SVector<S, N>,
@@ -138,7 +138,7 @@ impl<S: RealField + Copy> Tableau<S> {
 
 /// Hairer's continuous extension of order four on one accepted step:
 /// `y(t + θh) = r₁ + θ(r₂ + (1-θ)(r₃ + θ(r₄ + (1-θ) r₅)))`.
-pub(super) struct Dense<S, const N: usize> {
+pub(crate) struct Dense<S, const N: usize> {
     q: [SVector<S, N>; 5],
     qdot: [SVector<S, N>; 5],
 }

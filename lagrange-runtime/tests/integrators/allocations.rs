@@ -1,5 +1,7 @@
-//! Radau5 allocates its workspace once per call, never per step: counted
-//! with a global allocator that tallies this thread's allocations.
+//! A global allocator that tallies this thread's allocations (each test
+//! runs on its own thread), for the tests that count them: Radau5 allocates
+//! its workspace once per call, never per step (here); a `Stepper`
+//! allocates nothing once built (`stepper.rs`).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -36,6 +38,11 @@ unsafe impl GlobalAlloc for CountingAllocator {
 #[global_allocator]
 static GLOBAL: CountingAllocator = CountingAllocator;
 
+/// The allocations this thread has made so far.
+pub fn allocations() -> usize {
+    ALLOCATIONS.with(Cell::get)
+}
+
 #[test]
 fn allocations_do_not_grow_with_the_number_of_steps() {
     // Nonlinear and stiff, so every step path runs: Newton, Jacobians by
@@ -44,13 +51,13 @@ fn allocations_do_not_grow_with_the_number_of_steps() {
     let (q0, qdot0) = model.start();
     let times: Vec<f64> = (1..=50).map(|i| 0.1 * i as f64).collect();
     let run = |tol: f64| {
-        let before = ALLOCATIONS.with(Cell::get);
+        let before = allocations();
         let trajectory = Radau5::new()
             .rtol(tol)
             .atol(tol)
             .integrate(&model, 0.0, q0, qdot0, &times)
             .unwrap();
-        let allocations = ALLOCATIONS.with(Cell::get) - before;
+        let allocations = allocations() - before;
         (allocations, trajectory.stats())
     };
     let (loose, loose_stats) = run(1e-4);

@@ -1,0 +1,166 @@
+//! An explicit embedded pair in a stepper: the adaptive driver's step
+//! loop ([`adaptive`](crate::driver::adaptive)), resumable. The step size
+//! and the error history are kept from call to call; a step that would
+//! cross the call's target is shortened to land on it, and the next call
+//! starts again from the step size the control had chosen.
+
+use nalgebra::{RealField, SVector};
+
+use super::sealed::{Run, Work};
+use crate::driver::{
+    advances, initial_step, Controller, EmbeddedPair, GrowthGuard, Outcome, Tolerances,
+};
+use crate::{IntegrationError, Lagrangian};
+
+/// How a stepper builds a method's pair from `(q̇, q̈)` at the state.
+pub(crate) trait PairOf<S: RealField + Copy, const N: usize> {
+    /// The pair.
+    type Pair: EmbeddedPair<S, N>;
+    /// The pair with its first slope `q̈` at `(q, q̇)`.
+    fn pair(&self, qdot: &SVector<S, N>, qddot: &SVector<S, N>) -> Self::Pair;
+}
+
+/// An adaptive method's side of a stepper.
+pub struct AdaptiveWork<S: RealField + Copy, M: PairOf<S, N>, const N: usize> {
+    pub(super) method: M,
+    pub(super) control: &'static Controller,
+    pub(super) settings: Tolerances<S>,
+    /// Built (and rebuilt, when the model or the state changes) from the
+    /// slope at the state.
+    pub(super) pair: Option<M::Pair>,
+    /// The step size the control chose; `None` before the first step.
+    pub(super) h: Option<S>,
+    pub(super) err_old: S,
+    pub(super) rejected_last: bool,
+    pub(super) growth: Option<GrowthGuard<S>>,
+}
+
+impl<S, M, const N: usize> Work<S, N> for AdaptiveWork<S, M, N>
+where
+    S: RealField + Copy,
+    M: PairOf<S, N>,
+{
+    fn advance<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        run: &mut Run<S, N>,
+        model: &L,
+        target: S,
+    ) -> Result<(), IntegrationError<S, N>> {
+        let c = |x: f64| -> S { nalgebra::convert(x) };
+        let control = self.control;
+        let Tolerances {
+            rtol,
+            atol,
+            max_steps,
+        } = self.settings;
+        let (safety, fac_min, fac_max) =
+            (c(control.safety), c(control.fac_min), c(control.fac_max));
+        let beta = c(control.beta);
+        let alpha = c(control.exponent) - beta * c(control.beta_weight);
+
+        if run.stale || self.pair.is_none() {
+            let (t, (q, qdot)) = (run.t, run.state());
+            let qddot = run.rec.rhs(model, t, &q, &qdot)?;
+            if self.h.is_none() {
+                let start = (t, &q, &qdot, &qddot);
+                let guess = initial_step(
+                    &mut run.rec,
+                    model,
+                    start,
+                    target - t,
+                    rtol,
+                    atol,
+                    control.order,
+                );
+                self.h = Some(guess);
+            }
+            self.pair = Some(self.method.pair(&qdot, &qddot));
+            self.growth
+                .get_or_insert_with(|| GrowthGuard::new(&q, &qdot));
+            run.stale = false;
+        }
+        let (Some(pair), Some(mut h), Some(growth)) = (&mut self.pair, self.h, &mut self.growth)
+        else {
+            unreachable!("built above");
+        };
+
+        let mut attempts = 0;
+        let mut stage_failure = None;
+        loop {
+            let (t, (q, qdot)) = (run.t, run.state());
+            if attempts >= max_steps {
+                return Err(IntegrationError::TooManySteps {
+                    t,
+                    max_steps,
+                    q,
+                    qdot,
+                });
+            }
+            attempts += 1;
+            if !advances(t, h) {
+                return Err(stage_failure
+                    .take()
+                    .unwrap_or(IntegrationError::StepSizeUnderflow { t, h, q, qdot }));
+            }
+            // Land on the target rather than leave a sliver before it.
+            let last = t + h * c(control.stretch) >= target;
+            let h_try = if last { target - t } else { h };
+            let t_new = if last { target } else { t + h_try };
+
+            let (step, err) =
+                match pair.attempt(&mut run.rec, model, (t, t_new, h_try), (&q, &qdot)) {
+                    Ok(Outcome::Accepted { step, err }) => (step, err),
+                    Ok(Outcome::Rejected { err }) => {
+                        run.rec.stats.steps_rejected += 1;
+                        self.rejected_last = true;
+                        h = h_try / (err.powf(alpha) / safety).min(S::one() / fac_min);
+                        self.h = Some(h);
+                        continue;
+                    }
+                    Err(error) => {
+                        stage_failure = Some(error);
+                        run.rec.stats.steps_rejected += 1;
+                        self.rejected_last = true;
+                        h = h_try * fac_min;
+                        self.h = Some(h);
+                        continue;
+                    }
+                };
+            let shrink = err.powf(alpha) / self.err_old.powf(beta) / safety;
+            let fac = shrink.min(S::one() / fac_min).max(S::one() / fac_max);
+            let mut h_new = h_try / fac;
+            if self.rejected_last {
+                h_new = h_new.min(h_try);
+            }
+            // A step shortened to land on the target says little about the
+            // step the solution allows: keep the one the control had chosen
+            // if the shortened step's proposal is smaller.
+            if last && h_try < h {
+                h_new = h_new.max(h);
+            }
+            self.err_old = err.max(c(1e-4));
+            self.rejected_last = false;
+            stage_failure = None;
+
+            let (q_end, qdot_end) = <M::Pair as EmbeddedPair<S, N>>::end(&step);
+            let (q_new, qdot_new) = run.rec.control_drift(model, t_new, q_end, qdot_end)?;
+            if let Some(steps) = growth.unstable((q, qdot), (&q_new, &qdot_new), h_try) {
+                return Err(IntegrationError::Unstable {
+                    t: t_new,
+                    h: h_try,
+                    steps,
+                    q: q_new,
+                    qdot: qdot_new,
+                });
+            }
+            run.rec.stats.steps_accepted += 1;
+            (run.t, run.q, run.qdot) = (t_new, q_new, qdot_new);
+            pair.advance(&step);
+            h = h_new;
+            self.h = Some(h);
+            if last {
+                return Ok(());
+            }
+        }
+    }
+}

@@ -1,0 +1,266 @@
+//! A model advanced frame by frame: the [`Stepper`], for games, control
+//! loops and anything else that moves a state forward in small pieces
+//! between other work.
+//!
+//! [`Integrator::integrate`](crate::Integrator::integrate) is a whole run:
+//! it validates, picks an initial step, allocates a trajectory and returns
+//! it. Called once per frame it does all of that per frame, and an adaptive
+//! method starts every frame from a fresh step-size guess. A [`Stepper`]
+//! does that work once, in [`Stepper::new`]; then each
+//! [`advance`](Stepper::advance) or [`advance_to`](Stepper::advance_to)
+//! moves the state it owns to the next time:
+//!
+//! - **No allocation** per call: the state, the method's slopes and its
+//!   step-size control live in the stepper (a counting global allocator
+//!   checks this over 10⁶ steps in the runtime's tests).
+//! - **The step size is kept** between calls by the adaptive methods
+//!   ([`Dopri5`], [`Dop853`]): a frame shorter than the step the error
+//!   control wants is one shortened step that lands on the frame time, and
+//!   the next frame starts again from the step the control had chosen.
+//!   Fixed-step methods cut each frame into the fewest equal steps no longer
+//!   than `h`, as [`integrate`](crate::Integrator::integrate) cuts the
+//!   intervals between samples: `h` is never lengthened.
+//! - **The model is the caller's between calls**:
+//!   [`model_mut`](Stepper::model_mut) changes parameters or inputs,
+//!   [`set_state`](Stepper::set_state) moves the state (a respawn, a
+//!   teleport); the method's slopes are recomputed from the new model or
+//!   state on the next call, nothing stale is reused.
+//! - **Any scalar**: `f32` as well as `f64`, with the method's tolerances in
+//!   that scalar.
+//! - **Failures are typed**: an [`IntegrationError`] with `t` and the state
+//!   where it happened. The stepper keeps the last good state (the end of
+//!   the last step that succeeded) and can be advanced again, for instance
+//!   after the caller changed the model.
+//!
+//! The explicit methods step: [`ExplicitEuler`], [`SymplecticEuler`],
+//! [`Rk4`] (fixed step), [`Dopri5`] and [`Dop853`] (adaptive). The implicit
+//! ones keep Newton workspaces tied to their integration and are not
+//! offered here; a stiff scene integrates with [`Radau5`](crate::Radau5)
+//! through `integrate`.
+//!
+//! Constrained models are kept on their constraints after each step, as in
+//! `integrate` (the model's drift control; see
+//! [`constraints`](crate::constraints)).
+//!
+//! ```
+//! use lagrange_runtime::prelude::*;
+//! use lagrange_runtime::nalgebra::{SMatrix, SVector, Vector1};
+//!
+//! /// A unit mass on a spring of stiffness `k`: `x(t) = cos(√k t)`.
+//! struct Spring { k: f64 }
+//!
+//! impl Lagrangian<1> for Spring {
+//!     type Scalar = f64;
+//!     const COORDINATES: [&'static str; 1] = ["x"];
+//!     fn mass_matrix(&self, _t: f64, _q: &SVector<f64, 1>) -> SMatrix<f64, 1, 1> {
+//!         SMatrix::<f64, 1, 1>::new(1.0)
+//!     }
+//!     fn forcing(&self, _t: f64, q: &SVector<f64, 1>, _qd: &SVector<f64, 1>) -> SVector<f64, 1> {
+//!         -q * self.k
+//!     }
+//!     fn kinetic_energy(&self, _t: f64, _q: &SVector<f64, 1>, qd: &SVector<f64, 1>) -> f64 {
+//!         0.5 * qd[0] * qd[0]
+//!     }
+//!     fn potential_energy(&self, _t: f64, q: &SVector<f64, 1>) -> f64 {
+//!         0.5 * self.k * q[0] * q[0]
+//!     }
+//! }
+//!
+//! let method = Dopri5::new().rtol(1e-10).atol(1e-10);
+//! let mut stepper = Stepper::new(Spring { k: 1.0 }, method, 0.0, Vector1::new(1.0), Vector1::new(0.0))?;
+//! for _frame in 0..60 {
+//!     stepper.advance(1.0 / 60.0)?;
+//! }
+//! assert!((stepper.t() - 1.0).abs() < 1e-12);
+//! assert!((stepper.q()[0] - 1f64.cos()).abs() < 1e-8);
+//!
+//! // Stiffen the spring between frames: the next frame uses it.
+//! stepper.model_mut().k = 4.0;
+//! stepper.advance(1.0 / 60.0)?;
+//! # Ok::<(), lagrange_runtime::IntegrationError<f64, 1>>(())
+//! ```
+//!
+//! [`Dopri5`]: crate::Dopri5
+//! [`Dop853`]: crate::Dop853
+//! [`ExplicitEuler`]: crate::ExplicitEuler
+//! [`SymplecticEuler`]: crate::SymplecticEuler
+//! [`Rk4`]: crate::Rk4
+
+// A method's side of a stepper is sealed: `StepMethod::Work` names types
+// whose traits (the fixed step, the embedded pair, the recorder) are the
+// crate's own, so no one outside can implement a method.
+#[allow(private_bounds, private_interfaces)]
+mod adaptive;
+#[allow(private_bounds, private_interfaces)]
+mod fixed;
+#[allow(private_bounds, private_interfaces)]
+mod methods;
+
+use nalgebra::{ComplexField, RealField, SVector};
+
+use crate::driver::{Recorder, State};
+use crate::{IntegrationError, InvalidInput, Lagrangian, Stats};
+
+/// What a [`Stepper`] needs of a method: implemented for the explicit
+/// methods ([`ExplicitEuler`](crate::ExplicitEuler),
+/// [`SymplecticEuler`](crate::SymplecticEuler), [`Rk4`](crate::Rk4),
+/// [`Dopri5`](crate::Dopri5), [`Dop853`](crate::Dop853)); it cannot be
+/// implemented outside this crate.
+pub trait StepMethod<S: RealField + Copy, const N: usize> {
+    /// The method's state between calls: its slopes and step size.
+    #[doc(hidden)]
+    type Work: sealed::Work<S, N>;
+
+    /// The work for a new stepper, or the method's settings refused.
+    #[doc(hidden)]
+    fn work(&self) -> Result<Self::Work, InvalidInput<S>>;
+}
+
+pub(crate) mod sealed {
+    use super::*;
+
+    /// A method's side of a stepper: advances `run` to `target`.
+    pub trait Work<S: RealField + Copy, const N: usize> {
+        /// Advances `run` to `target` (`> run.t`), in one or more steps.
+        /// On error, `run` holds the end of the last step that succeeded.
+        fn advance<L: Lagrangian<N, Scalar = S>>(
+            &mut self,
+            run: &mut Run<S, N>,
+            model: &L,
+            target: S,
+        ) -> Result<(), IntegrationError<S, N>>;
+    }
+
+    /// The state a stepper owns, apart from the method's work.
+    pub struct Run<S: RealField + Copy, const N: usize> {
+        pub(crate) t: S,
+        pub(crate) q: SVector<S, N>,
+        pub(crate) qdot: SVector<S, N>,
+        /// Counts the work; samples none (it has no sample times).
+        pub(crate) rec: Recorder<'static, S, N>,
+        /// The model or the state changed since the last step: slopes
+        /// carried from it (first same as last) must be recomputed.
+        pub(crate) stale: bool,
+    }
+
+    impl<S: RealField + Copy, const N: usize> Run<S, N> {
+        pub(crate) fn state(&self) -> State<S, N> {
+            (self.q, self.qdot)
+        }
+    }
+}
+
+use sealed::{Run, Work};
+
+/// A model, a method and a state, advanced by the caller a piece at a time
+/// without allocating; see [the module](self).
+pub struct Stepper<L, M, const N: usize>
+where
+    L: Lagrangian<N>,
+    M: StepMethod<L::Scalar, N>,
+{
+    model: L,
+    work: M::Work,
+    run: Run<L::Scalar, N>,
+}
+
+impl<L, M, const N: usize> Stepper<L, M, N>
+where
+    L: Lagrangian<N>,
+    M: StepMethod<L::Scalar, N>,
+{
+    /// A stepper at `(t0, q0, q̇0)`. The start and the method's settings are
+    /// checked here, as `integrate` checks them
+    /// ([`InvalidInput`](crate::InvalidInput) in the error), and a
+    /// constrained model's start is brought onto its constraints (or
+    /// refused) as its settings say.
+    pub fn new(
+        model: L,
+        method: M,
+        t0: L::Scalar,
+        q0: SVector<L::Scalar, N>,
+        qdot0: SVector<L::Scalar, N>,
+    ) -> Result<Self, IntegrationError<L::Scalar, N>> {
+        let work = method.work()?;
+        let (rec, (q, qdot)) =
+            Recorder::start(&model, t0, &q0, &qdot0, Default::default()).map_err(|f| f.error)?;
+        let run = Run {
+            t: t0,
+            q,
+            qdot,
+            rec,
+            stale: true,
+        };
+        Ok(Self { model, work, run })
+    }
+
+    /// Advances the state by `dt`: to `t + dt`, which must be later than
+    /// `t` ([`TargetNotAhead`](InvalidInput::TargetNotAhead) for a `dt`
+    /// that is not positive, not finite, or too small to change `t`).
+    pub fn advance(&mut self, dt: L::Scalar) -> Result<(), IntegrationError<L::Scalar, N>> {
+        self.advance_to(self.run.t + dt)
+    }
+
+    /// Advances the state to time `target` (finite, later than
+    /// [`t`](Self::t)).
+    pub fn advance_to(&mut self, target: L::Scalar) -> Result<(), IntegrationError<L::Scalar, N>> {
+        let t = self.run.t;
+        if !(target.is_finite() && target > t) {
+            return Err(InvalidInput::TargetNotAhead { t, target }.into());
+        }
+        self.work.advance(&mut self.run, &self.model, target)
+    }
+
+    /// The time of the state.
+    pub fn t(&self) -> L::Scalar {
+        self.run.t
+    }
+
+    /// The coordinates `q`.
+    pub fn q(&self) -> &SVector<L::Scalar, N> {
+        &self.run.q
+    }
+
+    /// The velocities `q̇`.
+    pub fn qdot(&self) -> &SVector<L::Scalar, N> {
+        &self.run.qdot
+    }
+
+    /// Moves the state (a respawn, a teleport, an impact handled by the
+    /// caller). Validated as a start is; the method's carried slopes are
+    /// dropped, an adaptive method keeps its step size.
+    pub fn set_state(
+        &mut self,
+        q: SVector<L::Scalar, N>,
+        qdot: SVector<L::Scalar, N>,
+    ) -> Result<(), IntegrationError<L::Scalar, N>> {
+        let t = self.run.t;
+        let stats = self.run.rec.stats;
+        let (mut rec, (q, qdot)) =
+            Recorder::start(&self.model, t, &q, &qdot, Default::default()).map_err(|f| f.error)?;
+        rec.stats = stats;
+        self.run.rec = rec;
+        (self.run.q, self.run.qdot) = (q, qdot);
+        self.run.stale = true;
+        Ok(())
+    }
+
+    /// The model.
+    pub fn model(&self) -> &L {
+        &self.model
+    }
+
+    /// The model, to change its parameters or inputs before the next call;
+    /// the method's carried slopes are recomputed from it.
+    pub fn model_mut(&mut self) -> &mut L {
+        self.run.stale = true;
+        &mut self.model
+    }
+
+    /// The work done so far: steps, rejected steps, right-hand sides, and
+    /// for a constrained model the residuals seen (as in
+    /// [`Trajectory::stats`](crate::Trajectory::stats)).
+    pub fn stats(&self) -> Stats {
+        self.run.rec.stats
+    }
+}

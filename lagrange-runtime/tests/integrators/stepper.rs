@@ -1,0 +1,320 @@
+//! The `Stepper`: frame by frame as `integrate` goes sample by sample
+//! (bit for bit for the fixed-step methods), the adaptive step size kept
+//! between frames, the model changed between frames, `f32`, typed refusals
+//! and failures that keep the last good state, and no allocation once
+//! built.
+
+use crate::allocations::allocations;
+use crate::models::{CartesianPendulum, CoupledOscillator, ForcingBreaksDown};
+use lagrange_runtime::nalgebra::{Vector1, Vector2};
+use lagrange_runtime::prelude::*;
+use lagrange_runtime::{InvalidInput, Stats, StepMethod};
+
+const HZ: f64 = 60.0;
+
+fn spring() -> (CoupledOscillator<f64>, Vector2<f64>, Vector2<f64>) {
+    (
+        CoupledOscillator { omega: 2.0 },
+        Vector2::new(1.0, -0.5),
+        Vector2::new(0.0, 0.3),
+    )
+}
+
+/// Steps `frames` frames of `1/60` s and returns the state after each.
+fn frames<M>(method: M, frames: usize) -> Vec<(f64, Vector2<f64>, Vector2<f64>)>
+where
+    M: StepMethod<f64, 2>,
+{
+    let (model, q0, v0) = spring();
+    let mut stepper = Stepper::new(model, method, 0.0, q0, v0).unwrap();
+    (1..=frames)
+        .map(|k| {
+            stepper.advance_to(k as f64 / HZ).unwrap();
+            (stepper.t(), *stepper.q(), *stepper.qdot())
+        })
+        .collect()
+}
+
+/// A fixed-step method cuts each frame as `integrate` cuts each interval
+/// between samples, with the same step function: the states agree bit for
+/// bit.
+#[test]
+fn fixed_steps_frame_by_frame_equal_integrate_bit_for_bit() {
+    let (model, q0, v0) = spring();
+    let times: Vec<f64> = (1..=120).map(|k| k as f64 / HZ).collect();
+    let h = 1.0 / 250.0; // not a divisor of a frame: 5 steps of 1/300 each
+    let check = |stepped: Vec<(f64, Vector2<f64>, Vector2<f64>)>, run: Trajectory<f64, 2>| {
+        for ((t, q, v), s) in stepped.iter().zip(run.iter()) {
+            assert_eq!((*t, *q, *v), (s.t, s.q, s.qdot));
+        }
+    };
+    check(
+        frames(Rk4::new(h), 120),
+        Rk4::new(h).integrate(&model, 0.0, q0, v0, &times).unwrap(),
+    );
+    check(
+        frames(ExplicitEuler::new(h), 120),
+        ExplicitEuler::new(h)
+            .integrate(&model, 0.0, q0, v0, &times)
+            .unwrap(),
+    );
+    check(
+        frames(SymplecticEuler::new(h), 120),
+        SymplecticEuler::new(h)
+            .integrate(&model, 0.0, q0, v0, &times)
+            .unwrap(),
+    );
+}
+
+/// The adaptive methods keep their step size between frames: at these
+/// tolerances the step the control wants is longer than a frame, so after
+/// the first each frame is one step (shortened to land on the frame), with no rejection
+/// and no new initial guess, where one `integrate` per frame starts each
+/// frame with a fresh first slope and initial-step guess (2 evaluations
+/// more per frame). The result stays within the tolerance's reach of the
+/// exact solution.
+#[test]
+fn adaptive_steps_keep_their_size_between_frames() {
+    let (model, q0, v0) = spring();
+    let n = 600;
+    let dopri5 = Dopri5::new().rtol(1e-8).atol(1e-8);
+    let dop853 = Dop853::new().rtol(1e-11).atol(1e-11);
+    for (name, tol, (stats, (t, q, v)), per_frame_integrate) in [
+        (
+            "Dopri5",
+            1e-8,
+            stepped(dopri5, n),
+            per_frame(&model, dopri5, n),
+        ),
+        (
+            "Dop853",
+            1e-11,
+            stepped(dop853, n),
+            per_frame(&model, dop853, n),
+        ),
+    ] {
+        let evals = stats.rhs_evals;
+        let (q_exact, v_exact) = model.exact(t, q0, v0);
+        let err = (q - q_exact).amax().max((v - v_exact).amax());
+        println!(
+            "{name} at {tol:e}: stepper {evals} right-hand sides in {} steps, \
+             one integrate per frame {per_frame_integrate}; error {err:.1e}",
+            stats.steps_accepted
+        );
+        // The first frame may take a few steps from the initial guess.
+        assert!(
+            stats.steps_accepted <= n + 3 && stats.steps_rejected == 0,
+            "{stats:?}"
+        );
+        assert!(
+            evals + 2 * (n - 1) <= per_frame_integrate,
+            "{evals} vs {per_frame_integrate}"
+        );
+        // Global error of a local-error-per-step control over 10 s (~3
+        // periods): within 1000× the tolerance.
+        assert!(err < 1e3 * tol, "{name}: {err}");
+        assert_eq!(t, n as f64 / HZ);
+    }
+}
+
+fn stepped<M: StepMethod<f64, 2>>(
+    method: M,
+    n: usize,
+) -> (Stats, (f64, Vector2<f64>, Vector2<f64>)) {
+    let (model, q0, v0) = spring();
+    let mut stepper = Stepper::new(model, method, 0.0, q0, v0).unwrap();
+    for k in 1..=n {
+        stepper.advance_to(k as f64 / HZ).unwrap();
+    }
+    let state = (stepper.t(), *stepper.q(), *stepper.qdot());
+    (stepper.stats(), state)
+}
+
+fn per_frame<I: Integrator<f64>>(model: &CoupledOscillator<f64>, method: I, n: usize) -> usize {
+    let (_, mut q, mut v) = spring();
+    let mut evals = 0;
+    for k in 1..=n {
+        let (t0, t1) = ((k - 1) as f64 / HZ, k as f64 / HZ);
+        let run = method.integrate(model, t0, q, v, &[t1]).unwrap();
+        let last = run.last().unwrap();
+        (q, v) = (last.q, last.qdot);
+        evals += run.stats().rhs_evals;
+    }
+    evals
+}
+
+/// Parameters changed between frames take effect at once: the stepper's
+/// run equals two `integrate` runs, one per parameter value, the second
+/// from the first one's end.
+#[test]
+fn a_parameter_changed_between_frames_is_used_from_the_next_frame() {
+    let (model, q0, v0) = spring();
+    let h = 1e-3;
+    let mut stepper = Stepper::new(model, Rk4::new(h), 0.0, q0, v0).unwrap();
+    stepper.advance_to(0.5).unwrap();
+    stepper.model_mut().omega = 5.0;
+    stepper.advance_to(1.0).unwrap();
+    let first = Rk4::new(h)
+        .integrate(&spring().0, 0.0, q0, v0, &[0.5])
+        .unwrap();
+    let mid = first.last().unwrap();
+    let stiff = CoupledOscillator { omega: 5.0 };
+    let second = Rk4::new(h)
+        .integrate(&stiff, 0.5, mid.q, mid.qdot, &[1.0])
+        .unwrap();
+    assert_eq!(*stepper.q(), second.last().unwrap().q);
+
+    // The same with an adaptive method, whose carried slope (first same as
+    // last) must be recomputed: against the exact solution of the stiffer
+    // spring from the state at 0.5.
+    let tight = Dop853::new().rtol(1e-12).atol(1e-12);
+    let mut stepper = Stepper::new(spring().0, tight, 0.0, q0, v0).unwrap();
+    stepper.advance_to(0.5).unwrap();
+    let (qm, vm) = (*stepper.q(), *stepper.qdot());
+    stepper.model_mut().omega = 5.0;
+    stepper.advance_to(1.0).unwrap();
+    let (q_exact, _) = stiff.exact(0.5, qm, vm);
+    let err = (stepper.q() - q_exact).amax();
+    // A stale slope from ω = 2 would be off by O(h · Δω² |q|) ≈ 1e-2.
+    assert!(err < 1e-9, "{err}");
+}
+
+/// In `f32` the stepper runs with the method's `f32` defaults and tracks
+/// the exact solution to what `f32` holds.
+#[test]
+fn f32_steppers_track_the_exact_solution() {
+    let model = CoupledOscillator { omega: 2.0f32 };
+    let (q0, v0) = (Vector2::new(1.0f32, -0.5), Vector2::new(0.0f32, 0.3));
+    let mut rk4 = Stepper::new(model, Rk4::new(1.0f32 / 240.0), 0.0, q0, v0).unwrap();
+    let model = CoupledOscillator { omega: 2.0f32 };
+    let mut dopri = Stepper::new(model, Dopri5::<f32>::new(), 0.0, q0, v0).unwrap();
+    for k in 1..=600 {
+        let t = k as f32 / 60.0;
+        rk4.advance_to(t).unwrap();
+        dopri.advance_to(t).unwrap();
+    }
+    let exact = CoupledOscillator { omega: 2.0f64 }.exact(
+        10.0,
+        Vector2::new(1.0, -0.5),
+        Vector2::new(0.0, 0.3),
+    );
+    for (name, q) in [("Rk4", rk4.q()), ("Dopri5", dopri.q())] {
+        let err = (q.cast::<f64>() - exact.0).amax();
+        println!("{name} f32 after 600 frames: error {err:.1e}");
+        // f32 rounding (6e-8) over 2400 steps grows like √steps · ε ·
+        // |q| ≈ 3e-6 for RK4; Dopri5's default f32 tolerance is 1.2e-5
+        // per step, and over 600 frames its global error stays below
+        // 1e-3. RK4's truncation (h⁴ ω⁴ t ≈ 5e-9) is below rounding.
+        assert!(err < 1e-3, "{name}: {err}");
+    }
+}
+
+/// Bad targets and settings are typed refusals; a model that breaks down
+/// stops the stepper with the error at its time, the last good state kept.
+#[test]
+fn refusals_and_failures_are_typed_and_keep_the_last_good_state() {
+    let (model, q0, v0) = spring();
+    let mut stepper = Stepper::new(model, Dopri5::new(), 0.0, q0, v0).unwrap();
+    stepper.advance_to(1.0).unwrap();
+    // 1e-300 is a positive `dt` that does not move t = 1.
+    for dt in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e-300] {
+        match stepper.advance(dt) {
+            Err(IntegrationError::InvalidInput(InvalidInput::TargetNotAhead { t, .. })) => {
+                assert_eq!(t, 1.0)
+            }
+            other => panic!("dt = {dt}: {other:?}"),
+        }
+    }
+    assert!(matches!(
+        Stepper::new(spring().0, Rk4::new(-1.0), 0.0, q0, v0),
+        Err(IntegrationError::InvalidInput(
+            InvalidInput::InvalidStepSize { .. }
+        ))
+    ));
+    assert!(matches!(
+        Stepper::new(spring().0, Dopri5::new().atol(0.0), 0.0, q0, v0),
+        Err(IntegrationError::InvalidInput(
+            InvalidInput::InvalidAbsoluteTolerance { .. }
+        ))
+    ));
+    assert!(matches!(
+        Stepper::new(
+            spring().0,
+            Rk4::new(0.1),
+            0.0,
+            Vector2::new(f64::NAN, 0.0),
+            v0
+        ),
+        Err(IntegrationError::InvalidInput(
+            InvalidInput::NonFiniteInitialPosition { .. }
+        ))
+    ));
+
+    // The forcing is NaN after t* = 0.5.
+    let (x0, xd0) = (Vector1::new(1.0), Vector1::new(0.0));
+    let broken = || ForcingBreaksDown { t_star: 0.5 };
+    let fixed = Stepper::new(broken(), Rk4::new(1e-3), 0.0, x0, xd0).unwrap();
+    let adaptive = Stepper::new(broken(), Dopri5::new(), 0.0, x0, xd0).unwrap();
+    check_breakdown("Rk4", fixed);
+    check_breakdown("Dopri5", adaptive);
+}
+
+fn check_breakdown<M: StepMethod<f64, 1>>(
+    name: &str,
+    mut stepper: Stepper<ForcingBreaksDown, M, 1>,
+) {
+    let error = (1..=60)
+        .find_map(|k| stepper.advance_to(k as f64 / HZ).err())
+        .expect("the model breaks down at 0.5");
+    let t_error = error.time().expect("a failure at a time");
+    let t_kept = stepper.t();
+    println!("{name}: {error} (stepper kept t = {t_kept})");
+    // The state kept is the last good one: before the breakdown, and at or
+    // before the time reported, which is within one step (1e-3 for Rk4;
+    // for Dopri5 its step, shrunk until it underflows at the breakdown)
+    // of t*.
+    assert!(t_kept <= 0.5 && t_kept <= t_error, "{t_kept} {t_error}");
+    assert!((t_error - 0.5).abs() < 1e-3, "{t_error}");
+    // The state is still there, finite, for the caller to use.
+    assert!(stepper.q()[0].is_finite() && stepper.qdot()[0].is_finite());
+}
+
+/// Once built, a stepper does not allocate: 10⁶ RK4 frames of the coupled
+/// oscillator, 10⁵ Dopri5 and Dop853 frames with a parameter change and a
+/// state reset in between, and 10⁴ frames of a constrained model (the
+/// Cartesian pendulum, projected after every step).
+#[test]
+fn a_stepper_does_not_allocate_per_step() {
+    let (model, q0, v0) = spring();
+    let mut rk4 = Stepper::new(model, Rk4::new(1.0 / HZ), 0.0, q0, v0).unwrap();
+    let mut dopri = Stepper::new(spring().0, Dopri5::new(), 0.0, q0, v0).unwrap();
+    let mut dop853 = Stepper::new(spring().0, Dop853::new(), 0.0, q0, v0).unwrap();
+    let pendulum = CartesianPendulum::unit();
+    let (pq, pv) = pendulum.state(1.0, 0.0);
+    let mut constrained = Stepper::new(pendulum, Dopri5::new(), 0.0, pq, pv).unwrap();
+
+    let before = allocations();
+    for k in 1..=1_000_000 {
+        rk4.advance_to(k as f64 / HZ).unwrap();
+    }
+    for k in 1..=100_000 {
+        let t = k as f64 / HZ;
+        dopri.advance_to(t).unwrap();
+        dop853.advance_to(t).unwrap();
+        if k == 50_000 {
+            dopri.model_mut().omega = 3.0;
+            dop853.set_state(q0, v0).unwrap();
+        }
+    }
+    for k in 1..=10_000 {
+        constrained.advance_to(k as f64 / HZ).unwrap();
+    }
+    let allocated = allocations() - before;
+    let steps = rk4.stats().steps_accepted
+        + dopri.stats().steps_accepted
+        + dop853.stats().steps_accepted
+        + constrained.stats().steps_accepted;
+    println!("{steps} steps, {allocated} allocations");
+    assert!(steps >= 1_210_000);
+    assert_eq!(allocated, 0);
+}
