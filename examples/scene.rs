@@ -1,18 +1,22 @@
 //! A scene as a game would run it: several independent models stepped side by
-//! side, one call per frame at a fixed 60 Hz, in `f32`, with cheap methods;
-//! and the same chain in `f64` with Dormand–Prince at a tight tolerance as
-//! the reference. The generated models are generic over the scalar, so the
-//! game-rate chain is the reference's `Chain` at `f32`.
+//! side, one call per frame at a fixed 60 Hz, in `f32`, with cheap methods,
+//! each model in a `lagrange::Stepper` that owns its state and allocates
+//! nothing per frame; and the same chain in `f64` with Dormand–Prince at a
+//! tight tolerance as the reference. The generated models are generic over
+//! the scalar, so the game-rate chain is the reference's `Chain` at `f32`.
 //!
 //! Prints the tip error of each game-rate run against its reference and what
 //! each run cost, and draws `docs/scene/scene.svg`: snapshots of the chains,
-//! the tip paths, and the tip error over time.
+//! the tip paths, and the tip error over time. What a frame costs, against
+//! one `integrate` call per frame, is measured by `cargo bench --bench
+//! frame`.
 //!
 //! `cargo run --release --example scene`
 
 use lagrange::models::{Chain, DoublePendulum};
 use lagrange::nalgebra::SVector;
 use lagrange::prelude::*;
+use lagrange::StepMethod;
 use plotters::prelude::*;
 use std::error::Error;
 use std::time::Instant;
@@ -49,30 +53,31 @@ impl Run {
     }
 }
 
-/// Steps a model frame by frame, one `integrate` call per frame, as a game
-/// loop would.
-fn game_loop<S, L, I, const D: usize>(
+/// Steps a model frame by frame in a `Stepper`, one `advance` per frame, as
+/// a game loop would.
+fn game_loop<S, L, M, const D: usize>(
     label: &'static str,
-    model: &L,
-    method: &I,
+    model: L,
+    method: M,
     (q0, qdot0): (SVector<S, D>, SVector<S, D>),
     lengths: &[S],
 ) -> Result<Run, Box<dyn Error>>
 where
     S: lagrange::nalgebra::RealField + Copy + Into<f64>,
     L: Lagrangian<D, Scalar = S>,
-    I: Integrator<S>,
+    M: StepMethod<S, D>,
+    lagrange::IntegrationError<S, D>: Error + 'static,
 {
+    // Frame k ends at k/60 s, rounded once to S (accumulating `dt` in f32
+    // would drift the clock by rounding).
     let frame_time = |k: usize| lagrange::nalgebra::convert::<f64, S>(k as f64 / HZ as f64);
     let mut states = Vec::with_capacity(FRAMES + 1);
     states.push(q0);
-    let (mut q, mut qdot, mut rhs_evals) = (q0, qdot0, 0);
+    let mut stepper = Stepper::new(model, method, S::zero(), q0, qdot0)?;
     let clock = Instant::now();
-    for k in 0..FRAMES {
-        let next = method.integrate(model, frame_time(k), q, qdot, &[frame_time(k + 1)])?;
-        let end = next.last().ok_or("a frame with no sample")?;
-        (q, qdot, rhs_evals) = (end.q, end.qdot, rhs_evals + next.stats().rhs_evals);
-        states.push(q);
+    for k in 1..=FRAMES {
+        stepper.advance_to(frame_time(k))?;
+        states.push(*stepper.q());
     }
     let seconds = clock.elapsed().as_secs_f64();
     let frames = states
@@ -82,7 +87,7 @@ where
     Ok(Run {
         label,
         frames,
-        rhs_evals,
+        rhs_evals: stepper.stats().rhs_evals,
         seconds,
     })
 }
@@ -129,22 +134,22 @@ fn main() -> Result<(), Box<dyn Error>> {
     let chains = [
         game_loop(
             "chain, f32 Rk4 60 Hz",
-            &chain32,
-            &Rk4::new(h),
+            chain32,
+            Rk4::new(h),
             released32,
             &lengths32,
         )?,
         game_loop(
             "chain, f64 Rk4 60 Hz",
-            &chain,
-            &Rk4::new(1.0 / HZ as f64),
+            chain,
+            Rk4::new(1.0 / HZ as f64),
             released,
             &lengths,
         )?,
         game_loop(
             "chain, f32 SymplecticEuler 60 Hz",
-            &chain32,
-            &SymplecticEuler::new(h),
+            chain32,
+            SymplecticEuler::new(h),
             released32,
             &lengths32,
         )?,
@@ -163,8 +168,8 @@ fn main() -> Result<(), Box<dyn Error>> {
     )?;
     let pendulum_game = game_loop(
         "double pendulum, f32 Rk4 60 Hz",
-        &pendulum32,
-        &Rk4::new(h),
+        pendulum32,
+        Rk4::new(h),
         start32,
         &[0.5f32, 0.5],
     )?;

@@ -26,7 +26,9 @@
 //!   teleport); the method's slopes are recomputed from the new model or
 //!   state on the next call, nothing stale is reused.
 //! - **Any scalar**: `f32` as well as `f64`, with the method's tolerances in
-//!   that scalar.
+//!   that scalar. An `f32` clock loses resolution as it grows (`1.2e-4 s`
+//!   per ulp at `t = 2000 s`); [`set_time`](Stepper::set_time) keeps it
+//!   small for a model that does not depend on `t`.
 //! - **Failures are typed**: an [`IntegrationError`] with `t` and the state
 //!   where it happened. The stepper keeps the last good state (the end of
 //!   the last step that succeeded) and can be advanced again, for instance
@@ -241,6 +243,22 @@ where
         rec.stats = stats;
         self.run.rec = rec;
         (self.run.q, self.run.qdot) = (q, qdot);
+        self.run.stale = true;
+        Ok(())
+    }
+
+    /// Moves the clock to `t` (finite), keeping the state: for a model that
+    /// does not depend on `t` explicitly, a long-running scene can keep its
+    /// clock small, where an `f32` clock keeps its resolution (at
+    /// `t = 2000 s` an `f32` step of `t` is `1.2e-4 s`, and a step that no
+    /// longer moves `t` is a
+    /// [`StepSizeUnderflow`](IntegrationError::StepSizeUnderflow)). The
+    /// carried slopes are dropped, as after [`set_state`](Self::set_state).
+    pub fn set_time(&mut self, t: L::Scalar) -> Result<(), IntegrationError<L::Scalar, N>> {
+        if !t.is_finite() {
+            return Err(InvalidInput::NonFiniteStartTime { t0: t }.into());
+        }
+        self.run.t = t;
         self.run.stale = true;
         Ok(())
     }

@@ -198,6 +198,28 @@ fn f32_steppers_track_the_exact_solution() {
         Vector2::new(1.0, -0.5),
         Vector2::new(0.0, 0.3),
     );
+    // An f32 clock at 10⁶ s moves in steps of 0.0625 s: a frame of 1/60 s
+    // does not move it, and says so; moved back to 0 (the oscillator does
+    // not depend on t) the stepper goes on from the same state.
+    let mut late = Stepper::new(
+        CoupledOscillator { omega: 2.0f32 },
+        Rk4::new(1e-3f32),
+        0.0,
+        q0,
+        v0,
+    )
+    .unwrap();
+    late.set_time(1e6).unwrap();
+    assert!(matches!(
+        late.advance(1.0 / 60.0),
+        Err(IntegrationError::InvalidInput(
+            InvalidInput::TargetNotAhead { .. }
+        ))
+    ));
+    late.set_time(0.0).unwrap();
+    late.advance(1.0 / 60.0).unwrap();
+    assert!(late.q() != &q0);
+
     for (name, q) in [("Rk4", rk4.q()), ("Dopri5", dopri.q())] {
         let err = (q.cast::<f64>() - exact.0).amax();
         println!("{name} f32 after 600 frames: error {err:.1e}");
