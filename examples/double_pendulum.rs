@@ -4,6 +4,12 @@
 //! written as in the README); `examples/chain.rs` shows a model written out.
 //!
 //! `cargo run --release --example double_pendulum`
+//!
+//! With `--features csv`, `-- --csv FILE` also writes the Dormand–Prince run
+//! as CSV (`t, theta1, theta2, theta1_dot, theta2_dot, energy`).
+
+#[path = "support/csv_option.rs"]
+mod csv_option;
 
 use lagrange::models::DoublePendulum;
 use lagrange::nalgebra::Vector2;
@@ -36,6 +42,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     println!("{:?}\n", trajectory.stats());
+    csv_option::write(&pendulum, &trajectory)?;
 
     println!("Energy error at t = 10 by method (the flow conserves E = {e0:.6}):");
     println!("{:<28} {:>12} {:>10}", "method", "|E - E0|", "rhs evals");

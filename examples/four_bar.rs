@@ -8,6 +8,11 @@
 //! Writes `docs/four_bar/four_bar.svg`: the linkage through one crank turn
 //! with the path of its coupler's midpoint, and the closure residual
 //! `max |φ|` over 100 s with projection, Baumgarte stabilization and none.
+//! With `--features csv`, `-- --csv FILE` writes the one-turn run as CSV,
+//! the loop's multipliers included (`lambda_loop_x`, …).
+
+#[path = "support/csv_option.rs"]
+mod csv_option;
 
 use lagrange::constraints::{annotate, Drift};
 use lagrange::models::{FourBar, Method};
@@ -131,6 +136,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         .atol(1e-12)
         .integrate(&model, 0.0, q0, v0, &frames)
         .map_err(|failure| failure.error.to_string())?;
+    csv_option::write(&model, &run)?;
     let turn: Vec<Vector3<f64>> = run
         .iter()
         .map(|s| s.q)

@@ -264,6 +264,7 @@ pub mod analysis;
 pub mod constraints;
 mod driver;
 pub mod error;
+pub mod export;
 pub mod inputs;
 pub mod integrators;
 mod lagrangian;

@@ -5,5 +5,7 @@
 mod support;
 
 mod constrained;
+#[cfg(feature = "csv")]
+mod export;
 mod integrator_suite;
 mod reference_trajectories;

@@ -1,0 +1,12 @@
+//! Getting results out of Rust: a trajectory as CSV (feature `csv`).
+//!
+//! Column names come from the model: `t`, then its coordinates as written
+//! (`theta1`, `theta2`), their velocities (`theta1_dot`, …), the total
+//! energy `energy`, and for a model with constraints the multiplier of each
+//! constraint by its name (`lambda_rod`, …).
+
+#[cfg(feature = "csv")]
+mod csv;
+
+#[cfg(feature = "csv")]
+pub use self::csv::{write_csv, CsvError};
