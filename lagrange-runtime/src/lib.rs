@@ -267,6 +267,7 @@ pub mod error;
 pub mod export;
 pub mod inputs;
 pub mod integrators;
+pub mod interop;
 mod lagrangian;
 mod linalg;
 pub mod stepper;

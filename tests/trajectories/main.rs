@@ -8,4 +8,6 @@ mod constrained;
 #[cfg(feature = "csv")]
 mod export;
 mod integrator_suite;
+#[cfg(feature = "ode_solvers")]
+mod interop;
 mod reference_trajectories;
