@@ -78,6 +78,10 @@ extern crate self as lagrange;
 pub use lagrange_macros::lagrangian;
 pub use lagrange_runtime::*;
 pub use nalgebra;
+/// The serde that `#[lagrange(serde)]` models derive through (feature
+/// `serde`), so that a model crate needs no serde dependency of its own.
+#[cfg(feature = "serde")]
+pub use serde;
 
 pub mod models;
 

@@ -67,6 +67,10 @@ pub struct Options {
     /// `#[lagrange(budget = N)]`: the engine's work budget for this model,
     /// in steps, instead of [`DEFAULT_BUDGET`](crate::expr::DEFAULT_BUDGET).
     pub budget: Option<u64>,
+    /// `#[lagrange(serde)]`: the struct derives serde's `Serialize` and
+    /// `Deserialize` (through `lagrange::serde`, the facade's `serde`
+    /// feature), its control inputs skipped (read back unset).
+    pub serde: bool,
 }
 
 /// The largest budget `#[lagrange(budget = N)]` may ask for: the time and

@@ -27,6 +27,7 @@ pub struct Stub {
     fields: Vec<Field>,
     inputs: Vec<Field>,
     constraints: usize,
+    serde: bool,
 }
 
 impl Stub {
@@ -40,6 +41,7 @@ impl Stub {
             fields: shape.fields,
             inputs: shape.inputs,
             constraints: shape.constraints,
+            serde: def.options.serde,
         }
     }
 
@@ -53,6 +55,7 @@ impl Stub {
             fields: &self.fields,
             inputs: &self.inputs,
             constraints: self.constraints,
+            serde: self.serde,
         };
         let item = outline.struct_item();
         if self.dof == 0 {

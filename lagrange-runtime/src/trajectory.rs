@@ -17,6 +17,14 @@ use nalgebra::{RealField, SVector};
 /// }
 /// ```
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(bound(
+        serialize = "S: serde::Serialize + nalgebra::Scalar",
+        deserialize = "S: serde::Deserialize<'de> + nalgebra::Scalar"
+    ))
+)]
 pub struct Trajectory<S, const N: usize> {
     times: Vec<S>,
     positions: Vec<SVector<S, N>>,
@@ -26,6 +34,14 @@ pub struct Trajectory<S, const N: usize> {
 
 /// One sample of a [`Trajectory`].
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(bound(
+        serialize = "S: serde::Serialize + nalgebra::Scalar",
+        deserialize = "S: serde::Deserialize<'de> + nalgebra::Scalar"
+    ))
+)]
 pub struct Sample<S, const N: usize> {
     /// The sample time.
     pub t: S,
@@ -41,6 +57,7 @@ pub struct Sample<S, const N: usize> {
 /// well they were kept; those fields are zero for a model in minimal
 /// coordinates.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub struct Stats {
     /// Steps kept.

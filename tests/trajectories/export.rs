@@ -85,3 +85,88 @@ fn a_constrained_trajectory_as_csv_carries_its_multipliers() {
         );
     }
 }
+
+/// Serde (feature `serde`): a failed run, its error and the samples before
+/// it, through JSON and back, equal; an error naming a constraint too.
+#[cfg(feature = "serde")]
+#[test]
+fn failures_and_trajectories_round_trip_through_serde() {
+    use lagrange::{Failure, IntegrationError, InvalidInput};
+    let (model, q0, v0) = DoublePendulum::regular();
+    let times: Vec<f64> = (0..=40).map(|k| 0.25 * k as f64).collect();
+    // A step budget too small for 10 s: `TooManySteps`, with samples.
+    let failure = Dopri5::new()
+        .max_steps(40)
+        .integrate(&model, 0.0, q0, v0, &times)
+        .unwrap_err();
+    assert!(matches!(
+        failure.error,
+        IntegrationError::TooManySteps { .. }
+    ));
+    assert!(!failure.trajectory.is_empty());
+    let json = serde_json::to_string(&*failure).unwrap();
+    let back: Failure<f64, 2> = serde_json::from_str(&json).unwrap();
+    assert_eq!(back, *failure);
+    assert_eq!(back.trajectory.stats(), failure.trajectory.stats());
+
+    // A refused start names the constraint it violates.
+    let pendulum = CartesianPendulum::new(1.0, 1.0, 9.81);
+    let strict = pendulum.with_initial_conditions(InitialConditions::Reject);
+    let (q, v) = pendulum.state(0.5, 0.0);
+    let refused = Dopri5::new()
+        .integrate(&strict, 0.0, q * 1.01, v, &[1.0])
+        .unwrap_err();
+    let json = serde_json::to_string(&refused.error).unwrap();
+    assert!(json.contains("\"rod\""), "{json}");
+    let back: IntegrationError<f64, 2> = serde_json::from_str(&json).unwrap();
+    assert_eq!(back, refused.error);
+    assert!(matches!(
+        back,
+        IntegrationError::InvalidInput(InvalidInput::InconsistentInitialConditions {
+            constraint: "rod",
+            ..
+        })
+    ));
+}
+
+#[cfg(feature = "serde")]
+lagrange::lagrangian! {
+    /// A scene's model whose parameters load from a file: a chain with a
+    /// motor torque at its pivot as an input.
+    #[lagrange(serde)]
+    pub struct SceneChain {
+        const N = 3;
+        coordinates: theta[N];
+        parameters: m[N], l[N], g;
+        inputs: torque;
+        let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));
+        let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));
+        kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2));
+        potential: sum(i in 0..N, m[i]*g*y[i]);
+        forces: theta[0] = torque;
+    }
+}
+
+/// `#[lagrange(serde)]`: a model's parameters written to and read from
+/// JSON (a scene file); its control inputs are not stored and come back
+/// unset, which the integrators refuse until they are set.
+#[cfg(feature = "serde")]
+#[test]
+fn a_models_parameters_load_from_a_file() {
+    let json = r#"{ "m": [1.0, 0.5, 0.25], "l": [0.4, 0.3, 0.2], "g": 9.81 }"#;
+    let chain: SceneChain = serde_json::from_str(json).unwrap();
+    assert_eq!(chain.m, [1.0, 0.5, 0.25]);
+    assert_eq!((chain.l, chain.g), ([0.4, 0.3, 0.2], 9.81));
+    assert!(chain.torque.is_nan(), "inputs come back unset");
+    let q0 = lagrange::nalgebra::SVector::<f64, 3>::new(0.3, 0.2, 0.1);
+    let v0 = lagrange::nalgebra::SVector::zeros();
+    assert!(Dopri5::new()
+        .integrate(&chain, 0.0, q0, v0, &[1.0])
+        .is_err());
+
+    let driven = chain.with_inputs(&lagrange::nalgebra::Vector1::new(0.5));
+    let written = serde_json::to_string(&driven).unwrap();
+    assert!(!written.contains("torque"), "{written}");
+    let back: SceneChain = serde_json::from_str(&written).unwrap();
+    assert_eq!((back.m, back.l, back.g), (chain.m, chain.l, chain.g));
+}

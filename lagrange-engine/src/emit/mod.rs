@@ -45,6 +45,7 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
             fields: &model.fields,
             inputs: &model.input_fields,
             constraints: model.constraints.len(),
+            serde: model.options.serde,
         },
         types: Types::new(model.dof(), model.constraints.len(), model.inputs.len()),
         namer: Namer::new(model),

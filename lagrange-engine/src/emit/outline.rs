@@ -82,6 +82,8 @@ pub struct Outline<'a> {
     /// The number of holonomic constraints (0 for a model in minimal
     /// coordinates, which then has no constraint items).
     pub constraints: usize,
+    /// `#[lagrange(serde)]`.
+    pub serde: bool,
 }
 
 impl Outline<'_> {
@@ -94,14 +96,40 @@ impl Outline<'_> {
         let fields = if self.fields.is_empty() && self.inputs.is_empty() {
             quote!({ _scalar: ::core::marker::PhantomData<S> })
         } else {
-            let all = || self.fields.iter().chain(self.inputs);
-            let params = all().map(|f| &f.name);
-            let types = all().map(Field::rust_type);
-            quote!({ #(pub #params: #types,)* })
+            let params = self.fields.iter().map(|f| &f.name);
+            let types = self.fields.iter().map(Field::rust_type);
+            let inputs = self.inputs.iter().map(|f| {
+                let (name, ty) = (&f.name, f.rust_type());
+                let skip = self.serde.then(|| {
+                    // Inputs are set during a run: not part of a scene's
+                    // parameters, and read back unset (NaN).
+                    let unset = match f.len {
+                        None => "::lagrange::inputs::unset::<S>".to_string(),
+                        Some(len) => format!("::lagrange::inputs::unset_array::<S, {len}>"),
+                    };
+                    quote!(#[serde(skip, default = #unset)])
+                });
+                quote!(#skip pub #name: #ty,)
+            });
+            quote!({ #(pub #params: #types,)* #(#inputs)* })
         };
+        let serde = self.serde.then(|| {
+            quote! {
+                #[derive(::lagrange::serde::Serialize, ::lagrange::serde::Deserialize)]
+                #[serde(
+                    crate = "::lagrange::serde",
+                    bound(
+                        serialize = "S: ::lagrange::serde::Serialize",
+                        deserialize = "S: ::lagrange::serde::Deserialize<'de> \
+                                       + ::lagrange::nalgebra::RealField + ::core::marker::Copy"
+                    )
+                )]
+            }
+        });
         quote! {
             #(#attrs)*
             #[derive(Clone, Copy, Debug, PartialEq)]
+            #serde
             #vis struct #name<S = f64> #fields
         }
     }

@@ -98,6 +98,9 @@ fn take_options(attrs: &mut Vec<Attribute>) -> (Options, Option<syn::Error>) {
             if meta.path.is_ident("jacobians") {
                 options.jacobians = true;
                 Ok(())
+            } else if meta.path.is_ident("serde") {
+                options.serde = true;
+                Ok(())
             } else if meta.path.is_ident("budget") {
                 let lit: LitInt = meta.value()?.parse()?;
                 match lit.base10_parse::<u64>() {
@@ -112,7 +115,8 @@ fn take_options(attrs: &mut Vec<Attribute>) -> (Options, Option<syn::Error>) {
                 }
             } else {
                 Err(meta.error(
-                    "unknown option: `#[lagrange(...)]` takes `jacobians` (exact residual Jacobians for implicit integrators) \
+                    "unknown option: `#[lagrange(...)]` takes `jacobians` (exact residual Jacobians for implicit integrators), \
+                     `serde` (the struct serializable, with lagrange's `serde` feature) \
                      and `budget = N` (the engine's work budget, in steps)",
                 ))
             }

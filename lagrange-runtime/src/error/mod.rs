@@ -10,9 +10,15 @@ use nalgebra::{RealField, SVector};
 
 use crate::Trajectory;
 
+#[cfg(feature = "serde")]
+mod names;
 mod non_finite;
 
 pub use non_finite::NonFiniteValue;
+
+/// A name an error carries: of a coordinate, a constraint, an input or a
+/// method, from the model's or the method's constants.
+pub type Name = &'static str;
 
 /// Why an integration stopped before the last requested sample time.
 ///
@@ -20,6 +26,7 @@ pub use non_finite::NonFiniteValue;
 /// integrator stood) when the problem was found. For a failing Runge–Kutta
 /// stage that is a point inside the step, not necessarily a sample.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub enum IntegrationError<S: RealField + Copy, const N: usize> {
     /// `M(t, q)` has no usable inverse, so `M q̈ = f` does not determine the
@@ -208,7 +215,8 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         t: S,
         /// The constraint furthest from zero, from
         /// [`Holonomic::CONSTRAINTS`](crate::Holonomic::CONSTRAINTS).
-        constraint: &'static str,
+        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        constraint: Name,
         /// Its value `φ_i` after the last iteration.
         residual: S,
         /// Newton iterations done.
@@ -251,6 +259,7 @@ impl<S: RealField + Copy, const N: usize> From<InvalidInput<S>> for IntegrationE
 
 /// A call that cannot be integrated as given, and what is wrong with it.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub enum InvalidInput<S: RealField + Copy> {
     /// `t0` is NaN or infinite.
@@ -264,7 +273,8 @@ pub enum InvalidInput<S: RealField + Copy> {
     #[error("the initial position of coordinate `{coordinate}` is {value:?}, not a finite number")]
     NonFiniteInitialPosition {
         /// Name of the coordinate, from [`Lagrangian::COORDINATES`](crate::Lagrangian::COORDINATES).
-        coordinate: &'static str,
+        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        coordinate: Name,
         /// The value given.
         value: S,
     },
@@ -273,7 +283,8 @@ pub enum InvalidInput<S: RealField + Copy> {
     #[error("the initial velocity of coordinate `{coordinate}` is {value:?}, not a finite number")]
     NonFiniteInitialVelocity {
         /// Name of the coordinate, from [`Lagrangian::COORDINATES`](crate::Lagrangian::COORDINATES).
-        coordinate: &'static str,
+        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        coordinate: Name,
         /// The value given.
         value: S,
     },
@@ -295,7 +306,8 @@ pub enum InvalidInput<S: RealField + Copy> {
     InputsNotSet {
         /// The names of the model's inputs, from
         /// [`Lagrangian::input_names`](crate::Lagrangian::input_names).
-        inputs: &'static [&'static str],
+        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::list"))]
+        inputs: &'static [Name],
     },
 
     /// A sample time is NaN or infinite.
@@ -383,7 +395,8 @@ pub enum InvalidInput<S: RealField + Copy> {
     #[error("{method} needs at least one Newton iteration per step, but max_iterations = 0")]
     NoNewtonIterations {
         /// The integrator.
-        method: &'static str,
+        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        method: Name,
     },
 
     /// The method needs something of the model that it does not provide
@@ -392,9 +405,11 @@ pub enum InvalidInput<S: RealField + Copy> {
     #[error("{method} needs `Lagrangian::{needs}`, which this model does not provide")]
     ModelLacks {
         /// The integrator.
-        method: &'static str,
+        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        method: Name,
         /// The missing trait method.
-        needs: &'static str,
+        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        needs: Name,
     },
 
     /// The initial state is off the constraints beyond rounding, and the
@@ -408,7 +423,8 @@ pub enum InvalidInput<S: RealField + Copy> {
     InconsistentInitialConditions {
         /// The first violated constraint, from
         /// [`Holonomic::CONSTRAINTS`](crate::Holonomic::CONSTRAINTS).
-        constraint: &'static str,
+        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        constraint: Name,
         /// Whether its position `φ` or its velocity `φ̇` is off.
         level: ConstraintLevel,
         /// The residual.
@@ -434,6 +450,7 @@ pub enum InvalidInput<S: RealField + Copy> {
 
 /// Which level of a constraint a residual belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ConstraintLevel {
     /// The position constraint `φ(t, q) = 0`.
     Position,
@@ -456,6 +473,7 @@ impl fmt::Display for ConstraintLevel {
 /// Integrators return it boxed (see [`IntegrationResult`]) so that the
 /// successful path stays small.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Failure<S: RealField + Copy, const N: usize> {
     /// What went wrong, where, and in which state.
     pub error: IntegrationError<S, N>,

@@ -4,6 +4,7 @@ use core::fmt;
 
 /// Which value of an evaluation was NaN or infinite.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub enum NonFiniteValue {
     /// The state `(q, q̇)` handed to the model, e.g. after an overflow.

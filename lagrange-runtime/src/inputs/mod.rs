@@ -106,3 +106,17 @@ pub(crate) fn blame<L: Lagrangian<N>, const N: usize>(
         _ => value,
     }
 }
+
+/// An input not set: NaN, what a generated model's inputs hold until
+/// `with_inputs` or a controller sets them (used by the serde derive of
+/// `#[lagrange(serde)]` models, which do not store inputs).
+#[doc(hidden)]
+pub fn unset<S: nalgebra::RealField + Copy>() -> S {
+    nalgebra::convert(f64::NAN)
+}
+
+/// An indexed input not set: `K` NaNs.
+#[doc(hidden)]
+pub fn unset_array<S: nalgebra::RealField + Copy, const K: usize>() -> [S; K] {
+    [unset(); K]
+}
