@@ -73,6 +73,8 @@
 //! [`Lagrangian`] trait, the integrators and their results. `ARCHITECTURE.md`
 //! in the repository is the map.
 
+#![deny(missing_docs)]
+
 extern crate self as lagrange;
 
 pub use lagrange_macros::lagrangian;

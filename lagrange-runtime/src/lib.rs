@@ -258,7 +258,7 @@
 //!
 //! Everything is generic over the model's scalar: `f64` and `f32` both work.
 
-#![warn(missing_docs)]
+#![deny(missing_docs)]
 
 pub mod analysis;
 pub mod constraints;

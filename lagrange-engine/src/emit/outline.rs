@@ -96,8 +96,14 @@ impl Outline<'_> {
         let fields = if self.fields.is_empty() && self.inputs.is_empty() {
             quote!({ _scalar: ::core::marker::PhantomData<S> })
         } else {
-            let params = self.fields.iter().map(|f| &f.name);
-            let types = self.fields.iter().map(Field::rust_type);
+            let params = self.fields.iter().map(|f| {
+                let (name, ty) = (&f.name, f.rust_type());
+                let doc = match f.len {
+                    None => format!(" The parameter `{name}`."),
+                    Some(len) => format!(" The parameters `{name}[0..{len}]`."),
+                };
+                quote!(#[doc = #doc] pub #name: #ty,)
+            });
             let inputs = self.inputs.iter().map(|f| {
                 let (name, ty) = (&f.name, f.rust_type());
                 let skip = self.serde.then(|| {
@@ -109,9 +115,13 @@ impl Outline<'_> {
                     };
                     quote!(#[serde(skip, default = #unset)])
                 });
-                quote!(#skip pub #name: #ty,)
+                let doc = match f.len {
+                    None => format!(" The control input `{name}`: NaN until set (`set_inputs`, `with_inputs` or a controller)."),
+                    Some(len) => format!(" The control inputs `{name}[0..{len}]`: NaN until set (`set_inputs`, `with_inputs` or a controller)."),
+                };
+                quote!(#[doc = #doc] #skip pub #name: #ty,)
             });
-            quote!({ #(pub #params: #types,)* #(#inputs)* })
+            quote!({ #(#params)* #(#inputs)* })
         };
         let serde = self.serde.then(|| {
             quote! {

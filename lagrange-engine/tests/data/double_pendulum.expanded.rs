@@ -1,9 +1,14 @@
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DoublePendulum<S = f64> {
+    /// The parameter `m1`.
     pub m1: S,
+    /// The parameter `m2`.
     pub m2: S,
+    /// The parameter `l1`.
     pub l1: S,
+    /// The parameter `l2`.
     pub l2: S,
+    /// The parameter `g`.
     pub g: S,
 }
 #[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]

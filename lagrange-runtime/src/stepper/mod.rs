@@ -173,7 +173,7 @@ where
 {
     /// A stepper at `(t0, q0, q̇0)`. The start and the method's settings are
     /// checked here, as `integrate` checks them
-    /// ([`InvalidInput`](crate::InvalidInput) in the error), and a
+    /// ([`InvalidInput`] in the error), and a
     /// constrained model's start is brought onto its constraints (or
     /// refused) as its settings say.
     pub fn new(
