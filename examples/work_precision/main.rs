@@ -142,23 +142,36 @@ fn study<L: Lagrangian<N, Scalar = f64>, const N: usize>(p: &Problem<L, N>, runs
         "{:<18} {:>10} {:>10} {:>10} {:>10} {:>11}",
         "method", "setting", "error", "energy", "rhs evals", "seconds"
     );
-    for setting in sweep(&p.steps) {
+    let settings = sweep(&p.steps);
+    // A bar on the terminal (stderr; hidden when it is not a terminal), the
+    // table above it on stdout.
+    let bar = indicatif::ProgressBar::new(settings.len() as u64).with_style(
+        indicatif::ProgressStyle::with_template("{prefix} {bar:40} {pos}/{len} runs, {elapsed}")
+            .expect("a valid template"),
+    );
+    bar.set_prefix(p.name);
+    for setting in settings {
+        bar.inc(1);
         match measure(p, setting) {
             Ok(run) => {
-                println!(
-                    "{:<18} {:>10.2e} {:>10.2e} {:>10.2e} {:>10} {:>11.3e}",
-                    run.method,
-                    run.setting,
-                    run.error,
-                    run.energy_error,
-                    run.rhs_evals,
-                    run.wall_seconds
-                );
+                bar.suspend(|| {
+                    println!(
+                        "{:<18} {:>10.2e} {:>10.2e} {:>10.2e} {:>10} {:>11.3e}",
+                        run.method,
+                        run.setting,
+                        run.error,
+                        run.energy_error,
+                        run.rhs_evals,
+                        run.wall_seconds
+                    )
+                });
                 runs.push(run);
             }
-            Err(why) => println!("{:<18} {:>10.2e} {why}", setting.method.id(), setting.value),
+            Err(why) => bar
+                .suspend(|| println!("{:<18} {:>10.2e} {why}", setting.method.id(), setting.value)),
         }
     }
+    bar.finish_and_clear();
 }
 
 fn write_csv(path: &std::path::Path, runs: &[Run]) -> std::io::Result<()> {
