@@ -118,6 +118,11 @@ impl<S: RealField + Copy> GaussLegendre<S> {
         self.settings.h
     }
 
+    /// The step size, budget and Newton limit, for a [`Stepper`](crate::Stepper).
+    pub(crate) fn settings(&self) -> Settings<S> {
+        self.settings
+    }
+
     /// The number of stages `s`.
     pub fn stages(&self) -> usize {
         match self.stages {
@@ -134,7 +139,7 @@ impl<S: RealField + Copy> GaussLegendre<S> {
     /// The exact Butcher tableau (Hairer, Nørsett & Wanner, *Solving ODEs I*,
     /// Table II.7.3–II.7.4), square roots taken in `S`, with `dᵀ = bᵀ A⁻¹`
     /// in closed form.
-    fn tableau(&self) -> Tableau<S> {
+    pub(crate) fn tableau(&self) -> Tableau<S> {
         let r = |x: f64| -> S { nalgebra::convert(x) };
         match self.stages {
             Stages::Two => {

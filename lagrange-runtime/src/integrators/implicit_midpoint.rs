@@ -70,8 +70,13 @@ impl<S: RealField + Copy> ImplicitMidpoint<S> {
         self.settings.h
     }
 
+    /// The step size, budget and Newton limit, for a [`Stepper`](crate::Stepper).
+    pub(crate) fn settings(&self) -> Settings<S> {
+        self.settings
+    }
+
     /// `a = ½`, `b = 1`, `c = ½`, hence `d = bᵀ A⁻¹ = 2`.
-    fn tableau(&self) -> Tableau<S> {
+    pub(crate) fn tableau(&self) -> Tableau<S> {
         let half: S = nalgebra::convert(0.5);
         Tableau {
             a: DMatrix::from_element(1, 1, half),

@@ -80,7 +80,7 @@ pub(crate) fn integrate<S: RealField + Copy, L: Lagrangian<N, Scalar = S>, const
     if settings.max_iterations == 0 {
         return Err(invalid(InvalidInput::NoNewtonIterations { method }));
     }
-    let mut stages = StageSolver::<S, N>::new(tableau, settings.max_iterations);
+    let mut stages = StageSolver::<S, N>::new(tableau.clone(), settings.max_iterations);
     let step = |rec: &mut Recorder<'_, S, N>, model: &L, t, q: &_, qdot: &_, h| {
         stages.step(rec, model, t, q, qdot, h)
     };
@@ -98,11 +98,12 @@ const TOLERANCE: f64 = 10.0;
 /// longer describes the stages well: evaluate it again, once per step.
 const SLOW: f64 = 0.5;
 
-/// The workspace of the stage system, allocated once per integration so that
-/// a step allocates nothing. Stage `j` occupies rows `2 N j .. 2 N (j + 1)`
-/// of the stage vectors: its `q` part, then its `v` part.
-struct StageSolver<'t, S: RealField + Copy, const N: usize> {
-    tableau: &'t Tableau<S>,
+/// The workspace of the stage system, allocated once per integration (or
+/// per [`Stepper`](crate::Stepper)) so that a step allocates nothing. Stage
+/// `j` occupies rows `2 N j .. 2 N (j + 1)` of the stage vectors: its `q`
+/// part, then its `v` part.
+pub(crate) struct StageSolver<S: RealField + Copy, const N: usize> {
+    tableau: Tableau<S>,
     max_iterations: usize,
     /// Stage increments `Z`.
     z: DVector<S>,
@@ -118,8 +119,8 @@ struct StageSolver<'t, S: RealField + Copy, const N: usize> {
     lu: Lu<S>,
 }
 
-impl<'t, S: RealField + Copy, const N: usize> StageSolver<'t, S, N> {
-    fn new(tableau: &'t Tableau<S>, max_iterations: usize) -> Self {
+impl<S: RealField + Copy, const N: usize> StageSolver<S, N> {
+    pub(crate) fn new(tableau: Tableau<S>, max_iterations: usize) -> Self {
         let dim = 2 * N * tableau.stages();
         Self {
             tableau,
@@ -133,8 +134,14 @@ impl<'t, S: RealField + Copy, const N: usize> StageSolver<'t, S, N> {
         }
     }
 
+    /// Forgets the previous step, whose stages are the starting guess of
+    /// the next: after the state or the model changed under a stepper.
+    pub(crate) fn restart(&mut self) {
+        self.h_prev = None;
+    }
+
     /// One step of size `h` from `(t, q, v)`.
-    fn step<L: Lagrangian<N, Scalar = S>>(
+    pub(crate) fn step<L: Lagrangian<N, Scalar = S>>(
         &mut self,
         rec: &mut Recorder<'_, S, N>,
         model: &L,

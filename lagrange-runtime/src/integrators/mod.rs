@@ -68,6 +68,7 @@ pub use variational::Variational;
 pub(crate) use dop853::{Pair as Dop853Pair, CONTROL as DOP853_CONTROL};
 pub(crate) use dopri5::{Pair as Dopri5Pair, CONTROL as DOPRI5_CONTROL};
 pub(crate) use euler::euler_step;
+pub(crate) use implicit_rk::StageSolver;
 pub(crate) use rk4::rk4_step;
 pub(crate) use symplectic_euler::symplectic_step;
 

@@ -19,6 +19,10 @@ pub(crate) trait FixedStep<S: RealField + Copy, const N: usize> {
         state: (&SVector<S, N>, &SVector<S, N>),
         h: S,
     ) -> Result<State<S, N>, IntegrationError<S, N>>;
+
+    /// Forgets what the previous step carries into the next (an implicit
+    /// method's starting guess), after the state or the model changed.
+    fn restart(&mut self) {}
 }
 
 /// A fixed-step method's side of a stepper: its step, `h`, the step budget
@@ -60,7 +64,10 @@ where
         let growth = self
             .growth
             .get_or_insert_with(|| GrowthGuard::new(&q, &qdot));
-        run.stale = false;
+        if run.stale {
+            self.step.restart();
+            run.stale = false;
+        }
         for k in 1..=steps {
             let (t, before) = (run.t, run.state());
             let t_next = interval.time(k, steps);

@@ -7,10 +7,12 @@ use super::fixed::{FixedStep, FixedWork};
 use super::StepMethod;
 use crate::driver::{check_step_size, check_tolerances, Recorder, State};
 use crate::integrators::{
-    euler_step, rk4_step, symplectic_step, Dop853Pair, Dopri5Pair, DOP853_CONTROL, DOPRI5_CONTROL,
+    euler_step, rk4_step, symplectic_step, Dop853Pair, Dopri5Pair, StageSolver, DOP853_CONTROL,
+    DOPRI5_CONTROL,
 };
 use crate::{
-    Dop853, Dopri5, ExplicitEuler, IntegrationError, InvalidInput, Lagrangian, Rk4, SymplecticEuler,
+    Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, IntegrationError, InvalidInput,
+    Lagrangian, Rk4, SymplecticEuler,
 };
 
 /// A fixed-step method's step, by name: the same function its `integrate`
@@ -54,6 +56,55 @@ fixed_methods! {
     ExplicitEuler => EulerStep(euler_step),
     SymplecticEuler => SymplecticStep(symplectic_step),
     Rk4 => Rk4Step(rk4_step),
+}
+
+/// The Gauss collocation methods step with the stage solver their
+/// `integrate` uses, its workspace allocated once per stepper.
+#[doc(hidden)]
+pub struct Collocation<S: RealField + Copy, const N: usize>(StageSolver<S, N>);
+
+impl<S: RealField + Copy, const N: usize> FixedStep<S, N> for Collocation<S, N> {
+    fn step<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        rec: &mut Recorder<'static, S, N>,
+        model: &L,
+        t: S,
+        (q, qdot): (&SVector<S, N>, &SVector<S, N>),
+        h: S,
+    ) -> Result<State<S, N>, IntegrationError<S, N>> {
+        self.0.step(rec, model, t, q, qdot, h)
+    }
+
+    fn restart(&mut self) {
+        self.0.restart();
+    }
+}
+
+macro_rules! implicit_methods {
+    ($($method:ident => $name:literal),* $(,)?) => {$(
+        impl<S: RealField + Copy, const N: usize> StepMethod<S, N> for $method<S> {
+            type Work = FixedWork<S, Collocation<S, N>>;
+
+            fn work(&self) -> Result<Self::Work, InvalidInput<S>> {
+                let settings = self.settings();
+                check_step_size(settings.h)?;
+                if settings.max_iterations == 0 {
+                    return Err(InvalidInput::NoNewtonIterations { method: $name });
+                }
+                Ok(FixedWork {
+                    step: Collocation(StageSolver::new(self.tableau(), settings.max_iterations)),
+                    h: settings.h,
+                    max_steps: settings.max_steps,
+                    growth: None,
+                })
+            }
+        }
+    )*};
+}
+
+implicit_methods! {
+    ImplicitMidpoint => "ImplicitMidpoint",
+    GaussLegendre => "GaussLegendre",
 }
 
 /// An adaptive method's pair, by name: the same its `integrate` builds.

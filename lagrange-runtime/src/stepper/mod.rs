@@ -34,11 +34,12 @@
 //!   the last step that succeeded) and can be advanced again, for instance
 //!   after the caller changed the model.
 //!
-//! The explicit methods step: [`ExplicitEuler`], [`SymplecticEuler`],
-//! [`Rk4`] (fixed step), [`Dopri5`] and [`Dop853`] (adaptive). The implicit
-//! ones keep Newton workspaces tied to their integration and are not
-//! offered here; a stiff scene integrates with [`Radau5`](crate::Radau5)
-//! through `integrate`.
+//! The methods that step: [`ExplicitEuler`], [`SymplecticEuler`], [`Rk4`],
+//! [`ImplicitMidpoint`] and [`GaussLegendre`] (fixed step; the implicit
+//! ones' Newton workspace allocated in [`Stepper::new`]), [`Dopri5`] and
+//! [`Dop853`] (adaptive). [`Radau5`](crate::Radau5) and
+//! [`Variational`](crate::Variational) run their own loops and are not
+//! offered here: they integrate through `integrate`.
 //!
 //! Constrained models are kept on their constraints after each step, as in
 //! `integrate` (the model's drift control; see
@@ -87,6 +88,8 @@
 //! [`ExplicitEuler`]: crate::ExplicitEuler
 //! [`SymplecticEuler`]: crate::SymplecticEuler
 //! [`Rk4`]: crate::Rk4
+//! [`ImplicitMidpoint`]: crate::ImplicitMidpoint
+//! [`GaussLegendre`]: crate::GaussLegendre
 
 // A method's side of a stepper is sealed: `StepMethod::Work` names types
 // whose traits (the fixed step, the embedded pair, the recorder) are the
@@ -103,11 +106,12 @@ use nalgebra::{ComplexField, RealField, SVector};
 use crate::driver::{Recorder, State};
 use crate::{IntegrationError, InvalidInput, Lagrangian, Stats};
 
-/// What a [`Stepper`] needs of a method: implemented for the explicit
-/// methods ([`ExplicitEuler`](crate::ExplicitEuler),
+/// What a [`Stepper`] needs of a method: implemented for
+/// [`ExplicitEuler`](crate::ExplicitEuler),
 /// [`SymplecticEuler`](crate::SymplecticEuler), [`Rk4`](crate::Rk4),
-/// [`Dopri5`](crate::Dopri5), [`Dop853`](crate::Dop853)); it cannot be
-/// implemented outside this crate.
+/// [`ImplicitMidpoint`](crate::ImplicitMidpoint),
+/// [`GaussLegendre`](crate::GaussLegendre), [`Dopri5`](crate::Dopri5) and
+/// [`Dop853`](crate::Dop853); it cannot be implemented outside this crate.
 pub trait StepMethod<S: RealField + Copy, const N: usize> {
     /// The method's state between calls: its slopes and step size.
     #[doc(hidden)]
