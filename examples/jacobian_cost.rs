@@ -4,32 +4,26 @@
 //! median time of `expand` and the size of the emitted code. Why the
 //! Jacobians are opt-in rather than generated for every model.
 //!
-//! `cargo run --release -p lagrange-engine --example jacobian_cost`
+//! `cargo run --release --example jacobian_cost`
 
+#[allow(dead_code)]
+#[path = "scaling/chain.rs"]
+mod chain;
+
+use chain::Form;
 use proc_macro2::TokenStream;
 use std::time::{Duration, Instant};
 
-/// The chain of `lagrange::models::Chain` with `n` links.
+/// The `n`-link chain of `examples/scaling`, with or without the attribute.
 fn chain(n: usize, jacobians: bool) -> TokenStream {
     let attribute = if jacobians {
         "#[lagrange(jacobians)]"
     } else {
         ""
     };
-    format!(
-        "{attribute} pub struct Chain {{
-            const N = {n};
-            coordinates: theta[N];
-            parameters: m[N], l[N];
-            constants: g = 9.81;
-            let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));
-            let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));
-            kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2));
-            potential: sum(i in 0..N, m[i]*g*y[i]);
-        }}"
-    )
-    .parse()
-    .expect("the chain lexes")
+    format!("{attribute} {}", chain::model_body(n, Form::Indexed))
+        .parse()
+        .expect("the chain lexes")
 }
 
 /// Median expansion time over `reps` runs, and the emitted code's size.
