@@ -27,6 +27,7 @@ pub struct Stub {
     fields: Vec<Field>,
     inputs: Vec<Field>,
     constraints: usize,
+    lets: usize,
     serde: bool,
 }
 
@@ -41,6 +42,7 @@ impl Stub {
             fields: shape.fields,
             inputs: shape.inputs,
             constraints: shape.constraints,
+            lets: shape.lets,
             serde: def.options.serde,
         }
     }
@@ -56,6 +58,7 @@ impl Stub {
             inputs: &self.inputs,
             constraints: self.constraints,
             serde: self.serde,
+            lets: self.lets,
         };
         let item = outline.struct_item();
         if self.dof == 0 {
@@ -64,7 +67,7 @@ impl Stub {
         let na = nalgebra();
         let name = &self.name;
         let k: usize = self.inputs.iter().map(|f| f.len.unwrap_or(1)).sum();
-        let types = Types::new(self.dof, self.constraints, k);
+        let types = Types::new(self.dof, self.constraints, k, self.lets);
         let n = &types.n;
         let stop = quote!(::core::unreachable!(
             "`lagrangian!` reported a compile error for this model"
@@ -106,6 +109,7 @@ impl Stub {
             }
         });
         let input_methods = inputs::inherent_methods(&outline, &types);
+        let let_value = crate::emit::api::let_value(&types);
         let jacobian = METHODS
             .iter()
             .filter(|m| m.in_trait == InTrait::Actuated)
@@ -125,6 +129,7 @@ impl Stub {
                 #(#consts)*
                 pub #new
                 #(#methods)*
+                #let_value
                 #input_methods
             }
             #[allow(unused_variables, clippy::all)]

@@ -13,5 +13,6 @@ mod indexed_models;
 mod inputs;
 mod linearization;
 mod more_models;
+mod named_lets;
 mod readme;
 mod textbook_models;

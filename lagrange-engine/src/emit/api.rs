@@ -76,6 +76,8 @@ pub enum Returns {
     ConstrainedSystem,
     /// `SMatrix<S, N, K>`, `K` the number of inputs: `N·K` roots.
     InputMatrix,
+    /// `[S; L]`, `L` the number of `let` values: `L` roots.
+    Lets,
 }
 
 impl Returns {
@@ -94,6 +96,7 @@ impl Returns {
                 quote!((#matrix, #vector, #cm, #cv))
             }
             Returns::InputMatrix => ty.input_matrix.clone(),
+            Returns::Lets => ty.lets.clone(),
         }
     }
 
@@ -144,6 +147,7 @@ impl Returns {
                 let new = &ty.new_input_matrix;
                 quote!(#new(&[#(#outs),*]))
             }
+            Returns::Lets => quote!([#(#outs),*]),
         }
     }
 }
@@ -170,6 +174,8 @@ pub enum InTrait {
     /// model with inputs implements: its impl calls the inherent one, and
     /// the stub implements it too.
     Actuated,
+    /// An inherent method only, of every model and of the stub.
+    Inherent,
 }
 
 /// A generated method `fn name(&self, args) -> returns`.
@@ -184,6 +190,21 @@ pub struct Method {
     /// but the stub always has it).
     pub roots: fn(&Model, &Equations) -> Option<Vec<ExprId>>,
     pub in_trait: InTrait,
+}
+
+/// `let_value(name, t, q, q̇)`: one `let` by its name in `LETS`, from
+/// `lets`; written the same for a model and for the stub.
+pub fn let_value(ty: &Types) -> TokenStream {
+    let vector = &ty.vector;
+    quote! {
+        /// The value of the `let` named `name` (as `LETS` writes it: `x1`,
+        /// `x[2]`) at `(t, q, q̇)`; `None` where the model has no such `let`.
+        #[inline]
+        pub fn let_value(&self, name: &str, t: S, q: &#vector, qdot: &#vector) -> ::core::option::Option<S> {
+            let index = Self::LETS.iter().position(|l| *l == name)?;
+            ::core::option::Option::Some(self.lets(t, q, qdot)[index])
+        }
+    }
 }
 
 /// Every generated method, in the order of the generated impls.
@@ -287,6 +308,18 @@ pub const METHODS: &[Method] = &[
         in_trait: InTrait::Optional {
             flag_if_absent: None,
         },
+    },
+    Method {
+        name: "lets",
+        doc: &[
+            "Every `let` of the model at `(t, q, q̇)`, in the order of `LETS`:",
+            "the positions (and any other quantity) the model names, for",
+            "drawing a trajectory without writing the kinematics again.",
+        ],
+        args: &[Arg::T, Arg::Q, Arg::Qdot],
+        returns: Returns::Lets,
+        roots: |model, _| Some(model.lets.iter().map(|(_, id)| *id).collect()),
+        in_trait: InTrait::Inherent,
     },
     // Only a model with `constraints:` has the rest.
     Method {
@@ -400,7 +433,8 @@ impl Method {
             InTrait::Required
             | InTrait::Provided
             | InTrait::Holonomic { .. }
-            | InTrait::Actuated => self.signature_returning(ty, returns),
+            | InTrait::Actuated
+            | InTrait::Inherent => self.signature_returning(ty, returns),
         }
     }
 

@@ -37,6 +37,9 @@ pub enum ConstValue {
     /// `[&'static str; C]`: the constraints' names (empty in the stub;
     /// absent from a model without constraints).
     ConstraintNames,
+    /// `[&'static str; L]`: the `let` values' names, an indexed `let`
+    /// flattened (`x[0]`, ...); empty strings in the stub.
+    LetNames,
     /// `&'static str`: the derived equations as text (empty in the stub).
     EquationsText,
 }
@@ -74,6 +77,14 @@ pub const CONSTS: &[Const] = &[
             "input `tau[N]` is `tau[0]` … `tau[N-1]`).",
         ]),
         value: ConstValue::InputNames,
+    },
+    Const {
+        name: "LETS",
+        doc: Doc::Lines(&[
+            "Names of the `let` values, in the order of `lets` (an indexed",
+            "`let x[i in 0..N]` is `x[0]` … `x[N-1]`).",
+        ]),
+        value: ConstValue::LetNames,
     },
     Const {
         name: "EQUATIONS",
@@ -126,6 +137,15 @@ impl Const {
             (ConstValue::ConstraintNames, None) => {
                 let c = Literal::usize_unsuffixed(outline.constraints);
                 (quote!([&'static str; #c]), quote!([""; #c]))
+            }
+            (ConstValue::LetNames, Some((model, _))) => {
+                let l = Literal::usize_unsuffixed(model.lets.len());
+                let names = model.lets.iter().map(|(name, _)| name);
+                (quote!([&'static str; #l]), quote!([#(#names),*]))
+            }
+            (ConstValue::LetNames, None) => {
+                let l = Literal::usize_unsuffixed(outline.lets);
+                (quote!([&'static str; #l]), quote!([""; #l]))
             }
             (ConstValue::EquationsText, Some((_, text))) => (quote!(&'static str), quote!(#text)),
             (ConstValue::EquationsText, None) => (quote!(&'static str), quote!("")),

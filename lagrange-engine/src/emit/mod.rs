@@ -46,8 +46,14 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
             inputs: &model.input_fields,
             constraints: model.constraints.len(),
             serde: model.options.serde,
+            lets: model.lets.len(),
         },
-        types: Types::new(model.dof(), model.constraints.len(), model.inputs.len()),
+        types: Types::new(
+            model.dof(),
+            model.constraints.len(),
+            model.inputs.len(),
+            model.lets.len(),
+        ),
         namer: Namer::new(model),
         roots: METHODS.iter().map(|m| (m.roots)(model, eq)).collect(),
     };
@@ -117,6 +123,7 @@ fn inherent_impl(cx: &Context, equations_text: &str) -> TokenStream {
         .zip(&cx.roots)
         .filter_map(|(m, roots)| Some(method(cx, m, roots.as_ref()?)));
     let inputs = inputs::inherent_methods(&cx.outline, &cx.types);
+    let let_value = api::let_value(&cx.types);
     quote! {
         #[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]
         impl<S: #na::RealField + ::core::marker::Copy> #name<S> {
@@ -127,6 +134,7 @@ fn inherent_impl(cx: &Context, equations_text: &str) -> TokenStream {
             pub #new
 
             #(#methods)*
+            #let_value
             #inputs
         }
     }
@@ -242,7 +250,10 @@ fn holonomic_impl(cx: &Context) -> TokenStream {
 /// A method of the `Lagrangian` impl: a call of the inherent one, or, where
 /// the model has none, the trait's flag for its absence.
 fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
-    if matches!(m.in_trait, InTrait::Holonomic { .. } | InTrait::Actuated) {
+    if matches!(
+        m.in_trait,
+        InTrait::Holonomic { .. } | InTrait::Actuated | InTrait::Inherent
+    ) {
         return TokenStream::new();
     }
     if !present {
@@ -268,7 +279,11 @@ fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
                 ::core::option::Option::Some(#call)
             }
         },
-        InTrait::Required | InTrait::Provided | InTrait::Holonomic { .. } | InTrait::Actuated => {
+        InTrait::Required
+        | InTrait::Provided
+        | InTrait::Holonomic { .. }
+        | InTrait::Actuated
+        | InTrait::Inherent => {
             quote! {
                 #[inline]
                 #signature {

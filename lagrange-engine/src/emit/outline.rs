@@ -33,10 +33,14 @@ pub struct Types {
     pub constraint_matrix: TokenStream,
     pub new_constraint_vector: TokenStream,
     pub new_constraint_matrix: TokenStream,
+    /// `[S; L]`, `L` the number of `let` values.
+    pub lets: TokenStream,
+    /// `L`.
+    pub let_count: Literal,
 }
 
 impl Types {
-    pub fn new(dof: usize, constraints: usize, inputs: usize) -> Self {
+    pub fn new(dof: usize, constraints: usize, inputs: usize, lets: usize) -> Self {
         let na = nalgebra();
         let n = Literal::usize_unsuffixed(dof);
         let c = Literal::usize_unsuffixed(constraints);
@@ -57,6 +61,11 @@ impl Types {
             constraint_matrix: quote!(#na::SMatrix<S, #c, #n>),
             new_constraint_vector: quote!(#na::SVector::<S, #c>::from_column_slice),
             new_constraint_matrix: quote!(#na::SMatrix::<S, #c, #n>::from_column_slice),
+            lets: {
+                let l = Literal::usize_unsuffixed(lets);
+                quote!([S; #l])
+            },
+            let_count: Literal::usize_unsuffixed(lets),
             n,
             c,
         }
@@ -84,6 +93,8 @@ pub struct Outline<'a> {
     pub constraints: usize,
     /// `#[lagrange(serde)]`.
     pub serde: bool,
+    /// The number of `let` values.
+    pub lets: usize,
 }
 
 impl Outline<'_> {

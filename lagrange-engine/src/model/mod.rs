@@ -136,6 +136,9 @@ pub struct Model {
     /// The holonomic constraints, in the order of `φ`; empty for a model
     /// in minimal coordinates.
     pub constraints: Vec<Constraint>,
+    /// Every `let` value by name, in declaration order (an indexed `let`
+    /// as `x[0]`, `x[1]`, …): what the generated `lets` returns.
+    pub lets: Vec<(String, ExprId)>,
     pub pool: Pool,
     /// Every name as lowering left it, so that `locate` can lower a piece
     /// of a section again.
@@ -150,7 +153,7 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
     let mut decls = passes::declarations(&def, &mut declared, &cx)?;
     let symbols = passes::bind_symbols(&def, &mut decls, &mut cx);
     passes::constants(&def, &mut cx)?;
-    passes::lets(&def, &mut cx)?;
+    let lets = passes::lets(&def, &mut cx)?;
     let sections = passes::sections(def.items, &def.name, &mut cx)?;
     cx.pool
         .check_budget()
@@ -172,6 +175,7 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
         forces: sections.forces,
         constraint_defs: sections.constraint_defs,
         constraints: sections.constraints,
+        lets,
         pool: cx.pool,
         scope: cx.names,
     })

@@ -7,7 +7,7 @@ use super::lowering::Lowering;
 use super::scope::{Binding, Declared, Role};
 use super::{limit_error, Constraint, Field, Force, Scalar, Section, Symbols};
 use crate::ast::{BinOp, ConstraintDef, Expr, Item, ModelDef};
-use crate::expr::Pool;
+use crate::expr::{ExprId, Pool};
 use std::collections::HashSet;
 use syn::Ident;
 
@@ -200,13 +200,15 @@ pub(super) fn constants(def: &ModelDef, cx: &mut Lowering) -> syn::Result<()> {
 
 /// Pass 5: the `let`s, in order; each may use the ones above it, and an
 /// element of an indexed `let` the elements before it.
-pub(super) fn lets(def: &ModelDef, cx: &mut Lowering) -> syn::Result<()> {
+pub(super) fn lets(def: &ModelDef, cx: &mut Lowering) -> syn::Result<Vec<(String, ExprId)>> {
+    let mut values = Vec::new();
     for item in &def.items {
         if let Item::Let { name, index, value } = item {
             match index {
                 None => {
                     let id = cx.lower(value)?;
                     cx.names.insert(name.to_string(), Binding::Let(id));
+                    values.push((name.to_string(), id));
                 }
                 Some(range) => {
                     let (lo, hi) = cx.range(range)?;
@@ -224,14 +226,16 @@ pub(super) fn lets(def: &ModelDef, cx: &mut Lowering) -> syn::Result<()> {
                         cx.env.push((range.var.to_string(), k));
                         let id = cx.lower(value);
                         cx.env.pop();
-                        cx.names.insert(format!("{name}[{k}]"), Binding::Let(id?));
+                        let (element, id) = (format!("{name}[{k}]"), id?);
+                        cx.names.insert(element.clone(), Binding::Let(id));
+                        values.push((element, id));
                     }
                 }
             }
             cx.pending_lets.remove(&name.to_string());
         }
     }
-    Ok(())
+    Ok(values)
 }
 
 /// The energies and forces of a model.
@@ -401,6 +405,8 @@ pub struct Shape {
     /// The input fields.
     pub inputs: Vec<Field>,
     pub constraints: usize,
+    /// The `let` values, an indexed `let` counting its elements.
+    pub lets: usize,
 }
 
 /// For the stub of a model with an error: its number of coordinates, its
@@ -424,11 +430,22 @@ pub fn declared_shape(def: &ModelDef) -> Shape {
     let mut fields = Vec::new();
     let mut inputs = Vec::new();
     let mut constraints = 0usize;
+    let mut lets = 0usize;
+    let mut seen_lets: HashSet<String> = HashSet::new();
     // Apart from the other names: a constraint named like a coordinate is
     // the error, and the coordinate still counts.
     let mut seen_constraints: HashSet<String> = HashSet::new();
     let mut field_names: HashSet<String> = HashSet::new();
     for item in &def.items {
+        if let Item::Let { name, index, .. } = item {
+            if seen_lets.insert(name.to_string()) {
+                lets += match index {
+                    None => 1,
+                    Some(range) => cx.range(range).map_or(1, |(lo, hi)| (hi - lo) as usize),
+                };
+            }
+            continue;
+        }
         if let Item::Constraints { entries, .. } = item {
             for e in entries {
                 if !seen_constraints.insert(e.name.to_string()) {
@@ -478,5 +495,6 @@ pub fn declared_shape(def: &ModelDef) -> Shape {
         fields,
         inputs,
         constraints,
+        lets,
     }
 }

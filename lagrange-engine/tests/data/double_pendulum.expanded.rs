@@ -21,6 +21,9 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
     /// indexed parameter `m[N]` is one field `m: [S; N]`), in
     /// declaration order.
     pub const PARAMETERS: [&'static str; 5] = ["m1", "m2", "l1", "l2", "g"];
+    /// Names of the `let` values, in the order of `lets` (an indexed
+    /// `let x[i in 0..N]` is `x[0]` … `x[N-1]`).
+    pub const LETS: [&'static str; 4] = ["x1", "y1", "x2", "y2"];
     ///The derived equations `M q̈ = f`, readable: shared subexpressions first, then each entry.
     pub const EQUATIONS: &'static str = "e0 = m1 + m2\ne1 = cos(theta1)\ne2 = cos(theta2)\ne3 = sin(theta1)\ne4 = sin(theta2)\ne5 = e1*e4 - e3*e2\nM[theta1, theta1] = l1^2*e0\nM[theta1, theta2] = l1*l2*m2*(e1*e2 + e3*e4)\nM[theta2, theta2] = m2*l2^2\nf[theta1] = -l1*(e3*g*e0 - l2*m2*e5*dot(theta2)^2)\nf[theta2] = -l2*m2*(e4*g + l1*dot(theta1)^2*e5)\n";
     ///A `DoublePendulum` with the given parameters (`m1`, `m2`, `l1`, `l2`, `g`).
@@ -220,6 +223,42 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
                 -l2 * m2 * theta2_dot * (e4 * e3 - e2 * e5) - l2 * e4 * m2 * g,
             ],
         )
+    }
+    /// Every `let` of the model at `(t, q, q̇)`, in the order of `LETS`:
+    /// the positions (and any other quantity) the model names, for
+    /// drawing a trajectory without writing the kinematics again.
+    #[inline]
+    pub fn lets(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> [S; 4] {
+        let [theta1, theta2] = [q[0], q[1]];
+        let Self { l1, l2, .. } = *self;
+        let e0 = l1 * ::lagrange::nalgebra::ComplexField::sin(theta1);
+        let e1 = -l1 * ::lagrange::nalgebra::ComplexField::cos(theta1);
+        [
+            e0,
+            e1,
+            l1 * ::lagrange::nalgebra::ComplexField::sin(theta1)
+                + l2 * ::lagrange::nalgebra::ComplexField::sin(theta2),
+            -l2 * ::lagrange::nalgebra::ComplexField::cos(theta2)
+                - l1 * ::lagrange::nalgebra::ComplexField::cos(theta1),
+        ]
+    }
+    /// The value of the `let` named `name` (as `LETS` writes it: `x1`,
+    /// `x[2]`) at `(t, q, q̇)`; `None` where the model has no such `let`.
+    #[inline]
+    pub fn let_value(
+        &self,
+        name: &str,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> ::core::option::Option<S> {
+        let index = Self::LETS.iter().position(|l| *l == name)?;
+        ::core::option::Option::Some(self.lets(t, q, qdot)[index])
     }
 }
 impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> ::lagrange::Lagrangian<2>
