@@ -274,6 +274,10 @@ pub mod stepper;
 mod trajectory;
 
 pub use constraints::Holonomic;
+/// The diffsol crate (feature `diffsol`), for its solvers and traits
+/// beside [`interop::diffsol`].
+#[cfg(feature = "diffsol")]
+pub use diffsol;
 pub use error::{
     ConstraintLevel, Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue,
 };

@@ -8,6 +8,6 @@ mod constrained;
 #[cfg(feature = "csv")]
 mod export;
 mod integrator_suite;
-#[cfg(feature = "ode_solvers")]
+#[cfg(any(feature = "ode_solvers", feature = "diffsol"))]
 mod interop;
 mod reference_trajectories;
