@@ -5,7 +5,7 @@
 //! the right-hand side `(q̇, q̈)` with `q̈` from
 //! [`acceleration`](crate::solve::acceleration()), and the Jacobian-vector
 //! product `J v` with `J = [[0, I], [∂q̈/∂q, ∂q̈/∂q̇]]` from
-//! [`acceleration_jacobians`](crate::jacobian::acceleration_jacobians):
+//! [`acceleration_jacobians`]:
 //! exact for a model with `#[lagrange(jacobians)]`, central differences
 //! otherwise. Any of diffsol's solvers (BDF, SDIRK, Tsit45) then runs it.
 //!
