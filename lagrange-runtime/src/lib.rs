@@ -264,6 +264,7 @@ pub mod analysis;
 pub mod constraints;
 mod driver;
 pub mod error;
+pub mod events;
 pub mod inputs;
 pub mod integrators;
 mod lagrangian;
@@ -274,6 +275,7 @@ pub use constraints::Holonomic;
 pub use error::{
     ConstraintLevel, Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue,
 };
+pub use events::{Event, EventRecord, Events};
 pub use inputs::Actuated;
 pub use integrators::{
     integrate, Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, Integrator, Radau5,
@@ -288,8 +290,8 @@ pub use trajectory::{Sample, Samples, Stats, Trajectory};
 pub mod prelude {
     pub use crate::constraints::{Drift, InitialConditions};
     pub use crate::{
-        integrate, Actuated, Dop853, Dopri5, ExplicitEuler, Failure, GaussLegendre, Holonomic,
-        ImplicitMidpoint, IntegrationError, Integrator, Lagrangian, Radau5, Rk4, SymplecticEuler,
-        Trajectory, Variational,
+        integrate, Actuated, Dop853, Dopri5, Event, Events, ExplicitEuler, Failure, GaussLegendre,
+        Holonomic, ImplicitMidpoint, IntegrationError, Integrator, Lagrangian, Radau5, Rk4,
+        SymplecticEuler, Trajectory, Variational,
     };
 }
