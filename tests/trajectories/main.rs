@@ -5,5 +5,6 @@
 mod support;
 
 mod constrained;
+mod events;
 mod integrator_suite;
 mod reference_trajectories;
