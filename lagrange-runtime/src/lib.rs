@@ -249,8 +249,12 @@
 //!   any state (`A`, and `B` for models with inputs), equilibria by
 //!   Newton's method, normal modes about them; exact with a model's
 //!   residual Jacobians, else by central differences.
-//! - [`Trajectory`] (`trajectory.rs`): the samples and the [`Stats`] of the
-//!   work done.
+//! - [`events`]: functions of the state whose crossings are located on
+//!   each step's interpolant and recorded, or stop the run, or reset the
+//!   state (impacts) and restart it: [`Event`], [`Events`], through
+//!   [`Integrator::integrate_with_events`]; with the Zeno guard.
+//! - [`Trajectory`] (`trajectory.rs`): the samples, the events that
+//!   happened and the [`Stats`] of the work done.
 //! - [`error`]: [`IntegrationError`], [`InvalidInput`], [`Failure`].
 //! - [`inputs`]: control inputs, the [`Actuated`] trait of models with an
 //!   `inputs:` section and the [`Controlled`](inputs::Controlled) model a
