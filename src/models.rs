@@ -7,8 +7,11 @@
 //! of the implicit methods. Three are constrained models, closed loops in
 //! redundant coordinates: [`CartesianPendulum`], [`SliderCrank`] (with its
 //! minimal-coordinate twin) and [`FourBar`]. One has a control input:
-//! [`CartPole`], pushed by a motor force.
+//! [`CartPole`], pushed by a motor force. Two have impacts, as
+//! [events](lagrange_runtime::events): [`BouncingBall`] and
+//! [`PendulumWall`].
 
+mod bouncing_ball;
 mod cart_pole;
 mod cartesian_pendulum;
 mod chain;
@@ -18,11 +21,13 @@ mod kepler;
 mod methods;
 mod oscillator;
 mod pendulum;
+mod pendulum_wall;
 mod slider_crank;
 mod stiff_chain;
 mod two_mass_chain;
 mod without_jacobians;
 
+pub use bouncing_ball::BouncingBall;
 pub use cart_pole::CartPole;
 pub use cartesian_pendulum::CartesianPendulum;
 pub use chain::Chain;
@@ -32,6 +37,7 @@ pub use kepler::{Kepler, PolarKepler};
 pub use methods::{AnyIntegrator, Method};
 pub use oscillator::Oscillator;
 pub use pendulum::Pendulum;
+pub use pendulum_wall::PendulumWall;
 pub use slider_crank::{slider_crank_kinematics, MinimalSliderCrank, SliderCrank};
 pub use stiff_chain::StiffChain;
 pub use two_mass_chain::{RayleighTwoMassChain, TwoMassChain};

@@ -249,8 +249,12 @@
 //!   any state (`A`, and `B` for models with inputs), equilibria by
 //!   Newton's method, normal modes about them; exact with a model's
 //!   residual Jacobians, else by central differences.
-//! - [`Trajectory`] (`trajectory.rs`): the samples and the [`Stats`] of the
-//!   work done.
+//! - [`events`]: functions of the state whose crossings are located on
+//!   each step's interpolant and recorded, or stop the run, or reset the
+//!   state (impacts) and restart it: [`Event`], [`Events`], through
+//!   [`Integrator::integrate_with_events`]; with the Zeno guard.
+//! - [`Trajectory`] (`trajectory.rs`): the samples, the events that
+//!   happened and the [`Stats`] of the work done.
 //! - [`error`]: [`IntegrationError`], [`InvalidInput`], [`Failure`].
 //! - [`inputs`]: control inputs, the [`Actuated`] trait of models with an
 //!   `inputs:` section and the [`Controlled`](inputs::Controlled) model a
@@ -264,6 +268,7 @@ pub mod analysis;
 pub mod constraints;
 mod driver;
 pub mod error;
+pub mod events;
 pub mod export;
 pub mod inputs;
 pub mod integrators;
@@ -281,6 +286,7 @@ pub use diffsol;
 pub use error::{
     ConstraintLevel, Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue,
 };
+pub use events::{Event, EventRecord, Events};
 pub use inputs::Actuated;
 pub use integrators::{
     integrate, Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, Integrator, Radau5,
@@ -296,8 +302,8 @@ pub use trajectory::{Sample, Samples, Stats, Trajectory};
 pub mod prelude {
     pub use crate::constraints::{Drift, InitialConditions};
     pub use crate::{
-        integrate, Actuated, Dop853, Dopri5, ExplicitEuler, Failure, GaussLegendre, Holonomic,
-        ImplicitMidpoint, IntegrationError, Integrator, Lagrangian, Radau5, Rk4, Stepper,
-        SymplecticEuler, Trajectory, Variational,
+        integrate, Actuated, Dop853, Dopri5, Event, Events, ExplicitEuler, Failure, GaussLegendre,
+        Holonomic, ImplicitMidpoint, IntegrationError, Integrator, Lagrangian, Radau5, Rk4,
+        Stepper, SymplecticEuler, Trajectory, Variational,
     };
 }

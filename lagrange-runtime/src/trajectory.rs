@@ -5,6 +5,8 @@
 
 use nalgebra::{RealField, SVector};
 
+use crate::events::EventRecord;
+
 /// The state `(q, q̇)` at each requested sample time, in order, and the work
 /// it took.
 ///
@@ -30,6 +32,9 @@ pub struct Trajectory<S, const N: usize> {
     positions: Vec<SVector<S, N>>,
     velocities: Vec<SVector<S, N>>,
     stats: Stats,
+    events: Vec<EventRecord<S, N>>,
+    /// The index in `events` of the event that stopped the run.
+    stopped: Option<usize>,
 }
 
 /// One sample of a [`Trajectory`].
@@ -101,6 +106,10 @@ pub struct Stats {
     /// and of samples from dense output), each one evaluation of `φ` and
     /// `G` and a `C × C` solve.
     pub projection_iterations: usize,
+    /// Evaluations of [event](crate::events) functions, one call of one
+    /// event's `g` each: at every step's end, and while an event is
+    /// located. Zero for a run without events.
+    pub event_evals: usize,
 }
 
 impl<S: RealField + Copy, const N: usize> Trajectory<S, N> {
@@ -112,7 +121,17 @@ impl<S: RealField + Copy, const N: usize> Trajectory<S, N> {
             positions: Vec::with_capacity(samples),
             velocities: Vec::with_capacity(samples),
             stats: Stats::default(),
+            events: Vec::new(),
+            stopped: None,
         }
+    }
+
+    /// An event that happened; `stops` if it ended the run.
+    pub(crate) fn push_event(&mut self, event: EventRecord<S, N>, stops: bool) {
+        if stops && self.stopped.is_none() {
+            self.stopped = Some(self.events.len());
+        }
+        self.events.push(event);
     }
 
     pub(crate) fn push(&mut self, t: S, q: SVector<S, N>, qdot: SVector<S, N>) {
@@ -176,6 +195,19 @@ impl<S: RealField + Copy, const N: usize> Trajectory<S, N> {
     /// The work the integration did.
     pub fn stats(&self) -> Stats {
         self.stats
+    }
+
+    /// The [events](crate::events) that happened, in time order (several
+    /// at one time in the order they were added); empty for a run without
+    /// events.
+    pub fn events(&self) -> &[EventRecord<S, N>] {
+        &self.events
+    }
+
+    /// The event that stopped the run, if one did: no sample after its
+    /// time was recorded.
+    pub fn stopped(&self) -> Option<&EventRecord<S, N>> {
+        self.stopped.map(|i| &self.events[i])
     }
 }
 

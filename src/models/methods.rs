@@ -2,8 +2,8 @@
 //! runs them all lists them once: a method added here is run everywhere.
 
 use lagrange_runtime::{
-    Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, IntegrationResult, Integrator,
-    Lagrangian, Radau5, Rk4, SymplecticEuler, Variational,
+    Dop853, Dopri5, Events, ExplicitEuler, GaussLegendre, ImplicitMidpoint, IntegrationResult,
+    Integrator, Lagrangian, Radau5, Rk4, SymplecticEuler, Variational,
 };
 use nalgebra::{RealField, SVector};
 
@@ -215,27 +215,29 @@ impl<S: RealField + Copy> AnyIntegrator<S> {
 }
 
 impl<S: RealField + Copy> Integrator<S> for AnyIntegrator<S> {
-    fn integrate<L, const N: usize>(
+    fn integrate_with_events<L, const N: usize>(
         &self,
         model: &L,
         t0: S,
         q0: SVector<S, N>,
         qdot0: SVector<S, N>,
         times: &[S],
+        events: &Events<'_, S, N>,
     ) -> IntegrationResult<S, N>
     where
         L: Lagrangian<N, Scalar = S>,
     {
+        let e = events;
         match self {
-            Self::ExplicitEuler(m) => m.integrate(model, t0, q0, qdot0, times),
-            Self::SymplecticEuler(m) => m.integrate(model, t0, q0, qdot0, times),
-            Self::Rk4(m) => m.integrate(model, t0, q0, qdot0, times),
-            Self::ImplicitMidpoint(m) => m.integrate(model, t0, q0, qdot0, times),
-            Self::GaussLegendre(m) => m.integrate(model, t0, q0, qdot0, times),
-            Self::Variational(m) => m.integrate(model, t0, q0, qdot0, times),
-            Self::Dopri5(m) => m.integrate(model, t0, q0, qdot0, times),
-            Self::Dop853(m) => m.integrate(model, t0, q0, qdot0, times),
-            Self::Radau5(m) => m.integrate(model, t0, q0, qdot0, times),
+            Self::ExplicitEuler(m) => m.integrate_with_events(model, t0, q0, qdot0, times, e),
+            Self::SymplecticEuler(m) => m.integrate_with_events(model, t0, q0, qdot0, times, e),
+            Self::Rk4(m) => m.integrate_with_events(model, t0, q0, qdot0, times, e),
+            Self::ImplicitMidpoint(m) => m.integrate_with_events(model, t0, q0, qdot0, times, e),
+            Self::GaussLegendre(m) => m.integrate_with_events(model, t0, q0, qdot0, times, e),
+            Self::Variational(m) => m.integrate_with_events(model, t0, q0, qdot0, times, e),
+            Self::Dopri5(m) => m.integrate_with_events(model, t0, q0, qdot0, times, e),
+            Self::Dop853(m) => m.integrate_with_events(model, t0, q0, qdot0, times, e),
+            Self::Radau5(m) => m.integrate_with_events(model, t0, q0, qdot0, times, e),
         }
     }
 }

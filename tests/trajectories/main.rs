@@ -5,6 +5,7 @@
 mod support;
 
 mod constrained;
+mod events;
 #[cfg(feature = "csv")]
 mod export;
 mod integrator_suite;

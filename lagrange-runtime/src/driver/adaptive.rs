@@ -11,8 +11,10 @@ use nalgebra::{RealField, SVector};
 
 use super::growth::GrowthGuard;
 use super::record::{Recorder, State};
+use super::segments::{segments, Segment};
 use super::step_control::{advances, initial_step};
 use super::validate::{check_tolerances, invalid};
+use crate::events::Events;
 use crate::{IntegrationError, IntegrationResult, Lagrangian};
 
 /// A step-size controller's constants, as Hairer's codes set them:
@@ -95,7 +97,9 @@ pub(crate) trait EmbeddedPair<S: RealField + Copy, const N: usize> {
 
 /// Integrates `model` with the pair made by `pair` from `(q̇0, q̈0)`:
 /// validation, Hairer's initial step, then attempts until the last sample
-/// time, with the step size controlled by `control`.
+/// time, with the step size controlled by `control`. After a reset by an
+/// event, a new pair from the new state, and a new initial step
+/// ([`segments`]).
 ///
 /// A stage where the model cannot be evaluated rejects the step and retries
 /// with `fac_min` of it, so a model that breaks down at `t*` is integrated up
@@ -118,8 +122,31 @@ pub(crate) fn adaptive<S, L, P, const N: usize>(
     q0: SVector<S, N>,
     qdot0: SVector<S, N>,
     times: &[S],
-    pair: impl FnOnce(&SVector<S, N>, &SVector<S, N>) -> P,
+    events: &Events<'_, S, N>,
+    pair: impl Fn(&SVector<S, N>, &SVector<S, N>) -> P,
 ) -> IntegrationResult<S, N>
+where
+    S: RealField + Copy,
+    L: Lagrangian<N, Scalar = S>,
+    P: EmbeddedPair<S, N>,
+{
+    check_tolerances(settings.rtol, settings.atol).map_err(invalid)?;
+    segments(model, t0, q0, qdot0, times, events, |rec, t, state| {
+        segment(control, settings, rec, model, (t, state), &pair)
+    })
+}
+
+/// One segment of [`adaptive`]: from `(t0, q0, q̇0)`, with its own first
+/// slope and initial step, to the last sample time or to an event that
+/// stops the run or resets its state.
+fn segment<S, L, P, const N: usize>(
+    control: &Controller,
+    settings: Tolerances<S>,
+    rec: &mut Recorder<'_, S, N>,
+    model: &L,
+    (t0, (q0, qdot0)): (S, State<S, N>),
+    pair: &impl Fn(&SVector<S, N>, &SVector<S, N>) -> P,
+) -> Result<Segment<S, N>, IntegrationError<S, N>>
 where
     S: RealField + Copy,
     L: Lagrangian<N, Scalar = S>,
@@ -130,10 +157,8 @@ where
         atol,
         max_steps,
     } = settings;
-    check_tolerances(rtol, atol).map_err(invalid)?;
-    let (mut rec, (q0, qdot0)) = Recorder::start(model, t0, &q0, &qdot0, times)?;
     let (Some(_), Some(t_end)) = (rec.pending(), rec.end()) else {
-        return Ok(rec.finish());
+        return Ok(Segment::Done);
     };
 
     let c = |x: f64| -> S { nalgebra::convert(x) };
@@ -142,13 +167,10 @@ where
     let alpha = c(control.exponent) - beta * c(control.beta_weight);
 
     let (mut t, mut q, mut qdot) = (t0, q0, qdot0);
-    let qddot = match rec.rhs(model, t, &q, &qdot) {
-        Ok(a) => a,
-        Err(error) => return Err(rec.fail(error)),
-    };
-    let h_max = t_end - t0;
+    let qddot = rec.rhs(model, t, &q, &qdot)?;
+    let h_max = rec.bound_step(t_end - t0);
     let start = (t, &q, &qdot, &qddot);
-    let mut h = initial_step(&mut rec, model, start, h_max, rtol, atol, control.order);
+    let mut h = initial_step(rec, model, start, h_max, rtol, atol, control.order);
     let mut pair = pair(&qdot, &qddot);
 
     let mut growth = GrowthGuard::new(&q0, &qdot0);
@@ -161,19 +183,17 @@ where
     loop {
         let attempts = rec.stats.steps_accepted + rec.stats.steps_rejected;
         if attempts >= max_steps {
-            let error = IntegrationError::TooManySteps {
+            return Err(IntegrationError::TooManySteps {
                 t,
                 max_steps,
                 q,
                 qdot,
-            };
-            return Err(rec.fail(error));
+            });
         }
         if !advances(t, h) {
-            let error = stage_failure
+            return Err(stage_failure
                 .take()
-                .unwrap_or(IntegrationError::StepSizeUnderflow { t, h, q, qdot });
-            return Err(rec.fail(error));
+                .unwrap_or(IntegrationError::StepSizeUnderflow { t, h, q, qdot }));
         }
         // Stretch a step that would stop just short of the end, so the last
         // step is not a sliver.
@@ -183,7 +203,7 @@ where
         }
         let t_new = if last { t_end } else { t + h };
 
-        let (step, err) = match pair.attempt(&mut rec, model, (t, t_new, h), (&q, &qdot)) {
+        let (step, err) = match pair.attempt(rec, model, (t, t_new, h), (&q, &qdot)) {
             Ok(Outcome::Accepted { step, err }) => (step, err),
             Ok(Outcome::Rejected { err }) => {
                 rec.stats.steps_rejected += 1;
@@ -215,35 +235,37 @@ where
         // A constrained model's end state is projected; the pair keeps its
         // last slope, evaluated before that (see `constraints`).
         let (q_end, qdot_end) = P::end(&step);
-        let (q_new, qdot_new) = match rec.control_drift(model, t_new, q_end, qdot_end) {
-            Ok(state) => state,
-            Err(error) => return Err(rec.fail(error)),
-        };
+        let (q_new, qdot_new) = rec.control_drift(model, t_new, q_end, qdot_end)?;
         if let Some(steps) = growth.unstable((q, qdot), (&q_new, &qdot_new), h) {
             let (t, q, qdot) = (t_new, q_new, qdot_new);
-            let error = IntegrationError::Unstable {
+            return Err(IntegrationError::Unstable {
                 t,
                 h,
                 steps,
                 q,
                 qdot,
-            };
-            return Err(rec.fail(error));
+            });
         }
         let mut dense = None;
+        if rec.watching() {
+            let dense = &*dense.get_or_insert_with(|| pair.dense(h, (&q, &qdot), &step));
+            let interpolant = |ts: S| P::dense_at(dense, (ts - t) / h);
+            let end = (q_new, qdot_new);
+            if let Some(end) = rec.watch_dense(model, (t, t_new), &end, interpolant)? {
+                return Ok(end);
+            }
+        }
         while let Some(ts) = rec.pending().filter(|&ts| ts <= t_new) {
             if ts < t_new {
                 let dense = dense.get_or_insert_with(|| pair.dense(h, (&q, &qdot), &step));
                 let (qs, qdots) = P::dense_at(dense, (ts - t) / h);
-                if let Err(error) = rec.record_dense(model, ts, qs, qdots) {
-                    return Err(rec.fail(error));
-                }
+                rec.record_dense(model, ts, qs, qdots)?;
             } else {
                 rec.record(ts, q_new, qdot_new);
             }
         }
         if last {
-            return Ok(rec.finish());
+            return Ok(Segment::Done);
         }
         (t, q, qdot) = (t_new, q_new, qdot_new);
         pair.advance(&step);

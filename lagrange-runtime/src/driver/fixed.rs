@@ -6,7 +6,9 @@ use nalgebra::{RealField, SVector};
 
 use super::growth::GrowthGuard;
 use super::record::{Recorder, State};
+use super::segments::{segments, Segment};
 use super::validate::{check_step_size, invalid};
+use crate::events::Events;
 use crate::{IntegrationError, IntegrationResult, Lagrangian, NonFiniteValue};
 
 /// The loop every fixed-step method shares, so that they all land on the
@@ -18,7 +20,8 @@ use crate::{IntegrationError, IntegrationResult, Lagrangian, NonFiniteValue};
 /// evaluating the model through `rec` so that its work is counted; its error
 /// ends the integration with the samples so far. Every step counts against
 /// `max_steps`. A constrained model's state is brought back onto its
-/// constraints after each step ([`Recorder::control_drift`]).
+/// constraints after each step ([`Recorder::control_drift`]). After a reset
+/// by an event the loop starts again from the event ([`segments`]).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fixed_step<S, L, const N: usize, F>(
     model: &L,
@@ -28,6 +31,7 @@ pub(crate) fn fixed_step<S, L, const N: usize, F>(
     q0: SVector<S, N>,
     qdot0: SVector<S, N>,
     times: &[S],
+    events: &Events<'_, S, N>,
     mut step: F,
 ) -> IntegrationResult<S, N>
 where
@@ -43,7 +47,37 @@ where
     ) -> Result<State<S, N>, IntegrationError<S, N>>,
 {
     check_step_size(h).map_err(invalid)?;
-    let (mut rec, (q0, qdot0)) = Recorder::start(model, t0, &q0, &qdot0, times)?;
+    segments(model, t0, q0, qdot0, times, events, |rec, t, state| {
+        fixed_segment(rec, model, (h, max_steps), (t, state), &mut step)
+    })
+}
+
+/// One segment of [`fixed_step`]: from `(t0, q0, q̇0)` to the last sample
+/// time, or to an event that stops the run or resets its state. A method
+/// whose step keeps a workspace (the implicit Runge–Kutta methods) makes a
+/// fresh one per segment, so nothing of the motion before a reset carries
+/// over.
+pub(crate) fn fixed_segment<S, L, const N: usize, F>(
+    rec: &mut Recorder<'_, S, N>,
+    model: &L,
+    (h, max_steps): (S, usize),
+    (t0, (q0, qdot0)): (S, State<S, N>),
+    step: &mut F,
+) -> Result<Segment<S, N>, IntegrationError<S, N>>
+where
+    S: RealField + Copy,
+    L: Lagrangian<N, Scalar = S>,
+    F: FnMut(
+        &mut Recorder<'_, S, N>,
+        &L,
+        S,
+        &SVector<S, N>,
+        &SVector<S, N>,
+        S,
+    ) -> Result<State<S, N>, IntegrationError<S, N>>,
+{
+    let h = rec.bound_step(h);
+    rec.resolve_events(h);
     let (mut t, mut q, mut qdot) = (t0, q0, qdot0);
     let mut growth = GrowthGuard::new(&q0, &qdot0);
 
@@ -51,61 +85,56 @@ where
         let interval = Interval::new(t, target, h);
         if interval.underflows() {
             let h = interval.step;
-            let error = IntegrationError::StepSizeUnderflow { t, h, q, qdot };
-            return Err(rec.fail(error));
+            return Err(IntegrationError::StepSizeUnderflow { t, h, q, qdot });
         }
         let Some(steps) = interval.steps(max_steps) else {
-            let error = IntegrationError::TooManySteps {
+            return Err(IntegrationError::TooManySteps {
                 t,
                 max_steps,
                 q,
                 qdot,
-            };
-            return Err(rec.fail(error));
+            });
         };
         for k in 1..=steps {
             if rec.stats.steps_accepted >= max_steps {
-                let error = IntegrationError::TooManySteps {
+                return Err(IntegrationError::TooManySteps {
                     t,
                     max_steps,
                     q,
                     qdot,
-                };
-                return Err(rec.fail(error));
+                });
             }
             let t_next = interval.time(k, steps);
             let (before, dt) = ((q, qdot), t_next - t);
-            let stepped = step(&mut rec, model, t, &q, &qdot, dt)
-                .and_then(|(q, qdot)| rec.control_drift(model, t_next, q, qdot));
-            match stepped {
-                Ok((q_next, qdot_next)) => (q, qdot) = (q_next, qdot_next),
-                Err(error) => return Err(rec.fail(error)),
-            }
+            (q, qdot) = step(rec, model, t, &q, &qdot, dt)
+                .and_then(|(q, qdot)| rec.control_drift(model, t_next, q, qdot))?;
+            let t_before = t;
             t = t_next;
             rec.stats.steps_accepted += 1;
             if let Some(steps) = growth.unstable(before, (&q, &qdot), dt) {
-                let error = IntegrationError::Unstable {
+                return Err(IntegrationError::Unstable {
                     t,
                     h: interval.step,
                     steps,
                     q,
                     qdot,
-                };
-                return Err(rec.fail(error));
+                });
+            }
+            if let Some(end) = rec.watch_hermite(model, (t_before, &before), (t, &(q, qdot)))? {
+                return Ok(end);
             }
         }
         // The last step's state is not evaluated by the model, so check it
         // here rather than record a NaN.
         if !(q.iter().chain(qdot.iter()).all(|x| x.is_finite())) {
             let value = NonFiniteValue::State;
-            let error = IntegrationError::NonFiniteState { t, q, qdot, value };
-            return Err(rec.fail(error));
+            return Err(IntegrationError::NonFiniteState { t, q, qdot, value });
         }
         while rec.pending() == Some(target) {
             rec.record(target, q, qdot);
         }
     }
-    Ok(rec.finish())
+    Ok(Segment::Done)
 }
 
 /// The interval from `start` to the next sample time `target`, cut into

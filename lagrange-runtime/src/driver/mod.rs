@@ -13,20 +13,27 @@
 //! - `adaptive`: the step loop of the explicit embedded pairs;
 //! - `step_control`: the adaptive methods' default tolerance, initial step
 //!   guess and underflow check;
-//! - `newton`: the noise floor of the implicit methods' Newton iterations.
+//! - `newton`: the noise floor of the implicit methods' Newton iterations;
+//! - `segments`: a run as segments between the events that reset or stop
+//!   it, each one a method's loop;
+//! - `events`: the hook the loops call after every accepted step, where
+//!   events are located on the step's interpolant and acted on.
 
 mod adaptive;
+mod events;
 mod fixed;
 mod growth;
 mod newton;
 mod record;
+mod segments;
 mod step_control;
 mod validate;
 
 pub(crate) use adaptive::{adaptive, Controller, EmbeddedPair, Outcome, Tolerances};
-pub(crate) use fixed::{fixed_step, Interval};
+pub(crate) use fixed::{fixed_segment, fixed_step, Interval};
 pub(crate) use growth::GrowthGuard;
 pub(crate) use newton::newton_noise_floor;
 pub(crate) use record::{Recorder, State};
+pub(crate) use segments::{segments, Segment};
 pub(crate) use step_control::{advances, default_tolerance, initial_step};
 pub(crate) use validate::{check_step_size, check_tolerances, invalid};

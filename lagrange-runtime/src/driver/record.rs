@@ -6,6 +6,7 @@ use nalgebra::{RealField, SVector};
 
 use super::validate::{invalid, validate};
 use crate::constraints::{DriftControl, ProjectSample, StartOnManifold};
+use crate::events::Watch;
 use crate::solve::acceleration;
 use crate::{Failure, IntegrationError, Lagrangian, Stats, Trajectory};
 
@@ -14,8 +15,10 @@ use crate::{Failure, IntegrationError, Lagrangian, Stats, Trajectory};
 pub(crate) struct Recorder<'a, S: RealField + Copy, const N: usize> {
     times: &'a [S],
     next: usize,
-    trajectory: Trajectory<S, N>,
+    pub(super) trajectory: Trajectory<S, N>,
     pub(crate) stats: Stats,
+    /// The events watched, if any (`driver/events.rs`).
+    pub(super) watch: Option<Watch<'a, S, N>>,
 }
 
 impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
@@ -38,6 +41,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
             next: 0,
             trajectory: Trajectory::with_capacity(times.len()),
             stats: Stats::default(),
+            watch: None,
         };
         let (q0, qdot0) = match model.visit_constraints(StartOnManifold {
             t0,
@@ -133,11 +137,23 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
         q: SVector<S, N>,
         qdot: SVector<S, N>,
     ) -> Result<(), IntegrationError<S, N>> {
-        let stats = &mut self.stats;
-        let sample = ProjectSample { t, q, qdot, stats };
-        let (q, qdot) = model.visit_constraints(sample).unwrap_or(Ok((q, qdot)))?;
+        let (q, qdot) = self.project_sample(model, t, q, qdot)?;
         self.record(t, q, qdot);
         Ok(())
+    }
+
+    /// A state from dense output projected onto the constraints as a
+    /// sample is ([`record_dense`](Self::record_dense)), not recorded.
+    pub(crate) fn project_sample<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        model: &L,
+        t: S,
+        q: SVector<S, N>,
+        qdot: SVector<S, N>,
+    ) -> Result<State<S, N>, IntegrationError<S, N>> {
+        let stats = &mut self.stats;
+        let sample = ProjectSample { t, q, qdot, stats };
+        model.visit_constraints(sample).unwrap_or(Ok((q, qdot)))
     }
 
     pub(crate) fn finish(mut self) -> Trajectory<S, N> {

@@ -11,7 +11,7 @@ use nalgebra::{RealField, SVector};
 use crate::Trajectory;
 
 #[cfg(feature = "serde")]
-mod names;
+pub(crate) mod names;
 mod non_finite;
 
 pub use non_finite::NonFiniteValue;
@@ -227,6 +227,53 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         qdot: SVector<S, N>,
     },
 
+    /// An [event](crate::events) function returned NaN or an infinity, or
+    /// an event's reset returned a non-finite state: the event cannot be
+    /// located or acted on.
+    #[error("event `{event}`: {value} at t = {t:?} (q = {}, q̇ = {})", Row(.q), Row(.qdot))]
+    NonFiniteEvent {
+        /// The event's name.
+        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        event: Name,
+        /// Time of the evaluation.
+        t: S,
+        /// Generalized coordinates at `t` (for a reset, the state it
+        /// returned).
+        q: SVector<S, N>,
+        /// Generalized velocities at `t` (likewise).
+        qdot: SVector<S, N>,
+        /// [`EventFunction`](NonFiniteValue::EventFunction) or
+        /// [`EventReset`](NonFiniteValue::EventReset).
+        value: NonFiniteValue,
+    },
+
+    /// Events accumulate: `gaps` gaps in a row between events were shorter
+    /// than the minimum separation (a bouncing ball coming to rest bounces
+    /// infinitely often before a finite time). The
+    /// [`Failure`](crate::Failure) holds the samples and the events before
+    /// this one; `(t, q, q̇)` is this event's, before any reset (see
+    /// [`events`](crate::events#guards)).
+    #[error(
+        "Zeno: {gaps} gaps in a row between events shorter than the minimum separation \
+         {min_separation:?} (the last {gap:?}) at t = {t:?} (q = {}, q̇ = {}): the events \
+         accumulate in finite time, as a bouncing ball's coming to rest",
+        Row(.q), Row(.qdot)
+    )]
+    Zeno {
+        /// Time of the event that completed the run of short gaps.
+        t: S,
+        /// How many gaps in a row were short.
+        gaps: usize,
+        /// The last gap.
+        gap: S,
+        /// The minimum separation in force.
+        min_separation: S,
+        /// Generalized coordinates at `t`.
+        q: SVector<S, N>,
+        /// Generalized velocities at `t`.
+        qdot: SVector<S, N>,
+    },
+
     /// The call itself was wrong; nothing was integrated.
     #[error("invalid input: {0}")]
     InvalidInput(InvalidInput<S>),
@@ -245,7 +292,9 @@ impl<S: RealField + Copy, const N: usize> IntegrationError<S, N> {
             | Self::NewtonDivergence { t, .. }
             | Self::Unstable { t, .. }
             | Self::SingularConstraints { t, .. }
-            | Self::ProjectionFailed { t, .. } => Some(*t),
+            | Self::ProjectionFailed { t, .. }
+            | Self::NonFiniteEvent { t, .. }
+            | Self::Zeno { t, .. } => Some(*t),
             Self::InvalidInput(_) => None,
         }
     }
@@ -445,6 +494,21 @@ pub enum InvalidInput<S: RealField + Copy> {
         alpha: S,
         /// The stiffness rate given.
         beta: S,
+    },
+
+    /// A setting of an [`Events`](crate::events::Events) set out of range:
+    /// a tolerance, separation or step bound that is negative, zero where
+    /// it must be positive, or not finite.
+    #[error("the event setting {setting} = {value:?} must be {requirement}")]
+    InvalidEventSetting {
+        /// `time_tolerance`, `min_separation` or `max_step`.
+        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        setting: Name,
+        /// The value given.
+        value: S,
+        /// What it must be.
+        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        requirement: Name,
     },
 }
 

@@ -29,6 +29,10 @@ pub enum NonFiniteValue {
     /// The control inputs `u` a controller returned
     /// ([`Actuated::with_controller`](crate::Actuated::with_controller)).
     Inputs,
+    /// An [event](crate::events) function's value `g(t, q, q̇)`.
+    EventFunction,
+    /// The state an event's reset returned.
+    EventReset,
 }
 
 impl fmt::Display for NonFiniteValue {
@@ -47,6 +51,8 @@ impl fmt::Display for NonFiniteValue {
                 "the constraints φ, G, φ̇ or γ returned by the model are NaN or infinite"
             }
             Self::Inputs => "the control inputs u returned by the controller are NaN or infinite",
+            Self::EventFunction => "the event function g(t, q, q̇) is NaN or infinite",
+            Self::EventReset => "the state returned by the event's reset is NaN or infinite",
         })
     }
 }

@@ -4,6 +4,7 @@ use nalgebra::{DMatrix, DVector, RealField, SVector};
 
 use super::implicit_rk::{self, Settings, Tableau};
 use super::Integrator;
+use crate::events::Events;
 use crate::{IntegrationResult, Lagrangian};
 
 /// The implicit midpoint rule with a fixed step `h`:
@@ -88,26 +89,28 @@ impl<S: RealField + Copy> ImplicitMidpoint<S> {
 }
 
 impl<S: RealField + Copy> Integrator<S> for ImplicitMidpoint<S> {
-    fn integrate<L, const N: usize>(
+    fn integrate_with_events<L, const N: usize>(
         &self,
         model: &L,
         t0: S,
         q0: SVector<S, N>,
         qdot0: SVector<S, N>,
         times: &[S],
+        events: &Events<'_, S, N>,
     ) -> IntegrationResult<S, N>
     where
         L: Lagrangian<N, Scalar = S>,
     {
+        let tableau = self.tableau();
+        let start = (t0, q0, qdot0);
         implicit_rk::integrate(
             "ImplicitMidpoint",
-            &self.tableau(),
+            &tableau,
             self.settings,
             model,
-            t0,
-            q0,
-            qdot0,
+            start,
             times,
+            events,
         )
     }
 }

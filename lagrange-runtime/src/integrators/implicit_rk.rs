@@ -23,7 +23,10 @@
 
 use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
-use crate::driver::{fixed_step, invalid, newton_noise_floor, Recorder, State};
+use crate::driver::{
+    check_step_size, fixed_segment, invalid, newton_noise_floor, segments, Recorder, State,
+};
+use crate::events::Events;
 use crate::jacobian::acceleration_jacobians;
 use crate::linalg::lu::Lu;
 use crate::{IntegrationError, IntegrationResult, InvalidInput, Lagrangian};
@@ -65,27 +68,30 @@ impl<S: RealField + Copy> Settings<S> {
 }
 
 /// Integrates `model` with the implicit method of `tableau`, named `method`
-/// in errors, landing on the sample times like every fixed-step method.
-#[allow(clippy::too_many_arguments)]
+/// in errors, landing on the sample times like every fixed-step method; a
+/// fresh stage workspace per segment, so that the Newton starting guess
+/// never extrapolates across a reset.
 pub(crate) fn integrate<S: RealField + Copy, L: Lagrangian<N, Scalar = S>, const N: usize>(
     method: &'static str,
     tableau: &Tableau<S>,
     settings: Settings<S>,
     model: &L,
-    t0: S,
-    q0: SVector<S, N>,
-    qdot0: SVector<S, N>,
+    (t0, q0, qdot0): (S, SVector<S, N>, SVector<S, N>),
     times: &[S],
+    events: &Events<'_, S, N>,
 ) -> IntegrationResult<S, N> {
     if settings.max_iterations == 0 {
         return Err(invalid(InvalidInput::NoNewtonIterations { method }));
     }
-    let mut stages = StageSolver::<S, N>::new(tableau.clone(), settings.max_iterations);
-    let step = |rec: &mut Recorder<'_, S, N>, model: &L, t, q: &_, qdot: &_, h| {
-        stages.step(rec, model, t, q, qdot, h)
-    };
     let (h, max_steps) = (settings.h, settings.max_steps);
-    fixed_step(model, h, max_steps, t0, q0, qdot0, times, step)
+    check_step_size(h).map_err(invalid)?;
+    segments(model, t0, q0, qdot0, times, events, |rec, t, state| {
+        let mut stages = StageSolver::<S, N>::new(tableau.clone(), settings.max_iterations);
+        let mut step = |rec: &mut Recorder<'_, S, N>, model: &L, t, q: &_, qdot: &_, h| {
+            stages.step(rec, model, t, q, qdot, h)
+        };
+        fixed_segment(rec, model, (h, max_steps), (t, state), &mut step)
+    })
 }
 
 /// The Newton iteration stops once the scaled correction is below

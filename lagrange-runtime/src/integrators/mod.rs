@@ -74,6 +74,7 @@ pub(crate) use symplectic_euler::symplectic_step;
 
 use nalgebra::{RealField, SVector};
 
+use crate::events::Events;
 use crate::{IntegrationResult, Lagrangian};
 
 /// A method that integrates a [`Lagrangian`] model and samples it at
@@ -127,6 +128,26 @@ pub trait Integrator<S: RealField + Copy> {
         q0: SVector<S, N>,
         qdot0: SVector<S, N>,
         times: &[S],
+    ) -> IntegrationResult<S, N>
+    where
+        L: Lagrangian<N, Scalar = S>,
+    {
+        self.integrate_with_events(model, t0, q0, qdot0, times, &Events::new())
+    }
+
+    /// [`integrate`](Integrator::integrate), watching `events`: each
+    /// crossing located, recorded in
+    /// [`Trajectory::events`](crate::Trajectory::events), and acted on
+    /// (stop, or reset and restart; see [`events`](crate::events)). With
+    /// no events it is `integrate`, to the bit.
+    fn integrate_with_events<L, const N: usize>(
+        &self,
+        model: &L,
+        t0: S,
+        q0: SVector<S, N>,
+        qdot0: SVector<S, N>,
+        times: &[S],
+        events: &Events<'_, S, N>,
     ) -> IntegrationResult<S, N>
     where
         L: Lagrangian<N, Scalar = S>;

@@ -4,6 +4,7 @@ use nalgebra::{RealField, SVector};
 
 use super::Integrator;
 use crate::driver::{fixed_step, Recorder, State};
+use crate::events::Events;
 use crate::{IntegrationError, IntegrationResult, Lagrangian};
 
 /// Classic RK4 with a fixed step `h`: four right-hand sides per step,
@@ -59,19 +60,20 @@ impl<S: RealField + Copy> Rk4<S> {
 }
 
 impl<S: RealField + Copy> Integrator<S> for Rk4<S> {
-    fn integrate<L, const N: usize>(
+    fn integrate_with_events<L, const N: usize>(
         &self,
         model: &L,
         t0: S,
         q0: SVector<S, N>,
         qdot0: SVector<S, N>,
         times: &[S],
+        events: &Events<'_, S, N>,
     ) -> IntegrationResult<S, N>
     where
         L: Lagrangian<N, Scalar = S>,
     {
         let (h, max_steps) = (self.h, self.max_steps);
-        fixed_step(model, h, max_steps, t0, q0, qdot0, times, rk4_step)
+        fixed_step(model, h, max_steps, t0, q0, qdot0, times, events, rk4_step)
     }
 }
 

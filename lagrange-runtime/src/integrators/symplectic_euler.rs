@@ -4,6 +4,7 @@ use nalgebra::{RealField, SVector};
 
 use super::Integrator;
 use crate::driver::{fixed_step, Recorder, State};
+use crate::events::Events;
 use crate::{IntegrationError, IntegrationResult, Lagrangian};
 
 /// Semi-implicit Euler with a fixed step `h`: the velocity first, then the
@@ -78,19 +79,30 @@ impl<S: RealField + Copy> SymplecticEuler<S> {
 }
 
 impl<S: RealField + Copy> Integrator<S> for SymplecticEuler<S> {
-    fn integrate<L, const N: usize>(
+    fn integrate_with_events<L, const N: usize>(
         &self,
         model: &L,
         t0: S,
         q0: SVector<S, N>,
         qdot0: SVector<S, N>,
         times: &[S],
+        events: &Events<'_, S, N>,
     ) -> IntegrationResult<S, N>
     where
         L: Lagrangian<N, Scalar = S>,
     {
         let (h, max_steps) = (self.h, self.max_steps);
-        fixed_step(model, h, max_steps, t0, q0, qdot0, times, symplectic_step)
+        fixed_step(
+            model,
+            h,
+            max_steps,
+            t0,
+            q0,
+            qdot0,
+            times,
+            events,
+            symplectic_step,
+        )
     }
 }
 

@@ -11,6 +11,7 @@ mod analysis;
 mod constraints;
 mod dop853;
 mod euler_methods;
+mod events;
 mod failures;
 mod harmonic_oscillator;
 mod implicit_accuracy;

@@ -16,6 +16,7 @@ use super::Integrator;
 use crate::driver::{
     adaptive, default_tolerance, Controller, EmbeddedPair, Outcome, Recorder, State, Tolerances,
 };
+use crate::events::Events;
 use crate::{IntegrationError, IntegrationResult, Lagrangian, NonFiniteValue};
 use dense::Dense;
 use stages::{Stages, Step, Tableau};
@@ -131,19 +132,30 @@ pub(crate) const CONTROL: Controller = Controller {
 };
 
 impl<S: RealField + Copy> Integrator<S> for Dop853<S> {
-    fn integrate<L, const N: usize>(
+    fn integrate_with_events<L, const N: usize>(
         &self,
         model: &L,
         t0: S,
         q0: SVector<S, N>,
         qdot0: SVector<S, N>,
         times: &[S],
+        events: &Events<'_, S, N>,
     ) -> IntegrationResult<S, N>
     where
         L: Lagrangian<N, Scalar = S>,
     {
         let pair = |qdot: &SVector<S, N>, qddot: &SVector<S, N>| self.pair(qdot, qddot);
-        adaptive(&CONTROL, self.settings, model, t0, q0, qdot0, times, pair)
+        adaptive(
+            &CONTROL,
+            self.settings,
+            model,
+            t0,
+            q0,
+            qdot0,
+            times,
+            events,
+            pair,
+        )
     }
 }
 
@@ -186,7 +198,7 @@ impl<S: RealField + Copy, const N: usize> EmbeddedPair<S, N> for Pair<S, N> {
     /// stage 1 of `k`, to `t_new`: eleven right-hand sides for the stages;
     /// if the error test passes, one more at the new state (stage 13), and
     /// three more (stages 14–16) for the dense output if a sample lies
-    /// strictly inside the step.
+    /// strictly inside the step, or on every step while events are watched.
     fn attempt<L: Lagrangian<N, Scalar = S>>(
         &mut self,
         rec: &mut Recorder<'_, S, N>,
@@ -215,7 +227,8 @@ impl<S: RealField + Copy, const N: usize> EmbeddedPair<S, N> for Pair<S, N> {
         let k = &mut self.k;
         k.qdot[12] = rec.rhs(model, t_new, &step.q, &step.qdot)?;
         k.q[12] = step.qdot;
-        if rec.pending().is_some_and(|ts| ts < t_new) {
+        // Events are located on the dense output of every step.
+        if rec.pending().is_some_and(|ts| ts < t_new) || rec.watching() {
             self.tab.stages(rec, model, (t, h), (q, qdot), 13..16, k)?;
         }
         Ok(Outcome::Accepted { step, err })

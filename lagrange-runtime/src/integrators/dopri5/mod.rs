@@ -11,6 +11,7 @@ use super::Integrator;
 use crate::driver::{
     adaptive, default_tolerance, Controller, EmbeddedPair, Outcome, Recorder, State, Tolerances,
 };
+use crate::events::Events;
 use crate::{IntegrationError, IntegrationResult, Lagrangian, NonFiniteValue};
 use tableau::{Dense, Step, Tableau};
 
@@ -103,19 +104,30 @@ pub(crate) const CONTROL: Controller = Controller {
 };
 
 impl<S: RealField + Copy> Integrator<S> for Dopri5<S> {
-    fn integrate<L, const N: usize>(
+    fn integrate_with_events<L, const N: usize>(
         &self,
         model: &L,
         t0: S,
         q0: SVector<S, N>,
         qdot0: SVector<S, N>,
         times: &[S],
+        events: &Events<'_, S, N>,
     ) -> IntegrationResult<S, N>
     where
         L: Lagrangian<N, Scalar = S>,
     {
         let pair = |_: &SVector<S, N>, qddot: &SVector<S, N>| self.pair(qddot);
-        adaptive(&CONTROL, self.settings, model, t0, q0, qdot0, times, pair)
+        adaptive(
+            &CONTROL,
+            self.settings,
+            model,
+            t0,
+            q0,
+            qdot0,
+            times,
+            events,
+            pair,
+        )
     }
 }
 

@@ -66,7 +66,7 @@ impl<S: RealField + Copy, const N: usize> Run<S, N> {
     }
 
     /// The collocation polynomial at `t_new + s h`, `s ∈ [−1, 0]`.
-    fn dense(&self, s: S) -> (SVector<S, N>, SVector<S, N>) {
+    pub(super) fn dense(&self, s: S) -> (SVector<S, N>, SVector<S, N>) {
         let k = &self.k;
         let at = |i: usize| {
             let (a1, a2, a3) = (self.cont[0][i], self.cont[1][i], self.cont[2][i]);

@@ -23,7 +23,8 @@
 use nalgebra::{RealField, SVector};
 
 use super::Integrator;
-use crate::driver::{check_tolerances, default_tolerance, invalid, Recorder};
+use crate::driver::{check_tolerances, default_tolerance, invalid, segments, Segment};
+use crate::events::Events;
 use crate::{IntegrationResult, Lagrangian};
 use run::Run;
 
@@ -187,26 +188,35 @@ const MAX_NEWTON: usize = 7;
 const ERR_FLOOR: f64 = 1e-10;
 
 impl<S: RealField + Copy> Integrator<S> for Radau5<S> {
-    fn integrate<L, const N: usize>(
+    fn integrate_with_events<L, const N: usize>(
         &self,
         model: &L,
         t0: S,
         q0: SVector<S, N>,
         qdot0: SVector<S, N>,
         times: &[S],
+        events: &Events<'_, S, N>,
     ) -> IntegrationResult<S, N>
     where
         L: Lagrangian<N, Scalar = S>,
     {
         check_tolerances(self.rtol, self.atol).map_err(invalid)?;
-        let (mut rec, (q0, qdot0)) = Recorder::start(model, t0, &q0, &qdot0, times)?;
-        let (Some(_), Some(t_end)) = (rec.pending(), rec.end()) else {
-            return Ok(rec.finish());
-        };
-        let mut run = Run::<S, N>::new(self, &q0, &qdot0);
-        match run.integrate(model, &mut rec, t0, t_end) {
-            Ok(()) => Ok(rec.finish()),
-            Err(error) => Err(rec.fail(error)),
-        }
+        // A fresh workspace per segment: after a reset by an event, the
+        // step loop starts again as from a new start.
+        segments(
+            model,
+            t0,
+            q0,
+            qdot0,
+            times,
+            events,
+            |rec, t0, (q0, qdot0)| {
+                let (Some(_), Some(t_end)) = (rec.pending(), rec.end()) else {
+                    return Ok(Segment::Done);
+                };
+                let mut run = Run::<S, N>::new(self, &q0, &qdot0);
+                run.integrate(model, rec, t0, t_end)
+            },
+        )
     }
 }

@@ -6,7 +6,7 @@ use nalgebra::{Complex, DMatrix, DVector, RealField, SVector};
 use super::coefficients::Coefficients;
 use super::newton::Newton;
 use super::{Radau5, FAC_L, FAC_R, KEEP_H, MAX_NEWTON, SAFETY, THETA_REUSE};
-use crate::driver::{advances, Recorder};
+use crate::driver::{advances, Recorder, Segment};
 use crate::linalg::lu::Lu;
 use crate::{IntegrationError, Lagrangian, NonFiniteValue};
 
@@ -87,14 +87,14 @@ impl<S: RealField + Copy, const N: usize> Run<S, N> {
     }
 
     /// RADAU5's `RADCOR`: the step loop from `t0` to `t_end`, recording the
-    /// samples on the way.
+    /// samples on the way, or to an event that stops the run or resets it.
     pub(super) fn integrate<L: Lagrangian<N, Scalar = S>>(
         &mut self,
         model: &L,
         rec: &mut Recorder<'_, S, N>,
         t0: S,
         t_end: S,
-    ) -> Result<(), IntegrationError<S, N>> {
+    ) -> Result<Segment<S, N>, IntegrationError<S, N>> {
         let c = |x: f64| -> S { nalgebra::convert(x) };
         let (safety, fac_l, fac_r) = (c(SAFETY), c(FAC_L), c(FAC_R));
         let theta_reuse = c(THETA_REUSE);
@@ -105,7 +105,7 @@ impl<S: RealField + Copy, const N: usize> Run<S, N> {
         let mut t = t0;
         evaluate(rec, model, t, &self.y, &mut self.f0)?;
         self.update_scale();
-        let h_max = t_end - t0;
+        let h_max = rec.bound_step(t_end - t0);
         let mut h = self.initial_step(h_max);
         let mut last = false;
         if t + h * c(1.0001) >= t_end {
@@ -225,9 +225,16 @@ impl<S: RealField + Copy, const N: usize> Run<S, N> {
             h_old = h;
             self.accept();
             self.control_drift(model, rec, t_new)?;
+            if rec.watching() {
+                let end = split(&self.y);
+                let interpolant = |ts: S| self.dense((ts - t_new) / h);
+                if let Some(end) = rec.watch_dense(model, (t, t_new), &end, interpolant)? {
+                    return Ok(end);
+                }
+            }
             self.record(model, rec, t_new, h)?;
             if last {
-                return Ok(());
+                return Ok(Segment::Done);
             }
             t = t_new;
             evaluate(rec, model, t, &self.y, &mut self.f0)?;

@@ -30,13 +30,12 @@ use nalgebra::{RealField, SVector};
 
 use super::Integrator;
 use crate::constraints::{is_constrained, Multipliers};
-use crate::driver::{check_step_size, invalid, Interval, Recorder};
+use crate::driver::{check_step_size, invalid, segments, Interval, Recorder, Segment, State};
+use crate::events::Events;
 use crate::linalg::solve::positive_semidefinite;
-use crate::{
-    Failure, IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue,
-};
+use crate::{IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue};
 use newton::{DiscreteEulerLagrange, StepFailure};
-use velocity::{fail_with_velocity, velocity, VelocityHistory};
+use velocity::{velocity, with_velocity, VelocityHistory};
 
 mod constrained;
 mod newton;
@@ -164,24 +163,41 @@ impl<S: RealField + Copy> Variational<S> {
 }
 
 impl<S: RealField + Copy> Integrator<S> for Variational<S> {
-    fn integrate<L, const N: usize>(
+    fn integrate_with_events<L, const N: usize>(
         &self,
         model: &L,
         t0: S,
         q0: SVector<S, N>,
         qdot0: SVector<S, N>,
         times: &[S],
+        events: &Events<'_, S, N>,
     ) -> IntegrationResult<S, N>
     where
         L: Lagrangian<N, Scalar = S>,
     {
-        let h = self.h;
-        check_step_size(h).map_err(invalid)?;
+        check_step_size(self.h).map_err(invalid)?;
         if self.max_iterations == 0 {
             let method = "Variational";
             return Err(invalid(InvalidInput::NoNewtonIterations { method }));
         }
-        let (mut rec, (q0, qdot0)) = Recorder::start(model, t0, &q0, &qdot0, times)?;
+        segments(model, t0, q0, qdot0, times, events, |rec, t0, state| {
+            self.segment(rec, model, t0, state)
+        })
+    }
+}
+
+impl<S: RealField + Copy> Variational<S> {
+    /// From `(t0, q0, q̇0)` to the last sample time, or to an event that
+    /// stops the run or resets it: `p0` from `q̇0`, then steps in `(q, p)`.
+    fn segment<L: Lagrangian<N, Scalar = S>, const N: usize>(
+        &self,
+        rec: &mut Recorder<'_, S, N>,
+        model: &L,
+        t0: S,
+        (q0, qdot0): State<S, N>,
+    ) -> Result<Segment<S, N>, IntegrationError<S, N>> {
+        let h = rec.bound_step(self.h);
+        rec.resolve_events(h);
         // Refuse a model without the three methods before the first step.
         let p0 = model.momentum(t0, &q0, &qdot0);
         let gradient = model.lagrangian_gradient(t0, &q0, &qdot0);
@@ -192,18 +208,18 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
                 (_, None) => "lagrangian_gradient",
                 _ => "nonconservative_forces",
             };
-            return Err(invalid(lacks(needs)));
+            return Err(lacks(needs).into());
         };
         rec.stats.rhs_evals += 1;
         if !all_finite(&p0) {
             let value = NonFiniteValue::Momentum;
             let (q, qdot) = (q0, qdot0);
-            return Err(rec.fail(IntegrationError::NonFiniteState {
+            return Err(IntegrationError::NonFiniteState {
                 t: t0,
                 q,
                 qdot,
                 value,
-            }));
+            });
         }
 
         // The steps never solve with M, so a kinetic energy that is negative
@@ -214,12 +230,13 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
         let m0 = model.mass_matrix(t0, &q0);
         if m0.iter().all(|m| m.is_finite()) && !positive_semidefinite(&m0) {
             let (q, qdot) = (q0, qdot0);
-            let error = IntegrationError::IndefiniteMassMatrix { t: t0, q, qdot };
-            return Err(rec.fail(error));
+            return Err(IntegrationError::IndefiniteMassMatrix { t: t0, q, qdot });
         }
 
         let (mut t, mut q, mut p) = (t0, q0, p0);
         let mut velocities = VelocityHistory::new(t0, qdot0);
+        // q̇ at the current step's start, kept only while events are watched.
+        let mut qdot_now = qdot0;
         // A constrained model takes the RATTLE step (`constrained.rs`),
         // which carries the constraint force `Gᵀ λ` from step to step as
         // the next one's guess, starting from the continuous one.
@@ -231,8 +248,7 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
         };
         let mut force = match model.visit_constraints(start) {
             None => SVector::zeros(),
-            Some(Ok(force)) => force,
-            Some(Err(error)) => return Err(rec.fail(error)),
+            Some(result) => result?,
         };
         while let Some(target) = rec.pending() {
             let interval = Interval::new(t, target, h);
@@ -243,13 +259,8 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
                     q,
                     qdot,
                 };
-                return Err(fail_with_velocity(
-                    rec,
-                    model,
-                    (t, q, p),
-                    &velocities,
-                    underflow,
-                ));
+                let state = (t, q, p);
+                return Err(with_velocity(rec, model, state, &velocities, underflow));
             }
             let max_steps = self.max_steps;
             let Some(steps) = interval.steps(max_steps) else {
@@ -273,14 +284,14 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
                 let guess = velocities.predict(del.t_mid);
                 let solved = if constrained {
                     let near = velocities.latest();
-                    self.rattle(&mut rec, &del, guess, force, (t, t_next), &near)
+                    self.rattle(rec, &del, guess, force, (t, t_next), &near)
                 } else {
                     let solved = self.solve(&mut rec.stats, &del, guess);
                     solved.map(|(v, rate)| (v, rate, force))
                 };
                 let (v, impulse_rate, step_force) = match solved {
                     Ok(solution) => solution,
-                    Err(StepFailure::Error(error)) => return Err(rec.fail(error)),
+                    Err(StepFailure::Error(error)) => return Err(error),
                     Err(StepFailure::Diverged { iterations }) => {
                         let diverged = |qdot| IntegrationError::NewtonDivergence {
                             t,
@@ -290,9 +301,10 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
                             qdot,
                         };
                         let state = (t, q, p);
-                        return Err(fail_with_velocity(rec, model, state, &velocities, diverged));
+                        return Err(with_velocity(rec, model, state, &velocities, diverged));
                     }
                 };
+                let before = (t, (q, qdot_now));
                 q += v * dt;
                 p += impulse_rate * dt;
                 velocities.push(del.t_mid, v);
@@ -301,39 +313,41 @@ impl<S: RealField + Copy> Integrator<S> for Variational<S> {
                 if constrained {
                     force = step_force;
                     p -= force * dt;
-                    match Self::rattle_momenta(&mut rec, model, (t, &q, &p), &velocities) {
-                        Ok(corrected) => p = corrected,
-                        Err(error) => return Err(rec.fail(error)),
+                    p = Self::rattle_momenta(rec, model, (t, &q, &p), &velocities)?;
+                }
+                if rec.watching() {
+                    qdot_now = velocity(&mut rec.stats, model, t, &q, &p, &velocities)?;
+                    let (t_before, start) = before;
+                    let end = (q, qdot_now);
+                    if let Some(end) = rec.watch_hermite(model, (t_before, &start), (t, &end))? {
+                        return Ok(end);
                     }
                 }
             }
-            let qdot = match velocity(&mut rec.stats, model, t, &q, &p, &velocities) {
-                Ok(qdot) => qdot,
-                Err(error) => return Err(rec.fail(error)),
-            };
+            let qdot = velocity(&mut rec.stats, model, t, &q, &p, &velocities)?;
             while rec.pending() == Some(target) {
                 rec.record(target, q, qdot);
             }
         }
-        Ok(rec.finish())
+        Ok(Segment::Done)
     }
 }
 
 /// [`TooManySteps`](IntegrationError::TooManySteps) at `(t, q, p)`.
 fn out_of_budget<L: Lagrangian<N>, const N: usize>(
-    rec: Recorder<'_, L::Scalar, N>,
+    rec: &mut Recorder<'_, L::Scalar, N>,
     model: &L,
     (t, q, p): (L::Scalar, SVector<L::Scalar, N>, SVector<L::Scalar, N>),
     velocities: &VelocityHistory<L::Scalar, N>,
     max_steps: usize,
-) -> Box<Failure<L::Scalar, N>> {
+) -> IntegrationError<L::Scalar, N> {
     let budget = |qdot| IntegrationError::TooManySteps {
         t,
         max_steps,
         q,
         qdot,
     };
-    fail_with_velocity(rec, model, (t, q, p), velocities, budget)
+    with_velocity(rec, model, (t, q, p), velocities, budget)
 }
 
 fn lacks<S: RealField + Copy>(needs: &'static str) -> InvalidInput<S> {

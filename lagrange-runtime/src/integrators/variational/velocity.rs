@@ -6,7 +6,7 @@ use nalgebra::{RealField, SVector};
 use super::{all_finite, lacks};
 use crate::driver::Recorder;
 use crate::solve::{solve_mass_matrix, SolveError};
-use crate::{Failure, IntegrationError, Lagrangian, NonFiniteValue, Stats};
+use crate::{IntegrationError, Lagrangian, NonFiniteValue, Stats};
 
 /// `q̇ = M(t, q)⁻¹ (p − ∂L/∂q̇(t, q, 0))`: the velocity with momenta `p`,
 /// for a Lagrangian quadratic in `q̇`.
@@ -59,16 +59,16 @@ pub(super) fn velocity<L: Lagrangian<N>, const N: usize>(
 
 /// `error` at `(t, q, p)`, with `q̇` converted from `p` for the report; if
 /// even that conversion fails, its own error instead.
-pub(super) fn fail_with_velocity<L: Lagrangian<N>, const N: usize>(
-    mut rec: Recorder<'_, L::Scalar, N>,
+pub(super) fn with_velocity<L: Lagrangian<N>, const N: usize>(
+    rec: &mut Recorder<'_, L::Scalar, N>,
     model: &L,
     (t, q, p): (L::Scalar, SVector<L::Scalar, N>, SVector<L::Scalar, N>),
     velocities: &VelocityHistory<L::Scalar, N>,
     error: impl FnOnce(SVector<L::Scalar, N>) -> IntegrationError<L::Scalar, N>,
-) -> Box<Failure<L::Scalar, N>> {
+) -> IntegrationError<L::Scalar, N> {
     match velocity(&mut rec.stats, model, t, &q, &p, velocities) {
-        Ok(qdot) => rec.fail(error(qdot)),
-        Err(other) => rec.fail(other),
+        Ok(qdot) => error(qdot),
+        Err(other) => other,
     }
 }
 

@@ -1,0 +1,237 @@
+//! The hook every driver calls after an accepted step: the events'
+//! values at its end, and, where one changed sign, the crossing located on
+//! the step's interpolant and acted on (see [`events`](crate::events)).
+//!
+//! Nothing here runs for a run without events: each entry point returns at
+//! once, so such runs take the same steps, evaluations and samples as
+//! before events existed.
+
+use nalgebra::RealField;
+
+use super::record::{Recorder, State};
+use super::segments::Segment;
+use crate::events::{evaluate, first_crossing, EventRecord, Events, Hermite, Watch};
+use crate::{IntegrationError, Lagrangian, NonFiniteValue};
+
+impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
+    /// Watches `events` from now on (nothing to watch if there are none).
+    pub(crate) fn watch_events(&mut self, events: &'a Events<'a, S, N>) {
+        if !events.is_empty() {
+            self.watch = Some(Watch::new(events));
+        }
+    }
+
+    /// Whether events are watched: the drivers do the extra work events
+    /// need (the interpolant of every step) only then.
+    pub(crate) fn watching(&self) -> bool {
+        self.watch.is_some()
+    }
+
+    /// A fixed-step method's step `h`: events closer than a few steps are
+    /// beyond it (the Zeno guard's default separation).
+    pub(crate) fn resolve_events(&mut self, h: S) {
+        if let Some(watch) = &mut self.watch {
+            watch.resolution = h;
+        }
+    }
+
+    /// The step `h`, bounded by the events' [`max_step`](Events::max_step).
+    pub(crate) fn bound_step(&self, h: S) -> S {
+        match self.watch.as_ref().and_then(|w| w.events.max_step_bound()) {
+            Some(max_step) => h.min(max_step),
+            None => h,
+        }
+    }
+
+    /// The events' values at a segment's start.
+    pub(crate) fn arm_events(
+        &mut self,
+        t: S,
+        state: &State<S, N>,
+    ) -> Result<(), IntegrationError<S, N>> {
+        match &mut self.watch {
+            Some(watch) => watch.start(t, state, &mut self.stats.event_evals),
+            None => Ok(()),
+        }
+    }
+
+    /// After an accepted step from `t` to `t_new` ending in `end`, with the
+    /// method's dense output `interpolant`: `Some` when an event ended the
+    /// segment (the samples up to it recorded from `interpolant`).
+    pub(crate) fn watch_dense<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        model: &L,
+        (t, t_new): (S, S),
+        end: &State<S, N>,
+        interpolant: impl FnMut(S) -> State<S, N>,
+    ) -> Result<Option<Segment<S, N>>, IntegrationError<S, N>> {
+        match self.crossed_at_end(t_new, end)? {
+            Some(g_end) => self.act(model, (t, t_new), end, g_end, interpolant),
+            None => Ok(None),
+        }
+    }
+
+    /// [`watch_dense`](Self::watch_dense) for a method without dense
+    /// output: the cubic Hermite interpolant of the step from `start` to
+    /// `end`, whose two accelerations are evaluated only when some event
+    /// changed sign.
+    pub(crate) fn watch_hermite<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        model: &L,
+        (t, start): (S, &State<S, N>),
+        (t_new, end): (S, &State<S, N>),
+    ) -> Result<Option<Segment<S, N>>, IntegrationError<S, N>> {
+        let Some(g_end) = self.crossed_at_end(t_new, end)? else {
+            return Ok(None);
+        };
+        let qddot0 = self.rhs(model, t, &start.0, &start.1)?;
+        let qddot1 = self.rhs(model, t_new, &end.0, &end.1)?;
+        let hermite = Hermite::new((t, *start, qddot0), (t_new, *end, qddot1));
+        self.act(model, (t, t_new), end, g_end, |s| hermite.at(s))
+    }
+
+    /// The events' values at a step's end if one of them changed sign in
+    /// its direction; otherwise `None`, and they become the values the
+    /// next step starts from.
+    fn crossed_at_end(
+        &mut self,
+        t_new: S,
+        end: &State<S, N>,
+    ) -> Result<Option<Vec<S>>, IntegrationError<S, N>> {
+        let Some(watch) = &mut self.watch else {
+            return Ok(None);
+        };
+        let (q, qdot) = *end;
+        if !q.iter().chain(qdot.iter()).all(|x| x.is_finite()) {
+            let value = NonFiniteValue::State;
+            return Err(IntegrationError::NonFiniteState {
+                t: t_new,
+                q,
+                qdot,
+                value,
+            });
+        }
+        let g = evaluate(watch.events, t_new, end, &mut self.stats.event_evals)?;
+        if watch.any_crossing(&g) {
+            Ok(Some(g))
+        } else {
+            watch.g = g;
+            Ok(None)
+        }
+    }
+
+    fn act<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        model: &L,
+        step: (S, S),
+        end: &State<S, N>,
+        g_end: Vec<S>,
+        interpolant: impl FnMut(S) -> State<S, N>,
+    ) -> Result<Option<Segment<S, N>>, IntegrationError<S, N>> {
+        let Some(mut watch) = self.watch.take() else {
+            return Ok(None);
+        };
+        let acted = self.act_on(&mut watch, model, step, end, g_end, interpolant);
+        self.watch = Some(watch);
+        acted
+    }
+
+    /// Every crossing on the step in turn: recorded ones in passing, until
+    /// one that stops or resets ends the segment.
+    fn act_on<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        watch: &mut Watch<'a, S, N>,
+        model: &L,
+        (t, t_new): (S, S),
+        end: &State<S, N>,
+        g_end: Vec<S>,
+        mut interpolant: impl FnMut(S) -> State<S, N>,
+    ) -> Result<Option<Segment<S, N>>, IntegrationError<S, N>> {
+        let events = watch.events;
+        let list = events.list();
+        // The interpolant at the step's end is the end state itself, which
+        // `g_end` was computed from.
+        let mut state_at = |s: S| if s == t_new { *end } else { interpolant(s) };
+        let (mut from, mut g_from) = (t, core::mem::take(&mut watch.g));
+        loop {
+            let tolerance = events.tolerance_at(t_new);
+            let evaluations = &mut self.stats.event_evals;
+            let start = (from, g_from.as_slice());
+            let found = first_crossing(
+                events,
+                start,
+                (t_new, &g_end),
+                tolerance,
+                &mut state_at,
+                evaluations,
+            )?;
+            let Some(crossing) = found else {
+                watch.g = g_end;
+                return Ok(None);
+            };
+            let at = crossing.t;
+            let interrupts = crossing.events.iter().any(|&i| !list[i].records_only());
+            if interrupts {
+                while let Some(ts) = self.pending().filter(|&ts| ts <= at) {
+                    let (q, qdot) = state_at(ts);
+                    self.record_dense(model, ts, q, qdot)?;
+                }
+            }
+            let (q, qdot) = crossing.state;
+            let (q, qdot) = self.project_sample(model, at, q, qdot)?;
+            let min_separation = events.separation_at(at, watch.resolution);
+            if let Some(run) = watch.guard.check(at, min_separation) {
+                return Err(IntegrationError::Zeno {
+                    t: at,
+                    gaps: run.gaps,
+                    gap: run.gap,
+                    min_separation,
+                    q,
+                    qdot,
+                });
+            }
+            let record = |index: usize, after| EventRecord {
+                name: list[index].name(),
+                index,
+                t: at,
+                q,
+                qdot,
+                after,
+            };
+            if crossing.events.iter().any(|&i| list[i].stops()) {
+                for &i in &crossing.events {
+                    self.trajectory.push_event(record(i, None), list[i].stops());
+                }
+                return Ok(Some(Segment::Done));
+            }
+            if interrupts {
+                let mut state = (q, qdot);
+                for &i in &crossing.events {
+                    let Some((q, qdot)) = list[i].apply_reset(at, &state) else {
+                        continue;
+                    };
+                    if !q.iter().chain(qdot.iter()).all(|x| x.is_finite()) {
+                        let (event, value) = (list[i].name(), NonFiniteValue::EventReset);
+                        return Err(IntegrationError::NonFiniteEvent {
+                            event,
+                            t: at,
+                            q,
+                            qdot,
+                            value,
+                        });
+                    }
+                    state = self.project_sample(model, at, q, qdot)?;
+                }
+                for &i in &crossing.events {
+                    let after = (!list[i].records_only()).then_some(state);
+                    self.trajectory.push_event(record(i, after), false);
+                }
+                return Ok(Some(Segment::Restart { t: at, state }));
+            }
+            for &i in &crossing.events {
+                self.trajectory.push_event(record(i, None), false);
+            }
+            (from, g_from) = (at, crossing.g);
+        }
+    }
+}

@@ -1,0 +1,488 @@
+//! Events and impacts: functions of the state watched along a run, located
+//! in time, recorded, and acted on.
+//!
+//! An [`Event`] is a function `g(t, q, q̇)` whose zero crossings matter: a
+//! ball reaching the floor (`g = z`), a pendulum reaching a wall, a
+//! coordinate passing through a section. Each has a [`Direction`] (rising,
+//! falling, or both) and an action: **record** the crossing (the default),
+//! **stop** the run there, or **reset** the state by a closure, an impact
+//! with restitution or a mode switch, after which the integration restarts
+//! from the new state. An [`Events`] set, handed to
+//! [`Integrator::integrate_with_events`](crate::Integrator::integrate_with_events),
+//! holds them with the settings of the search; what happened is in
+//! [`Trajectory::events`](crate::Trajectory::events) and
+//! [`Trajectory::stopped`](crate::Trajectory::stopped).
+//!
+//! ```
+//! use lagrange_runtime::prelude::*;
+//! use lagrange_runtime::nalgebra::{SMatrix, SVector, Vector1};
+//!
+//! /// A ball in one dimension: `z̈ = −g`.
+//! struct Ball;
+//! impl Lagrangian<1> for Ball {
+//!     type Scalar = f64;
+//!     const COORDINATES: [&'static str; 1] = ["z"];
+//!     fn mass_matrix(&self, _t: f64, _q: &SVector<f64, 1>) -> SMatrix<f64, 1, 1> {
+//!         SMatrix::<f64, 1, 1>::new(1.0)
+//!     }
+//!     fn forcing(&self, _t: f64, _q: &SVector<f64, 1>, _qd: &SVector<f64, 1>) -> SVector<f64, 1> {
+//!         Vector1::new(-9.81)
+//!     }
+//!     fn kinetic_energy(&self, _t: f64, _q: &SVector<f64, 1>, qd: &SVector<f64, 1>) -> f64 {
+//!         0.5 * qd[0] * qd[0]
+//!     }
+//!     fn potential_energy(&self, _t: f64, q: &SVector<f64, 1>) -> f64 {
+//!         9.81 * q[0]
+//!     }
+//! }
+//!
+//! // The floor: z falls through 0, the velocity reverses with restitution 0.9.
+//! let floor = Event::new("floor", |_t, q: &SVector<f64, 1>, _qd: &SVector<f64, 1>| q[0])
+//!     .falling()
+//!     .reset(|_t, q, qd| (*q, -0.9 * qd));
+//! let events = Events::new().with(floor);
+//! let run = Dopri5::new().integrate_with_events(
+//!     &Ball, 0.0, Vector1::new(1.0), Vector1::new(0.0), &[2.0], &events,
+//! )?;
+//!
+//! // Dropped from 1 m, it lands at √(2/g); the second landing follows after
+//! // a flight of 2 · 0.9 · √(2/g).
+//! let t1 = (2.0 / 9.81f64).sqrt();
+//! let bounces = run.events();
+//! assert!((bounces[0].t - t1).abs() < 1e-12);
+//! assert!((bounces[1].t - t1 * (1.0 + 1.8)).abs() < 1e-12);
+//! let (_, qdot_after) = bounces[0].after.unwrap();
+//! assert!((qdot_after[0] + 0.9 * bounces[0].qdot[0]).abs() < 1e-15);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # How events are found
+//!
+//! After each accepted step `[t, t + h]`, every event function is evaluated
+//! at the step's end and compared with its value at the start. A crossing
+//! in the event's direction (rising: `g < 0` at the start, `g ≥ 0` at the
+//! end; falling: `g > 0`, then `g ≤ 0`) is located on the step's
+//! interpolant by the Illinois variant of regula falsi (`locate.rs`) to the
+//! [time tolerance](Events::time_tolerance), by default `4 ε max(|t|, 1)`,
+//! a few ulps of `t`. The interpolant is the method's own dense output for
+//! [`Dopri5`](crate::Dopri5) (order 4), [`Dop853`](crate::Dop853) (order 7,
+//! whose three extra stages are then computed on every step, 15 right-hand
+//! sides instead of 12) and [`Radau5`](crate::Radau5) (order 3); for the
+//! fixed-step methods it is the cubic Hermite interpolant of `(q, q̇)` with
+//! slopes `(q̇, q̈)` at both ends, whose two accelerations are computed only
+//! on a step where some `g` changes sign (two right-hand sides, counted).
+//! The event time is then as accurate as the interpolant: `O(h⁴)` for the
+//! Hermite interpolant, whatever the method's order. The variational
+//! integrator computes `q̇` from its momenta at every step end while events
+//! are watched (one conversion each, counted in `rhs_evals`). Evaluations
+//! of event functions are counted in [`Stats::event_evals`](crate::Stats::event_evals).
+//!
+//! Limits, by construction:
+//!
+//! - A function that changes sign twice within one step (a ball that
+//!   grazes the floor and rises again) shows no change between the step's
+//!   ends and is **missed**. Bound the step with
+//!   [`max_step`](Events::max_step) to below the shortest excursion that
+//!   matters.
+//! - A function that is zero at the start (`t0`, or the time of the
+//!   previous event) is not armed: no crossing is reported there, and the
+//!   next one needs `g` to leave zero first. An event exactly at `t0` is not
+//!   triggered.
+//! - Several events crossing within the same located time are handled
+//!   together: all are recorded; a stop wins over resets; resets are
+//!   applied in the order the events were added.
+//!
+//! # After an event
+//!
+//! - **Record**: the time and state go into the trajectory's events; the
+//!   run goes on untouched (samples and steps are those of a run without
+//!   the event, except that [`max_step`](Events::max_step) bounds the
+//!   steps).
+//! - **Stop**: samples up to the event time come from the step's
+//!   interpolant; later ones are not recorded; the event is
+//!   [`Trajectory::stopped`](crate::Trajectory::stopped).
+//! - **Reset**: samples up to the event time come from the step's
+//!   interpolant, with the state before; then the state is replaced by the
+//!   closure's and the method restarts from the event time as from a new
+//!   start: the adaptive methods compute their first slope and a first step
+//!   from the new state (Hairer's initial step guess), the fixed-step ones
+//!   cut the interval to the next sample into equal steps no longer than
+//!   `h` (the step is never lengthened). A sample within `10 ε |t|` after
+//!   the event, too close to step to, takes the state just after it.
+//!
+//! A constrained model's state at the event is projected onto its
+//! constraints like any sample from an interpolant, and so is a reset's
+//! result (when the model's drift control projects, the default).
+//!
+//! # Guards
+//!
+//! - **Zeno**: a run of events accumulating in finite time (a bouncing
+//!   ball coming to rest makes infinitely many bounces before a finite
+//!   time) ends with [`IntegrationError::Zeno`](crate::IntegrationError::Zeno)
+//!   when three gaps in a row between events are shorter than the
+//!   [minimum separation](Events::min_separation), by default 1000 time
+//!   tolerances (gaps that short are resolved to no more than three
+//!   digits), and four steps for a fixed-step method (which misses an
+//!   excursion shorter than a step: without the guard, the ball would then
+//!   fall through the floor unseen). Restitution below about 0.5 can
+//!   shrink the gaps from four steps to less than one within three bounces:
+//!   set a larger separation for such a fixed-step run.
+//!   The [`Failure`](crate::Failure) holds the trajectory and the events so
+//!   far.
+//! - An event function returning NaN or an infinity, or a reset returning
+//!   a non-finite state, is
+//!   [`IntegrationError::NonFiniteEvent`](crate::IntegrationError::NonFiniteEvent),
+//!   naming the event.
+//! - Settings out of range (a negative or NaN tolerance, a non-positive
+//!   step bound) are [`InvalidInput::InvalidEventSetting`](crate::InvalidInput::InvalidEventSetting),
+//!   before any work.
+
+use core::fmt;
+
+use nalgebra::{RealField, SVector};
+
+use crate::InvalidInput;
+
+mod guard;
+mod hermite;
+mod locate;
+mod watch;
+
+pub(crate) use hermite::Hermite;
+pub(crate) use locate::{evaluate, first_crossing};
+pub(crate) use watch::Watch;
+
+/// An event function `g(t, q, q̇)`.
+type Function<'a, S, const N: usize> = Box<dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> S + 'a>;
+
+/// A reset `(t, q, q̇) ↦ (q⁺, q̇⁺)`.
+type ResetMap<'a, S, const N: usize> =
+    Box<dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> (SVector<S, N>, SVector<S, N>) + 'a>;
+
+/// Which zero crossings of an event function count.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Direction {
+    /// From `g < 0` to `g ≥ 0`.
+    Rising,
+    /// From `g > 0` to `g ≤ 0`.
+    Falling,
+    /// Either.
+    Both,
+}
+
+impl Direction {
+    /// Whether `g` going from `before` to `after` is a crossing in this
+    /// direction.
+    pub(crate) fn crosses<S: RealField + Copy>(self, before: S, after: S) -> bool {
+        let zero = S::zero();
+        let rising = before < zero && after >= zero;
+        let falling = before > zero && after <= zero;
+        match self {
+            Self::Rising => rising,
+            Self::Falling => falling,
+            Self::Both => rising || falling,
+        }
+    }
+}
+
+/// What happens at an event.
+enum Action<'a, S, const N: usize> {
+    Record,
+    Stop,
+    Reset(ResetMap<'a, S, N>),
+}
+
+/// A function of the state whose zero crossings are located and acted on
+/// (see the [module documentation](self)).
+///
+/// ```
+/// use lagrange_runtime::events::Event;
+/// use lagrange_runtime::nalgebra::SVector;
+///
+/// // θ₁ passing through 0 upwards, recorded (a Poincaré section).
+/// let section = Event::new("theta1 = 0", |_t, q: &SVector<f64, 2>, _qd: &SVector<f64, 2>| q[0])
+///     .rising();
+/// assert_eq!(section.name(), "theta1 = 0");
+/// ```
+pub struct Event<'a, S, const N: usize> {
+    name: &'static str,
+    g: Function<'a, S, N>,
+    direction: Direction,
+    action: Action<'a, S, N>,
+}
+
+impl<'a, S: RealField + Copy, const N: usize> Event<'a, S, N> {
+    /// The event `g(t, q, q̇) = 0`, named for reports: both directions,
+    /// recorded.
+    pub fn new(
+        name: &'static str,
+        g: impl Fn(S, &SVector<S, N>, &SVector<S, N>) -> S + 'a,
+    ) -> Self {
+        Self {
+            name,
+            g: Box::new(g),
+            direction: Direction::Both,
+            action: Action::Record,
+        }
+    }
+
+    /// Only crossings from `g < 0` to `g ≥ 0`.
+    pub fn rising(self) -> Self {
+        self.direction(Direction::Rising)
+    }
+
+    /// Only crossings from `g > 0` to `g ≤ 0`.
+    pub fn falling(self) -> Self {
+        self.direction(Direction::Falling)
+    }
+
+    /// Which crossings count.
+    pub fn direction(mut self, direction: Direction) -> Self {
+        self.direction = direction;
+        self
+    }
+
+    /// Record the crossing and go on (the default).
+    pub fn record(mut self) -> Self {
+        self.action = Action::Record;
+        self
+    }
+
+    /// Record the crossing and end the run there.
+    pub fn stop(mut self) -> Self {
+        self.action = Action::Stop;
+        self
+    }
+
+    /// Record the crossing, replace the state by `reset(t, q, q̇)` and
+    /// restart the integration from it.
+    pub fn reset(
+        mut self,
+        reset: impl Fn(S, &SVector<S, N>, &SVector<S, N>) -> (SVector<S, N>, SVector<S, N>) + 'a,
+    ) -> Self {
+        self.action = Action::Reset(Box::new(reset));
+        self
+    }
+
+    /// The name given to [`Event::new`].
+    pub fn name(&self) -> &'static str {
+        self.name
+    }
+
+    /// `g` at `(t, q, q̇)`.
+    pub(crate) fn value(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> S {
+        (self.g)(t, q, qdot)
+    }
+
+    pub(crate) fn crosses(&self, before: S, after: S) -> bool {
+        self.direction.crosses(before, after)
+    }
+
+    /// Whether it only records: the run goes on untouched.
+    pub(crate) fn records_only(&self) -> bool {
+        matches!(self.action, Action::Record)
+    }
+
+    pub(crate) fn stops(&self) -> bool {
+        matches!(self.action, Action::Stop)
+    }
+
+    /// The state its reset makes of `(t, q, q̇)`; `None` if it does not
+    /// reset.
+    pub(crate) fn apply_reset(
+        &self,
+        t: S,
+        (q, qdot): &(SVector<S, N>, SVector<S, N>),
+    ) -> Option<(SVector<S, N>, SVector<S, N>)> {
+        match &self.action {
+            Action::Reset(reset) => Some(reset(t, q, qdot)),
+            _ => None,
+        }
+    }
+}
+
+impl<S, const N: usize> fmt::Debug for Event<'_, S, N> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let action = match self.action {
+            Action::Record => "record",
+            Action::Stop => "stop",
+            Action::Reset(_) => "reset",
+        };
+        f.debug_struct("Event")
+            .field("name", &self.name)
+            .field("direction", &self.direction)
+            .field("action", &action)
+            .finish()
+    }
+}
+
+/// The events a run watches, and how they are searched for.
+///
+/// ```
+/// use lagrange_runtime::events::{Event, Events};
+/// use lagrange_runtime::nalgebra::SVector;
+///
+/// let ground = Event::new("ground", |_t, q: &SVector<f64, 1>, _qd: &SVector<f64, 1>| q[0])
+///     .falling()
+///     .stop();
+/// let events = Events::new()
+///     .with(ground)
+///     .time_tolerance(1e-12)
+///     .max_step(0.01);
+/// assert_eq!(events.len(), 1);
+/// ```
+#[derive(Debug)]
+pub struct Events<'a, S, const N: usize> {
+    events: Vec<Event<'a, S, N>>,
+    time_tolerance: Option<S>,
+    min_separation: Option<S>,
+    max_step: Option<S>,
+}
+
+impl<S: RealField + Copy, const N: usize> Default for Events<'_, S, N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<'a, S: RealField + Copy, const N: usize> Events<'a, S, N> {
+    /// No events: a run that watches nothing, exactly as
+    /// [`integrate`](crate::Integrator::integrate).
+    pub fn new() -> Self {
+        Self {
+            events: Vec::new(),
+            time_tolerance: None,
+            min_separation: None,
+            max_step: None,
+        }
+    }
+
+    /// Adds an event; its index in [`EventRecord::index`] is the number of
+    /// events added before it.
+    pub fn with(mut self, event: Event<'a, S, N>) -> Self {
+        self.events.push(event);
+        self
+    }
+
+    /// The width of the final bracket around an event time: positive and
+    /// finite. By default `4 ε max(|t|, 1)`, a few ulps of `t`; the time
+    /// found is within it of the interpolant's crossing.
+    pub fn time_tolerance(mut self, tolerance: S) -> Self {
+        self.time_tolerance = Some(tolerance);
+        self
+    }
+
+    /// The Zeno guard: a run stops with
+    /// [`Zeno`](crate::IntegrationError::Zeno) when three gaps in a row
+    /// between events are shorter than this. Non-negative and finite (zero
+    /// turns the guard off). By default 1000 time tolerances, and for a
+    /// fixed-step method at least four steps: an excursion shorter than a
+    /// step is missed, so events that come closer than a few steps are
+    /// beyond what the step resolves.
+    pub fn min_separation(mut self, separation: S) -> Self {
+        self.min_separation = Some(separation);
+        self
+    }
+
+    /// The longest step a method may take while these events are watched,
+    /// so that an excursion of `g` longer than it is not missed: positive
+    /// and finite. A fixed step is shortened to it, never lengthened; an
+    /// adaptive method's last step before the final sample may be stretched
+    /// by 1 % to land on it, as always.
+    pub fn max_step(mut self, max_step: S) -> Self {
+        self.max_step = Some(max_step);
+        self
+    }
+
+    /// The number of events.
+    pub fn len(&self) -> usize {
+        self.events.len()
+    }
+
+    /// Whether there are no events.
+    pub fn is_empty(&self) -> bool {
+        self.events.is_empty()
+    }
+
+    pub(crate) fn list(&self) -> &[Event<'a, S, N>] {
+        &self.events
+    }
+
+    /// The time tolerance around `t`.
+    pub(crate) fn tolerance_at(&self, t: S) -> S {
+        self.time_tolerance.unwrap_or_else(|| {
+            nalgebra::convert::<f64, S>(4.0) * S::default_epsilon() * t.abs().max(S::one())
+        })
+    }
+
+    /// The Zeno guard's separation around `t`, for a method whose steps
+    /// resolve nothing shorter than `resolution` (a fixed step; zero for an
+    /// adaptive method).
+    pub(crate) fn separation_at(&self, t: S, resolution: S) -> S {
+        self.min_separation.unwrap_or_else(|| {
+            let c = nalgebra::convert::<f64, S>;
+            (c(1000.0) * self.tolerance_at(t)).max(c(4.0) * resolution)
+        })
+    }
+
+    pub(crate) fn max_step_bound(&self) -> Option<S> {
+        self.max_step
+    }
+
+    /// The settings out of range, before any work.
+    pub(crate) fn validate(&self) -> Result<(), InvalidInput<S>> {
+        let bad = |setting: &'static str, value: S, requirement: &'static str| {
+            Err(InvalidInput::InvalidEventSetting {
+                setting,
+                value,
+                requirement,
+            })
+        };
+        if let Some(tol) = self.time_tolerance {
+            if !(tol.is_finite() && tol > S::zero()) {
+                return bad("time_tolerance", tol, "positive and finite");
+            }
+        }
+        if let Some(separation) = self.min_separation {
+            if !(separation.is_finite() && separation >= S::zero()) {
+                return bad("min_separation", separation, "non-negative and finite");
+            }
+        }
+        if let Some(h) = self.max_step {
+            if !(h.is_finite() && h > S::zero()) {
+                return bad("max_step", h, "positive and finite");
+            }
+        }
+        Ok(())
+    }
+}
+
+/// An event that happened: which, when, in which state, and the state a
+/// reset made of it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(bound(
+        serialize = "S: serde::Serialize + nalgebra::Scalar",
+        deserialize = "S: serde::Deserialize<'de> + nalgebra::Scalar"
+    ))
+)]
+#[non_exhaustive]
+pub struct EventRecord<S, const N: usize> {
+    /// The event's name.
+    #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+    pub name: crate::error::Name,
+    /// Its index in the [`Events`] set.
+    pub index: usize,
+    /// The located time.
+    pub t: S,
+    /// `q` at `t`, before any reset.
+    pub q: SVector<S, N>,
+    /// `q̇` at `t`, before any reset.
+    pub qdot: SVector<S, N>,
+    /// For a reset, the state `(q, q̇)` the run restarted from (after all
+    /// resets at this time, projected onto the constraints of a constrained
+    /// model); `None` for a recorded or stopping event.
+    pub after: Option<(SVector<S, N>, SVector<S, N>)>,
+}

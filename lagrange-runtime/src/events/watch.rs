@@ -1,0 +1,49 @@
+//! What a run keeps of its events between steps: the events, their values
+//! at the current time and the Zeno guard.
+
+use super::guard::ZenoGuard;
+use super::locate::evaluate;
+use super::Events;
+use crate::driver::State;
+use crate::IntegrationError;
+use nalgebra::RealField;
+
+/// The state of the watch over a run's events.
+pub(crate) struct Watch<'a, S, const N: usize> {
+    pub(crate) events: &'a Events<'a, S, N>,
+    /// Every event's `g` at the current time: the start of the next step.
+    pub(crate) g: Vec<S>,
+    pub(crate) guard: ZenoGuard<S>,
+    /// The shortest gap between events the method resolves: its fixed
+    /// step, zero for an adaptive method.
+    pub(crate) resolution: S,
+}
+
+impl<'a, S: RealField + Copy, const N: usize> Watch<'a, S, N> {
+    pub(crate) fn new(events: &'a Events<'a, S, N>) -> Self {
+        Self {
+            events,
+            g: Vec::with_capacity(events.len()),
+            guard: ZenoGuard::new(),
+            resolution: S::zero(),
+        }
+    }
+
+    /// Arms the events at a start: their values at `(t, q, q̇)`.
+    pub(crate) fn start(
+        &mut self,
+        t: S,
+        state: &State<S, N>,
+        evaluations: &mut usize,
+    ) -> Result<(), IntegrationError<S, N>> {
+        self.g = evaluate(self.events, t, state, evaluations)?;
+        Ok(())
+    }
+
+    /// Whether some event changes sign, in its direction, from the current
+    /// values to `g`.
+    pub(crate) fn any_crossing(&self, g: &[S]) -> bool {
+        let list = self.events.list();
+        (0..list.len()).any(|i| list[i].crosses(self.g[i], g[i]))
+    }
+}
