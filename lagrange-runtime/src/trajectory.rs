@@ -126,6 +126,13 @@ impl<S: RealField + Copy, const N: usize> Trajectory<S, N> {
         }
     }
 
+    /// Forgets the events (a stepper's, from call to call), keeping their
+    /// room.
+    pub(crate) fn clear_events(&mut self) {
+        self.events.clear();
+        self.stopped = None;
+    }
+
     /// An event that happened; `stops` if it ended the run.
     pub(crate) fn push_event(&mut self, event: EventRecord<S, N>, stops: bool) {
         if stops && self.stopped.is_none() {

@@ -10,7 +10,7 @@ use nalgebra::RealField;
 
 use super::record::{Recorder, State};
 use super::segments::Segment;
-use crate::events::{evaluate, first_crossing, EventRecord, Events, Hermite, Watch};
+use crate::events::{evaluate_into, first_crossing, EventRecord, Events, Hermite, Watch};
 use crate::{IntegrationError, Lagrangian, NonFiniteValue};
 
 impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
@@ -19,6 +19,28 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
         if !events.is_empty() {
             self.watch = Some(Watch::new(events));
         }
+    }
+
+    /// A [`Stepper`](crate::Stepper)'s start of a call: the events of the
+    /// previous call forgotten (their room kept).
+    pub(crate) fn forget_events(&mut self) {
+        self.trajectory.clear_events();
+    }
+
+    /// The events of the current call (a stepper's), and the one that
+    /// stopped it, if any.
+    pub(crate) fn events_so_far(&self) -> (&[EventRecord<S, N>], Option<&EventRecord<S, N>>) {
+        (self.trajectory.events(), self.trajectory.stopped())
+    }
+
+    /// Hands the watch over to a new recorder (a stepper's, restarted by
+    /// `set_state`).
+    pub(crate) fn take_watch(&mut self) -> Option<Watch<'a, S, N>> {
+        self.watch.take()
+    }
+
+    pub(crate) fn put_watch(&mut self, watch: Option<Watch<'a, S, N>>) {
+        self.watch = watch;
     }
 
     /// Whether events are watched: the drivers do the extra work events
@@ -111,11 +133,20 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
                 value,
             });
         }
-        let g = evaluate(watch.events, t_new, end, &mut self.stats.event_evals)?;
+        let mut g = core::mem::take(&mut watch.scratch);
+        evaluate_into(
+            watch.events,
+            t_new,
+            end,
+            &mut g,
+            &mut self.stats.event_evals,
+        )?;
         if watch.any_crossing(&g) {
             Ok(Some(g))
         } else {
-            watch.g = g;
+            // The values become the next step's start; the old ones' room
+            // the next step's scratch.
+            watch.scratch = core::mem::replace(&mut watch.g, g);
             Ok(None)
         }
     }

@@ -250,7 +250,7 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
     /// Events accumulate: `gaps` gaps in a row between events were shorter
     /// than the minimum separation (a bouncing ball coming to rest bounces
     /// infinitely often before a finite time). The
-    /// [`Failure`](crate::Failure) holds the samples and the events before
+    /// [`Failure`] holds the samples and the events before
     /// this one; `(t, q, q̇)` is this event's, before any reset (see
     /// [`events`](crate::events#guards)).
     #[error(

@@ -88,6 +88,24 @@ pub(crate) fn first_crossing<S: RealField + Copy, const N: usize>(
     }))
 }
 
+/// [`evaluate`] into `g` (cleared first), so that a buffer kept from step
+/// to step is not allocated again.
+pub(crate) fn evaluate_into<S: RealField + Copy, const N: usize>(
+    events: &Events<'_, S, N>,
+    t: S,
+    state: &State<S, N>,
+    g: &mut Vec<S>,
+    evaluations: &mut usize,
+) -> Result<(), IntegrationError<S, N>> {
+    let (q, qdot) = state;
+    g.clear();
+    for event in events.list() {
+        *evaluations += 1;
+        g.push(finite(event.value(t, q, qdot), event.name(), t, *state)?);
+    }
+    Ok(())
+}
+
 /// Every event's `g` at `(t, q, q̇)`; the first non-finite one is an error.
 pub(crate) fn evaluate<S: RealField + Copy, const N: usize>(
     events: &Events<'_, S, N>,

@@ -134,7 +134,7 @@
 //!   [`IntegrationError::NonFiniteEvent`](crate::IntegrationError::NonFiniteEvent),
 //!   naming the event.
 //! - Settings out of range (a negative or NaN tolerance, a non-positive
-//!   step bound) are [`InvalidInput::InvalidEventSetting`](crate::InvalidInput::InvalidEventSetting),
+//!   step bound) are [`InvalidInput::InvalidEventSetting`],
 //!   before any work.
 
 use core::fmt;
@@ -149,7 +149,7 @@ mod locate;
 mod watch;
 
 pub(crate) use hermite::Hermite;
-pub(crate) use locate::{evaluate, first_crossing};
+pub(crate) use locate::{evaluate_into, first_crossing};
 pub(crate) use watch::Watch;
 
 /// An event function `g(t, q, q̇)`.

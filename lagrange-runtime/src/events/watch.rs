@@ -2,7 +2,7 @@
 //! at the current time and the Zeno guard.
 
 use super::guard::ZenoGuard;
-use super::locate::evaluate;
+use super::locate::evaluate_into;
 use super::Events;
 use crate::driver::State;
 use crate::IntegrationError;
@@ -13,6 +13,9 @@ pub(crate) struct Watch<'a, S, const N: usize> {
     pub(crate) events: &'a Events<'a, S, N>,
     /// Every event's `g` at the current time: the start of the next step.
     pub(crate) g: Vec<S>,
+    /// Room for the values at a step's end, kept so that watching a run
+    /// allocates nothing per step.
+    pub(crate) scratch: Vec<S>,
     pub(crate) guard: ZenoGuard<S>,
     /// The shortest gap between events the method resolves: its fixed
     /// step, zero for an adaptive method.
@@ -24,6 +27,7 @@ impl<'a, S: RealField + Copy, const N: usize> Watch<'a, S, N> {
         Self {
             events,
             g: Vec::with_capacity(events.len()),
+            scratch: Vec::with_capacity(events.len()),
             guard: ZenoGuard::new(),
             resolution: S::zero(),
         }
@@ -36,8 +40,7 @@ impl<'a, S: RealField + Copy, const N: usize> Watch<'a, S, N> {
         state: &State<S, N>,
         evaluations: &mut usize,
     ) -> Result<(), IntegrationError<S, N>> {
-        self.g = evaluate(self.events, t, state, evaluations)?;
-        Ok(())
+        evaluate_into(self.events, t, state, &mut self.g, evaluations)
     }
 
     /// Whether some event changes sign, in its direction, from the current

@@ -8,7 +8,7 @@ use nalgebra::{RealField, SVector};
 
 use super::sealed::{Run, Work};
 use crate::driver::{
-    advances, initial_step, Controller, EmbeddedPair, GrowthGuard, Outcome, Tolerances,
+    advances, initial_step, Controller, EmbeddedPair, GrowthGuard, Outcome, Segment, Tolerances,
 };
 use crate::{IntegrationError, Lagrangian};
 
@@ -42,7 +42,7 @@ where
 {
     fn advance<L: Lagrangian<N, Scalar = S>>(
         &mut self,
-        run: &mut Run<S, N>,
+        run: &mut Run<'_, S, N>,
         model: &L,
         target: S,
     ) -> Result<(), IntegrationError<S, N>> {
@@ -58,35 +58,32 @@ where
         let beta = c(control.beta);
         let alpha = c(control.exponent) - beta * c(control.beta_weight);
 
-        if run.stale || self.pair.is_none() {
-            let (t, (q, qdot)) = (run.t, run.state());
-            let qddot = run.rec.rhs(model, t, &q, &qdot)?;
-            if self.h.is_none() {
-                let start = (t, &q, &qdot, &qddot);
-                let guess = initial_step(
-                    &mut run.rec,
-                    model,
-                    start,
-                    target - t,
-                    rtol,
-                    atol,
-                    control.order,
-                );
-                self.h = Some(guess);
-            }
-            self.pair = Some(self.method.pair(&qdot, &qddot));
-            self.growth
-                .get_or_insert_with(|| GrowthGuard::new(&q, &qdot));
-            run.stale = false;
-        }
-        let (Some(pair), Some(mut h), Some(growth)) = (&mut self.pair, self.h, &mut self.growth)
-        else {
-            unreachable!("built above");
-        };
-
         let mut attempts = 0;
         let mut stage_failure = None;
         loop {
+            // A first call, a changed model or state, or a reset: the slope
+            // the pair carries is recomputed at the state (the step size is
+            // kept, or guessed on the first call).
+            if run.stale || self.pair.is_none() {
+                let (t, (q, qdot)) = (run.t, run.state());
+                let qddot = run.rec.rhs(model, t, &q, &qdot)?;
+                if self.h.is_none() {
+                    let start = (t, &q, &qdot, &qddot);
+                    let h_max = run.rec.bound_step(target - t);
+                    let guess =
+                        initial_step(&mut run.rec, model, start, h_max, rtol, atol, control.order);
+                    self.h = Some(guess);
+                }
+                self.pair = Some(self.method.pair(&qdot, &qddot));
+                self.growth
+                    .get_or_insert_with(|| GrowthGuard::new(&q, &qdot));
+                run.stale = false;
+            }
+            let (Some(pair), Some(h), Some(growth)) = (&mut self.pair, self.h, &mut self.growth)
+            else {
+                unreachable!("built above");
+            };
+            let mut h = run.rec.bound_step(h);
             let (t, (q, qdot)) = (run.t, run.state());
             if attempts >= max_steps {
                 return Err(IntegrationError::TooManySteps {
@@ -154,11 +151,28 @@ where
                 });
             }
             run.rec.stats.steps_accepted += 1;
-            (run.t, run.q, run.qdot) = (t_new, q_new, qdot_new);
+            self.h = Some(h_new);
+            // The dense output is built from the step's slopes before the
+            // pair moves on (its last slope becomes the next step's first).
+            let crossed = if run.rec.watching() {
+                let dense = pair.dense(h_try, (&q, &qdot), &step);
+                let interpolant = |ts: S| M::Pair::dense_at(&dense, (ts - t) / h_try);
+                let end = (q_new, qdot_new);
+                run.rec.watch_dense(model, (t, t_new), &end, interpolant)?
+            } else {
+                None
+            };
             pair.advance(&step);
-            h = h_new;
-            self.h = Some(h);
-            if last {
+            let restarted = matches!(crossed, Some(Segment::Restart { .. }));
+            if run.take((t_new, q_new, qdot_new), crossed)? {
+                return Ok(());
+            }
+            // A reset a few ulps before the target: too close to step to,
+            // the call ends there with the state after the reset.
+            if restarted && !advances(run.t, target - run.t) {
+                run.t = target;
+            }
+            if run.t >= target {
                 return Ok(());
             }
         }

@@ -5,7 +5,7 @@
 use nalgebra::{RealField, SVector};
 
 use super::sealed::{Run, Work};
-use crate::driver::{GrowthGuard, Interval, Recorder, State};
+use crate::driver::{advances, GrowthGuard, Interval, Recorder, Segment, State};
 use crate::{IntegrationError, Lagrangian, NonFiniteValue};
 
 /// One step of a fixed-step method, as `driver::fixed_step` takes it.
@@ -13,7 +13,7 @@ pub(crate) trait FixedStep<S: RealField + Copy, const N: usize> {
     /// One step of size `h` from `(t, q, q̇)`, evaluating through `rec`.
     fn step<L: Lagrangian<N, Scalar = S>>(
         &mut self,
-        rec: &mut Recorder<'static, S, N>,
+        rec: &mut Recorder<'_, S, N>,
         model: &L,
         t: S,
         state: (&SVector<S, N>, &SVector<S, N>),
@@ -42,64 +42,88 @@ where
 {
     fn advance<L: Lagrangian<N, Scalar = S>>(
         &mut self,
-        run: &mut Run<S, N>,
+        run: &mut Run<'_, S, N>,
         model: &L,
         target: S,
     ) -> Result<(), IntegrationError<S, N>> {
-        let (t, (q, qdot)) = (run.t, run.state());
-        let interval = Interval::new(t, target, self.h);
-        if interval.underflows() {
-            let h = interval.step;
-            return Err(IntegrationError::StepSizeUnderflow { t, h, q, qdot });
-        }
-        let max_steps = self.max_steps;
-        let Some(steps) = interval.steps(max_steps) else {
-            return Err(IntegrationError::TooManySteps {
-                t,
-                max_steps,
-                q,
-                qdot,
-            });
-        };
-        let growth = self
-            .growth
-            .get_or_insert_with(|| GrowthGuard::new(&q, &qdot));
-        if run.stale {
-            self.step.restart();
-            run.stale = false;
-        }
-        for k in 1..=steps {
-            let (t, before) = (run.t, run.state());
-            let t_next = interval.time(k, steps);
-            let dt = t_next - t;
-            let (q, qdot) = self
-                .step
-                .step(&mut run.rec, model, t, (&before.0, &before.1), dt)
-                .and_then(|(q, qdot)| run.rec.control_drift(model, t_next, q, qdot))?;
-            // The step's end is not evaluated by the model: check it before
-            // it becomes the state.
-            if !(q.iter().chain(qdot.iter()).all(|x| x.is_finite())) {
-                let value = NonFiniteValue::State;
-                return Err(IntegrationError::NonFiniteState {
-                    t: t_next,
-                    q,
-                    qdot,
-                    value,
-                });
-            }
-            if let Some(steps) = growth.unstable(before, (&q, &qdot), dt) {
+        // Events closer than a few steps are beyond a fixed step (the Zeno
+        // guard's default separation).
+        run.rec.resolve_events(self.h);
+        // One pass per stretch between resets: after a reset the rest of
+        // the call is cut again from the event time.
+        while run.t < target {
+            let (t, (q, qdot)) = (run.t, run.state());
+            let interval = Interval::new(t, target, run.rec.bound_step(self.h));
+            if interval.underflows() {
                 let h = interval.step;
-                let t = t_next;
-                return Err(IntegrationError::Unstable {
+                return Err(IntegrationError::StepSizeUnderflow { t, h, q, qdot });
+            }
+            let max_steps = self.max_steps;
+            let Some(steps) = interval.steps(max_steps) else {
+                return Err(IntegrationError::TooManySteps {
                     t,
-                    h,
-                    steps,
+                    max_steps,
                     q,
                     qdot,
                 });
+            };
+            let growth = self
+                .growth
+                .get_or_insert_with(|| GrowthGuard::new(&q, &qdot));
+            if run.stale {
+                self.step.restart();
+                run.stale = false;
             }
-            (run.t, run.q, run.qdot) = (t_next, q, qdot);
-            run.rec.stats.steps_accepted += 1;
+            for k in 1..=steps {
+                let (t, before) = (run.t, run.state());
+                let t_next = interval.time(k, steps);
+                let dt = t_next - t;
+                let (q, qdot) = self
+                    .step
+                    .step(&mut run.rec, model, t, (&before.0, &before.1), dt)
+                    .and_then(|(q, qdot)| run.rec.control_drift(model, t_next, q, qdot))?;
+                // The step's end is not evaluated by the model: check it
+                // before it becomes the state.
+                if !(q.iter().chain(qdot.iter()).all(|x| x.is_finite())) {
+                    let value = NonFiniteValue::State;
+                    return Err(IntegrationError::NonFiniteState {
+                        t: t_next,
+                        q,
+                        qdot,
+                        value,
+                    });
+                }
+                if let Some(steps) = growth.unstable(before, (&q, &qdot), dt) {
+                    let h = interval.step;
+                    let t = t_next;
+                    return Err(IntegrationError::Unstable {
+                        t,
+                        h,
+                        steps,
+                        q,
+                        qdot,
+                    });
+                }
+                run.rec.stats.steps_accepted += 1;
+                let crossed = if run.rec.watching() {
+                    run.rec
+                        .watch_hermite(model, (t, &before), (t_next, &(q, qdot)))?
+                } else {
+                    None
+                };
+                let restarted = matches!(crossed, Some(Segment::Restart { .. }));
+                if run.take((t_next, q, qdot), crossed)? {
+                    return Ok(());
+                }
+                if restarted {
+                    // A reset a few ulps before the target: too close to
+                    // step to, the call ends there with the state after it.
+                    if !advances(run.t, target - run.t) {
+                        run.t = target;
+                    }
+                    break;
+                }
+            }
         }
         Ok(())
     }

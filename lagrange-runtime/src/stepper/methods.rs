@@ -25,7 +25,7 @@ macro_rules! fixed_methods {
         impl<S: RealField + Copy, const N: usize> FixedStep<S, N> for $marker {
             fn step<L: Lagrangian<N, Scalar = S>>(
                 &mut self,
-                rec: &mut Recorder<'static, S, N>,
+                rec: &mut Recorder<'_, S, N>,
                 model: &L,
                 t: S,
                 (q, qdot): (&SVector<S, N>, &SVector<S, N>),
@@ -66,7 +66,7 @@ pub struct Collocation<S: RealField + Copy, const N: usize>(StageSolver<S, N>);
 impl<S: RealField + Copy, const N: usize> FixedStep<S, N> for Collocation<S, N> {
     fn step<L: Lagrangian<N, Scalar = S>>(
         &mut self,
-        rec: &mut Recorder<'static, S, N>,
+        rec: &mut Recorder<'_, S, N>,
         model: &L,
         t: S,
         (q, qdot): (&SVector<S, N>, &SVector<S, N>),

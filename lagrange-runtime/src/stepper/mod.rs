@@ -12,7 +12,9 @@
 //!
 //! - **No allocation** per call: the state, the method's slopes and its
 //!   step-size control live in the stepper (a counting global allocator
-//!   checks this over 10⁶ steps in the runtime's tests).
+//!   checks this over 10⁶ steps in the runtime's tests; watching events
+//!   allocates nothing per step either, and a located crossing allocates
+//!   its few small working vectors).
 //! - **The step size is kept** between calls by the adaptive methods
 //!   ([`Dopri5`], [`Dop853`]): a frame shorter than the step the error
 //!   control wants is one shortened step that lands on the frame time, and
@@ -29,6 +31,11 @@
 //!   that scalar. An `f32` clock loses resolution as it grows (`1.2e-4 s`
 //!   per ulp at `t = 2000 s`); [`set_time`](Stepper::set_time) keeps it
 //!   small for a model that does not depend on `t`.
+//! - **Events** ([`with_events`](Stepper::with_events)): the same
+//!   [`Events`] as `integrate_with_events`, located on each step's
+//!   interpolant; [`events`](Stepper::events) lists those of the last call,
+//!   a stop ends the call at the event, a reset replaces the state and the
+//!   call goes on.
 //! - **Failures are typed**: an [`IntegrationError`] with `t` and the state
 //!   where it happened. The stepper keeps the last good state (the end of
 //!   the last step that succeeded) and can be advanced again, for instance
@@ -103,7 +110,8 @@ mod methods;
 
 use nalgebra::{ComplexField, RealField, SVector};
 
-use crate::driver::{Recorder, State};
+use crate::driver::{Recorder, Segment, State};
+use crate::events::{EventRecord, Events};
 use crate::{IntegrationError, InvalidInput, Lagrangian, Stats};
 
 /// What a [`Stepper`] needs of a method: implemented for
@@ -127,31 +135,66 @@ pub(crate) mod sealed {
 
     /// A method's side of a stepper: advances `run` to `target`.
     pub trait Work<S: RealField + Copy, const N: usize> {
-        /// Advances `run` to `target` (`> run.t`), in one or more steps.
-        /// On error, `run` holds the end of the last step that succeeded.
+        /// Advances `run` to `target` (`> run.t`), in one or more steps,
+        /// or to the time of an event that stops it. On error, `run` holds
+        /// the end of the last step that succeeded.
         fn advance<L: Lagrangian<N, Scalar = S>>(
             &mut self,
-            run: &mut Run<S, N>,
+            run: &mut Run<'_, S, N>,
             model: &L,
             target: S,
         ) -> Result<(), IntegrationError<S, N>>;
     }
 
     /// The state a stepper owns, apart from the method's work.
-    pub struct Run<S: RealField + Copy, const N: usize> {
+    pub struct Run<'e, S: RealField + Copy, const N: usize> {
         pub(crate) t: S,
         pub(crate) q: SVector<S, N>,
         pub(crate) qdot: SVector<S, N>,
-        /// Counts the work; samples none (it has no sample times).
-        pub(crate) rec: Recorder<'static, S, N>,
+        /// Counts the work, watches the events; samples none (it has no
+        /// sample times).
+        pub(crate) rec: Recorder<'e, S, N>,
         /// The model or the state changed since the last step: slopes
-        /// carried from it (first same as last) must be recomputed.
+        /// carried from it (first same as last) must be recomputed, and
+        /// the events' values at the state too.
         pub(crate) stale: bool,
     }
 
-    impl<S: RealField + Copy, const N: usize> Run<S, N> {
+    impl<S: RealField + Copy, const N: usize> Run<'_, S, N> {
         pub(crate) fn state(&self) -> State<S, N> {
             (self.q, self.qdot)
+        }
+
+        /// After an accepted step to `(t, q, q̇)` that an event function may
+        /// have crossed on the way (its values compared by the recorder,
+        /// the crossing located on `crossed`, the step's own result):
+        /// `true` when an event stopped the call, the state then being the
+        /// event's; after a reset the state is the reset's, the slopes
+        /// stale and the events armed again.
+        pub(crate) fn take(
+            &mut self,
+            (t, q, qdot): (S, SVector<S, N>, SVector<S, N>),
+            crossed: Option<Segment<S, N>>,
+        ) -> Result<bool, IntegrationError<S, N>> {
+            match crossed {
+                None => {
+                    (self.t, self.q, self.qdot) = (t, q, qdot);
+                    Ok(false)
+                }
+                Some(Segment::Done) => {
+                    let (_, stopped) = self.rec.events_so_far();
+                    let stop = *stopped.expect("a segment ends early at a stopping event");
+                    (self.t, self.q, self.qdot) = (stop.t, stop.q, stop.qdot);
+                    self.stale = true;
+                    Ok(true)
+                }
+                Some(Segment::Restart { t, state }) => {
+                    (self.t, self.q, self.qdot) = (t, state.0, state.1);
+                    self.rec.arm_events(t, &state)?;
+                    self.stale = true;
+                    Ok(false)
+                }
+            }
         }
     }
 }
@@ -159,18 +202,19 @@ pub(crate) mod sealed {
 use sealed::{Run, Work};
 
 /// A model, a method and a state, advanced by the caller a piece at a time
-/// without allocating; see [the module](self).
-pub struct Stepper<L, M, const N: usize>
+/// without allocating; see [the module](self). `'e` is the lifetime of the
+/// [events](Stepper::with_events) it watches, if any.
+pub struct Stepper<'e, L, M, const N: usize>
 where
     L: Lagrangian<N>,
     M: StepMethod<L::Scalar, N>,
 {
     model: L,
     work: M::Work,
-    run: Run<L::Scalar, N>,
+    run: Run<'e, L::Scalar, N>,
 }
 
-impl<L, M, const N: usize> Stepper<L, M, N>
+impl<'e, L, M, const N: usize> Stepper<'e, L, M, N>
 where
     L: Lagrangian<N>,
     M: StepMethod<L::Scalar, N>,
@@ -200,6 +244,37 @@ where
         Ok(Self { model, work, run })
     }
 
+    /// Watches `events` from now on: each call locates, records and acts
+    /// on the crossings in it as `integrate_with_events` does (see
+    /// [`events`](crate::events)); [`events`](Self::events) lists those of
+    /// the last call. A **stop** ends the call early, at the event, the
+    /// stepper's state the event's, and the next call goes on from there;
+    /// a **reset** replaces the state and the call goes on to its target,
+    /// the method's carried slopes recomputed (an adaptive method keeps its
+    /// step size). The events' settings are checked here
+    /// ([`InvalidEventSetting`](InvalidInput::InvalidEventSetting)), and
+    /// their values taken at the current state: an event already at zero
+    /// is not armed.
+    pub fn with_events(
+        mut self,
+        events: &'e Events<'e, L::Scalar, N>,
+    ) -> Result<Self, IntegrationError<L::Scalar, N>> {
+        events.validate()?;
+        self.run.rec.watch_events(events);
+        self.run.stale = true;
+        Ok(self)
+    }
+
+    /// The events that happened during the last call, in time order.
+    pub fn events(&self) -> &[EventRecord<L::Scalar, N>] {
+        self.run.rec.events_so_far().0
+    }
+
+    /// The event that stopped the last call before its target, if one did.
+    pub fn stopped(&self) -> Option<&EventRecord<L::Scalar, N>> {
+        self.run.rec.events_so_far().1
+    }
+
     /// Advances the state by `dt`: to `t + dt`, which must be later than
     /// `t` ([`TargetNotAhead`](InvalidInput::TargetNotAhead) for a `dt`
     /// that is not positive, not finite, or too small to change `t`).
@@ -213,6 +288,12 @@ where
         let t = self.run.t;
         if !(target.is_finite() && target > t) {
             return Err(InvalidInput::TargetNotAhead { t, target }.into());
+        }
+        self.run.rec.forget_events();
+        if self.run.stale {
+            // The events' values at a state they were not evaluated at.
+            let state = self.run.state();
+            self.run.rec.arm_events(t, &state)?;
         }
         self.work.advance(&mut self.run, &self.model, target)
     }
@@ -245,6 +326,7 @@ where
         let (mut rec, (q, qdot)) =
             Recorder::start(&self.model, t, &q, &qdot, Default::default()).map_err(|f| f.error)?;
         rec.stats = stats;
+        rec.put_watch(self.run.rec.take_watch());
         self.run.rec = rec;
         (self.run.q, self.run.qdot) = (q, qdot);
         self.run.stale = true;

@@ -6,6 +6,7 @@
 
 use crate::allocations::allocations;
 use crate::models::{CartesianPendulum, CoupledOscillator, ForcingBreaksDown};
+use lagrange::models::BouncingBall;
 use lagrange_runtime::nalgebra::{Vector1, Vector2};
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::{InvalidInput, Stats, StepMethod};
@@ -361,4 +362,131 @@ fn a_stepper_does_not_allocate_per_step() {
     println!("{steps} steps, {allocated} allocations");
     assert!(steps >= 1_230_000);
     assert_eq!(allocated, 0);
+}
+
+/// A ball bouncing at 60 Hz in a stepper (restitution 0.9): each bounce is
+/// reported by the call whose frame it falls in, at the closed-form time,
+/// the state after it the reversed velocity; frames go on to their targets.
+#[test]
+fn a_stepper_reports_the_bounces_of_each_frame() {
+    let ball = BouncingBall::new(1.0, 9.81);
+    // The bounces within the 7 s the frames cover.
+    let exact: Vec<f64> = ball
+        .bounce_times(1.0, 0.9, 100)
+        .into_iter()
+        .filter(|&t| t <= 7.0)
+        .collect();
+    let events = Events::new().with(BouncingBall::floor(0.9));
+    let start = (Vector1::new(1.0), Vector1::new(0.0));
+    for adaptive in [true, false] {
+        let mut seen = Vec::new();
+        let mut frame =
+            |k: usize, t: f64, bounces: &[lagrange_runtime::events::EventRecord<f64, 1>]| {
+                for b in bounces {
+                    // Reported by the frame that contains it.
+                    assert!(b.t > (k - 1) as f64 / HZ && b.t <= t, "frame {k}: {}", b.t);
+                    let (_, after) = b.after.expect("a reset");
+                    assert!((after[0] + 0.9 * b.qdot[0]).abs() < 1e-14);
+                    seen.push(b.t);
+                }
+            };
+        if adaptive {
+            let method = Dopri5::new().rtol(1e-10).atol(1e-10);
+            let mut s = Stepper::new(ball, method, 0.0, start.0, start.1).unwrap();
+            s = s.with_events(&events).unwrap();
+            for k in 1..=420 {
+                s.advance_to(k as f64 / HZ).unwrap();
+                assert_eq!(s.t(), k as f64 / HZ);
+                frame(k, s.t(), s.events());
+            }
+        } else {
+            let mut s = Stepper::new(ball, Rk4::new(1.0 / 240.0), 0.0, start.0, start.1).unwrap();
+            s = s.with_events(&events).unwrap();
+            for k in 1..=420 {
+                s.advance_to(k as f64 / HZ).unwrap();
+                frame(k, s.t(), s.events());
+            }
+        }
+        assert_eq!(seen.len(), exact.len(), "adaptive = {adaptive}: {seen:?}");
+        let worst = seen
+            .iter()
+            .zip(&exact)
+            .map(|(a, b)| ((a - b) / b).abs())
+            .fold(0.0, f64::max);
+        println!(
+            "stepper, adaptive = {adaptive}: {} bounces in 7 s, worst relative error {worst:.1e}",
+            seen.len()
+        );
+        // Free fall is a quadratic: Dopri5's dense output and RK4's cubic
+        // Hermite interpolant are exact on it, so the times are the
+        // Illinois search's (a few ulps) plus the rounding of the summed
+        // flights, as for `integrate` (bound 1e-12 there too).
+        assert!(worst < 1e-12, "adaptive = {adaptive}: {worst}");
+    }
+}
+
+/// A stopping event ends the call early at the event, and the next call
+/// goes on from there; a stepper with events allocates nothing on steps
+/// without a crossing.
+#[test]
+fn a_stop_ends_the_call_at_the_event_and_the_next_goes_on() {
+    // The coupled oscillator's first coordinate, cos(2t) from 1, falls
+    // through zero at t = π/4, 3π/4, …: a stopping event.
+    let (model, q0, v0) = (
+        CoupledOscillator { omega: 2.0 },
+        Vector2::new(1.0, 0.0),
+        Vector2::zeros(),
+    );
+    let zero = Event::new("x", |_t, q: &Vector2<f64>, _v: &Vector2<f64>| q[0])
+        .falling()
+        .stop();
+    let events = Events::new().with(zero);
+    let tight = Dop853::new().rtol(1e-12).atol(1e-12);
+    let mut s = Stepper::new(model, tight, 0.0, q0, v0)
+        .unwrap()
+        .with_events(&events)
+        .unwrap();
+    let mut stops = Vec::new();
+    let mut target = 0.0;
+    while stops.len() < 3 {
+        target += 1.0 / HZ;
+        // Calls that stop early are repeated to their frame's end.
+        while s.t() < target {
+            s.advance_to(target).unwrap();
+            if let Some(stop) = s.stopped() {
+                assert_eq!(s.t(), stop.t);
+                stops.push(stop.t);
+            }
+        }
+    }
+    for (k, t) in stops.iter().enumerate() {
+        // Falling zeros of cos 2t: π/4 + kπ.
+        let exact = std::f64::consts::FRAC_PI_4 + k as f64 * std::f64::consts::PI;
+        // Dop853 at 1e-12 over a few periods, and the dense output's
+        // error on top: within 1e-9.
+        assert!((t - exact).abs() < 1e-9, "stop {k}: {t} vs {exact}");
+    }
+
+    // Record-only events on a steady run: no allocation per step.
+    let record = Events::new().with(Event::new(
+        "y",
+        |_t, q: &Vector2<f64>, _v: &Vector2<f64>| q[1] - 5.0,
+    ));
+    let mut quiet = Stepper::new(
+        CoupledOscillator { omega: 2.0 },
+        Rk4::new(1.0 / HZ),
+        0.0,
+        q0,
+        v0,
+    )
+    .unwrap()
+    .with_events(&record)
+    .unwrap();
+    quiet.advance_to(1.0).unwrap();
+    let before = allocations();
+    for k in 1..=100_000 {
+        quiet.advance_to(1.0 + k as f64 / HZ).unwrap();
+    }
+    assert!(quiet.stats().event_evals >= 100_000);
+    assert_eq!(allocations() - before, 0, "watching events allocated");
 }
