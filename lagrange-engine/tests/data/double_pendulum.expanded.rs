@@ -32,11 +32,23 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
     ) -> ::lagrange::nalgebra::SMatrix<S, 2, 2> {
         let [theta1, theta2] = [q[0], q[1]];
         let Self { m1, m2, l1, l2, .. } = *self;
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
         let e0 = l1 * l2 * m2
-            * (::lagrange::nalgebra::ComplexField::cos(theta1)
-                * ::lagrange::nalgebra::ComplexField::cos(theta2)
-                + ::lagrange::nalgebra::ComplexField::sin(theta1)
-                    * ::lagrange::nalgebra::ComplexField::sin(theta2));
+            * fma(
+                ::lagrange::nalgebra::ComplexField::sin(theta1),
+                ::lagrange::nalgebra::ComplexField::sin(theta2),
+                ::lagrange::nalgebra::ComplexField::cos(theta1)
+                    * ::lagrange::nalgebra::ComplexField::cos(theta2),
+            );
         ::lagrange::nalgebra::SMatrix::<
             S,
             2,
@@ -56,17 +68,30 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             [qdot[0], qdot[1]],
         );
         let Self { m1, m2, l1, l2, g, .. } = *self;
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
         let e0 = ::lagrange::nalgebra::ComplexField::sin(theta1);
         let e1 = ::lagrange::nalgebra::ComplexField::sin(theta2);
-        let e2 = ::lagrange::nalgebra::ComplexField::cos(theta1) * e1
-            - e0 * ::lagrange::nalgebra::ComplexField::cos(theta2);
+        let e2 = fma(
+            -e0,
+            ::lagrange::nalgebra::ComplexField::cos(theta2),
+            ::lagrange::nalgebra::ComplexField::cos(theta1) * e1,
+        );
         ::lagrange::nalgebra::SVector::<
             S,
             2,
         >::from_column_slice(
             &[
-                -l1 * (e0 * g * (m1 + m2) - l2 * m2 * e2 * (theta2_dot * theta2_dot)),
-                -l2 * m2 * (e1 * g + l1 * (theta1_dot * theta1_dot) * e2),
+                -l1 * fma(-l2 * m2 * e2, theta2_dot * theta2_dot, e0 * g * (m1 + m2)),
+                -l2 * m2 * fma(l1 * (theta1_dot * theta1_dot), e2, e1 * g),
             ],
         )
     }
@@ -83,13 +108,23 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             [qdot[0], qdot[1]],
         );
         let Self { m1, m2, l1, l2, g, .. } = *self;
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
         let e0 = m1 + m2;
         let e1 = ::lagrange::nalgebra::ComplexField::cos(theta1);
         let e2 = ::lagrange::nalgebra::ComplexField::cos(theta2);
         let e3 = ::lagrange::nalgebra::ComplexField::sin(theta1);
         let e4 = ::lagrange::nalgebra::ComplexField::sin(theta2);
-        let e5 = l1 * l2 * m2 * (e1 * e2 + e3 * e4);
-        let e6 = e1 * e4 - e3 * e2;
+        let e5 = l1 * l2 * m2 * fma(e3, e4, e1 * e2);
+        let e6 = fma(-e3, e2, e1 * e4);
         (
             ::lagrange::nalgebra::SMatrix::<
                 S,
@@ -101,8 +136,8 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
                 2,
             >::from_column_slice(
                 &[
-                    -l1 * (e3 * g * e0 - l2 * m2 * e6 * (theta2_dot * theta2_dot)),
-                    -l2 * m2 * (e4 * g + l1 * (theta1_dot * theta1_dot) * e6),
+                    -l1 * fma(-l2 * m2 * e6, theta2_dot * theta2_dot, e3 * g * e0),
+                    -l2 * m2 * fma(l1 * (theta1_dot * theta1_dot), e6, e4 * g),
                 ],
             ),
         )
@@ -120,21 +155,50 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             [qdot[0], qdot[1]],
         );
         let Self { m1, m2, l1, l2, .. } = *self;
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
         let k0: S = ::lagrange::nalgebra::convert::<f64, S>(0.5f64);
-        let e0 = l1 * ::lagrange::nalgebra::ComplexField::cos(theta1) * theta1_dot
-            + l2 * ::lagrange::nalgebra::ComplexField::cos(theta2) * theta2_dot;
-        let e1 = l1 * ::lagrange::nalgebra::ComplexField::sin(theta1) * theta1_dot
-            + l2 * ::lagrange::nalgebra::ComplexField::sin(theta2) * theta2_dot;
-        k0 * m1 * (l1 * l1) * (theta1_dot * theta1_dot) + k0 * m2 * (e0 * e0 + e1 * e1)
+        let e0 = fma(
+            l2 * ::lagrange::nalgebra::ComplexField::cos(theta2),
+            theta2_dot,
+            l1 * ::lagrange::nalgebra::ComplexField::cos(theta1) * theta1_dot,
+        );
+        let e1 = fma(
+            l2 * ::lagrange::nalgebra::ComplexField::sin(theta2),
+            theta2_dot,
+            l1 * ::lagrange::nalgebra::ComplexField::sin(theta1) * theta1_dot,
+        );
+        fma(k0 * m2, e0 * e0 + e1 * e1, k0 * m1 * (l1 * l1) * (theta1_dot * theta1_dot))
     }
     /// Potential energy `V(t, q)`.
     #[inline]
     pub fn potential_energy(&self, t: S, q: &::lagrange::nalgebra::SVector<S, 2>) -> S {
         let [theta1, theta2] = [q[0], q[1]];
         let Self { m1, m2, l1, l2, g, .. } = *self;
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
         let e0 = ::lagrange::nalgebra::ComplexField::cos(theta1);
-        -l1 * e0 * m1 * g
-            - m2 * g * (l2 * ::lagrange::nalgebra::ComplexField::cos(theta2) + l1 * e0)
+        fma(
+            -m2 * g,
+            fma(l1, e0, l2 * ::lagrange::nalgebra::ComplexField::cos(theta2)),
+            -l1 * e0 * m1 * g,
+        )
     }
     /// Total energy `T + V`.
     #[inline]
@@ -149,14 +213,38 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             [qdot[0], qdot[1]],
         );
         let Self { m1, m2, l1, l2, g, .. } = *self;
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
         let k0: S = ::lagrange::nalgebra::convert::<f64, S>(0.5f64);
         let e0 = ::lagrange::nalgebra::ComplexField::cos(theta1);
         let e1 = ::lagrange::nalgebra::ComplexField::cos(theta2);
-        let e2 = l1 * e0 * theta1_dot + l2 * e1 * theta2_dot;
-        let e3 = l1 * ::lagrange::nalgebra::ComplexField::sin(theta1) * theta1_dot
-            + l2 * ::lagrange::nalgebra::ComplexField::sin(theta2) * theta2_dot;
-        k0 * m1 * (l1 * l1) * (theta1_dot * theta1_dot) + k0 * m2 * (e2 * e2 + e3 * e3)
-            - l1 * e0 * m1 * g - m2 * g * (l2 * e1 + l1 * e0)
+        let e2 = fma(l2 * e1, theta2_dot, l1 * e0 * theta1_dot);
+        let e3 = fma(
+            l2 * ::lagrange::nalgebra::ComplexField::sin(theta2),
+            theta2_dot,
+            l1 * ::lagrange::nalgebra::ComplexField::sin(theta1) * theta1_dot,
+        );
+        fma(
+            -m2 * g,
+            fma(l1, e0, l2 * e1),
+            fma(
+                -l1 * e0 * m1,
+                g,
+                fma(
+                    k0 * m2,
+                    e2 * e2 + e3 * e3,
+                    k0 * m1 * (l1 * l1) * (theta1_dot * theta1_dot),
+                ),
+            ),
+        )
     }
     /// The generalized momenta `p = ∂L/∂q̇`.
     #[inline]
@@ -171,19 +259,29 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             [qdot[0], qdot[1]],
         );
         let Self { m1, m2, l1, l2, .. } = *self;
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
         let e0 = ::lagrange::nalgebra::ComplexField::cos(theta1);
         let e1 = ::lagrange::nalgebra::ComplexField::cos(theta2);
-        let e2 = l1 * e0 * theta1_dot + l2 * e1 * theta2_dot;
+        let e2 = fma(l2 * e1, theta2_dot, l1 * e0 * theta1_dot);
         let e3 = ::lagrange::nalgebra::ComplexField::sin(theta1);
         let e4 = ::lagrange::nalgebra::ComplexField::sin(theta2);
-        let e5 = l1 * e3 * theta1_dot + l2 * e4 * theta2_dot;
+        let e5 = fma(l2 * e4, theta2_dot, l1 * e3 * theta1_dot);
         ::lagrange::nalgebra::SVector::<
             S,
             2,
         >::from_column_slice(
             &[
-                m1 * theta1_dot * (l1 * l1) + l1 * m2 * (e0 * e2 + e3 * e5),
-                l2 * m2 * (e1 * e2 + e4 * e5),
+                fma(l1 * m2, fma(e3, e5, e0 * e2), m1 * theta1_dot * (l1 * l1)),
+                l2 * m2 * fma(e4, e5, e1 * e2),
             ],
         )
     }
@@ -200,19 +298,33 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             [qdot[0], qdot[1]],
         );
         let Self { m1, m2, l1, l2, g, .. } = *self;
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
         let e0 = ::lagrange::nalgebra::ComplexField::sin(theta1);
         let e1 = ::lagrange::nalgebra::ComplexField::cos(theta1);
         let e2 = ::lagrange::nalgebra::ComplexField::cos(theta2);
-        let e3 = l1 * e1 * theta1_dot + l2 * e2 * theta2_dot;
+        let e3 = fma(l2 * e2, theta2_dot, l1 * e1 * theta1_dot);
         let e4 = ::lagrange::nalgebra::ComplexField::sin(theta2);
-        let e5 = l1 * e0 * theta1_dot + l2 * e4 * theta2_dot;
+        let e5 = fma(l2 * e4, theta2_dot, l1 * e0 * theta1_dot);
         ::lagrange::nalgebra::SVector::<
             S,
             2,
         >::from_column_slice(
             &[
-                -l1 * theta1_dot * m2 * (e0 * e3 - e1 * e5) - l1 * e0 * g * (m1 + m2),
-                -l2 * m2 * theta2_dot * (e4 * e3 - e2 * e5) - l2 * e4 * m2 * g,
+                fma(
+                    -l1 * e0 * g,
+                    m1 + m2,
+                    -l1 * theta1_dot * m2 * fma(-e1, e5, e0 * e3),
+                ),
+                fma(-l2 * e4 * m2, g, -l2 * m2 * theta2_dot * fma(-e2, e5, e4 * e3)),
             ],
         )
     }
