@@ -17,7 +17,7 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
     /// declaration order.
     pub const PARAMETERS: [&'static str; 5] = ["m1", "m2", "l1", "l2", "g"];
     ///The derived equations `M q̈ = f`, readable: shared subexpressions first, then each entry.
-    pub const EQUATIONS: &'static str = "e0 = m1 + m2\ne1 = cos(theta1)\ne2 = cos(theta2)\ne3 = sin(theta1)\ne4 = sin(theta2)\ne5 = e1*e4 - e3*e2\nM[theta1, theta1] = l1^2*e0\nM[theta1, theta2] = l1*l2*m2*(e1*e2 + e3*e4)\nM[theta2, theta2] = m2*l2^2\nf[theta1] = -l1*(e3*g*e0 - l2*m2*e5*dot(theta2)^2)\nf[theta2] = -l2*m2*(e4*g + l1*dot(theta1)^2*e5)\n";
+    pub const EQUATIONS: &'static str = "e0 = m1 + m2\ne1 = cos(theta1)\ne2 = cos(theta2)\ne3 = sin(theta1)\ne4 = sin(theta2)\ne5 = e3*e2 - e1*e4\nM[theta1, theta1] = l1^2*e0\nM[theta1, theta2] = l1*l2*m2*(e1*e2 + e3*e4)\nM[theta2, theta2] = m2*l2^2\nf[theta1] = -l1*(e3*g*e0 + l2*m2*e5*dot(theta2)^2)\nf[theta2] = -l2*m2*(e4*g - l1*dot(theta1)^2*e5)\n";
     ///A `DoublePendulum` with the given parameters (`m1`, `m2`, `l1`, `l2`, `g`).
     #[inline]
     pub const fn new(m1: S, m2: S, l1: S, l2: S, g: S) -> Self {
@@ -81,17 +81,17 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
         let e0 = ::lagrange::nalgebra::ComplexField::sin(theta1);
         let e1 = ::lagrange::nalgebra::ComplexField::sin(theta2);
         let e2 = fma(
-            -e0,
-            ::lagrange::nalgebra::ComplexField::cos(theta2),
-            ::lagrange::nalgebra::ComplexField::cos(theta1) * e1,
+            -::lagrange::nalgebra::ComplexField::cos(theta1),
+            e1,
+            e0 * ::lagrange::nalgebra::ComplexField::cos(theta2),
         );
         ::lagrange::nalgebra::SVector::<
             S,
             2,
         >::from_column_slice(
             &[
-                -l1 * fma(-l2 * m2 * e2, theta2_dot * theta2_dot, e0 * g * (m1 + m2)),
-                -l2 * m2 * fma(l1 * (theta1_dot * theta1_dot), e2, e1 * g),
+                -l1 * fma(l2 * m2 * e2, theta2_dot * theta2_dot, e0 * g * (m1 + m2)),
+                -l2 * m2 * fma(-l1 * (theta1_dot * theta1_dot), e2, e1 * g),
             ],
         )
     }
@@ -124,7 +124,7 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
         let e3 = ::lagrange::nalgebra::ComplexField::sin(theta1);
         let e4 = ::lagrange::nalgebra::ComplexField::sin(theta2);
         let e5 = l1 * l2 * m2 * fma(e3, e4, e1 * e2);
-        let e6 = fma(-e3, e2, e1 * e4);
+        let e6 = fma(-e1, e4, e3 * e2);
         (
             ::lagrange::nalgebra::SMatrix::<
                 S,
@@ -136,8 +136,8 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
                 2,
             >::from_column_slice(
                 &[
-                    -l1 * fma(-l2 * m2 * e6, theta2_dot * theta2_dot, e3 * g * e0),
-                    -l2 * m2 * fma(l1 * (theta1_dot * theta1_dot), e6, e4 * g),
+                    -l1 * fma(l2 * m2 * e6, theta2_dot * theta2_dot, e3 * g * e0),
+                    -l2 * m2 * fma(-l1 * (theta1_dot * theta1_dot), e6, e4 * g),
                 ],
             ),
         )
