@@ -49,7 +49,8 @@ referenced (dead code), then count every binary + - * /, every call of a math
 function (sin, cos, pow, powi, sqrt, ...), pow(x, 2) counting as one, and
 each call of the generated code's local multiply-add `fma(a, b, c)` as a
 multiply and an add (as `a*b + c` counts in C; the helper itself is not
-counted); unary
+counted), a sin(x) and a cos(x) of the same argument as one call (gcc and
+LLVM compile them to one sincos; lagrange writes one sin_cos(x)); unary
 minus is counted apart (`neg`) and not in the total; a constant written
 `(1.0/2.0)` is a literal, not a division; constants and array reads are free.
 The engine's own count (Derived::op_counts, what BENCHMARKS.md reports) and
@@ -108,7 +109,7 @@ DRIVER_FLAGS = ["-O2"]
 # --------------------------------------------------------------------------
 # operation counter, shared by the C and the Rust text
 # --------------------------------------------------------------------------
-MATH_FUNCS = {"sin", "cos", "tan", "exp", "log", "sqrt", "pow", "powi", "powf",
+MATH_FUNCS = {"sin", "cos", "sin_cos", "tan", "exp", "log", "sqrt", "pow", "powi", "powf",
               "atan2", "asin", "acos", "atan", "sinh", "cosh", "tanh", "abs", "fabs",
               "cbrt", "exp2", "log2", "log10", "hypot"}
 FMA_FUNCS = {"fma", "fma_", "fma__"}
@@ -155,6 +156,18 @@ def count_tokens(toks):
         operand_end = bool(re.match(r"[A-Za-z_0-9.]", t)) or t in (")", "]")
     c["total"] = c["add"] + c["sub"] + c["mul"] + c["div"] + c["call"]
     return c
+
+
+def sin_cos_pairs(token_lists):
+    """Arguments of which the text takes both sin(x) and cos(x) as two calls:
+    compilers make them one sincos call (gcc and LLVM alike), so each pair
+    counts as one call, as lagrange's sin_cos(x) does."""
+    seen = {"sin": set(), "cos": set()}
+    for toks in token_lists:
+        for i in range(len(toks) - 3):
+            if toks[i] in seen and toks[i + 1] == "(" and toks[i + 3] == ")":
+                seen[toks[i]].add(toks[i + 2])
+    return len(seen["sin"] & seen["cos"])
 
 
 def split_statements(body):
@@ -211,6 +224,7 @@ def count_ops(body):
         c = count_tokens(toks)
         for k in total:
             total[k] += c[k]
+    total["call"] -= sin_cos_pairs(list(binds.values()) + others)
     total["total"] = total["add"] + total["sub"] + total["mul"] + total["div"] + total["call"]
     total["bindings"] = len(binds)
     return total
@@ -220,12 +234,15 @@ def count_ops_all(body):
     """The same without dead-binding elimination (the text exactly as written)."""
     body = CONST_DIV_RE.sub("1.0", body)
     total = {"add": 0, "sub": 0, "mul": 0, "div": 0, "call": 0, "neg": 0}
+    lists = []
     for s in split_statements(body):
         mt = BIND_RE.match(s)
         toks = tokenize(mt.group(2) if (mt and not s.startswith("let (")) else s)
+        lists.append(toks)
         c = count_tokens(toks)
         for k in total:
             total[k] += c[k]
+    total["call"] -= sin_cos_pairs(lists)
     total["total"] = total["add"] + total["sub"] + total["mul"] + total["div"] + total["call"]
     return total
 
@@ -247,7 +264,7 @@ def rust_body(text):
     # the destructuring of q, qdot and self, and constant conversions are free
     stmts = []
     for s in split_statements(body):
-        if s.startswith("let (") or s.startswith("let [") or s.startswith("let Self"):
+        if (s.startswith("let (") and "sin_cos" not in s) or s.startswith("let [") or s.startswith("let Self"):
             continue
         if "convert::<" in s:
             continue

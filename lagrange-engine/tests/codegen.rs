@@ -84,3 +84,14 @@ fn fused_multiply_add_only_where_the_target_has_it() {
         .expect("the plain branch");
     assert!(cfg < body.find("mul_add").unwrap() && body.find("mul_add").unwrap() < not_cfg);
 }
+
+#[test]
+fn a_sine_and_a_cosine_of_one_angle_are_one_sin_cos() {
+    let mf = methods(&indexed_chain(3))
+        .into_iter()
+        .find(|f| f.sig.ident == "mass_matrix_and_forcing")
+        .unwrap();
+    let body = mf.block.to_token_stream().to_string();
+    assert_eq!(mentions(&body, "sin_cos"), 3, "{body}");
+    assert_eq!(mentions(&body, "sin") + mentions(&body, "cos"), 0, "{body}");
+}

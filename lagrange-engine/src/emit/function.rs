@@ -53,7 +53,29 @@ impl<'a> FnEmitter<'a> {
             fma: None,
         };
         let order = e.sched.order.clone();
+        // Each sine's and cosine's pair, for the one `let` of both.
+        let mut partner: HashMap<ExprId, (ExprId, ExprId)> = HashMap::new();
+        for &(s, c) in &e.sched.sin_cos {
+            partner.insert(s, (s, c));
+            partner.insert(c, (s, c));
+        }
         for id in order {
+            if e.names.contains_key(&id) {
+                continue;
+            }
+            if let Some(&(s, c)) = partner.get(&id) {
+                let Node::Func(_, a) = *e.pool.node(s) else {
+                    unreachable!("a sin_cos pair is of sines and cosines")
+                };
+                let a = e.operand(a, Prec::Sum);
+                let (sn, cn) = (e.namer.fresh("e", true), e.namer.fresh("e", true));
+                let na = nalgebra();
+                e.stmts
+                    .push(quote!(let (#sn, #cn) = #na::ComplexField::sin_cos(#a);));
+                e.names.insert(s, sn);
+                e.names.insert(c, cn);
+                continue;
+            }
             if e.sched.bound[id.index()] {
                 let (value, _) = e.inline(id);
                 let name = e.namer.fresh("e", true);

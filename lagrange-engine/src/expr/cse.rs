@@ -10,8 +10,10 @@
 //! needs no `let` of its own unless something else uses it whole. The
 //! choice depends only on the node, never on what else the function holds,
 //! so an expression rounds the same in every function that computes it.
+//! A sine and a cosine of the same argument are one `sin_cos` call.
 
-use super::{ExprId, Node, Pool};
+use super::{ExprId, Func, Node, Pool};
+use std::collections::BTreeMap;
 
 /// What one emitted function computes, and how.
 pub struct Schedule {
@@ -23,6 +25,9 @@ pub struct Schedule {
     pub uses: Vec<u32>,
     /// Whether each node (indexed by id) is bound to a `let`.
     pub bound: Vec<bool>,
+    /// `(sin(x), cos(x))` pairs the function writes both of: computed by
+    /// one `sin_cos(x)` and bound together.
+    pub sin_cos: Vec<(ExprId, ExprId)>,
 }
 
 /// Small integer exponents are emitted as repeated products (`x * x`), which
@@ -103,7 +108,33 @@ pub fn schedule(pool: &Pool, roots: &[ExprId]) -> Schedule {
             bound[id.index()] = true;
         }
     }
-    Schedule { order, uses, bound }
+    // Sines and cosines of one argument, both written: one `sin_cos`. The
+    // argument's id orders the pairs.
+    let mut by_argument: BTreeMap<ExprId, (Option<ExprId>, Option<ExprId>)> = BTreeMap::new();
+    for &id in &order {
+        if uses[id.index()] == 0 {
+            continue;
+        }
+        match pool.node(id) {
+            Node::Func(Func::Sin, a) => by_argument.entry(*a).or_default().0 = Some(id),
+            Node::Func(Func::Cos, a) => by_argument.entry(*a).or_default().1 = Some(id),
+            _ => {}
+        }
+    }
+    let sin_cos: Vec<(ExprId, ExprId)> = by_argument
+        .into_values()
+        .filter_map(|(s, c)| Some((s?, c?)))
+        .collect();
+    for &(s, c) in &sin_cos {
+        bound[s.index()] = true;
+        bound[c.index()] = true;
+    }
+    Schedule {
+        order,
+        uses,
+        bound,
+        sin_cos,
+    }
 }
 
 /// Uses of each node counted on the DAG (every operand of every reachable
@@ -200,6 +231,8 @@ pub fn shared_ops(pool: &Pool, roots: &[ExprId]) -> OpCount {
         total.arithmetic += c.arithmetic;
         total.calls += c.calls;
     }
+    // A sine and a cosine of one argument are one call.
+    total.calls -= sched.sin_cos.len() as u64;
     total
 }
 

@@ -42,18 +42,14 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
-        let e0 = l1 * l2 * m2
-            * fma(
-                ::lagrange::nalgebra::ComplexField::sin(theta1),
-                ::lagrange::nalgebra::ComplexField::sin(theta2),
-                ::lagrange::nalgebra::ComplexField::cos(theta1)
-                    * ::lagrange::nalgebra::ComplexField::cos(theta2),
-            );
+        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let e4 = l1 * l2 * m2 * fma(e0, e2, e1 * e3);
         ::lagrange::nalgebra::SMatrix::<
             S,
             2,
             2,
-        >::from_column_slice(&[(l1 * l1) * (m1 + m2), e0, e0, m2 * (l2 * l2)])
+        >::from_column_slice(&[(l1 * l1) * (m1 + m2), e4, e4, m2 * (l2 * l2)])
     }
     /// The forcing `f(t, q, q̇)` of `M q̈ = f`.
     #[inline]
@@ -78,20 +74,16 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
-        let e0 = ::lagrange::nalgebra::ComplexField::sin(theta1);
-        let e1 = ::lagrange::nalgebra::ComplexField::sin(theta2);
-        let e2 = fma(
-            -::lagrange::nalgebra::ComplexField::cos(theta1),
-            e1,
-            e0 * ::lagrange::nalgebra::ComplexField::cos(theta2),
-        );
+        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let e4 = fma(-e1, e2, e0 * e3);
         ::lagrange::nalgebra::SVector::<
             S,
             2,
         >::from_column_slice(
             &[
-                -l1 * fma(l2 * m2 * e2, theta2_dot * theta2_dot, e0 * g * (m1 + m2)),
-                -l2 * m2 * fma(-l1 * (theta1_dot * theta1_dot), e2, e1 * g),
+                -l1 * fma(l2 * m2 * e4, theta2_dot * theta2_dot, e0 * g * (m1 + m2)),
+                -l2 * m2 * fma(-l1 * (theta1_dot * theta1_dot), e4, e2 * g),
             ],
         )
     }
@@ -119,12 +111,10 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let e0 = m1 + m2;
-        let e1 = ::lagrange::nalgebra::ComplexField::cos(theta1);
-        let e2 = ::lagrange::nalgebra::ComplexField::cos(theta2);
-        let e3 = ::lagrange::nalgebra::ComplexField::sin(theta1);
-        let e4 = ::lagrange::nalgebra::ComplexField::sin(theta2);
-        let e5 = l1 * l2 * m2 * fma(e3, e4, e1 * e2);
-        let e6 = fma(-e1, e4, e3 * e2);
+        let (e1, e2) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let (e3, e4) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let e5 = l1 * l2 * m2 * fma(e1, e3, e2 * e4);
+        let e6 = fma(-e2, e3, e1 * e4);
         (
             ::lagrange::nalgebra::SMatrix::<
                 S,
@@ -136,8 +126,8 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
                 2,
             >::from_column_slice(
                 &[
-                    -l1 * fma(l2 * m2 * e6, theta2_dot * theta2_dot, e3 * g * e0),
-                    -l2 * m2 * fma(-l1 * (theta1_dot * theta1_dot), e6, e4 * g),
+                    -l1 * fma(l2 * m2 * e6, theta2_dot * theta2_dot, e1 * g * e0),
+                    -l2 * m2 * fma(-l1 * (theta1_dot * theta1_dot), e6, e3 * g),
                 ],
             ),
         )
@@ -166,17 +156,11 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let k0: S = ::lagrange::nalgebra::convert::<f64, S>(0.5f64);
-        let e0 = fma(
-            l2 * ::lagrange::nalgebra::ComplexField::cos(theta2),
-            theta2_dot,
-            l1 * ::lagrange::nalgebra::ComplexField::cos(theta1) * theta1_dot,
-        );
-        let e1 = fma(
-            l2 * ::lagrange::nalgebra::ComplexField::sin(theta2),
-            theta2_dot,
-            l1 * ::lagrange::nalgebra::ComplexField::sin(theta1) * theta1_dot,
-        );
-        fma(k0 * m2, e0 * e0 + e1 * e1, k0 * m1 * (l1 * l1) * (theta1_dot * theta1_dot))
+        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let e4 = fma(l2 * e3, theta2_dot, l1 * e1 * theta1_dot);
+        let e5 = fma(l2 * e2, theta2_dot, l1 * e0 * theta1_dot);
+        fma(k0 * m2, e4 * e4 + e5 * e5, k0 * m1 * (l1 * l1) * (theta1_dot * theta1_dot))
     }
     /// Potential energy `V(t, q)`.
     #[inline]
@@ -224,23 +208,19 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let k0: S = ::lagrange::nalgebra::convert::<f64, S>(0.5f64);
-        let e0 = ::lagrange::nalgebra::ComplexField::cos(theta1);
-        let e1 = ::lagrange::nalgebra::ComplexField::cos(theta2);
-        let e2 = fma(l2 * e1, theta2_dot, l1 * e0 * theta1_dot);
-        let e3 = fma(
-            l2 * ::lagrange::nalgebra::ComplexField::sin(theta2),
-            theta2_dot,
-            l1 * ::lagrange::nalgebra::ComplexField::sin(theta1) * theta1_dot,
-        );
+        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let e4 = fma(l2 * e3, theta2_dot, l1 * e1 * theta1_dot);
+        let e5 = fma(l2 * e2, theta2_dot, l1 * e0 * theta1_dot);
         fma(
             -m2 * g,
-            fma(l1, e0, l2 * e1),
+            fma(l1, e1, l2 * e3),
             fma(
-                -l1 * e0 * m1,
+                -l1 * e1 * m1,
                 g,
                 fma(
                     k0 * m2,
-                    e2 * e2 + e3 * e3,
+                    e4 * e4 + e5 * e5,
                     k0 * m1 * (l1 * l1) * (theta1_dot * theta1_dot),
                 ),
             ),
@@ -269,19 +249,17 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
-        let e0 = ::lagrange::nalgebra::ComplexField::cos(theta1);
-        let e1 = ::lagrange::nalgebra::ComplexField::cos(theta2);
-        let e2 = fma(l2 * e1, theta2_dot, l1 * e0 * theta1_dot);
-        let e3 = ::lagrange::nalgebra::ComplexField::sin(theta1);
-        let e4 = ::lagrange::nalgebra::ComplexField::sin(theta2);
-        let e5 = fma(l2 * e4, theta2_dot, l1 * e3 * theta1_dot);
+        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let e4 = fma(l2 * e3, theta2_dot, l1 * e1 * theta1_dot);
+        let e5 = fma(l2 * e2, theta2_dot, l1 * e0 * theta1_dot);
         ::lagrange::nalgebra::SVector::<
             S,
             2,
         >::from_column_slice(
             &[
-                fma(l1 * m2, fma(e3, e5, e0 * e2), m1 * theta1_dot * (l1 * l1)),
-                l2 * m2 * fma(e4, e5, e1 * e2),
+                fma(l1 * m2, fma(e0, e5, e1 * e4), m1 * theta1_dot * (l1 * l1)),
+                l2 * m2 * fma(e2, e5, e3 * e4),
             ],
         )
     }
@@ -308,12 +286,10 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
-        let e0 = ::lagrange::nalgebra::ComplexField::sin(theta1);
-        let e1 = ::lagrange::nalgebra::ComplexField::cos(theta1);
-        let e2 = ::lagrange::nalgebra::ComplexField::cos(theta2);
-        let e3 = fma(l2 * e2, theta2_dot, l1 * e1 * theta1_dot);
-        let e4 = ::lagrange::nalgebra::ComplexField::sin(theta2);
-        let e5 = fma(l2 * e4, theta2_dot, l1 * e0 * theta1_dot);
+        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let e4 = fma(l2 * e3, theta2_dot, l1 * e1 * theta1_dot);
+        let e5 = fma(l2 * e2, theta2_dot, l1 * e0 * theta1_dot);
         ::lagrange::nalgebra::SVector::<
             S,
             2,
@@ -322,9 +298,9 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
                 fma(
                     -l1 * e0 * g,
                     m1 + m2,
-                    -l1 * theta1_dot * m2 * fma(-e1, e5, e0 * e3),
+                    -l1 * theta1_dot * m2 * fma(-e1, e5, e0 * e4),
                 ),
-                fma(-l2 * e4 * m2, g, -l2 * m2 * theta2_dot * fma(-e2, e5, e4 * e3)),
+                fma(-l2 * e2 * m2, g, -l2 * m2 * theta2_dot * fma(-e3, e5, e2 * e4)),
             ],
         )
     }
