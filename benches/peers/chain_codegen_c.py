@@ -481,6 +481,23 @@ int main(int argc, char** argv) {
 }
 """
 
+C_FLOOR = r"""
+/* The trigonometric floor (peers/chain_codegen_c.py): the NN sincos calls
+   that both the SymPy C (gcc merges its sin and cos) and lagrange's code
+   make, their results stored, nothing else; same driver. */
+#define _GNU_SOURCE
+#include <math.h>
+void mf(const double* q, const double* qd, const double* m, const double* l, double* M, double* f)
+{
+    for (int i = 0; i < NN; i++) {
+        double s, c;
+        sincos(q[i], &s, &c);
+        f[i] = s;
+        M[i] = c;
+    }
+}
+"""
+
 RUST_MAIN = r"""//! Times lagrange's generated mass_matrix_and_forcing for the __N__-link chain
 //! (peers/chain_codegen_c.py). `values` prints M (row-major) and f at fixed
 //! states; `time ITERS` prints the best of 5 ns per call.
@@ -718,6 +735,14 @@ def main():
             fh.write(C_DRIVER.replace("CHECK_STATES", ", ".join(map(str, CHECK_STATES))))
         drv_o = os.path.join(C_DIR, "driver_%d.o" % n)
         subprocess.run(["gcc"] + DRIVER_FLAGS + ["-DNN=%d" % n, "-c", drv_c, "-o", drv_o], check=True)
+        # the floor: the N sincos calls both sides make, and nothing else
+        floor_c = os.path.join(C_DIR, "sincos_floor.c")
+        with open(floor_c, "w") as fh:
+            fh.write(C_FLOOR)
+        floor_o = os.path.join(C_DIR, "sincos_floor_%d.o" % n)
+        subprocess.run(["gcc"] + CFLAGS["O3"] + ["-DNN=%d" % n, "-c", floor_c, "-o", floor_o], check=True)
+        rows[n]["floor_exe"] = os.path.join(C_DIR, "sincos_floor_%d" % n)
+        subprocess.run(["gcc", drv_o, floor_o, "-o", rows[n]["floor_exe"], "-lm"], check=True)
         for v, rec in rows[n]["sympy"].items():
             if "c_file" not in rec:
                 continue
@@ -795,7 +820,7 @@ def main():
     # ---- E: timing -------------------------------------------------------------
     for n in ns:
         it = iters_for(n)
-        jobs = [("ours", rows[n]["ours"]["exe"])]
+        jobs = [("ours", rows[n]["ours"]["exe"]), ("sincos_floor", rows[n]["floor_exe"])]
         if args.native_rust:
             jobs.append(("ours_native", rows[n]["ours"]["exe_native"]))
         for v, rec in rows[n]["sympy"].items():
@@ -834,6 +859,8 @@ def retime(args):
     for n in ns:
         r = data["rows"][str(n)]
         jobs = [("ours", r["ours"]["exe"])]
+        if "floor_exe" in r:
+            jobs.append(("sincos_floor", r["floor_exe"]))
         if "exe_native" in r["ours"]:
             jobs.append(("ours_native", r["ours"]["exe_native"]))
         for v, rec in r["sympy"].items():
@@ -888,10 +915,12 @@ def summary(rows, ns, timings):
     L = ["## Summary", "",
          "ops: the counter on both texts (SymPy LM + cse, the idiomatic route); C: the fastest SymPy variant's "
          "code per flag set; ours: cargo --release defaults; ours native: RUSTFLAGS='-C target-cpu=native'; "
-         "ns per call, best.", "",
+         "N sincos alone: the same driver around the N sincos calls both sides make and nothing else "
+         "(a floor for both); ns per call, best.", "",
          "| N | ops SymPy LM + cse | ops ours | ops ours / SymPy | C -O3 -march=native ns | C -O3 -ffast-math ns "
-         "| ours ns | ours / C -O3 | ours native ns | ours native / C -ffast-math | ours native vs ours, rel. diff M, f |",
-         "|---:|" + "---:|" * 10]
+         "| ours ns | ours / C -O3 | ours native ns | ours native / C -ffast-math | N sincos alone ns "
+         "| ours native vs ours, rel. diff M, f |",
+         "|---:|" + "---:|" * 11]
     for n in ns:
         r = rows[n]
         lm = r["sympy"].get("LM", {}).get("ops_counter", {}).get("total")
@@ -901,11 +930,11 @@ def summary(rows, ns, timings):
         cf = min([v for k, v in t.items() if k.endswith("_O3fm")] or [None]) if t else None
         us, nat = t.get("ours"), t.get("ours_native")
         ag = r.get("ours", {}).get("agree_native")
-        L.append("| %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+        L.append("| %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
             n, lm if lm is not None else "-", us_ops if us_ops is not None else "-",
             f1(us_ops / lm if lm and us_ops else None), f1(c3, 1), f1(cf, 1), f1(us, 1),
             f1(us / c3 if us and c3 else None), f1(nat, 1), f1(nat / cf if nat and cf else None),
-            "%.1e / %.1e" % (ag["M"], ag["f"]) if ag else "-"))
+            f1(t.get("sincos_floor"), 1), "%.1e / %.1e" % (ag["M"], ag["f"]) if ag else "-"))
     L.append("")
     return L
 
