@@ -9,6 +9,9 @@
 //! ```
 //!
 //! so that `M q̈ = f`. `M` is never inverted symbolically: the runtime solves.
+//! When `T` is quadratic in `q̇` (`M` free of `q̇`), `f` is computed from
+//! the derivatives of `M` instead (Christoffel symbols, [`forcing`]), which
+//! is the same function without the terms that cancel.
 //! On request, the Jacobians of the residual `r = M q̈ − f` with respect to
 //! `q` and `q̇`, for the Newton iterations of implicit integrators.
 //!
@@ -33,6 +36,8 @@
 
 use crate::expr::{ExprId, Pool};
 use crate::model::{Model, Symbols};
+
+mod forcing;
 
 /// A matrix of expressions, row-major.
 pub type ExprMatrix = Vec<Vec<ExprId>>;
@@ -136,8 +141,18 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         }
         nonconservative.push(pool.add(&terms));
     }
+    // The momenta and T, to be taken at rest together (one traversal).
+    let mut with_t = momenta.clone();
+    with_t.push(t_kin);
+    let conservative = forcing::conservative_forcing(pool, &s, &mass, &with_t, v_pot);
     let mut forcing = Vec::with_capacity(n);
-    for i in 0..n {
+    if let Some(f) = conservative {
+        for (i, fi) in f.into_iter().enumerate() {
+            let fi = pool.add2(fi, nonconservative[i]);
+            forcing.push(pool.factored(fi));
+        }
+    }
+    for i in forcing.len()..n {
         if pool.exhausted() {
             return Equations::exhausted();
         }

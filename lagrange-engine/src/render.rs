@@ -4,7 +4,7 @@
 //! inputs of `∂f/∂u`. Velocities read `dot(x)`, as in the model.
 
 use crate::derive::Equations;
-use crate::expr::cse::schedule;
+use crate::expr::cse::dag_uses;
 use crate::expr::{ExprId, Node, Pool};
 use crate::model::{Model, SymKind};
 use std::collections::HashMap;
@@ -170,18 +170,17 @@ pub fn render(model: &Model, eq: &Equations) -> String {
     roots.extend(&eq.forcing);
     roots.extend(constraint_roots(eq));
     roots.extend(input_roots(eq));
-    let sched = schedule(&model.pool, &roots);
+    let (order, uses) = dag_uses(&model.pool, &roots);
     let mut r = Renderer {
         model,
         names: HashMap::new(),
     };
     let mut out = String::new();
     let mut k = 0;
-    for &id in &sched.order {
+    for &id in &order {
         // Name only what is shared by more than one user; powers expanded
         // into products in code need no name in text.
-        if sched.uses[id.index()] > 1 && !matches!(model.pool.node(id), Node::Num(_) | Node::Sym(_))
-        {
+        if uses[id.index()] > 1 && !matches!(model.pool.node(id), Node::Num(_) | Node::Sym(_)) {
             let (s, _) = r.inline(id);
             let name = format!("e{k}");
             k += 1;

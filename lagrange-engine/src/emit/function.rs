@@ -1,10 +1,17 @@
 //! One generated function's body: the symbols it reads destructured once,
 //! the constants converted to `S` once, every shared node bound to a `let`
 //! (see [`cse`](crate::expr::cse)), and the roots' expressions.
+//!
+//! A sum's product terms after the first are written as multiply-adds
+//! through a local `fma(a, b, c)`: `a.mul_add(b, c)` where the target has
+//! fused multiply-add in hardware (`cfg(target_feature = "fma")`, e.g.
+//! `-C target-cpu=native` on a recent x86-64), `a * b + c` otherwise, which
+//! rounds exactly as the sum written out (`c + a * b`) would; never a
+//! software fma.
 
 use super::names::Namer;
 use super::outline::nalgebra;
-use crate::expr::cse::{expands_to_product, schedule, Schedule};
+use crate::expr::cse::{expands_to_product, fused_term, schedule, Schedule};
 use crate::expr::{ExprId, Node, Pool};
 use crate::model::Model;
 use proc_macro2::{Ident, Literal, TokenStream};
@@ -28,6 +35,8 @@ struct FnEmitter<'a> {
     consts: Vec<(Ident, f64)>,
     const_names: HashMap<u64, Ident>,
     stmts: Vec<TokenStream>,
+    /// The local multiply-add, once a sum needs it.
+    fma: Option<Ident>,
 }
 
 impl<'a> FnEmitter<'a> {
@@ -41,9 +50,32 @@ impl<'a> FnEmitter<'a> {
             consts: Vec::new(),
             const_names: HashMap::new(),
             stmts: Vec::new(),
+            fma: None,
         };
         let order = e.sched.order.clone();
+        // Each sine's and cosine's pair, for the one `let` of both.
+        let mut partner: HashMap<ExprId, (ExprId, ExprId)> = HashMap::new();
+        for &(s, c) in &e.sched.sin_cos {
+            partner.insert(s, (s, c));
+            partner.insert(c, (s, c));
+        }
         for id in order {
+            if e.names.contains_key(&id) {
+                continue;
+            }
+            if let Some(&(s, c)) = partner.get(&id) {
+                let Node::Func(_, a) = *e.pool.node(s) else {
+                    unreachable!("a sin_cos pair is of sines and cosines")
+                };
+                let a = e.operand(a, Prec::Sum);
+                let (sn, cn) = (e.namer.fresh("e", true), e.namer.fresh("e", true));
+                let na = nalgebra();
+                e.stmts
+                    .push(quote!(let (#sn, #cn) = #na::ComplexField::sin_cos(#a);));
+                e.names.insert(s, sn);
+                e.names.insert(c, cn);
+                continue;
+            }
             if e.sched.bound[id.index()] {
                 let (value, _) = e.inline(id);
                 let name = e.namer.fresh("e", true);
@@ -114,7 +146,30 @@ impl<'a> FnEmitter<'a> {
             Node::Num(_) | Node::Sym(_) => (self.operand(id, Prec::Sum), Prec::Atom),
             Node::Add(xs) => {
                 let mut out = TokenStream::new();
+                let mut fused = false;
                 for (k, &x) in xs.iter().enumerate() {
+                    if k > 0 {
+                        if let Some((c, factors)) = fused_term(self.pool, x) {
+                            let (head, last) = factors.split_at(factors.len() - 1);
+                            let a = self.product(c.abs(), head);
+                            let a = if c < 0.0 { quote!(-#a) } else { a };
+                            let b = self.operand(last[0], Prec::Sum);
+                            let fma = self.fma();
+                            out = quote!(#fma(#a, #b, #out));
+                            fused = true;
+                            continue;
+                        }
+                    }
+                    if let Some(name) = self.names.get(&x) {
+                        let name = name.clone();
+                        out.extend(if k == 0 {
+                            quote!(#name)
+                        } else {
+                            quote!(+ #name)
+                        });
+                        fused = false;
+                        continue;
+                    }
                     let (c, factors) = self.split(x);
                     let term = self.product(c.abs(), &factors);
                     // Extended in place: a sum of many terms is written in
@@ -125,8 +180,9 @@ impl<'a> FnEmitter<'a> {
                         (_, false) => quote!(+ #term),
                         (_, true) => quote!(- #term),
                     });
+                    fused = false;
                 }
-                (out, Prec::Sum)
+                (out, if fused { Prec::Atom } else { Prec::Sum })
             }
             Node::Mul(_) => {
                 let (c, factors) = self.split(id);
@@ -165,6 +221,14 @@ impl<'a> FnEmitter<'a> {
                 (quote!(#na::RealField::atan2(#y, #x)), Prec::Atom)
             }
         }
+    }
+
+    /// The name of the local multiply-add, declared in the prelude.
+    fn fma(&mut self) -> Ident {
+        if self.fma.is_none() {
+            self.fma = Some(self.namer.fresh("fma", false));
+        }
+        self.fma.clone().expect("named above")
     }
 
     /// `mag * f1 * f2 / (d1 * d2)`, with negative constant powers as divisors.
@@ -333,6 +397,21 @@ impl<'a> FnEmitter<'a> {
             out.extend(quote!(let Self { #(#params,)* .. } = *self;));
         }
         let na = nalgebra();
+        if let Some(fma) = &self.fma {
+            out.extend(quote! {
+                #[inline(always)]
+                fn #fma<S: #na::RealField + ::core::marker::Copy>(a: S, b: S, c: S) -> S {
+                    #[cfg(target_feature = "fma")]
+                    {
+                        #na::ComplexField::mul_add(a, b, c)
+                    }
+                    #[cfg(not(target_feature = "fma"))]
+                    {
+                        a * b + c
+                    }
+                }
+            });
+        }
         for (name, v) in &self.consts {
             let lit = float_tokens(*v);
             out.extend(quote!(let #name: S = #na::convert::<f64, S>(#lit);));

@@ -13,6 +13,7 @@
 //!   factors out of a sum;
 //! - [`diff`]: differentiation, memoized;
 //! - [`eval`]: numeric evaluation, for tests and compile-time checks;
+//! - [`substitute`]: symbols set to zero (`T` at rest);
 //! - [`cse`]: which shared nodes an emitted function binds to `let`s.
 
 pub mod content;
@@ -21,6 +22,7 @@ pub mod diff;
 pub mod eval;
 pub mod pool;
 pub mod simplify;
+pub mod substitute;
 
 pub use pool::{Exceeded, Pool, DEFAULT_BUDGET, MAX_DEPTH};
 

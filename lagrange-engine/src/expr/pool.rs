@@ -228,10 +228,35 @@ impl Pool {
             .iter()
             .enumerate()
             .flat_map(|(w, &bits)| {
-                (0..64)
-                    .filter(move |b| bits & (1 << b) != 0)
-                    .map(move |b| SymId((64 * w + b) as u32))
+                // The set bits only, lowest first.
+                std::iter::successors((bits != 0).then_some(bits), |&b| {
+                    let rest = b & (b - 1);
+                    (rest != 0).then_some(rest)
+                })
+                .map(move |b| SymId((64 * w) as u32 + b.trailing_zeros()))
             })
+    }
+
+    /// A set of symbols, for [`Pool::depends_on_any`].
+    pub fn symbol_set(syms: &[SymId]) -> Box<[u64]> {
+        let words = syms
+            .iter()
+            .map(|s| s.0 as usize / 64 + 1)
+            .max()
+            .unwrap_or(0);
+        let mut bits = vec![0u64; words];
+        for s in syms {
+            bits[s.0 as usize / 64] |= 1 << (s.0 % 64);
+        }
+        bits.into_boxed_slice()
+    }
+
+    /// Whether `id` depends on any symbol of `set` (from [`Pool::symbol_set`]).
+    pub fn depends_on_any(&self, id: ExprId, set: &[u64]) -> bool {
+        self.deps[id.index()]
+            .iter()
+            .zip(set)
+            .any(|(a, b)| a & b != 0)
     }
 
     /// The constant value of a `Num` node.

@@ -25,7 +25,7 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
     /// `let x[i in 0..N]` is `x[0]` … `x[N-1]`).
     pub const LETS: [&'static str; 4] = ["x1", "y1", "x2", "y2"];
     ///The derived equations `M q̈ = f`, readable: shared subexpressions first, then each entry.
-    pub const EQUATIONS: &'static str = "e0 = m1 + m2\ne1 = cos(theta1)\ne2 = cos(theta2)\ne3 = sin(theta1)\ne4 = sin(theta2)\ne5 = e1*e4 - e3*e2\nM[theta1, theta1] = l1^2*e0\nM[theta1, theta2] = l1*l2*m2*(e1*e2 + e3*e4)\nM[theta2, theta2] = m2*l2^2\nf[theta1] = -l1*(e3*g*e0 - l2*m2*e5*dot(theta2)^2)\nf[theta2] = -l2*m2*(e4*g + l1*dot(theta1)^2*e5)\n";
+    pub const EQUATIONS: &'static str = "e0 = m1 + m2\ne1 = cos(theta1)\ne2 = cos(theta2)\ne3 = sin(theta1)\ne4 = sin(theta2)\ne5 = e3*e2 - e1*e4\nM[theta1, theta1] = l1^2*e0\nM[theta1, theta2] = l1*l2*m2*(e1*e2 + e3*e4)\nM[theta2, theta2] = m2*l2^2\nf[theta1] = -l1*(e3*g*e0 + l2*m2*e5*dot(theta2)^2)\nf[theta2] = -l2*m2*(e4*g - l1*dot(theta1)^2*e5)\n";
     ///A `DoublePendulum` with the given parameters (`m1`, `m2`, `l1`, `l2`, `g`).
     #[inline]
     pub const fn new(m1: S, m2: S, l1: S, l2: S, g: S) -> Self {
@@ -40,16 +40,24 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
     ) -> ::lagrange::nalgebra::SMatrix<S, 2, 2> {
         let [theta1, theta2] = [q[0], q[1]];
         let Self { m1, m2, l1, l2, .. } = *self;
-        let e0 = l1 * l2 * m2
-            * (::lagrange::nalgebra::ComplexField::cos(theta1)
-                * ::lagrange::nalgebra::ComplexField::cos(theta2)
-                + ::lagrange::nalgebra::ComplexField::sin(theta1)
-                    * ::lagrange::nalgebra::ComplexField::sin(theta2));
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
+        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let e4 = l1 * l2 * m2 * fma(e0, e2, e1 * e3);
         ::lagrange::nalgebra::SMatrix::<
             S,
             2,
             2,
-        >::from_column_slice(&[(l1 * l1) * (m1 + m2), e0, e0, m2 * (l2 * l2)])
+        >::from_column_slice(&[(l1 * l1) * (m1 + m2), e4, e4, m2 * (l2 * l2)])
     }
     /// The forcing `f(t, q, q̇)` of `M q̈ = f`.
     #[inline]
@@ -64,17 +72,26 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             [qdot[0], qdot[1]],
         );
         let Self { m1, m2, l1, l2, g, .. } = *self;
-        let e0 = ::lagrange::nalgebra::ComplexField::sin(theta1);
-        let e1 = ::lagrange::nalgebra::ComplexField::sin(theta2);
-        let e2 = ::lagrange::nalgebra::ComplexField::cos(theta1) * e1
-            - e0 * ::lagrange::nalgebra::ComplexField::cos(theta2);
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
+        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let e4 = fma(-e1, e2, e0 * e3);
         ::lagrange::nalgebra::SVector::<
             S,
             2,
         >::from_column_slice(
             &[
-                -l1 * (e0 * g * (m1 + m2) - l2 * m2 * e2 * (theta2_dot * theta2_dot)),
-                -l2 * m2 * (e1 * g + l1 * (theta1_dot * theta1_dot) * e2),
+                -l1 * fma(l2 * m2 * e4, theta2_dot * theta2_dot, e0 * g * (m1 + m2)),
+                -l2 * m2 * fma(-l1 * (theta1_dot * theta1_dot), e4, e2 * g),
             ],
         )
     }
@@ -91,13 +108,21 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             [qdot[0], qdot[1]],
         );
         let Self { m1, m2, l1, l2, g, .. } = *self;
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
         let e0 = m1 + m2;
-        let e1 = ::lagrange::nalgebra::ComplexField::cos(theta1);
-        let e2 = ::lagrange::nalgebra::ComplexField::cos(theta2);
-        let e3 = ::lagrange::nalgebra::ComplexField::sin(theta1);
-        let e4 = ::lagrange::nalgebra::ComplexField::sin(theta2);
-        let e5 = l1 * l2 * m2 * (e1 * e2 + e3 * e4);
-        let e6 = e1 * e4 - e3 * e2;
+        let (e1, e2) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let (e3, e4) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let e5 = l1 * l2 * m2 * fma(e1, e3, e2 * e4);
+        let e6 = fma(-e2, e3, e1 * e4);
         (
             ::lagrange::nalgebra::SMatrix::<
                 S,
@@ -109,8 +134,8 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
                 2,
             >::from_column_slice(
                 &[
-                    -l1 * (e3 * g * e0 - l2 * m2 * e6 * (theta2_dot * theta2_dot)),
-                    -l2 * m2 * (e4 * g + l1 * (theta1_dot * theta1_dot) * e6),
+                    -l1 * fma(l2 * m2 * e6, theta2_dot * theta2_dot, e1 * g * e0),
+                    -l2 * m2 * fma(-l1 * (theta1_dot * theta1_dot), e6, e3 * g),
                 ],
             ),
         )
@@ -128,21 +153,44 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             [qdot[0], qdot[1]],
         );
         let Self { m1, m2, l1, l2, .. } = *self;
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
         let k0: S = ::lagrange::nalgebra::convert::<f64, S>(0.5f64);
-        let e0 = l1 * ::lagrange::nalgebra::ComplexField::cos(theta1) * theta1_dot
-            + l2 * ::lagrange::nalgebra::ComplexField::cos(theta2) * theta2_dot;
-        let e1 = l1 * ::lagrange::nalgebra::ComplexField::sin(theta1) * theta1_dot
-            + l2 * ::lagrange::nalgebra::ComplexField::sin(theta2) * theta2_dot;
-        k0 * m1 * (l1 * l1) * (theta1_dot * theta1_dot) + k0 * m2 * (e0 * e0 + e1 * e1)
+        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let e4 = fma(l2 * e3, theta2_dot, l1 * e1 * theta1_dot);
+        let e5 = fma(l2 * e2, theta2_dot, l1 * e0 * theta1_dot);
+        fma(k0 * m2, e4 * e4 + e5 * e5, k0 * m1 * (l1 * l1) * (theta1_dot * theta1_dot))
     }
     /// Potential energy `V(t, q)`.
     #[inline]
     pub fn potential_energy(&self, t: S, q: &::lagrange::nalgebra::SVector<S, 2>) -> S {
         let [theta1, theta2] = [q[0], q[1]];
         let Self { m1, m2, l1, l2, g, .. } = *self;
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
         let e0 = ::lagrange::nalgebra::ComplexField::cos(theta1);
-        -l1 * e0 * m1 * g
-            - m2 * g * (l2 * ::lagrange::nalgebra::ComplexField::cos(theta2) + l1 * e0)
+        fma(
+            -m2 * g,
+            fma(l1, e0, l2 * ::lagrange::nalgebra::ComplexField::cos(theta2)),
+            -l1 * e0 * m1 * g,
+        )
     }
     /// Total energy `T + V`.
     #[inline]
@@ -157,14 +205,34 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             [qdot[0], qdot[1]],
         );
         let Self { m1, m2, l1, l2, g, .. } = *self;
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
         let k0: S = ::lagrange::nalgebra::convert::<f64, S>(0.5f64);
-        let e0 = ::lagrange::nalgebra::ComplexField::cos(theta1);
-        let e1 = ::lagrange::nalgebra::ComplexField::cos(theta2);
-        let e2 = l1 * e0 * theta1_dot + l2 * e1 * theta2_dot;
-        let e3 = l1 * ::lagrange::nalgebra::ComplexField::sin(theta1) * theta1_dot
-            + l2 * ::lagrange::nalgebra::ComplexField::sin(theta2) * theta2_dot;
-        k0 * m1 * (l1 * l1) * (theta1_dot * theta1_dot) + k0 * m2 * (e2 * e2 + e3 * e3)
-            - l1 * e0 * m1 * g - m2 * g * (l2 * e1 + l1 * e0)
+        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let e4 = fma(l2 * e3, theta2_dot, l1 * e1 * theta1_dot);
+        let e5 = fma(l2 * e2, theta2_dot, l1 * e0 * theta1_dot);
+        fma(
+            -m2 * g,
+            fma(l1, e1, l2 * e3),
+            fma(
+                -l1 * e1 * m1,
+                g,
+                fma(
+                    k0 * m2,
+                    e4 * e4 + e5 * e5,
+                    k0 * m1 * (l1 * l1) * (theta1_dot * theta1_dot),
+                ),
+            ),
+        )
     }
     /// The generalized momenta `p = ∂L/∂q̇`.
     #[inline]
@@ -179,19 +247,27 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             [qdot[0], qdot[1]],
         );
         let Self { m1, m2, l1, l2, .. } = *self;
-        let e0 = ::lagrange::nalgebra::ComplexField::cos(theta1);
-        let e1 = ::lagrange::nalgebra::ComplexField::cos(theta2);
-        let e2 = l1 * e0 * theta1_dot + l2 * e1 * theta2_dot;
-        let e3 = ::lagrange::nalgebra::ComplexField::sin(theta1);
-        let e4 = ::lagrange::nalgebra::ComplexField::sin(theta2);
-        let e5 = l1 * e3 * theta1_dot + l2 * e4 * theta2_dot;
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
+        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let e4 = fma(l2 * e3, theta2_dot, l1 * e1 * theta1_dot);
+        let e5 = fma(l2 * e2, theta2_dot, l1 * e0 * theta1_dot);
         ::lagrange::nalgebra::SVector::<
             S,
             2,
         >::from_column_slice(
             &[
-                m1 * theta1_dot * (l1 * l1) + l1 * m2 * (e0 * e2 + e3 * e5),
-                l2 * m2 * (e1 * e2 + e4 * e5),
+                fma(l1 * m2, fma(e0, e5, e1 * e4), m1 * theta1_dot * (l1 * l1)),
+                l2 * m2 * fma(e2, e5, e3 * e4),
             ],
         )
     }
@@ -208,19 +284,31 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             [qdot[0], qdot[1]],
         );
         let Self { m1, m2, l1, l2, g, .. } = *self;
-        let e0 = ::lagrange::nalgebra::ComplexField::sin(theta1);
-        let e1 = ::lagrange::nalgebra::ComplexField::cos(theta1);
-        let e2 = ::lagrange::nalgebra::ComplexField::cos(theta2);
-        let e3 = l1 * e1 * theta1_dot + l2 * e2 * theta2_dot;
-        let e4 = ::lagrange::nalgebra::ComplexField::sin(theta2);
-        let e5 = l1 * e0 * theta1_dot + l2 * e4 * theta2_dot;
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
+        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let e4 = fma(l2 * e3, theta2_dot, l1 * e1 * theta1_dot);
+        let e5 = fma(l2 * e2, theta2_dot, l1 * e0 * theta1_dot);
         ::lagrange::nalgebra::SVector::<
             S,
             2,
         >::from_column_slice(
             &[
-                -l1 * theta1_dot * m2 * (e0 * e3 - e1 * e5) - l1 * e0 * g * (m1 + m2),
-                -l2 * m2 * theta2_dot * (e4 * e3 - e2 * e5) - l2 * e4 * m2 * g,
+                fma(
+                    -l1 * e0 * g,
+                    m1 + m2,
+                    -l1 * theta1_dot * m2 * fma(-e1, e5, e0 * e4),
+                ),
+                fma(-l2 * e2 * m2, g, -l2 * m2 * theta2_dot * fma(-e3, e5, e2 * e4)),
             ],
         )
     }
@@ -236,16 +324,20 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
     ) -> [S; 4] {
         let [theta1, theta2] = [q[0], q[1]];
         let Self { l1, l2, .. } = *self;
-        let e0 = l1 * ::lagrange::nalgebra::ComplexField::sin(theta1);
-        let e1 = -l1 * ::lagrange::nalgebra::ComplexField::cos(theta1);
-        [
-            e0,
-            e1,
-            l1 * ::lagrange::nalgebra::ComplexField::sin(theta1)
-                + l2 * ::lagrange::nalgebra::ComplexField::sin(theta2),
-            -l2 * ::lagrange::nalgebra::ComplexField::cos(theta2)
-                - l1 * ::lagrange::nalgebra::ComplexField::cos(theta1),
-        ]
+        #[inline(always)]
+        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+            a: S,
+            b: S,
+            c: S,
+        ) -> S {
+            #[cfg(target_feature = "fma")]
+            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            #[cfg(not(target_feature = "fma"))] { a * b + c }
+        }
+        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
+        let e2 = l1 * e0;
+        let (e3, e4) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        [e2, -l1 * e1, fma(l2, e3, e2), fma(-l1, e1, -l2 * e4)]
     }
     /// The value of the `let` named `name` (as `LETS` writes it: `x1`,
     /// `x[2]`) at `(t, q, q̇)`; `None` where the model has no such `let`.
