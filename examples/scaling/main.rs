@@ -197,13 +197,22 @@ fn run(options: &Options) -> Result<(), String> {
         cold = was_cold.then_some(t);
 
         println!("\nper chain (build: lib + timing binary, after touching the model):");
+        // The builds take minutes: a bar on the terminal (stderr; hidden
+        // when it is not a terminal), the lines above it.
+        let bar = indicatif::ProgressBar::new(rows.len() as u64).with_style(
+            indicatif::ProgressStyle::with_template(
+                "  {bar:40} {pos}/{len} chains built, {elapsed}",
+            )
+            .expect("a valid template"),
+        );
         for row in rows.iter_mut() {
+            bar.inc(1);
             if row.engine.is_err() {
                 row.build = Some(Err("not built: the engine refuses the model".into()));
                 continue;
             }
             let result = build_and_time(&crates, row.n, options);
-            match &result {
+            bar.suspend(|| match &result {
                 Ok(b) => {
                     print!(
                         "  N = {:>2}: check {:>6.2} s, build {:>6.2} s, M+f {:>9.1} ns",
@@ -223,13 +232,18 @@ fn run(options: &Options) -> Result<(), String> {
                     }
                     println!();
                 }
-                // A disagreement between AD and the generated code is a bug:
-                // stop here, loudly, rather than print a table around it.
-                Err(e) if e.contains("disagree") => return Err(e.clone()),
                 Err(e) => println!("  N = {:>2}: {e}", row.n),
+            });
+            // A disagreement between AD and the generated code is a bug:
+            // stop here, loudly, rather than print a table around it.
+            if let Err(e) = &result {
+                if e.contains("disagree") {
+                    return Err(e.clone());
+                }
             }
             row.build = Some(result);
         }
+        bar.finish_and_clear();
     }
 
     let load_end = machine::load_average();

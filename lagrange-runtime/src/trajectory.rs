@@ -35,6 +35,8 @@ pub struct Trajectory<S, const N: usize> {
     events: Vec<EventRecord<S, N>>,
     /// The index in `events` of the event that stopped the run.
     stopped: Option<usize>,
+    /// The time an observer stopped the run at, if one did.
+    interrupted: Option<S>,
 }
 
 /// One sample of a [`Trajectory`].
@@ -123,6 +125,7 @@ impl<S: RealField + Copy, const N: usize> Trajectory<S, N> {
             stats: Stats::default(),
             events: Vec::new(),
             stopped: None,
+            interrupted: None,
         }
     }
 
@@ -131,6 +134,22 @@ impl<S: RealField + Copy, const N: usize> Trajectory<S, N> {
     pub(crate) fn clear_events(&mut self) {
         self.events.clear();
         self.stopped = None;
+        self.interrupted = None;
+    }
+
+    /// An observer stopped the run at `t`.
+    pub(crate) fn interrupt(&mut self, t: S) {
+        self.interrupted = Some(t);
+    }
+
+    /// The time at which an [observer](crate::events::Events::observe)
+    /// stopped the run, if one did: the samples up to it are recorded,
+    /// later ones are not.
+    pub fn interrupted(&self) -> Option<S>
+    where
+        S: Copy,
+    {
+        self.interrupted
     }
 
     /// An event that happened; `stops` if it ended the run.

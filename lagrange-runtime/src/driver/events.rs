@@ -16,7 +16,7 @@ use crate::{IntegrationError, Lagrangian, NonFiniteValue};
 impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     /// Watches `events` from now on (nothing to watch if there are none).
     pub(crate) fn watch_events(&mut self, events: &'a Events<'a, S, N>) {
-        if !events.is_empty() {
+        if !events.is_empty() || events.has_observer() {
             self.watch = Some(Watch::new(events));
         }
     }
@@ -31,6 +31,11 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     /// stopped it, if any.
     pub(crate) fn events_so_far(&self) -> (&[EventRecord<S, N>], Option<&EventRecord<S, N>>) {
         (self.trajectory.events(), self.trajectory.stopped())
+    }
+
+    /// Whether the observer stopped the current call (a stepper's).
+    pub(crate) fn interrupted(&self) -> bool {
+        self.trajectory.interrupted().is_some()
     }
 
     /// Hands the watch over to a new recorder (a stepper's, restarted by
@@ -87,10 +92,13 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
         end: &State<S, N>,
         interpolant: impl FnMut(S) -> State<S, N>,
     ) -> Result<Option<Segment<S, N>>, IntegrationError<S, N>> {
-        match self.crossed_at_end(t_new, end)? {
-            Some(g_end) => self.act(model, (t, t_new), end, g_end, interpolant),
-            None => Ok(None),
+        let mut interpolant = interpolant;
+        if let Some(g_end) = self.crossed_at_end(t_new, end)? {
+            if let Some(ended) = self.act(model, (t, t_new), end, g_end, &mut interpolant)? {
+                return Ok(Some(ended));
+            }
         }
+        self.observe(model, t_new, end, interpolant)
     }
 
     /// [`watch_dense`](Self::watch_dense) for a method without dense
@@ -103,13 +111,45 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
         (t, start): (S, &State<S, N>),
         (t_new, end): (S, &State<S, N>),
     ) -> Result<Option<Segment<S, N>>, IntegrationError<S, N>> {
-        let Some(g_end) = self.crossed_at_end(t_new, end)? else {
+        if let Some(g_end) = self.crossed_at_end(t_new, end)? {
+            let qddot0 = self.rhs(model, t, &start.0, &start.1)?;
+            let qddot1 = self.rhs(model, t_new, &end.0, &end.1)?;
+            let hermite = Hermite::new((t, *start, qddot0), (t_new, *end, qddot1));
+            if let Some(ended) = self.act(model, (t, t_new), end, g_end, |s| hermite.at(s))? {
+                return Ok(Some(ended));
+            }
+        }
+        // A fixed step ends on every sample time: no sample lies strictly
+        // inside it for the observer's stop to interpolate.
+        self.observe(model, t_new, end, |_| *end)
+    }
+
+    /// The observer, if any, at an accepted step's end `(t_new, end)`: when
+    /// it asks to stop, the samples up to `t_new` are recorded (from
+    /// `interpolant` inside the step) and the run ends there.
+    fn observe<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        model: &L,
+        t_new: S,
+        end: &State<S, N>,
+        mut interpolant: impl FnMut(S) -> State<S, N>,
+    ) -> Result<Option<Segment<S, N>>, IntegrationError<S, N>> {
+        let Some(watch) = &self.watch else {
             return Ok(None);
         };
-        let qddot0 = self.rhs(model, t, &start.0, &start.1)?;
-        let qddot1 = self.rhs(model, t_new, &end.0, &end.1)?;
-        let hermite = Hermite::new((t, *start, qddot0), (t_new, *end, qddot1));
-        self.act(model, (t, t_new), end, g_end, |s| hermite.at(s))
+        if !watch.events.observe_stop(t_new, end) {
+            return Ok(None);
+        }
+        while let Some(ts) = self.pending().filter(|&ts| ts <= t_new) {
+            if ts < t_new {
+                let (q, qdot) = interpolant(ts);
+                self.record_dense(model, ts, q, qdot)?;
+            } else {
+                self.record(ts, end.0, end.1);
+            }
+        }
+        self.trajectory.interrupt(t_new);
+        Ok(Some(Segment::Done))
     }
 
     /// The events' values at a step's end if one of them changed sign in

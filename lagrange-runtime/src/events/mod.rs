@@ -337,6 +337,21 @@ pub struct Events<'a, S, const N: usize> {
     time_tolerance: Option<S>,
     min_separation: Option<S>,
     max_step: Option<S>,
+    observer: Option<Observer<'a, S, N>>,
+}
+
+/// What an observer tells the run: go on, or stop here.
+pub type Observation = core::ops::ControlFlow<()>;
+
+/// An observer `(t, q, q̇) ↦ go on or stop`.
+struct Observer<'a, S, const N: usize>(
+    Box<dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> Observation + 'a>,
+);
+
+impl<S, const N: usize> fmt::Debug for Observer<'_, S, N> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("Observer")
+    }
 }
 
 impl<S: RealField + Copy, const N: usize> Default for Events<'_, S, N> {
@@ -354,7 +369,65 @@ impl<'a, S: RealField + Copy, const N: usize> Events<'a, S, N> {
             time_tolerance: None,
             min_separation: None,
             max_step: None,
+            observer: None,
         }
+    }
+
+    /// An observer, called with `(t, q, q̇)` at the end of every accepted
+    /// step (after the events located in it): a progress bar, a log, a
+    /// watchdog. Returning [`Observation::Break`] stops the run cleanly
+    /// there: the samples up to that time are recorded (inside the step
+    /// from its interpolant), later ones are not, and
+    /// [`Trajectory::interrupted`](crate::Trajectory::interrupted) says
+    /// when. A [`Stepper`](crate::Stepper) ends its call there.
+    ///
+    /// ```
+    /// use core::cell::Cell;
+    /// use core::ops::ControlFlow;
+    /// use lagrange_runtime::prelude::*;
+    /// use lagrange_runtime::nalgebra::{SMatrix, SVector, Vector1};
+    /// # struct Spring;
+    /// # impl Lagrangian<1> for Spring {
+    /// #     type Scalar = f64;
+    /// #     const COORDINATES: [&'static str; 1] = ["x"];
+    /// #     fn mass_matrix(&self, _t: f64, _q: &SVector<f64, 1>) -> SMatrix<f64, 1, 1> {
+    /// #         SMatrix::<f64, 1, 1>::new(1.0)
+    /// #     }
+    /// #     fn forcing(&self, _t: f64, q: &SVector<f64, 1>, _qd: &SVector<f64, 1>) -> SVector<f64, 1> { -q }
+    /// #     fn kinetic_energy(&self, _t: f64, _q: &SVector<f64, 1>, qd: &SVector<f64, 1>) -> f64 { 0.5 * qd[0] * qd[0] }
+    /// #     fn potential_energy(&self, _t: f64, q: &SVector<f64, 1>) -> f64 { 0.5 * q[0] * q[0] }
+    /// # }
+    ///
+    /// // Count the steps, and stop once t passes 2 (a budget, a cancel button).
+    /// let steps = Cell::new(0);
+    /// let events = Events::new().observe(|t, _q, _qdot| {
+    ///     steps.set(steps.get() + 1);
+    ///     if t > 2.0 { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
+    /// });
+    /// let times: Vec<f64> = (1..=10).map(f64::from).collect();
+    /// let run = Rk4::new(0.25).integrate_with_events(&Spring, 0.0, Vector1::new(1.0), Vector1::new(0.0), &times, &events)?;
+    /// assert_eq!(run.interrupted(), Some(2.25));
+    /// assert_eq!(run.times(), &[1.0, 2.0]);
+    /// assert_eq!(steps.get(), 9);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn observe(
+        mut self,
+        observer: impl Fn(S, &SVector<S, N>, &SVector<S, N>) -> Observation + 'a,
+    ) -> Self {
+        self.observer = Some(Observer(Box::new(observer)));
+        self
+    }
+
+    pub(crate) fn has_observer(&self) -> bool {
+        self.observer.is_some()
+    }
+
+    /// Whether the observer, if any, asks to stop at `(t, q, q̇)`.
+    pub(crate) fn observe_stop(&self, t: S, (q, qdot): &(SVector<S, N>, SVector<S, N>)) -> bool {
+        self.observer
+            .as_ref()
+            .is_some_and(|o| (o.0)(t, q, qdot).is_break())
     }
 
     /// Adds an event; its index in [`EventRecord::index`] is the number of

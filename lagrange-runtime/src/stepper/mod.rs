@@ -182,9 +182,12 @@ pub(crate) mod sealed {
                     Ok(false)
                 }
                 Some(Segment::Done) => {
-                    let (_, stopped) = self.rec.events_so_far();
-                    let stop = *stopped.expect("a segment ends early at a stopping event");
-                    (self.t, self.q, self.qdot) = (stop.t, stop.q, stop.qdot);
+                    // A stopping event, at its time; or the observer, at
+                    // the step's end.
+                    (self.t, self.q, self.qdot) = match self.rec.events_so_far().1 {
+                        Some(stop) => (stop.t, stop.q, stop.qdot),
+                        None => (t, q, qdot),
+                    };
                     self.stale = true;
                     Ok(true)
                 }
@@ -273,6 +276,12 @@ where
     /// The event that stopped the last call before its target, if one did.
     pub fn stopped(&self) -> Option<&EventRecord<L::Scalar, N>> {
         self.run.rec.events_so_far().1
+    }
+
+    /// Whether the [observer](Events::observe) stopped the last call
+    /// before its target (the stepper then at the end of that step).
+    pub fn interrupted(&self) -> bool {
+        self.run.rec.interrupted()
     }
 
     /// Advances the state by `dt`: to `t + dt`, which must be later than

@@ -490,3 +490,33 @@ fn a_stop_ends_the_call_at_the_event_and_the_next_goes_on() {
     assert!(quiet.stats().event_evals >= 100_000);
     assert_eq!(allocations() - before, 0, "watching events allocated");
 }
+
+/// The observer in a stepper: it ends the call at the end of the step it
+/// stops on, and the next call goes on.
+#[test]
+fn an_observer_ends_a_stepper_call_at_its_step() {
+    use std::ops::ControlFlow;
+    let (model, q0, v0) = spring();
+    let h = 1.0 / 240.0;
+    let watchdog = Events::new().observe(|t, _q, _v| {
+        if t > 0.5 && t < 0.6 {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    });
+    let mut s = Stepper::new(model, Rk4::new(h), 0.0, q0, v0)
+        .unwrap()
+        .with_events(&watchdog)
+        .unwrap();
+    s.advance_to(1.0).unwrap();
+    assert!(s.interrupted());
+    // The first step end past 0.5: 121 steps of 1/240.
+    assert_eq!(s.t(), 121.0 * h);
+    s.advance_to(1.0).unwrap();
+    assert!(s.interrupted(), "still inside the watchdog's window");
+    while s.t() < 1.0 {
+        s.advance_to(1.0).unwrap();
+    }
+    assert!(!s.interrupted());
+}

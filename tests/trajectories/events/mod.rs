@@ -3,4 +3,5 @@
 //! exact (elliptic) swing.
 
 mod bouncing_ball;
+mod observer;
 mod pendulum_wall;
