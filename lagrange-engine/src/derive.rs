@@ -10,7 +10,7 @@
 //!
 //! so that `M q̈ = f`. `M` is never inverted symbolically: the runtime solves.
 //! When `T` is quadratic in `q̇` (`M` free of `q̇`), `f` is computed from
-//! the derivatives of `M` instead (Christoffel symbols, [`forcing`]), which
+//! the derivatives of `M` instead (Christoffel symbols, `forcing`), which
 //! is the same function without the terms that cancel.
 //! On request, the Jacobians of the residual `r = M q̈ − f` with respect to
 //! `q` and `q̇`, for the Newton iterations of implicit integrators.

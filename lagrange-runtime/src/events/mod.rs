@@ -343,10 +343,12 @@ pub struct Events<'a, S, const N: usize> {
 /// What an observer tells the run: go on, or stop here.
 pub type Observation = core::ops::ControlFlow<()>;
 
-/// An observer `(t, q, q̇) ↦ go on or stop`.
-struct Observer<'a, S, const N: usize>(
-    Box<dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> Observation + 'a>,
-);
+/// An observer's function `(t, q, q̇) ↦ go on or stop`.
+type ObserverFn<'a, S, const N: usize> =
+    Box<dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> Observation + 'a>;
+
+/// An observer, with a `Debug` that names it only.
+struct Observer<'a, S, const N: usize>(ObserverFn<'a, S, N>);
 
 impl<S, const N: usize> fmt::Debug for Observer<'_, S, N> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
