@@ -105,12 +105,18 @@ pub struct Derived {
 impl Derived {
     /// The generated Rust items.
     pub fn tokens(&self) -> TokenStream {
-        emit::emit(&self.model, &self.equations, &self.equations_text())
+        let texts = (self.equations_text(), self.equations_latex());
+        emit::emit(&self.model, &self.equations, (&texts.0, &texts.1))
     }
 
     /// The equations as readable text (the generated `EQUATIONS` constant).
     pub fn equations_text(&self) -> String {
         render::render(&self.model, &self.equations)
+    }
+
+    /// The equations as LaTeX (the generated `LATEX` constant).
+    pub fn equations_latex(&self) -> String {
+        render::render_latex(&self.model, &self.equations)
     }
 
     /// Values of the symbols in the order `t, q, q̇, parameters`. A model

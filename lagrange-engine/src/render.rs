@@ -2,6 +2,10 @@
 //! the shared subexpressions first (`e0 = ...`), then each entry of `M` and
 //! `f`, for a constrained model of `φ`, `G` and `γ`, and for a model with
 //! inputs of `∂f/∂u`. Velocities read `dot(x)`, as in the model.
+//!
+//! The same equations as LaTeX ([`render_latex`]): one `aligned` block,
+//! `\dot{\theta}_{1}` for velocities, Greek names as letters, a trailing
+//! number as a subscript, `\frac` for divisions, `\sin`.
 
 use crate::derive::Equations;
 use crate::expr::cse::dag_uses;
@@ -13,6 +17,49 @@ use std::fmt::Write;
 struct Renderer<'a> {
     model: &'a Model,
     names: HashMap<ExprId, String>,
+    /// LaTeX rather than plain text.
+    latex: bool,
+}
+
+/// Greek letters LaTeX names, lower and upper case.
+const GREEK: &[&str] = &[
+    "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa",
+    "lambda", "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi",
+    "omega", "Gamma", "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi",
+    "Omega",
+];
+
+/// A model's name in LaTeX: `theta1` → `\theta_{1}`, `x[2]` → `x_{2}`,
+/// `m_cart` → `m_{cart}`, a Greek name as its letter, a longer name
+/// upright (`\mathrm{force}`).
+fn latex_name(name: &str) -> String {
+    let (stem, sub) = if let Some((stem, rest)) = name.split_once('[') {
+        (
+            stem.to_string(),
+            Some(rest.trim_end_matches(']').to_string()),
+        )
+    } else if let Some((stem, rest)) = name.split_once('_') {
+        (stem.to_string(), Some(rest.to_string()))
+    } else {
+        let digits = name.len() - name.trim_end_matches(|c: char| c.is_ascii_digit()).len();
+        if digits > 0 && digits < name.len() {
+            let (stem, sub) = name.split_at(name.len() - digits);
+            (stem.to_string(), Some(sub.to_string()))
+        } else {
+            (name.to_string(), None)
+        }
+    };
+    let stem = if GREEK.contains(&stem.as_str()) {
+        format!("\\{stem}")
+    } else if stem.chars().count() > 1 {
+        format!("\\mathrm{{{stem}}}")
+    } else {
+        stem
+    };
+    match sub {
+        Some(sub) => format!("{stem}_{{{}}}", sub.replace('_', "\\_")),
+        None => stem,
+    }
 }
 
 impl Renderer<'_> {
@@ -26,10 +73,10 @@ impl Renderer<'_> {
             return n.clone();
         }
         let (s, p) = self.inline(id);
-        if p < prec {
-            format!("({s})")
-        } else {
-            s
+        match (p < prec, self.latex) {
+            (false, _) => s,
+            (true, false) => format!("({s})"),
+            (true, true) => format!("\\left({s}\\right)"),
         }
     }
 
@@ -39,6 +86,18 @@ impl Renderer<'_> {
             Node::Num(bits) => {
                 let v = f64::from_bits(*bits);
                 (format!("{v}"), if v < 0.0 { 0 } else { 2 })
+            }
+            Node::Sym(s) if self.latex => {
+                let m = self.model;
+                let name = match m.symbols.kind(*s) {
+                    SymKind::Time => "t".to_string(),
+                    SymKind::Coordinate(i) => latex_name(&m.coordinates[i].to_string()),
+                    SymKind::Velocity(i) => dotted("dot", &m.coordinates[i].to_string()),
+                    SymKind::Parameter(k) => latex_name(&m.parameters[k].to_string()),
+                    SymKind::Acceleration(i) => dotted("ddot", &m.coordinates[i].to_string()),
+                    SymKind::Input(k) => latex_name(&m.inputs[k].to_string()),
+                };
+                (name, 2)
             }
             Node::Sym(s) => {
                 let m = self.model;
@@ -77,6 +136,26 @@ impl Renderer<'_> {
             }
             // The base is written once: writing it twice per level would
             // take 2^depth time on nested roots.
+            Node::Pow(b, e) if self.latex => match pool.as_num(*e) {
+                Some(0.5) => (format!("\\sqrt{{{}}}", self.text(*b, 0)), 2),
+                Some(v) if v < 0.0 => {
+                    let (c, rest) = self.split(id);
+                    (self.product(c.abs(), &rest), 1)
+                }
+                _ => (format!("{}^{{{}}}", self.text(*b, 2), self.text(*e, 0)), 1),
+            },
+            Node::Func(f, a) if self.latex => (
+                format!("\\{}\\left({}\\right)", f.name(), self.text(*a, 0)),
+                2,
+            ),
+            Node::Atan2(y, x) if self.latex => (
+                format!(
+                    "\\operatorname{{atan2}}\\left({}, {}\\right)",
+                    self.text(*y, 0),
+                    self.text(*x, 0)
+                ),
+                2,
+            ),
             Node::Pow(b, e) => match pool.as_num(*e) {
                 Some(0.5) => (format!("sqrt({})", self.text(*b, 0)), 2),
                 Some(v) if v < 0.0 => (format!("{}^({v})", self.text(*b, 2)), 1),
@@ -103,6 +182,9 @@ impl Renderer<'_> {
     }
 
     fn product(&self, mag: f64, factors: &[ExprId]) -> String {
+        if self.latex {
+            return self.latex_product(mag, factors);
+        }
         let mut parts: Vec<String> = Vec::new();
         if mag != 1.0 || factors.is_empty() {
             parts.push(format!("{mag}"));
@@ -137,6 +219,52 @@ impl Renderer<'_> {
     }
 }
 
+impl Renderer<'_> {
+    /// `\\frac{numerator}{denominator}`, factors side by side (`\\,`).
+    fn latex_product(&self, mag: f64, factors: &[ExprId]) -> String {
+        let mut numerator: Vec<String> = Vec::new();
+        if mag != 1.0 || factors.is_empty() {
+            numerator.push(format!("{mag}"));
+        }
+        let mut denominator: Vec<String> = Vec::new();
+        for &f in factors {
+            if !self.names.contains_key(&f) {
+                if let Node::Pow(b, e) = self.pool().node(f) {
+                    if let Some(v) = self.pool().as_num(*e).filter(|v| *v < 0.0) {
+                        let base = self.text(*b, 2);
+                        denominator.push(if v == -1.0 {
+                            base
+                        } else {
+                            format!("{base}^{{{}}}", -v)
+                        });
+                        continue;
+                    }
+                }
+            }
+            numerator.push(self.text(f, 1));
+        }
+        let top = if numerator.is_empty() {
+            "1".to_string()
+        } else {
+            numerator.join(" \\, ")
+        };
+        if denominator.is_empty() {
+            top
+        } else {
+            format!("\\frac{{{top}}}{{{}}}", denominator.join(" \\, "))
+        }
+    }
+}
+
+/// `\\dot{x}` (or `\\ddot`) of a coordinate, its subscript outside.
+fn dotted(accent: &str, name: &str) -> String {
+    let latex = latex_name(name);
+    match latex.split_once('_') {
+        Some((stem, sub)) => format!("\\{accent}{{{stem}}}_{sub}"),
+        None => format!("\\{accent}{{{latex}}}"),
+    }
+}
+
 /// The roots the text shows beyond `M` and `f`: `φ`, `G` row by row, `γ`
 /// (none for a model without constraints).
 pub fn constraint_roots(eq: &Equations) -> Vec<ExprId> {
@@ -160,6 +288,17 @@ pub fn input_roots(eq: &Equations) -> Vec<ExprId> {
 }
 
 pub fn render(model: &Model, eq: &Equations) -> String {
+    render_with(model, eq, false)
+}
+
+/// The equations as LaTeX: one `aligned` block, shared subexpressions
+/// `e_{k}` first, then `M`, `f`, and `φ`, `G`, `γ` or `∂f/∂u` where the
+/// model has them; the same entries as [`render`].
+pub fn render_latex(model: &Model, eq: &Equations) -> String {
+    render_with(model, eq, true)
+}
+
+fn render_with(model: &Model, eq: &Equations, latex: bool) -> String {
     let n = model.dof();
     let mut roots = Vec::new();
     for i in 0..n {
@@ -174,49 +313,86 @@ pub fn render(model: &Model, eq: &Equations) -> String {
     let mut r = Renderer {
         model,
         names: HashMap::new(),
+        latex,
     };
     let mut out = String::new();
     let mut k = 0;
+    // Plain: `lhs = rhs` lines. LaTeX: `lhs &= rhs \\` rows of one block.
+    let line = |out: &mut String, lhs: String, rhs: String| {
+        if latex {
+            writeln!(out, "{lhs} &= {rhs} \\\\").unwrap();
+        } else {
+            writeln!(out, "{lhs} = {rhs}").unwrap();
+        }
+    };
+    if latex {
+        out.push_str("\\begin{aligned}\n");
+    }
     for &id in &order {
         // Name only what is shared by more than one user; powers expanded
         // into products in code need no name in text.
         if uses[id.index()] > 1 && !matches!(model.pool.node(id), Node::Num(_) | Node::Sym(_)) {
             let (s, _) = r.inline(id);
-            let name = format!("e{k}");
+            let name = if latex {
+                format!("e_{{{k}}}")
+            } else {
+                format!("e{k}")
+            };
             k += 1;
-            writeln!(out, "{name} = {s}").unwrap();
+            line(&mut out, name.clone(), s);
             r.names.insert(id, name);
         }
     }
-    let c = &model.coordinates;
+    // An entry's left side: `M[a, b]` in text, `M_{a b}` in LaTeX.
+    let entry = |symbol: &str, indices: &[String]| -> String {
+        if latex {
+            let symbol = match symbol {
+                "φ" => "\\varphi",
+                "γ" => "\\gamma",
+                "∂f/∂u" => "\\frac{\\partial f}{\\partial u}",
+                other => other,
+            };
+            let indices: Vec<String> = indices.iter().map(|i| latex_name(i)).collect();
+            format!("{symbol}_{{{}}}", indices.join(" \\, "))
+        } else {
+            format!("{symbol}[{}]", indices.join(", "))
+        }
+    };
+    let c: Vec<String> = model.coordinates.iter().map(|c| c.to_string()).collect();
     for i in 0..n {
         for (j, cj) in c.iter().enumerate().skip(i) {
-            writeln!(out, "M[{}, {cj}] = {}", c[i], r.text(eq.mass[i][j], 0)).unwrap();
+            let lhs = entry("M", &[c[i].clone(), cj.clone()]);
+            line(&mut out, lhs, r.text(eq.mass[i][j], 0));
         }
     }
     for (ci, &fi) in c.iter().zip(&eq.forcing) {
-        writeln!(out, "f[{ci}] = {}", r.text(fi, 0)).unwrap();
+        line(&mut out, entry("f", std::slice::from_ref(ci)), r.text(fi, 0));
     }
     if let Some(ce) = &eq.constraints {
-        let labels: Vec<&str> = model.constraints.iter().map(|k| k.label.as_str()).collect();
+        let labels: Vec<String> = model.constraints.iter().map(|k| k.label.clone()).collect();
         for (name, &phi) in labels.iter().zip(&ce.values) {
-            writeln!(out, "φ[{name}] = {}", r.text(phi, 0)).unwrap();
+            line(&mut out, entry("φ", std::slice::from_ref(name)), r.text(phi, 0));
         }
         for (name, row) in labels.iter().zip(&ce.jacobian) {
             for (cj, &g) in c.iter().zip(row) {
-                writeln!(out, "G[{name}, {cj}] = {}", r.text(g, 0)).unwrap();
+                let lhs = entry("G", &[name.clone(), cj.clone()]);
+                line(&mut out, lhs, r.text(g, 0));
             }
         }
         for (name, &gamma) in labels.iter().zip(&ce.bias) {
-            writeln!(out, "γ[{name}] = {}", r.text(gamma, 0)).unwrap();
+            line(&mut out, entry("γ", std::slice::from_ref(name)), r.text(gamma, 0));
         }
     }
     if let Some(rows) = &eq.input_jacobian {
         for (ci, row) in c.iter().zip(rows) {
             for (u, &d) in model.inputs.iter().zip(row) {
-                writeln!(out, "∂f/∂u[{ci}, {u}] = {}", r.text(d, 0)).unwrap();
+                let lhs = entry("∂f/∂u", &[ci.clone(), u.to_string()]);
+                line(&mut out, lhs, r.text(d, 0));
             }
         }
+    }
+    if latex {
+        out.push_str("\\end{aligned}\n");
     }
     out
 }

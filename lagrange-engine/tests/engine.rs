@@ -444,3 +444,44 @@ fn a_kinetic_energy_with_linear_and_static_terms_keeps_its_forcing() {
     let f = d.eval_forcing(0.0, &[0.7], &[1.3], &[0.4, 3.0]);
     assert!((f[0] - (1.0 - 3.0) * 0.7).abs() < 1e-15, "{f:?}");
 }
+
+/// The LaTeX rendering (`LATEX`): the same entries as the text, with
+/// subscripts, dots, `\frac`, `\sin` and one `aligned` block.
+#[test]
+fn equations_as_latex() {
+    let pendulum = r#"
+        pub struct Pendulum {
+            coordinates: theta;
+            parameters: m, l, g;
+            let y = -l*cos(theta);
+            kinetic: m/2*l^2*dot(theta)^2;
+            potential: m*g*y;
+        }
+    "#;
+    let d = lagrange_engine::derive(pendulum.parse().unwrap()).unwrap();
+    assert_eq!(
+        d.equations_latex(),
+        "\\begin{aligned}\n\
+         M_{\\theta \\, \\theta} &= m \\, l^{2} \\\\\n\
+         f_{\\theta} &= -l \\, m \\, g \\, \\sin\\left(\\theta\\right) \\\\\n\
+         \\end{aligned}\n"
+    );
+    let d = lagrange_engine::derive(DOUBLE_PENDULUM.parse().unwrap()).unwrap();
+    let latex = d.equations_latex();
+    println!("{latex}");
+    // Every line of the text has its row, and the velocities read as dots.
+    assert_eq!(
+        latex.lines().count(),
+        d.equations_text().lines().count() + 2
+    );
+    assert!(latex.contains("\\dot{\\theta}_{1}"), "{latex}");
+    // A division is a fraction.
+    let kepler = "pub struct Radial { coordinates: r; parameters: k; \
+                  kinetic: dot(r)^2/2; potential: -k/r; }";
+    let d = lagrange_engine::derive(kepler.parse().unwrap()).unwrap();
+    assert!(
+        d.equations_latex().contains("f_{r} &= -\\frac{k}{r^{2}}"),
+        "{}",
+        d.equations_latex()
+    );
+}

@@ -11,6 +11,7 @@ mod constrained_models;
 mod generated_derivatives;
 mod indexed_models;
 mod inputs;
+mod latex;
 mod linearization;
 mod more_models;
 mod named_lets;

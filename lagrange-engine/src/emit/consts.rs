@@ -42,6 +42,8 @@ pub enum ConstValue {
     LetNames,
     /// `&'static str`: the derived equations as text (empty in the stub).
     EquationsText,
+    /// `&'static str`: the derived equations as LaTeX (empty in the stub).
+    EquationsLatex,
 }
 
 /// Every generated `const`, in the order of the generated impl.
@@ -93,13 +95,24 @@ pub const CONSTS: &[Const] = &[
         ),
         value: ConstValue::EquationsText,
     },
+    Const {
+        name: "LATEX",
+        doc: Doc::Attribute(
+            "The derived equations as LaTeX: one `aligned` block, the same entries as `EQUATIONS`.",
+        ),
+        value: ConstValue::EquationsLatex,
+    },
 ];
 
 impl Const {
     /// `const NAME: type = value;`, with the values of a derived model
     /// (`derived`: its coordinates' names and equations text) or of the
     /// stub (`None`); `None` if the stub has no such const.
-    pub fn item(&self, outline: &Outline, derived: Option<(&Model, &str)>) -> Option<TokenStream> {
+    pub fn item(
+        &self,
+        outline: &Outline,
+        derived: Option<(&Model, (&str, &str))>,
+    ) -> Option<TokenStream> {
         let name = Ident::new(self.name, Span::call_site());
         let n = Literal::usize_unsuffixed(outline.dof);
         let (ty, value) = match (self.value, derived) {
@@ -147,8 +160,15 @@ impl Const {
                 let l = Literal::usize_unsuffixed(outline.lets);
                 (quote!([&'static str; #l]), quote!([""; #l]))
             }
-            (ConstValue::EquationsText, Some((_, text))) => (quote!(&'static str), quote!(#text)),
-            (ConstValue::EquationsText, None) => (quote!(&'static str), quote!("")),
+            (ConstValue::EquationsText, Some((_, (text, _)))) => {
+                (quote!(&'static str), quote!(#text))
+            }
+            (ConstValue::EquationsLatex, Some((_, (_, latex)))) => {
+                (quote!(&'static str), quote!(#latex))
+            }
+            (ConstValue::EquationsText | ConstValue::EquationsLatex, None) => {
+                (quote!(&'static str), quote!(""))
+            }
         };
         Some(quote!(pub const #name: #ty = #value;))
     }

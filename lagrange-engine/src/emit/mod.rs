@@ -34,7 +34,7 @@ struct Context<'a> {
 }
 
 /// The generated items of a derived model.
-pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream {
+pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
     let cx = Context {
         model,
         outline: Outline {
@@ -58,7 +58,7 @@ pub fn emit(model: &Model, eq: &Equations, equations_text: &str) -> TokenStream 
         roots: METHODS.iter().map(|m| (m.roots)(model, eq)).collect(),
     };
     let item = cx.outline.struct_item();
-    let inherent = inherent_impl(&cx, equations_text);
+    let inherent = inherent_impl(&cx, texts);
     let lagrangian = lagrangian_impl(&cx);
     let holonomic = holonomic_impl(&cx);
     let actuated = actuated_impl(&cx);
@@ -90,10 +90,11 @@ pub fn charge(model: &Model, eq: &Equations) {
         .chain(crate::render::constraint_roots(eq))
         .chain(crate::render::input_roots(eq))
         .collect();
+    // The text is written twice: `EQUATIONS` and `LATEX`.
     let functions = METHODS
         .iter()
         .filter_map(|m| (m.roots)(model, eq))
-        .chain(std::iter::once(text_roots));
+        .chain([text_roots.clone(), text_roots]);
     // A function's prelude may name every symbol (`let [x, _, z] = ...`).
     let symbols = model.symbols.count() as u64;
     for roots in functions {
@@ -108,11 +109,11 @@ pub fn charge(model: &Model, eq: &Equations) {
 }
 
 /// `impl Name<S>`: the consts, `new`, and every method the model has.
-fn inherent_impl(cx: &Context, equations_text: &str) -> TokenStream {
+fn inherent_impl(cx: &Context, texts: (&str, &str)) -> TokenStream {
     let na = nalgebra();
     let name = cx.outline.name;
     let consts = CONSTS.iter().filter_map(|c| {
-        let item = c.item(&cx.outline, Some((cx.model, equations_text)))?;
+        let item = c.item(&cx.outline, Some((cx.model, texts)))?;
         let doc = c.doc.attributes();
         Some(quote!(#doc #item))
     });

@@ -26,6 +26,8 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
     pub const LETS: [&'static str; 4] = ["x1", "y1", "x2", "y2"];
     ///The derived equations `M q̈ = f`, readable: shared subexpressions first, then each entry.
     pub const EQUATIONS: &'static str = "e0 = m1 + m2\ne1 = cos(theta1)\ne2 = cos(theta2)\ne3 = sin(theta1)\ne4 = sin(theta2)\ne5 = e3*e2 - e1*e4\nM[theta1, theta1] = l1^2*e0\nM[theta1, theta2] = l1*l2*m2*(e1*e2 + e3*e4)\nM[theta2, theta2] = m2*l2^2\nf[theta1] = -l1*(e3*g*e0 + l2*m2*e5*dot(theta2)^2)\nf[theta2] = -l2*m2*(e4*g - l1*dot(theta1)^2*e5)\n";
+    ///The derived equations as LaTeX: one `aligned` block, the same entries as `EQUATIONS`.
+    pub const LATEX: &'static str = "\\begin{aligned}\ne_{0} &= m_{1} + m_{2} \\\\\ne_{1} &= \\cos\\left(\\theta_{1}\\right) \\\\\ne_{2} &= \\cos\\left(\\theta_{2}\\right) \\\\\ne_{3} &= \\sin\\left(\\theta_{1}\\right) \\\\\ne_{4} &= \\sin\\left(\\theta_{2}\\right) \\\\\ne_{5} &= e_{3} \\, e_{2} - e_{1} \\, e_{4} \\\\\nM_{\\theta_{1} \\, \\theta_{1}} &= l_{1}^{2} \\, e_{0} \\\\\nM_{\\theta_{1} \\, \\theta_{2}} &= l_{1} \\, l_{2} \\, m_{2} \\, \\left(e_{1} \\, e_{2} + e_{3} \\, e_{4}\\right) \\\\\nM_{\\theta_{2} \\, \\theta_{2}} &= m_{2} \\, l_{2}^{2} \\\\\nf_{\\theta_{1}} &= -l_{1} \\, \\left(e_{3} \\, g \\, e_{0} + l_{2} \\, m_{2} \\, e_{5} \\, \\dot{\\theta}_{2}^{2}\\right) \\\\\nf_{\\theta_{2}} &= -l_{2} \\, m_{2} \\, \\left(e_{4} \\, g - l_{1} \\, \\dot{\\theta}_{1}^{2} \\, e_{5}\\right) \\\\\n\\end{aligned}\n";
     ///A `DoublePendulum` with the given parameters (`m1`, `m2`, `l1`, `l2`, `g`).
     #[inline]
     pub const fn new(m1: S, m2: S, l1: S, l2: S, g: S) -> Self {
