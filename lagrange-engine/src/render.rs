@@ -366,12 +366,20 @@ fn render_with(model: &Model, eq: &Equations, latex: bool) -> String {
         }
     }
     for (ci, &fi) in c.iter().zip(&eq.forcing) {
-        line(&mut out, entry("f", std::slice::from_ref(ci)), r.text(fi, 0));
+        line(
+            &mut out,
+            entry("f", std::slice::from_ref(ci)),
+            r.text(fi, 0),
+        );
     }
     if let Some(ce) = &eq.constraints {
         let labels: Vec<String> = model.constraints.iter().map(|k| k.label.clone()).collect();
         for (name, &phi) in labels.iter().zip(&ce.values) {
-            line(&mut out, entry("φ", std::slice::from_ref(name)), r.text(phi, 0));
+            line(
+                &mut out,
+                entry("φ", std::slice::from_ref(name)),
+                r.text(phi, 0),
+            );
         }
         for (name, row) in labels.iter().zip(&ce.jacobian) {
             for (cj, &g) in c.iter().zip(row) {
@@ -380,7 +388,11 @@ fn render_with(model: &Model, eq: &Equations, latex: bool) -> String {
             }
         }
         for (name, &gamma) in labels.iter().zip(&ce.bias) {
-            line(&mut out, entry("γ", std::slice::from_ref(name)), r.text(gamma, 0));
+            line(
+                &mut out,
+                entry("γ", std::slice::from_ref(name)),
+                r.text(gamma, 0),
+            );
         }
     }
     if let Some(rows) = &eq.input_jacobian {

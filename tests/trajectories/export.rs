@@ -86,6 +86,42 @@ fn a_constrained_trajectory_as_csv_carries_its_multipliers() {
     }
 }
 
+/// A run with events: each event a row among the samples, in time order,
+/// named in the `event` column (the bouncing ball's bounces).
+#[test]
+fn events_are_rows_of_the_csv() {
+    use lagrange::models::BouncingBall;
+    use lagrange::nalgebra::Vector1;
+    let ball = BouncingBall::new(1.0, 9.81);
+    let events = Events::new().with(BouncingBall::floor(0.9));
+    let times: Vec<f64> = (0..=20).map(|k| 0.1 * k as f64).collect();
+    let run = Dopri5::new()
+        .integrate_with_events(
+            &ball,
+            0.0,
+            Vector1::new(1.0),
+            Vector1::new(0.0),
+            &times,
+            &events,
+        )
+        .unwrap();
+    let mut out = Vec::new();
+    write_csv(&ball, &run, &mut out).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("t,z,z_dot,energy,event"));
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), run.len() + run.events().len());
+    let bounces: Vec<&Vec<&str>> = rows.iter().filter(|r| r[4] == "floor").collect();
+    assert_eq!(bounces.len(), run.events().len());
+    for (row, event) in bounces.iter().zip(run.events()) {
+        assert_eq!(row[0].parse::<f64>().unwrap(), event.t);
+    }
+    // In time order.
+    let t: Vec<f64> = rows.iter().map(|r| r[0].parse().unwrap()).collect();
+    assert!(t.windows(2).all(|w| w[0] <= w[1]));
+}
+
 /// Serde (feature `serde`): a failed run, its error and the samples before
 /// it, through JSON and back, equal; an error naming a constraint too.
 #[cfg(feature = "serde")]

@@ -21,7 +21,9 @@ pub enum CsvError<S: RealField + Copy, const N: usize> {
 }
 
 /// Writes `trajectory` as CSV to `writer`: a header from the model's names,
-/// then one row per sample (see [the module](super)). Numbers are written
+/// then one row per sample (see [the module](super)), and for a run with
+/// [events](crate::events) one row per event among them, named in a last
+/// `event` column. Numbers are written
 /// in Rust's shortest round-trip form, so reading them back gives the same
 /// `f64` values.
 ///
@@ -79,21 +81,81 @@ where
     if let Some((names, _)) = &multipliers {
         header.extend(names.iter().map(|c| format!("lambda_{c}")));
     }
+    // A run with events: their rows among the samples', in time order (an
+    // event before a sample at the same time), named in an `event` column
+    // that samples leave empty; a reset's row is the state before it.
+    let events = trajectory.events();
+    if !events.is_empty() {
+        header.push("event".into());
+    }
     out.write_record(&header)?;
     let mut row: Vec<String> = Vec::with_capacity(header.len());
-    for (k, s) in trajectory.iter().enumerate() {
+    type Vector<L, const N: usize> = SVector<S<L, N>, N>;
+    let mut write = |t: S<L, N>,
+                     q: Vector<L, N>,
+                     qdot: Vector<L, N>,
+                     lambda: Option<&Vec<S<L, N>>>,
+                     event: Option<&str>| {
         row.clear();
-        row.push(s.t.to_string());
-        row.extend(s.q.iter().map(ToString::to_string));
-        row.extend(s.qdot.iter().map(ToString::to_string));
-        row.push(model.energy(s.t, &s.q, &s.qdot).to_string());
-        if let Some((_, lambdas)) = &multipliers {
-            row.extend(lambdas[k].iter().map(ToString::to_string));
+        row.push(t.to_string());
+        row.extend(q.iter().map(ToString::to_string));
+        row.extend(qdot.iter().map(ToString::to_string));
+        row.push(model.energy(t, &q, &qdot).to_string());
+        if multipliers.is_some() {
+            match lambda {
+                Some(lambda) => row.extend(lambda.iter().map(ToString::to_string)),
+                None => {
+                    let lambda = model
+                        .visit_constraints(AtState { t, q, qdot })
+                        .transpose()
+                        .map_err(CsvError::Multipliers)?
+                        .unwrap_or_default();
+                    row.extend(lambda.iter().map(ToString::to_string));
+                }
+            }
         }
-        out.write_record(&row)?;
+        if !events.is_empty() {
+            row.push(event.unwrap_or("").to_string());
+        }
+        out.write_record(&row).map_err(CsvError::Write)
+    };
+    let mut next_event = 0;
+    for (k, s) in trajectory.iter().enumerate() {
+        while let Some(e) = events.get(next_event).filter(|e| e.t <= s.t) {
+            write(e.t, e.q, e.qdot, None, Some(e.name))?;
+            next_event += 1;
+        }
+        let lambda = multipliers.as_ref().map(|(_, values)| &values[k]);
+        write(s.t, s.q, s.qdot, lambda, None)?;
     }
+    for e in &events[next_event..] {
+        write(e.t, e.q, e.qdot, None, Some(e.name))?;
+    }
+    drop(write);
     out.flush().map_err(::csv::Error::from)?;
     Ok(())
+}
+
+/// The scalar of model `L`.
+type S<L, const N: usize> = <L as Lagrangian<N>>::Scalar;
+
+/// A constrained model's multipliers at one state (an event's row).
+struct AtState<T, const N: usize> {
+    t: T,
+    q: SVector<T, N>,
+    qdot: SVector<T, N>,
+}
+
+impl<T: RealField + Copy, const N: usize> Visitor<T, N> for AtState<T, N> {
+    type Output = Result<Vec<T>, IntegrationError<T, N>>;
+
+    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    where
+        H: Holonomic<N, C, Scalar = T> + ?Sized,
+    {
+        let lambda = model.multipliers(self.t, &self.q, &self.qdot)?;
+        Ok(lambda.iter().copied().collect())
+    }
 }
 
 /// The constraints' names and each sample's multipliers, for a model with
