@@ -131,7 +131,6 @@ where
     for e in &events[next_event..] {
         write(e.t, e.q, e.qdot, None, Some(e.name))?;
     }
-    drop(write);
     out.flush().map_err(::csv::Error::from)?;
     Ok(())
 }
