@@ -10,11 +10,14 @@ use syn::{Attribute, Ident, Visibility};
 /// underlines the whole range on stable Rust.
 #[derive(Clone, Copy, Debug)]
 pub struct SpanRange {
+    /// The span of the first token.
     pub start: Span,
+    /// The span of the last token.
     pub end: Span,
 }
 
 impl SpanRange {
+    /// The range of one token.
     pub fn single(span: Span) -> Self {
         SpanRange {
             start: span,
@@ -22,6 +25,7 @@ impl SpanRange {
         }
     }
 
+    /// From the start of `self` to the end of `other`.
     pub fn to(self, other: SpanRange) -> Self {
         SpanRange {
             start: self.start,
@@ -29,6 +33,7 @@ impl SpanRange {
         }
     }
 
+    /// An error underlining this range.
     pub fn error(self, message: impl std::fmt::Display) -> syn::Error {
         syn::Error::new_spanned(self, message)
     }
@@ -53,8 +58,11 @@ pub struct ModelDef {
     pub attrs: Vec<Attribute>,
     /// Options from `#[lagrange(...)]`, which is consumed, not passed on.
     pub options: Options,
+    /// The struct's visibility, given to the generated struct.
     pub vis: Visibility,
+    /// The struct's name, the name of the generated model type.
     pub name: Ident,
+    /// The sections of the body, in the order written.
     pub items: Vec<Item>,
 }
 
@@ -80,6 +88,7 @@ pub const MAX_BUDGET: u64 = 4_000_000_000;
 
 /// A declared name, scalar or indexed: `x` or `theta[N]`.
 pub struct Decl {
+    /// The declared name.
     pub name: Ident,
     /// The length expression of `name[len]`, evaluated against the `const`s.
     pub len: Option<Expr>,
@@ -88,65 +97,99 @@ pub struct Decl {
 /// `var in lo..hi` or `var in lo..=hi`.
 #[derive(Clone, Debug)]
 pub struct IndexRange {
+    /// The index variable.
     pub var: Ident,
+    /// The first index.
     pub lo: Box<Expr>,
+    /// The bound of the range: the last index if `inclusive`, else one past it.
     pub hi: Box<Expr>,
+    /// Whether the range is `lo..=hi` rather than `lo..hi`.
     pub inclusive: bool,
+    /// The tokens of the whole range, for errors.
     pub range: SpanRange,
 }
 
+/// One section of a model's body, as written.
 pub enum Item {
     /// `const N = 6;`: a compile-time integer, for sizes and indices.
     Const {
+        /// The constant's name.
         name: Ident,
+        /// Its value, an integer expression.
         value: Expr,
     },
+    /// `coordinates: a, b, theta[N];`: the generalized coordinates, in the order of `q`.
     Coordinates {
+        /// The `coordinates` keyword, for errors.
         keyword: Ident,
+        /// The declared coordinates.
         names: Vec<Decl>,
     },
+    /// `parameters: m, l[N];`: runtime parameters, fields of the struct and arguments of `new`.
     Parameters {
+        /// The `parameters` keyword, for errors.
         keyword: Ident,
+        /// The declared parameters.
         names: Vec<Decl>,
     },
     /// `inputs: force, tau[N];`: control inputs, declared like parameters
     /// but set during a run (by a controller) rather than at construction.
     Inputs {
+        /// The `inputs` keyword, for errors.
         keyword: Ident,
+        /// The declared inputs.
         names: Vec<Decl>,
     },
     /// `constants: g = 9.81;`: values folded into the generated code.
     Constants {
+        /// The `constants` keyword, for errors.
         keyword: Ident,
+        /// Each constant's name and value.
         entries: Vec<(Ident, Expr)>,
     },
+    /// `let x = expr;` or `let x[i in 0..N] = expr;`: an intermediate quantity.
     Let {
+        /// The name of the `let`.
         name: Ident,
         /// `let x[i in 0..N] = ...`
         index: Option<IndexRange>,
+        /// Its defining expression (in terms of the index variable, if indexed).
         value: Expr,
     },
+    /// `kinetic: expr;`: (a term of) the kinetic energy T.
     Kinetic {
+        /// The `kinetic` keyword, for errors.
         keyword: Ident,
+        /// The energy expression.
         value: Expr,
     },
+    /// `potential: expr;`: (a term of) the potential energy V.
     Potential {
+        /// The `potential` keyword, for errors.
         keyword: Ident,
+        /// The energy expression.
         value: Expr,
     },
+    /// `dissipation: expr;`: (a term of) the Rayleigh dissipation function R.
     Dissipation {
+        /// The `dissipation` keyword, for errors.
         keyword: Ident,
+        /// The dissipation expression.
         value: Expr,
     },
     /// Targets are names (`x`) or elements (`x[N-1]`): a coordinate or a
     /// `let` position.
     Forces {
+        /// The `forces` keyword, for errors.
         keyword: Ident,
+        /// Each force's target and its value: `target = value`.
         entries: Vec<(Expr, Expr)>,
     },
     /// `constraints: rod: x^2 + y^2 = l^2, link[i in 0..N]: ...;`.
     Constraints {
+        /// The `constraints` keyword, for errors.
         keyword: Ident,
+        /// The constraints, in the order written.
         entries: Vec<ConstraintDef>,
     },
 }
@@ -155,9 +198,13 @@ pub enum Item {
 /// `name: lhs = rhs`, or an indexed family `name[i in a..b]: ...`, one
 /// constraint per index.
 pub struct ConstraintDef {
+    /// The constraint's name (the family's name, for an indexed entry).
     pub name: Ident,
+    /// The index range of an indexed family, `name[i in a..b]`.
     pub index: Option<IndexRange>,
+    /// The left-hand side, or the whole constraint `lhs = 0`.
     pub lhs: Expr,
+    /// The right-hand side, if written as `lhs = rhs`.
     pub rhs: Option<Expr>,
 }
 
@@ -172,21 +219,33 @@ impl ConstraintDef {
 /// An operator of a [`Expr::Chain`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BinOp {
+    /// `+`.
     Add,
+    /// `-`.
     Sub,
+    /// `*`.
     Mul,
+    /// `/`.
     Div,
 }
 
+/// An expression as written, before lowering into the expression DAG.
 #[derive(Clone, Debug)]
 pub enum Expr {
+    /// A number literal.
     Num {
+        /// Its value.
         value: f64,
+        /// The literal's span.
         span: Span,
     },
+    /// A name: a coordinate, parameter, input, constant, `const`, `let`, index variable or `t`.
     Name(Ident),
+    /// `-inner`.
     Neg {
+        /// From the `-` to the end of `inner`.
         range: SpanRange,
+        /// The negated operand.
         inner: Box<Expr>,
     },
     /// `a + b - c` or `a * b / c`: operands combined left to right, as
@@ -194,37 +253,53 @@ pub enum Expr {
     /// deeper than its terms. `rest` is not empty; its operators are all
     /// additive or all multiplicative.
     Chain {
+        /// The first operand.
         first: Box<Expr>,
+        /// The other operands, each with the operator before it.
         rest: Vec<(BinOp, Expr)>,
+        /// The tokens of the whole chain.
         range: SpanRange,
     },
     /// `base ^ exponent`.
     Power {
+        /// The base.
         base: Box<Expr>,
+        /// The exponent.
         exponent: Box<Expr>,
+        /// The tokens of the whole power.
         range: SpanRange,
     },
     /// `f(a, b)` and the method form `a.f(b)` alike; `dot(e)` too.
     Call {
+        /// The function's name (`sin`, `sqrt`, `dot`, ...).
         func: Ident,
+        /// The tokens of the whole call.
         range: SpanRange,
+        /// The arguments; in the method form, the receiver first.
         args: Vec<Expr>,
     },
     /// `x[i - 1]`: an element of an indexed coordinate, parameter or `let`.
     Index {
+        /// The indexed name.
         base: Ident,
+        /// The index, an integer expression.
         index: Box<Expr>,
+        /// The tokens of the whole element.
         range: SpanRange,
     },
     /// `sum(j in a..b, body)`, unrolled at compile time.
     Sum {
+        /// The index variable and its range.
         index: IndexRange,
+        /// The summand, in terms of the index variable.
         body: Box<Expr>,
+        /// The tokens of the whole sum.
         range: SpanRange,
     },
 }
 
 impl Expr {
+    /// The tokens the expression was parsed from, for errors.
     pub fn range(&self) -> SpanRange {
         match self {
             Expr::Num { span, .. } => SpanRange::single(*span),

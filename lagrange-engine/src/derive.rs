@@ -46,6 +46,7 @@ pub type ExprMatrix = Vec<Vec<ExprId>>;
 pub struct Equations {
     /// `M`, full and symmetric: `mass[i][j]` and `mass[j][i]` are one node.
     pub mass: ExprMatrix,
+    /// `f`, the right-hand side of `M q̈ = f`.
     pub forcing: Vec<ExprId>,
     /// `T + V`.
     pub energy: ExprId,
@@ -78,6 +79,9 @@ pub struct ConstraintEquations {
     pub bias: Vec<ExprId>,
 }
 
+/// Derives the equations of motion of a lowered model (adding their nodes
+/// to its pool); within the model's budget, else garbage that the caller
+/// reports as the budget error.
 #[allow(clippy::needless_range_loop)] // (i, j) index M, symmetric: the clearest form
 pub fn euler_lagrange(model: &mut Model) -> Equations {
     let n = model.dof();

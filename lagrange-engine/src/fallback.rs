@@ -32,6 +32,7 @@ pub struct Stub {
 }
 
 impl Stub {
+    /// Takes what the stub needs from the parsed model.
     pub fn of(def: &ModelDef) -> Self {
         let shape = declared_shape(def);
         Stub {
@@ -47,6 +48,7 @@ impl Stub {
         }
     }
 
+    /// The stub's items, with `error` reported as a compile error.
     pub fn emit(&self, error: syn::Error) -> TokenStream {
         let error = error.to_compile_error();
         let outline = Outline {

@@ -84,6 +84,8 @@
 //! The budget counts steps, not time, so an expansion is the same on every
 //! machine: a model expands everywhere or nowhere.
 
+#![deny(missing_docs)]
+
 pub mod ast;
 pub mod check;
 pub mod derive;
@@ -98,7 +100,9 @@ use proc_macro2::TokenStream;
 
 /// A derived model: the lowered model and its equations of motion.
 pub struct Derived {
+    /// The lowered model, its pool holding the equations' nodes too.
     pub model: model::Model,
+    /// The equations of motion.
     pub equations: derive::Equations,
 }
 

@@ -287,6 +287,8 @@ pub fn input_roots(eq: &Equations) -> Vec<ExprId> {
         .collect()
 }
 
+/// The equations as plain text, as `EQUATIONS` holds them: the same entries
+/// as [`render_latex`].
 pub fn render(model: &Model, eq: &Equations) -> String {
     render_with(model, eq, false)
 }

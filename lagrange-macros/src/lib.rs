@@ -1,4 +1,7 @@
 //! `lagrangian!`: see the `lagrange` crate.
+
+#![deny(missing_docs)]
+
 use proc_macro::TokenStream;
 
 /// Derive the Euler–Lagrange equations of a model at compile time.

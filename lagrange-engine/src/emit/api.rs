@@ -33,6 +33,7 @@ pub enum Arg {
 }
 
 impl Arg {
+    /// The argument's name in generated code.
     pub fn ident(self) -> Ident {
         let name = match self {
             Arg::T => "t",
@@ -81,6 +82,7 @@ pub enum Returns {
 }
 
 impl Returns {
+    /// The Rust type of the returned value.
     pub fn ty(self, ty: &Types) -> TokenStream {
         let (vector, matrix) = (&ty.vector, &ty.matrix);
         match self {
@@ -164,12 +166,17 @@ pub enum InTrait {
     /// returns `Some` of the inherent one. Where a model has no such method,
     /// the impl sets `flag_if_absent` (if any) to `true` instead.
     Optional {
+        /// The name of the trait's flag (an associated `const`) to set where the
+        /// model has no such method, if any.
         flag_if_absent: Option<&'static str>,
     },
     /// Not a method of `Lagrangian` but of `Holonomic<N, C>`, which only a
     /// constrained model implements: its impl calls the inherent one.
     /// `required` methods are implemented by the stub too.
-    Holonomic { required: bool },
+    Holonomic {
+        /// Whether the stub implements it too.
+        required: bool,
+    },
     /// Not a method of `Lagrangian` but of `Actuated<N, K>`, which only a
     /// model with inputs implements: its impl calls the inherent one, and
     /// the stub implements it too.
@@ -180,15 +187,19 @@ pub enum InTrait {
 
 /// A generated method `fn name(&self, args) -> returns`.
 pub struct Method {
+    /// The method's name.
     pub name: &'static str,
     /// Its doc comment, line by line.
     pub doc: &'static [&'static str],
+    /// The arguments after `&self`, in order.
     pub args: &'static [Arg],
+    /// What it returns, and how its roots are laid out.
     pub returns: Returns,
     /// The expressions its body computes, laid out as `returns` says;
     /// `None` where the model has no such method (it is then not generated,
     /// but the stub always has it).
     pub roots: fn(&Model, &Equations) -> Option<Vec<ExprId>>,
+    /// How it appears in the `Lagrangian` (or `Holonomic`, `Actuated`) impl.
     pub in_trait: InTrait,
 }
 
@@ -413,6 +424,7 @@ fn column_major_of(m: &ExprMatrix, columns: usize) -> Vec<ExprId> {
 }
 
 impl Method {
+    /// The method's name as an identifier.
     pub fn ident(&self) -> Ident {
         Ident::new(self.name, Span::call_site())
     }

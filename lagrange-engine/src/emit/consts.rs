@@ -9,8 +9,11 @@ use quote::quote;
 
 /// A generated associated `const`.
 pub struct Const {
+    /// The const's name.
     pub name: &'static str,
+    /// Its doc comment.
     pub doc: Doc,
+    /// What it holds.
     pub value: ConstValue,
 }
 

@@ -10,9 +10,13 @@ use syn::{Attribute, Visibility};
 /// The types of a model with `dof` coordinates, `constraints` holonomic
 /// constraints and `inputs` control inputs.
 pub struct Types {
+    /// The number of coordinates, `N`.
     pub dof: usize,
+    /// The number of holonomic constraints, `C`.
     pub constraints: usize,
+    /// The number of control inputs, `K`.
     pub inputs: usize,
+    /// The number of coordinates as a literal, `N`.
     pub n: Literal,
     /// The number of constraints, `C`.
     pub c: Literal,
@@ -22,16 +26,23 @@ pub struct Types {
     pub input_vector: TokenStream,
     /// `SMatrix<S, N, K>`.
     pub input_matrix: TokenStream,
+    /// The constructor of `SMatrix<S, N, K>` from a column-major slice.
     pub new_input_matrix: TokenStream,
+    /// `SVector<S, N>`.
     pub vector: TokenStream,
+    /// `SMatrix<S, N, N>`.
     pub matrix: TokenStream,
+    /// The constructor of `SVector<S, N>` from a slice.
     pub new_vector: TokenStream,
+    /// The constructor of `SMatrix<S, N, N>` from a column-major slice.
     pub new_matrix: TokenStream,
     /// `SVector<S, C>`.
     pub constraint_vector: TokenStream,
     /// `SMatrix<S, C, N>`.
     pub constraint_matrix: TokenStream,
+    /// The constructor of `SVector<S, C>` from a slice.
     pub new_constraint_vector: TokenStream,
+    /// The constructor of `SMatrix<S, C, N>` from a column-major slice.
     pub new_constraint_matrix: TokenStream,
     /// `[S; L]`, `L` the number of `let` values.
     pub lets: TokenStream,
@@ -40,6 +51,7 @@ pub struct Types {
 }
 
 impl Types {
+    /// The types of a model of this size, with `lets` values.
     pub fn new(dof: usize, constraints: usize, inputs: usize, lets: usize) -> Self {
         let na = nalgebra();
         let n = Literal::usize_unsuffixed(dof);
@@ -80,10 +92,15 @@ pub fn nalgebra() -> TokenStream {
 /// What the generated items know of a model whether or not it derived: its
 /// struct's attributes, visibility, name and fields, and its size.
 pub struct Outline<'a> {
+    /// The user's attributes on the struct.
     pub attrs: &'a [Attribute],
+    /// The struct's visibility.
     pub vis: &'a Visibility,
+    /// The struct's name.
     pub name: &'a Ident,
+    /// The number of coordinates.
     pub dof: usize,
+    /// The runtime parameters' fields, in declaration order: the arguments of `new`.
     pub fields: &'a [Field],
     /// The control inputs' fields (after the parameters'), which `new` does
     /// not take: they start unset (NaN).

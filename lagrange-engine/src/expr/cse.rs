@@ -165,6 +165,7 @@ pub struct OpCount {
 }
 
 impl OpCount {
+    /// All operations, arithmetic and calls.
     pub fn total(self) -> u64 {
         self.arithmetic + self.calls
     }

@@ -32,6 +32,7 @@ pub use pool::{Exceeded, Pool, DEFAULT_BUDGET, MAX_DEPTH};
 pub struct ExprId(u32);
 
 impl ExprId {
+    /// The id as an index into the pool's nodes.
     pub fn index(self) -> usize {
         self.0 as usize
     }
@@ -45,20 +46,33 @@ pub struct SymId(pub u32);
 /// Elementary functions of one argument.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
 pub enum Func {
+    /// `sin`.
     Sin,
+    /// `cos`.
     Cos,
+    /// `tan`.
     Tan,
+    /// `asin`.
     Asin,
+    /// `acos`.
     Acos,
+    /// `atan`.
     Atan,
+    /// `sinh`.
     Sinh,
+    /// `cosh`.
     Cosh,
+    /// `tanh`.
     Tanh,
+    /// `exp`.
     Exp,
+    /// `ln`, the natural logarithm.
     Ln,
 }
 
 impl Func {
+    /// The function's name: as a model writes it, as the rendered equations
+    /// show it, and the `f64` method generated code calls.
     pub fn name(self) -> &'static str {
         match self {
             Func::Sin => "sin",
@@ -75,6 +89,7 @@ impl Func {
         }
     }
 
+    /// The function applied to a number.
     pub fn apply(self, x: f64) -> f64 {
         match self {
             Func::Sin => x.sin(),
@@ -99,10 +114,15 @@ impl Func {
 pub enum Node {
     /// A finite or non-finite real constant, stored as canonical bits (no -0.0).
     Num(u64),
+    /// A symbol: time, a coordinate, a velocity, a parameter, an acceleration or an input.
     Sym(SymId),
+    /// A sum of at least two terms.
     Add(Box<[ExprId]>),
+    /// A product of at least two factors, a numeric coefficient (if any) first.
     Mul(Box<[ExprId]>),
+    /// `base ^ exponent`.
     Pow(ExprId, ExprId),
+    /// An elementary function of one argument.
     Func(Func, ExprId),
     /// `atan2(y, x)`.
     Atan2(ExprId, ExprId),

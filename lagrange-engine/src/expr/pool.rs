@@ -76,17 +76,22 @@ impl Pool {
         pool
     }
 
+    /// The constant `0`, always node 0.
     pub const ZERO: ExprId = ExprId(0);
+    /// The constant `1`, always node 1.
     pub const ONE: ExprId = ExprId(1);
 
+    /// The node behind an id.
     pub fn node(&self, id: ExprId) -> &Node {
         &self.nodes[id.index()]
     }
 
+    /// The number of nodes interned so far.
     pub fn len(&self) -> usize {
         self.nodes.len()
     }
 
+    /// Whether the pool holds no node (never once built: `ZERO` and `ONE` are always there).
     pub fn is_empty(&self) -> bool {
         self.nodes.is_empty()
     }
@@ -294,6 +299,7 @@ impl Pool {
         order
     }
 
+    /// The operands of a node (none for a number or a symbol).
     pub fn children(&self, id: ExprId) -> Vec<ExprId> {
         node_children(self.node(id))
     }

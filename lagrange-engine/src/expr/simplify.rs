@@ -26,10 +26,12 @@ fn canonical_bits(x: f64) -> u64 {
 }
 
 impl Pool {
+    /// A numeric constant (`-0.0` is `0.0`).
     pub fn num(&mut self, x: f64) -> ExprId {
         self.intern(Node::Num(canonical_bits(x)))
     }
 
+    /// A symbol.
     pub fn sym(&mut self, s: SymId) -> ExprId {
         self.intern(Node::Sym(s))
     }
@@ -63,24 +65,29 @@ impl Pool {
         }
     }
 
+    /// `a + b`.
     pub fn add2(&mut self, a: ExprId, b: ExprId) -> ExprId {
         self.add(&[a, b])
     }
 
+    /// `a - b`, as `a + (-1)·b`.
     pub fn sub(&mut self, a: ExprId, b: ExprId) -> ExprId {
         let nb = self.neg(b);
         self.add(&[a, nb])
     }
 
+    /// `-a`, as `(-1)·a`.
     pub fn neg(&mut self, a: ExprId) -> ExprId {
         let m1 = self.num(-1.0);
         self.mul(&[m1, a])
     }
 
+    /// `a · b`.
     pub fn mul2(&mut self, a: ExprId, b: ExprId) -> ExprId {
         self.mul(&[a, b])
     }
 
+    /// `a / b`, as `a · b^-1`.
     pub fn div(&mut self, a: ExprId, b: ExprId) -> ExprId {
         let m1 = self.num(-1.0);
         let inv = self.pow(b, m1);
@@ -374,6 +381,7 @@ impl Pool {
         }
     }
 
+    /// `sqrt(a)`, as `a^0.5`.
     pub fn sqrt(&mut self, a: ExprId) -> ExprId {
         let half = self.num(0.5);
         self.pow(a, half)
@@ -390,6 +398,8 @@ impl Pool {
         }
     }
 
+    /// `f(a)`: folded for a constant, the sign pulled out of an odd or even
+    /// function of a negated argument, `exp(ln x)` and `ln(exp x)` cancelled.
     pub fn func(&mut self, f: Func, a: ExprId) -> ExprId {
         if self.exhausted() {
             return Pool::ZERO;
@@ -414,6 +424,7 @@ impl Pool {
         }
     }
 
+    /// `atan2(y, x)`, folded for constants.
     pub fn atan2(&mut self, y: ExprId, x: ExprId) -> ExprId {
         if let (Some(a), Some(b)) = (self.as_num(y), self.as_num(x)) {
             return self.num(a.atan2(b));

@@ -35,19 +35,25 @@ use syn::{Attribute, Ident, Visibility};
 /// A section's expression with the tokens it came from. A section written
 /// more than once is their sum: `ast` is then the `+` of the parts.
 pub struct Section {
+    /// The section's keyword, for errors.
     pub keyword: Ident,
+    /// The section as written (the sum of its parts).
     pub ast: Expr,
+    /// The section lowered.
     pub value: ExprId,
 }
 
 /// One scalar of the model: a name, or one element of an indexed name.
 #[derive(Clone, Debug)]
 pub struct Scalar {
+    /// The declared name.
     pub name: Ident,
+    /// The element's index, for an element of an indexed name.
     pub index: Option<usize>,
 }
 
 impl Scalar {
+    /// The span of the name, for errors.
     pub fn span(&self) -> proc_macro2::Span {
         self.name.span()
     }
@@ -65,7 +71,9 @@ impl std::fmt::Display for Scalar {
 /// A runtime parameter as the struct holds it: `m: S` or `m: [S; len]`.
 #[derive(Clone, Debug)]
 pub struct Field {
+    /// The field's name.
     pub name: Ident,
+    /// The array length of an indexed parameter, `None` for a scalar.
     pub len: Option<usize>,
 }
 
@@ -87,9 +95,13 @@ impl Field {
 pub struct Force {
     /// The target as resolved: `x`, `theta[0]`.
     pub label: String,
+    /// The target as written.
     pub target: Expr,
+    /// The force as written.
     pub ast: Expr,
+    /// The target lowered: the position the force acts along.
     pub position: ExprId,
+    /// The force lowered.
     pub value: ExprId,
 }
 
@@ -104,6 +116,7 @@ pub struct Constraint {
     pub index: Option<i64>,
     /// The sides as lowered, for the checks to tell which is at fault.
     pub lhs: ExprId,
+    /// The right-hand side, if written as `lhs = rhs`.
     pub rhs: Option<ExprId>,
     /// `φ = lhs − rhs`.
     pub value: ExprId,
@@ -111,10 +124,15 @@ pub struct Constraint {
 
 /// The lowered model.
 pub struct Model {
+    /// The user's attributes, passed through to the struct.
     pub attrs: Vec<Attribute>,
+    /// The options of `#[lagrange(...)]`.
     pub options: crate::ast::Options,
+    /// The struct's visibility.
     pub vis: Visibility,
+    /// The struct's name.
     pub name: Ident,
+    /// The generalized coordinates, one scalar each, in the order of `q`.
     pub coordinates: Vec<Scalar>,
     /// The parameters, one scalar each, in the order of the symbols.
     pub parameters: Vec<Scalar>,
@@ -126,10 +144,15 @@ pub struct Model {
     /// The inputs as struct fields (after the parameters' fields), in
     /// declaration order.
     pub input_fields: Vec<Field>,
+    /// What each symbol id stands for.
     pub symbols: Symbols,
+    /// The kinetic energy T.
     pub kinetic: Section,
+    /// The potential energy V.
     pub potential: Section,
+    /// The Rayleigh dissipation function R, if the model has one.
     pub dissipation: Option<Section>,
+    /// The non-conservative forces, in the order written.
     pub forces: Vec<Force>,
     /// The `constraints:` entries as written, for the checks' errors.
     pub constraint_defs: Vec<crate::ast::ConstraintDef>,
@@ -139,6 +162,7 @@ pub struct Model {
     /// Every `let` value by name, in declaration order (an indexed `let`
     /// as `x[0]`, `x[1]`, …): what the generated `lets` returns.
     pub lets: Vec<(String, ExprId)>,
+    /// The expression DAG holding every lowered expression.
     pub pool: Pool,
     /// Every name as lowering left it, so that `locate` can lower a piece
     /// of a section again.
@@ -200,6 +224,7 @@ pub fn limit_error(name: &Ident, exceeded: Exceeded) -> syn::Error {
 }
 
 impl Model {
+    /// The number of coordinates (degrees of freedom), `N`.
     pub fn dof(&self) -> usize {
         self.coordinates.len()
     }

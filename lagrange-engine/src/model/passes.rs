@@ -399,11 +399,13 @@ fn add_to(
 
 /// What the stub of a model with an error knows of its shape.
 pub struct Shape {
+    /// The number of coordinates.
     pub dof: usize,
     /// The parameter fields.
     pub fields: Vec<Field>,
     /// The input fields.
     pub inputs: Vec<Field>,
+    /// The number of holonomic constraints.
     pub constraints: usize,
     /// The `let` values, an indexed `let` counting its elements.
     pub lets: usize,

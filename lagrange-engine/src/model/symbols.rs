@@ -9,9 +9,13 @@ use crate::expr::SymId;
 /// inputs numbers its symbols (and orders its nodes) as before they existed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SymKind {
+    /// The time `t`.
     Time,
+    /// The coordinate `q_i`.
     Coordinate(usize),
+    /// The velocity `q̇_i`.
     Velocity(usize),
+    /// The parameter scalar of that index, in the order of `Model::parameters`.
     Parameter(usize),
     /// Only in the residual `M q̈ − f` of the Jacobians.
     Acceleration(usize),
@@ -22,11 +26,17 @@ pub enum SymKind {
 /// The symbols of a model.
 #[derive(Clone, Debug)]
 pub struct Symbols {
+    /// `t`.
     pub time: SymId,
+    /// `q`, in order.
     pub coordinates: Vec<SymId>,
+    /// `q̇`, in order.
     pub velocities: Vec<SymId>,
+    /// The parameters, one per scalar.
     pub parameters: Vec<SymId>,
+    /// `q̈`, in order (only in the Jacobians' residual).
     pub accelerations: Vec<SymId>,
+    /// The control inputs `u`, in order.
     pub inputs: Vec<SymId>,
 }
 
@@ -43,10 +53,12 @@ impl Symbols {
         }
     }
 
+    /// The number of symbols.
     pub fn count(&self) -> usize {
         1 + 3 * self.coordinates.len() + self.parameters.len() + self.inputs.len()
     }
 
+    /// What a symbol stands for.
     pub fn kind(&self, s: SymId) -> SymKind {
         let n = self.coordinates.len();
         let k = s.0 as usize;

@@ -32,7 +32,9 @@ pub const SECTIONS: &str =
 
 /// A parsed model and the first error met inside its body, if any.
 pub struct Parsed {
+    /// The model, with every item that parsed (one in error is skipped).
     pub model: ModelDef,
+    /// The first error met inside the body or in `#[lagrange(...)]`.
     pub error: Option<syn::Error>,
 }
 
