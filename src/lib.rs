@@ -60,6 +60,28 @@
 //! the multipliers are the constraint forces: [`language`](language#constraints),
 //! [`constraints`].
 //!
+//! ## Control, events, frames
+//!
+//! - Control inputs (`inputs:`), linearization, equilibria and modes:
+//!   [`Actuated`], [`analysis`].
+//! - Events and impacts (record, stop, reset; Zeno guard) and an observer
+//!   at every step: [`events`], [`Integrator::integrate_with_events`].
+//! - Per-frame stepping without allocation, for games and control loops:
+//!   [`Stepper`].
+//! - Drawing: every model's `LETS` and `lets(t, q, q̇)`; its equations as
+//!   text (`EQUATIONS`) and LaTeX (`LATEX`).
+//!
+//! ## Cargo features
+//!
+//! None is on by default.
+//!
+//! | feature | what it adds |
+//! |---|---|
+//! | `serde` | `Serialize`/`Deserialize` for trajectories, statistics, errors and failures; `#[lagrange(serde)]` models through `lagrange::serde` |
+//! | `csv` | `export::write_csv`: a trajectory with the model's names as the header, energy, multipliers, events |
+//! | `ode_solvers` | `interop::ode_solvers::FirstOrder`: a model as that crate's `System` |
+//! | `diffsol` | `interop::diffsol::problem`: a model as a diffsol `OdeSolverProblem`; `lagrange::diffsol` is the crate |
+//!
 //! ## Mistakes are compile errors that speak physics
 //!
 //! A model that is not mechanics (a coordinate without kinetic energy, a

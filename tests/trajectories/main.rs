@@ -5,6 +5,7 @@
 mod support;
 
 mod constrained;
+mod ensemble;
 mod events;
 #[cfg(feature = "csv")]
 mod export;

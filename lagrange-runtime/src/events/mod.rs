@@ -7,7 +7,10 @@
 //! falling, or both) and an action: **record** the crossing (the default),
 //! **stop** the run there, or **reset** the state by a closure, an impact
 //! with restitution or a mode switch, after which the integration restarts
-//! from the new state. An [`Events`] set, handed to
+//! from the new state. Event functions, resets and the observer are
+//! `Send + Sync` closures (plain functions of the state are), so that runs
+//! and [`Stepper`](crate::Stepper)s watching them can move between threads.
+//! An [`Events`] set, handed to
 //! [`Integrator::integrate_with_events`](crate::Integrator::integrate_with_events),
 //! holds them with the settings of the search; what happened is in
 //! [`Trajectory::events`](crate::Trajectory::events) and
@@ -153,11 +156,13 @@ pub(crate) use locate::{evaluate_into, first_crossing};
 pub(crate) use watch::Watch;
 
 /// An event function `g(t, q, q̇)`.
-type Function<'a, S, const N: usize> = Box<dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> S + 'a>;
+type Function<'a, S, const N: usize> =
+    Box<dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> S + Send + Sync + 'a>;
 
 /// A reset `(t, q, q̇) ↦ (q⁺, q̇⁺)`.
-type ResetMap<'a, S, const N: usize> =
-    Box<dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> (SVector<S, N>, SVector<S, N>) + 'a>;
+type ResetMap<'a, S, const N: usize> = Box<
+    dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> (SVector<S, N>, SVector<S, N>) + Send + Sync + 'a,
+>;
 
 /// Which zero crossings of an event function count.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -216,7 +221,7 @@ impl<'a, S: RealField + Copy, const N: usize> Event<'a, S, N> {
     /// recorded.
     pub fn new(
         name: &'static str,
-        g: impl Fn(S, &SVector<S, N>, &SVector<S, N>) -> S + 'a,
+        g: impl Fn(S, &SVector<S, N>, &SVector<S, N>) -> S + Send + Sync + 'a,
     ) -> Self {
         Self {
             name,
@@ -258,7 +263,10 @@ impl<'a, S: RealField + Copy, const N: usize> Event<'a, S, N> {
     /// restart the integration from it.
     pub fn reset(
         mut self,
-        reset: impl Fn(S, &SVector<S, N>, &SVector<S, N>) -> (SVector<S, N>, SVector<S, N>) + 'a,
+        reset: impl Fn(S, &SVector<S, N>, &SVector<S, N>) -> (SVector<S, N>, SVector<S, N>)
+            + Send
+            + Sync
+            + 'a,
     ) -> Self {
         self.action = Action::Reset(Box::new(reset));
         self
@@ -345,7 +353,7 @@ pub type Observation = core::ops::ControlFlow<()>;
 
 /// An observer's function `(t, q, q̇) ↦ go on or stop`.
 type ObserverFn<'a, S, const N: usize> =
-    Box<dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> Observation + 'a>;
+    Box<dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> Observation + Send + Sync + 'a>;
 
 /// An observer, with a `Debug` that names it only.
 struct Observer<'a, S, const N: usize>(ObserverFn<'a, S, N>);
@@ -375,8 +383,9 @@ impl<'a, S: RealField + Copy, const N: usize> Events<'a, S, N> {
         }
     }
 
-    /// An observer, called with `(t, q, q̇)` at the end of every accepted
-    /// step (after the events located in it): a progress bar, a log, a
+    /// An observer (`Send + Sync`, like the event functions, so that a
+    /// [`Stepper`](crate::Stepper) watching it can move between threads),
+    /// called with `(t, q, q̇)` at the end of every accepted step (after the events located in it): a progress bar, a log, a
     /// watchdog. Returning [`Observation::Break`] stops the run cleanly
     /// there: the samples up to that time are recorded (inside the step
     /// from its interpolant), later ones are not, and
@@ -384,8 +393,8 @@ impl<'a, S: RealField + Copy, const N: usize> Events<'a, S, N> {
     /// when. A [`Stepper`](crate::Stepper) ends its call there.
     ///
     /// ```
-    /// use core::cell::Cell;
     /// use core::ops::ControlFlow;
+    /// use core::sync::atomic::{AtomicUsize, Ordering};
     /// use lagrange_runtime::prelude::*;
     /// use lagrange_runtime::nalgebra::{SMatrix, SVector, Vector1};
     /// # struct Spring;
@@ -401,21 +410,21 @@ impl<'a, S: RealField + Copy, const N: usize> Events<'a, S, N> {
     /// # }
     ///
     /// // Count the steps, and stop once t passes 2 (a budget, a cancel button).
-    /// let steps = Cell::new(0);
+    /// let steps = AtomicUsize::new(0);
     /// let events = Events::new().observe(|t, _q, _qdot| {
-    ///     steps.set(steps.get() + 1);
+    ///     steps.fetch_add(1, Ordering::Relaxed);
     ///     if t > 2.0 { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
     /// });
     /// let times: Vec<f64> = (1..=10).map(f64::from).collect();
     /// let run = Rk4::new(0.25).integrate_with_events(&Spring, 0.0, Vector1::new(1.0), Vector1::new(0.0), &times, &events)?;
     /// assert_eq!(run.interrupted(), Some(2.25));
     /// assert_eq!(run.times(), &[1.0, 2.0]);
-    /// assert_eq!(steps.get(), 9);
+    /// assert_eq!(steps.load(Ordering::Relaxed), 9);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn observe(
         mut self,
-        observer: impl Fn(S, &SVector<S, N>, &SVector<S, N>) -> Observation + 'a,
+        observer: impl Fn(S, &SVector<S, N>, &SVector<S, N>) -> Observation + Send + Sync + 'a,
     ) -> Self {
         self.observer = Some(Observer(Box::new(observer)));
         self

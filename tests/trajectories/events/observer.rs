@@ -2,8 +2,8 @@
 //! accepted step, it stops the run cleanly where it says, the samples
 //! before that time the same as a run without it, later ones absent.
 
-use std::cell::Cell;
 use std::ops::ControlFlow;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use lagrange::models::{DoublePendulum, Method};
 use lagrange::prelude::*;
@@ -14,16 +14,20 @@ fn an_observer_sees_every_step_and_stops_every_method_cleanly() {
     let times: Vec<f64> = (1..=40).map(|k| 0.25 * k as f64).collect();
     for method in Method::ALL {
         let integrator = method.integrator(1e-2, 1e-9);
-        let calls = Cell::new(0usize);
+        let calls = AtomicUsize::new(0);
         let watching = Events::new().observe(|_t, _q, _qdot| {
-            calls.set(calls.get() + 1);
+            calls.fetch_add(1, Ordering::Relaxed);
             ControlFlow::Continue(())
         });
         let full = integrator
             .integrate_with_events(&model, 0.0, q0, v0, &times, &watching)
             .unwrap();
         // Once per accepted step.
-        assert_eq!(calls.get(), full.stats().steps_accepted, "{method:?}");
+        assert_eq!(
+            calls.load(Ordering::Relaxed),
+            full.stats().steps_accepted,
+            "{method:?}"
+        );
         assert_eq!(full.interrupted(), None);
 
         let stopping = Events::new().observe(|t, _q, _qdot| {
