@@ -39,6 +39,50 @@ pub(crate) struct Controller {
     pub(crate) stretch: f64,
 }
 
+impl Controller {
+    /// The constants in the scalar `S`, for one run (or one stepper).
+    pub(crate) fn gains<S: RealField + Copy>(&self) -> Gains<S> {
+        let c = |x: f64| -> S { nalgebra::convert(x) };
+        let beta = c(self.beta);
+        Gains {
+            safety: c(self.safety),
+            fac_min: c(self.fac_min),
+            fac_max: c(self.fac_max),
+            alpha: c(self.exponent) - beta * c(self.beta_weight),
+            beta,
+        }
+    }
+}
+
+/// A [`Controller`] in the scalar of a run: the step-size rule the
+/// adaptive driver and a [`Stepper`](crate::Stepper) share.
+pub(crate) struct Gains<S> {
+    safety: S,
+    /// Smallest step-size ratio, also the cut after a failed evaluation.
+    pub(crate) fac_min: S,
+    fac_max: S,
+    alpha: S,
+    beta: S,
+}
+
+impl<S: RealField + Copy> Gains<S> {
+    /// The step after `h` was rejected with error `err` (above 1).
+    pub(crate) fn after_rejection(&self, h: S, err: S) -> S {
+        h / (err.powf(self.alpha) / self.safety).min(S::one() / self.fac_min)
+    }
+
+    /// The step after `h` was accepted with error `err`, the previous
+    /// accepted step's being `err_old`:
+    /// `h · safety · err^(−α) · err_old^β`, its ratio to `h` bounded.
+    pub(crate) fn after_acceptance(&self, h: S, err: S, err_old: S) -> S {
+        let shrink = err.powf(self.alpha) / err_old.powf(self.beta) / self.safety;
+        let fac = shrink
+            .min(S::one() / self.fac_min)
+            .max(S::one() / self.fac_max);
+        h / fac
+    }
+}
+
 /// The settings every adaptive method has.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Tolerances<S> {
@@ -162,9 +206,7 @@ where
     };
 
     let c = |x: f64| -> S { nalgebra::convert(x) };
-    let (safety, fac_min, fac_max) = (c(control.safety), c(control.fac_min), c(control.fac_max));
-    let beta = c(control.beta);
-    let alpha = c(control.exponent) - beta * c(control.beta_weight);
+    let gains = control.gains::<S>();
 
     let (mut t, mut q, mut qdot) = (t0, q0, qdot0);
     let qddot = rec.rhs(model, t, &q, &qdot)?;
@@ -208,22 +250,19 @@ where
             Ok(Outcome::Rejected { err }) => {
                 rec.stats.steps_rejected += 1;
                 rejected_last = true;
-                h /= (err.powf(alpha) / safety).min(S::one() / fac_min);
+                h = gains.after_rejection(h, err);
                 continue;
             }
             Err(error) => {
                 stage_failure = Some(error);
                 rec.stats.steps_rejected += 1;
                 rejected_last = true;
-                h *= fac_min;
+                h *= gains.fac_min;
                 continue;
             }
         };
 
-        // h_new = h · safety · err^(-alpha) · err_old^beta, bounded.
-        let shrink = err.powf(alpha) / err_old.powf(beta) / safety;
-        let fac = shrink.min(S::one() / fac_min).max(S::one() / fac_max);
-        let mut h_new = (h / fac).min(h_max);
+        let mut h_new = gains.after_acceptance(h, err, err_old).min(h_max);
         if rejected_last {
             h_new = h_new.min(h);
         }

@@ -113,15 +113,9 @@ pub(crate) fn evaluate<S: RealField + Copy, const N: usize>(
     state: &State<S, N>,
     evaluations: &mut usize,
 ) -> Result<Vec<S>, IntegrationError<S, N>> {
-    let (q, qdot) = state;
-    events
-        .list()
-        .iter()
-        .map(|event| {
-            *evaluations += 1;
-            finite(event.value(t, q, qdot), event.name(), t, *state)
-        })
-        .collect()
+    let mut g = Vec::with_capacity(events.len());
+    evaluate_into(events, t, state, &mut g, evaluations)?;
+    Ok(g)
 }
 
 fn finite<S: RealField + Copy, const N: usize>(

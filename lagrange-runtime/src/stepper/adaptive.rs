@@ -53,10 +53,7 @@ where
             atol,
             max_steps,
         } = self.settings;
-        let (safety, fac_min, fac_max) =
-            (c(control.safety), c(control.fac_min), c(control.fac_max));
-        let beta = c(control.beta);
-        let alpha = c(control.exponent) - beta * c(control.beta_weight);
+        let gains = control.gains::<S>();
 
         let mut attempts = 0;
         let mut stage_failure = None;
@@ -110,7 +107,7 @@ where
                     Ok(Outcome::Rejected { err }) => {
                         run.rec.stats.steps_rejected += 1;
                         self.rejected_last = true;
-                        h = h_try / (err.powf(alpha) / safety).min(S::one() / fac_min);
+                        h = gains.after_rejection(h_try, err);
                         self.h = Some(h);
                         continue;
                     }
@@ -118,14 +115,12 @@ where
                         stage_failure = Some(error);
                         run.rec.stats.steps_rejected += 1;
                         self.rejected_last = true;
-                        h = h_try * fac_min;
+                        h = h_try * gains.fac_min;
                         self.h = Some(h);
                         continue;
                     }
                 };
-            let shrink = err.powf(alpha) / self.err_old.powf(beta) / safety;
-            let fac = shrink.min(S::one() / fac_min).max(S::one() / fac_max);
-            let mut h_new = h_try / fac;
+            let mut h_new = gains.after_acceptance(h_try, err, self.err_old);
             if self.rejected_last {
                 h_new = h_new.min(h_try);
             }

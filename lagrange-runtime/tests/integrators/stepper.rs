@@ -235,14 +235,15 @@ fn f32_steppers_track_the_exact_solution() {
     late.advance(1.0 / 60.0).unwrap();
     assert!(late.q() != &q0);
 
-    for (name, q) in [("Rk4", rk4.q()), ("Dopri5", dopri.q())] {
+    // RK4: f32 rounding (ε = 6e-8) over 2400 steps grows like
+    // √steps · ε · |q| ≈ 3e-6, and its truncation (h⁴ ω⁴ t ≈ 5e-9) is
+    // below that: 1e-5. Dopri5: its default f32 tolerance, 1.2e-5, bounds
+    // each step's error; over these three periods the global error stays
+    // within ten times it: 1.2e-4. (Measured: 5.8e-7 and 4.8e-7.)
+    for (name, q, bound) in [("Rk4", rk4.q(), 1e-5), ("Dopri5", dopri.q(), 1.2e-4)] {
         let err = (q.cast::<f64>() - exact.0).amax();
         println!("{name} f32 after 600 frames: error {err:.1e}");
-        // f32 rounding (6e-8) over 2400 steps grows like √steps · ε ·
-        // |q| ≈ 3e-6 for RK4; Dopri5's default f32 tolerance is 1.2e-5
-        // per step, and over 600 frames its global error stays below
-        // 1e-3. RK4's truncation (h⁴ ω⁴ t ≈ 5e-9) is below rounding.
-        assert!(err < 1e-3, "{name}: {err}");
+        assert!(err < bound, "{name}: {err}");
     }
 }
 
