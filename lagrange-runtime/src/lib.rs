@@ -277,6 +277,7 @@ mod lagrangian;
 mod linalg;
 pub mod stepper;
 mod trajectory;
+pub mod trig;
 
 pub use constraints::Holonomic;
 /// The diffsol crate (feature `diffsol`), for its solvers and traits

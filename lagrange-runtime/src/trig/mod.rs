@@ -1,0 +1,89 @@
+//! Sine and cosine for the generated code: the same values as the platform's
+//! `sin_cos` to within one unit in the last place, in about half the time.
+//!
+//! Every model `lagrangian!` derives calls [`sin_cos`], [`sin`] and [`cos`]
+//! for the trigonometry a user wrote in `T`, `V` and the other sections. For
+//! `f64` they evaluate an inline kernel (`kernel.rs`): the argument reduced
+//! by `π/2` in two parts, with its rounding error carried as a tail, then the
+//! minimax polynomials of fdlibm's `__kernel_sin` and `__kernel_cos`, and the
+//! quadrant chosen without a branch. Arguments whose reduction would lose
+//! accuracy, `|x| ≥ 10⁵` or within `2⁻¹⁶ |x|` of a nonzero multiple of `π/2`,
+//! and NaN and the infinities, take the platform's `sin_cos`: the kernel
+//! never answers where it cannot be accurate.
+//!
+//! Why not the platform's own: a `sincos` from libm is an opaque call with
+//! branches on the argument's size, made once per angle on every evaluation
+//! of `M` and `f`. For a small model those calls are most of the time
+//! (`BENCHMARKS.md`, "Against SymPy → C": two `sincos` are 70 % of the
+//! 2-link chain's C function); inlined, the kernel's arithmetic overlaps the
+//! model's own.
+//!
+//! Accuracy (the tests below, against a double-double reference): at most
+//! one unit in the last place over `|x| < 10⁵`, the multiples of `π/2` and
+//! the points near them included; `sin(−0) = −0`; NaN for NaN and ±∞.
+//! Built for a CPU with fused multiply-add (`-C target-cpu=native`), the
+//! polynomials use it and the last bit may differ from the default build.
+//!
+//! Other scalars (`f32`, dual numbers, any `RealField`) go to their own
+//! [`ComplexField::sin_cos`]: the choice is made at compile time, by type.
+//!
+//! ```
+//! let (s, c) = lagrange_runtime::trig::sin_cos(0.5_f64);
+//! let (s0, c0) = 0.5_f64.sin_cos();
+//! assert!((s - s0).abs() <= f64::EPSILON * s0 && (c - c0).abs() <= f64::EPSILON * c0);
+//! assert_eq!(lagrange_runtime::trig::sin(-0.0_f64).to_bits(), (-0.0_f64).to_bits());
+//! ```
+
+mod kernel;
+#[cfg(test)]
+mod tests;
+
+use core::any::TypeId;
+use nalgebra::{ComplexField, RealField};
+
+/// `(sin x, cos x)`; for `f64` by the inline kernel (module docs).
+#[inline(always)]
+pub fn sin_cos<S: RealField + Copy>(x: S) -> (S, S) {
+    // Decided per type at compile time: `TypeId`s of two known types are
+    // constants, and for `f64` both conversions are the identity.
+    if TypeId::of::<S>() == TypeId::of::<f64>() {
+        if let Some(x) = x.to_subset() {
+            let ([s], [c]) = kernel::sin_cos_lanes::<kernel::Native, 1>([x]);
+            return (S::from_subset(&s), S::from_subset(&c));
+        }
+    }
+    ComplexField::sin_cos(x)
+}
+
+/// `(sin xᵢ, cos xᵢ)` of several angles at once: for `f64` the kernel on
+/// all lanes together, which the compiler vectorizes (two or four lanes to
+/// an instruction). The generated code calls it with every angle whose
+/// sine and cosine it needs, where they are all known.
+#[inline(always)]
+pub fn sin_cos_array<S: RealField + Copy, const K: usize>(x: [S; K]) -> ([S; K], [S; K]) {
+    if TypeId::of::<S>() == TypeId::of::<f64>() {
+        let (s, c) = kernel::sin_cos_lanes::<kernel::Native, K>(x.map(|x| x.to_subset_unchecked()));
+        return (s.map(|s| S::from_subset(&s)), c.map(|c| S::from_subset(&c)));
+    }
+    let sc = x.map(ComplexField::sin_cos);
+    (sc.map(|(s, _)| s), sc.map(|(_, c)| c))
+}
+
+/// `sin x`; for `f64` the sine of [`sin_cos`], the cosine's arithmetic left
+/// out by the optimizer.
+#[inline(always)]
+pub fn sin<S: RealField + Copy>(x: S) -> S {
+    if TypeId::of::<S>() == TypeId::of::<f64>() {
+        return sin_cos(x).0;
+    }
+    ComplexField::sin(x)
+}
+
+/// `cos x`; for `f64` the cosine of [`sin_cos`].
+#[inline(always)]
+pub fn cos<S: RealField + Copy>(x: S) -> S {
+    if TypeId::of::<S>() == TypeId::of::<f64>() {
+        return sin_cos(x).1;
+    }
+    ComplexField::cos(x)
+}
