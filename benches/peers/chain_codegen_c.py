@@ -50,7 +50,9 @@ function (sin, cos, pow, powi, sqrt, ...), pow(x, 2) counting as one, and
 each call of the generated code's local multiply-add `fma(a, b, c)` as a
 multiply and an add (as `a*b + c` counts in C; the helper itself is not
 counted), a sin(x) and a cos(x) of the same argument as one call (gcc and
-LLVM compile them to one sincos; lagrange writes one sin_cos(x)); unary
+LLVM compile them to one sincos; lagrange writes one sin_cos(x), or one
+sin_cos_array([x, y, ...]) for several angles, counted as one call per
+angle); unary
 minus is counted apart (`neg`) and not in the total; a constant written
 `(1.0/2.0)` is a literal, not a division; constants and array reads are free.
 The engine's own count (Derived::op_counts, what BENCHMARKS.md reports) and
@@ -149,6 +151,10 @@ def count_tokens(toks):
             continue
         if t in MATH_FUNCS and i + 1 < len(toks) and toks[i + 1] == "(":
             c["call"] += 1
+        if t == "sin_cos_array" and i + 1 < len(toks) and toks[i + 1] == "(":
+            # lagrange's kernel on K angles at once: K calls, one per angle,
+            # as K sin_cos(x) would count
+            c["call"] += array_len(toks, i + 2)
         if t in FMA_FUNCS and i + 1 < len(toks) and toks[i + 1] == "(":
             # lagrange's local multiply-add: a multiply and an add, as `a*b + c` in C
             c["mul"] += 1
@@ -156,6 +162,23 @@ def count_tokens(toks):
         operand_end = bool(re.match(r"[A-Za-z_0-9.]", t)) or t in (")", "]")
     c["total"] = c["add"] + c["sub"] + c["mul"] + c["div"] + c["call"]
     return c
+
+
+def array_len(toks, i):
+    """Elements of the array literal opening at toks[i] ('['); a trailing
+    comma (as prettyplease writes a long one) opens none."""
+    assert toks[i] == "[", toks[i:i + 3]
+    depth, n = 0, 1
+    for k, t in enumerate(toks[i:], i):
+        if t in ("(", "[", "{"):
+            depth += 1
+        elif t in (")", "]", "}"):
+            depth -= 1
+            if depth == 0:
+                return n
+        elif t == "," and depth == 1 and toks[k + 1] != "]":
+            n += 1
+    raise ValueError("unclosed array")
 
 
 def sin_cos_pairs(token_lists):

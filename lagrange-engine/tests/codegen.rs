@@ -1,5 +1,7 @@
 //! Properties of the emitted code itself: every `let` it writes is read,
-//! and fused multiply-add appears only under `cfg(target_feature = "fma")`.
+//! fused multiply-add appears only under `cfg(target_feature = "fma")`, and
+//! sines and cosines are lanes of the runtime's kernel, called once for all
+//! the angles known at that point.
 
 use quote::ToTokens;
 
@@ -86,12 +88,42 @@ fn fused_multiply_add_only_where_the_target_has_it() {
 }
 
 #[test]
-fn a_sine_and_a_cosine_of_one_angle_are_one_sin_cos() {
+fn every_angle_of_the_chain_is_one_lane_of_one_kernel_call() {
+    // Three angles, each with its sine and cosine: one call of the runtime's
+    // kernel on three lanes, and no other trigonometry.
     let mf = methods(&indexed_chain(3))
         .into_iter()
         .find(|f| f.sig.ident == "mass_matrix_and_forcing")
         .unwrap();
     let body = mf.block.to_token_stream().to_string();
-    assert_eq!(mentions(&body, "sin_cos"), 3, "{body}");
-    assert_eq!(mentions(&body, "sin") + mentions(&body, "cos"), 0, "{body}");
+    assert_eq!(mentions(&body, "sin_cos_array"), 1, "{body}");
+    assert!(
+        body.contains("sin_cos_array ([theta_0 , theta_1 , theta_2])"),
+        "{body}"
+    );
+    for other in ["sin_cos", "sin", "cos"] {
+        assert_eq!(mentions(&body, other), 0, "{other}: {body}");
+    }
+}
+
+#[test]
+fn an_angle_computed_from_a_sine_waits_for_it() {
+    // `cos(sin θ)`: its lane reads `sin θ`, so it is a second call after the
+    // first; its sine is not written (`_`).
+    let source = "pub struct Nested {
+        coordinates: theta;
+        kinetic: dot(theta)^2 / 2;
+        potential: cos(theta) + cos(sin(theta));
+    }";
+    let v = methods(source)
+        .into_iter()
+        .find(|f| f.sig.ident == "potential_energy")
+        .unwrap();
+    let body = v.block.to_token_stream().to_string();
+    let trig = ":: lagrange :: trig :: sin_cos";
+    let first = format!("let (e0 , e1) = {trig} (theta) ;");
+    let second = format!("let (_ , e2) = {trig} (e0) ;");
+    assert_eq!(mentions(&body, "sin_cos"), 2, "{body}");
+    let (a, b) = (body.find(&first), body.find(&second));
+    assert!(a.is_some() && b.is_some() && a < b, "{body}");
 }

@@ -10,13 +10,13 @@
 //! software fma.
 
 use super::names::Namer;
-use super::outline::nalgebra;
+use super::outline::{nalgebra, trig};
 use crate::expr::cse::{expands_to_product, fused_term, schedule, Schedule};
-use crate::expr::{ExprId, Node, Pool};
+use crate::expr::{ExprId, Func, Node, Pool};
 use crate::model::Model;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Operator precedence of an emitted expression, for parenthesization.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -53,27 +53,33 @@ impl<'a> FnEmitter<'a> {
             fma: None,
         };
         let order = e.sched.order.clone();
-        // Each sine's and cosine's pair, for the one `let` of both.
-        let mut partner: HashMap<ExprId, (ExprId, ExprId)> = HashMap::new();
-        for &(s, c) in &e.sched.sin_cos {
-            partner.insert(s, (s, c));
-            partner.insert(c, (s, c));
+        // Which lane of the trigonometric kernel each sine and cosine is.
+        let mut lane_of: HashMap<ExprId, usize> = HashMap::new();
+        for (k, t) in e.sched.trig.iter().enumerate() {
+            for &id in t.sin.iter().chain(&t.cos) {
+                lane_of.insert(id, k);
+            }
         }
+        // What each lane's argument reads that a `let` binds: the lane can
+        // be computed once all of those are written.
+        let needs: Vec<Vec<ExprId>> = e.sched.trig.iter().map(|t| e.bound_reads(t.arg)).collect();
+        let mut written = vec![false; e.sched.trig.len()];
         for id in order {
             if e.names.contains_key(&id) {
                 continue;
             }
-            if let Some(&(s, c)) = partner.get(&id) {
-                let Node::Func(_, a) = *e.pool.node(s) else {
-                    unreachable!("a sin_cos pair is of sines and cosines")
-                };
-                let a = e.operand(a, Prec::Sum);
-                let (sn, cn) = (e.namer.fresh("e", true), e.namer.fresh("e", true));
-                let na = nalgebra();
-                e.stmts
-                    .push(quote!(let (#sn, #cn) = #na::ComplexField::sin_cos(#a);));
-                e.names.insert(s, sn);
-                e.names.insert(c, cn);
+            if let Some(&k) = lane_of.get(&id) {
+                // The first sine or cosine reached: one call for its lane and
+                // every other whose argument can be written here already.
+                let batch: Vec<usize> = (0..written.len())
+                    .filter(|&j| {
+                        !written[j] && (j == k || needs[j].iter().all(|n| e.names.contains_key(n)))
+                    })
+                    .collect();
+                for &j in &batch {
+                    written[j] = true;
+                }
+                e.trig_call(&batch);
                 continue;
             }
             if e.sched.bound[id.index()] {
@@ -84,6 +90,59 @@ impl<'a> FnEmitter<'a> {
             }
         }
         e
+    }
+
+    /// The nodes bound to a `let` that writing `id` reads: `id` itself if
+    /// bound, else those its operands read (symbols and constants need none).
+    fn bound_reads(&self, id: ExprId) -> Vec<ExprId> {
+        let mut out = Vec::new();
+        let mut seen = HashSet::new();
+        let mut stack = vec![id];
+        while let Some(id) = stack.pop() {
+            if !seen.insert(id) {
+                continue;
+            }
+            match self.pool.node(id) {
+                Node::Num(_) | Node::Sym(_) => {}
+                _ if self.sched.bound[id.index()] => out.push(id),
+                _ => stack.extend(self.pool.children(id)),
+            }
+        }
+        out
+    }
+
+    /// One call of the runtime's kernel for the given lanes of
+    /// `sched.trig`: `sin_cos(x)` for one, `sin_cos_array([x, y, ..])` for
+    /// more, so that the angles' arithmetic runs side by side (vectorized);
+    /// a sine or cosine the function does not write is `_`.
+    fn trig_call(&mut self, lanes: &[usize]) {
+        let mut args = Vec::new();
+        let mut sines = Vec::new();
+        let mut cosines = Vec::new();
+        for &k in lanes {
+            let (arg, sin, cos) = {
+                let t = &self.sched.trig[k];
+                (t.arg, t.sin, t.cos)
+            };
+            args.push(self.operand(arg, Prec::Sum));
+            for (id, out) in [(sin, &mut sines), (cos, &mut cosines)] {
+                out.push(match id {
+                    Some(id) => {
+                        let name = self.namer.fresh("e", true);
+                        self.names.insert(id, name.clone());
+                        quote!(#name)
+                    }
+                    None => quote!(_),
+                });
+            }
+        }
+        let trig = trig();
+        self.stmts.push(if let [a] = &args[..] {
+            let (s, c) = (&sines[0], &cosines[0]);
+            quote!(let (#s, #c) = #trig::sin_cos(#a);)
+        } else {
+            quote!(let ([#(#sines),*], [#(#cosines),*]) = #trig::sin_cos_array([#(#args),*]);)
+        });
     }
 
     fn constant(&mut self, v: f64) -> TokenStream {
@@ -211,8 +270,16 @@ impl<'a> FnEmitter<'a> {
             Node::Func(f, a) => {
                 let a = self.operand(a, Prec::Sum);
                 let name = format_ident!("{}", f.name());
-                let na = nalgebra();
-                (quote!(#na::ComplexField::#name(#a)), Prec::Atom)
+                // Sines and cosines through the runtime's inline kernel
+                // (`lagrange::trig`), the rest through nalgebra.
+                let path = match f {
+                    Func::Sin | Func::Cos => trig(),
+                    _ => {
+                        let na = nalgebra();
+                        quote!(#na::ComplexField)
+                    }
+                };
+                (quote!(#path::#name(#a)), Prec::Atom)
             }
             Node::Atan2(y, x) => {
                 let y = self.operand(y, Prec::Sum);

@@ -89,6 +89,12 @@ pub fn nalgebra() -> TokenStream {
     quote!(::lagrange::nalgebra)
 }
 
+/// The path of the runtime's sine and cosine (`lagrange::trig`), which the
+/// generated code calls for every `sin` and `cos`.
+pub fn trig() -> TokenStream {
+    quote!(::lagrange::trig)
+}
+
 /// What the generated items know of a model whether or not it derived: its
 /// struct's attributes, visibility, name and fields, and its size.
 pub struct Outline<'a> {

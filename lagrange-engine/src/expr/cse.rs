@@ -10,7 +10,8 @@
 //! needs no `let` of its own unless something else uses it whole. The
 //! choice depends only on the node, never on what else the function holds,
 //! so an expression rounds the same in every function that computes it.
-//! A sine and a cosine of the same argument are one `sin_cos` call.
+//! A sine and a cosine of the same argument are one lane of the runtime's
+//! sine-and-cosine kernel ([`Trig`]), counted as one call.
 
 use super::{ExprId, Func, Node, Pool};
 use std::collections::BTreeMap;
@@ -25,9 +26,20 @@ pub struct Schedule {
     pub uses: Vec<u32>,
     /// Whether each node (indexed by id) is bound to a `let`.
     pub bound: Vec<bool>,
-    /// `(sin(x), cos(x))` pairs the function writes both of: computed by
-    /// one `sin_cos(x)` and bound together.
-    pub sin_cos: Vec<(ExprId, ExprId)>,
+    /// Every argument of a sine or cosine the function writes, in the order
+    /// of the arguments' ids: each is one lane of the runtime's kernel, which
+    /// computes both, and the written ones are bound.
+    pub trig: Vec<Trig>,
+}
+
+/// The sine and the cosine of one argument, as far as a function writes them.
+pub struct Trig {
+    /// The argument.
+    pub arg: ExprId,
+    /// `sin(arg)`, if written.
+    pub sin: Option<ExprId>,
+    /// `cos(arg)`, if written.
+    pub cos: Option<ExprId>,
 }
 
 /// Small integer exponents are emitted as repeated products (`x * x`), which
@@ -108,8 +120,7 @@ pub fn schedule(pool: &Pool, roots: &[ExprId]) -> Schedule {
             bound[id.index()] = true;
         }
     }
-    // Sines and cosines of one argument, both written: one `sin_cos`. The
-    // argument's id orders the pairs.
+    // Sines and cosines by argument, whose id orders them.
     let mut by_argument: BTreeMap<ExprId, (Option<ExprId>, Option<ExprId>)> = BTreeMap::new();
     for &id in &order {
         if uses[id.index()] == 0 {
@@ -121,19 +132,20 @@ pub fn schedule(pool: &Pool, roots: &[ExprId]) -> Schedule {
             _ => {}
         }
     }
-    let sin_cos: Vec<(ExprId, ExprId)> = by_argument
-        .into_values()
-        .filter_map(|(s, c)| Some((s?, c?)))
+    let trig: Vec<Trig> = by_argument
+        .into_iter()
+        .map(|(arg, (sin, cos))| Trig { arg, sin, cos })
         .collect();
-    for &(s, c) in &sin_cos {
-        bound[s.index()] = true;
-        bound[c.index()] = true;
+    for t in &trig {
+        for id in t.sin.iter().chain(&t.cos) {
+            bound[id.index()] = true;
+        }
     }
     Schedule {
         order,
         uses,
         bound,
-        sin_cos,
+        trig,
     }
 }
 
@@ -233,7 +245,11 @@ pub fn shared_ops(pool: &Pool, roots: &[ExprId]) -> OpCount {
         total.calls += c.calls;
     }
     // A sine and a cosine of one argument are one call.
-    total.calls -= sched.sin_cos.len() as u64;
+    total.calls -= sched
+        .trig
+        .iter()
+        .filter(|t| t.sin.is_some() && t.cos.is_some())
+        .count() as u64;
     total
 }
 

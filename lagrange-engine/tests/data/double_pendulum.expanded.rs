@@ -52,8 +52,7 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
-        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
-        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let ([e0, e2], [e1, e3]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
         let e4 = l1 * l2 * m2 * fma(e0, e2, e1 * e3);
         ::lagrange::nalgebra::SMatrix::<
             S,
@@ -84,8 +83,7 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
-        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
-        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let ([e0, e2], [e1, e3]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
         let e4 = fma(-e1, e2, e0 * e3);
         ::lagrange::nalgebra::SVector::<
             S,
@@ -121,8 +119,7 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let e0 = m1 + m2;
-        let (e1, e2) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
-        let (e3, e4) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let ([e1, e3], [e2, e4]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
         let e5 = l1 * l2 * m2 * fma(e1, e3, e2 * e4);
         let e6 = fma(-e2, e3, e1 * e4);
         (
@@ -166,8 +163,7 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let k0: S = ::lagrange::nalgebra::convert::<f64, S>(0.5f64);
-        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
-        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let ([e0, e2], [e1, e3]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
         let e4 = fma(l2 * e3, theta2_dot, l1 * e1 * theta1_dot);
         let e5 = fma(l2 * e2, theta2_dot, l1 * e0 * theta1_dot);
         fma(k0 * m2, e4 * e4 + e5 * e5, k0 * m1 * (l1 * l1) * (theta1_dot * theta1_dot))
@@ -187,12 +183,8 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
-        let e0 = ::lagrange::nalgebra::ComplexField::cos(theta1);
-        fma(
-            -m2 * g,
-            fma(l1, e0, l2 * ::lagrange::nalgebra::ComplexField::cos(theta2)),
-            -l1 * e0 * m1 * g,
-        )
+        let ([_, _], [e0, e1]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
+        fma(-m2 * g, fma(l1, e0, l2 * e1), -l1 * e0 * m1 * g)
     }
     /// Total energy `T + V`.
     #[inline]
@@ -218,8 +210,7 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let k0: S = ::lagrange::nalgebra::convert::<f64, S>(0.5f64);
-        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
-        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let ([e0, e2], [e1, e3]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
         let e4 = fma(l2 * e3, theta2_dot, l1 * e1 * theta1_dot);
         let e5 = fma(l2 * e2, theta2_dot, l1 * e0 * theta1_dot);
         fma(
@@ -259,8 +250,7 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
-        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
-        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let ([e0, e2], [e1, e3]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
         let e4 = fma(l2 * e3, theta2_dot, l1 * e1 * theta1_dot);
         let e5 = fma(l2 * e2, theta2_dot, l1 * e0 * theta1_dot);
         ::lagrange::nalgebra::SVector::<
@@ -296,8 +286,7 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
-        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
-        let (e2, e3) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
+        let ([e0, e2], [e1, e3]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
         let e4 = fma(l2 * e3, theta2_dot, l1 * e1 * theta1_dot);
         let e5 = fma(l2 * e2, theta2_dot, l1 * e0 * theta1_dot);
         ::lagrange::nalgebra::SVector::<
@@ -336,10 +325,9 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
             { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
-        let (e0, e1) = ::lagrange::nalgebra::ComplexField::sin_cos(theta1);
-        let e2 = l1 * e0;
-        let (e3, e4) = ::lagrange::nalgebra::ComplexField::sin_cos(theta2);
-        [e2, -l1 * e1, fma(l2, e3, e2), fma(-l1, e1, -l2 * e4)]
+        let ([e0, e2], [e1, e3]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
+        let e4 = l1 * e0;
+        [e4, -l1 * e1, fma(l2, e2, e4), fma(-l1, e1, -l2 * e3)]
     }
     /// The value of the `let` named `name` (as `LETS` writes it: `x1`,
     /// `x[2]`) at `(t, q, q̇)`; `None` where the model has no such `let`.
