@@ -189,7 +189,7 @@ pub fn modes<L: Lagrangian<N>, const N: usize>(
         Ok(MassFactor::Lu(_)) => return Err(mass_error(SolveError::Singular, t, q, &zero).into()),
         Err(err) => return Err(mass_error(err, t, q, &zero).into()),
     };
-    let l = chol.l();
+    let l = chol.cholesky_factor();
     let singular = || AnalysisError::from(mass_error(SolveError::Singular, t, q, &zero));
     let k = DMatrix::from_fn(N, N, |i, j| k[(i, j)]);
     let l = DMatrix::from_fn(N, N, |i, j| l[(i, j)]);

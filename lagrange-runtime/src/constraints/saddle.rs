@@ -67,8 +67,8 @@ impl<S: RealField + Copy, const N: usize, const C: usize> Schur<S, N, C> {
     pub(crate) fn new(mass: &MassFactor<S, N>, g: &SMatrix<S, C, N>) -> Result<Self, SaddleError> {
         let gt = g.transpose();
         let (x, s) = match mass {
-            MassFactor::Cholesky(chol) => {
-                let l = chol.l_dirty();
+            MassFactor::Cholesky(ldlt) => {
+                let l = ldlt.cholesky_factor();
                 let y = l.solve_lower_triangular(&gt).ok_or(SaddleError::Singular)?;
                 let x = l
                     .tr_solve_lower_triangular(&y)

@@ -4,6 +4,8 @@
 //!   pivoting as the fallback), with singular and non-finite cases caught;
 //!   every right-hand side goes through it. Also the stack LU of the
 //!   variational integrator's `N × N` Newton systems.
+//! - `ldlt`: `M = L D Lᵀ` (Cholesky without square roots) written out for
+//!   the hot path: inlined, one division per column.
 //! - [`jacobian`]: `∂q̈/∂q` and `∂q̈/∂q̇`, exact from the model or by
 //!   forward differences, for the implicit methods' Newton iterations.
 //! - `lu`: LU factors in storage allocated once per integration, real or
@@ -16,6 +18,7 @@
 //! are the integrators' own.
 
 pub mod jacobian;
+pub(crate) mod ldlt;
 pub(crate) mod lu;
 pub(crate) mod second_order;
 pub mod solve;

@@ -5,7 +5,9 @@
 
 use core::cmp::Ordering;
 
-use nalgebra::{Cholesky, ComplexField, Const, RealField, SMatrix, SVector};
+use nalgebra::{ComplexField, RealField, SMatrix, SVector};
+
+use super::ldlt::Ldlt;
 
 use crate::constraints::Accelerations;
 use crate::{IntegrationError, Lagrangian, NonFiniteValue};
@@ -81,7 +83,7 @@ pub fn solve_mass_matrix<S: RealField + Copy, const N: usize>(
 /// which refactors per solve). The constrained accelerations solve with
 /// `M` for `f` and for each row of `G` through one of these.
 pub(crate) enum MassFactor<S: RealField + Copy, const N: usize> {
-    Cholesky(Cholesky<S, Const<N>>),
+    Cholesky(Ldlt<S, N>),
     Lu(SMatrix<S, N, N>),
 }
 
@@ -96,12 +98,8 @@ pub(crate) fn factor_mass_matrix<S: RealField + Copy, const N: usize>(
     }
     // In exact arithmetic LU without pivoting of an SPD matrix has pivots
     // L_ii², so both factorizations are judged on the same scale.
-    Ok(match m.cholesky() {
-        Some(chol)
-            if well_conditioned::<S, N>(chol.l_dirty().diagonal().iter().map(|&l| l * l)) =>
-        {
-            MassFactor::Cholesky(chol)
-        }
+    Ok(match Ldlt::new(m) {
+        Some(ldlt) if well_conditioned::<S, N>(ldlt.pivot_range()) => MassFactor::Cholesky(ldlt),
         Some(_) => MassFactor::Lu(*m),
         None if !positive_semidefinite(m) => return Err(SolveError::Indefinite),
         None => MassFactor::Lu(*m),
@@ -113,7 +111,7 @@ impl<S: RealField + Copy, const N: usize> MassFactor<S, N> {
     /// singular.
     pub(crate) fn solve(&self, b: &SVector<S, N>) -> Result<SVector<S, N>, SolveError> {
         let solution = match self {
-            Self::Cholesky(chol) => chol.solve(b),
+            Self::Cholesky(ldlt) => ldlt.solve(b),
             Self::Lu(m) => lu_solve(*m, *b)?,
         };
         if all_finite(solution.iter()) {
@@ -196,7 +194,8 @@ pub(crate) fn lu_solve<S: RealField + Copy, const N: usize>(
             b[i] -= l * bk;
         }
     }
-    if !well_conditioned::<S, N>(a.diagonal().iter().copied()) {
+    let pivots = a.diagonal().map(|p| p.abs());
+    if N > 0 && !well_conditioned::<S, N>((pivots.min(), pivots.max())) {
         return Err(SolveError::Singular);
     }
     for i in (0..N).rev() {
@@ -279,24 +278,20 @@ pub(crate) fn mass_error<S: RealField + Copy, const N: usize>(
 /// assert_eq!(pivot_ratio(&m), Some(1e6));
 /// ```
 pub fn pivot_ratio<S: RealField + Copy, const N: usize>(m: &SMatrix<S, N, N>) -> Option<S> {
-    let chol = m.cholesky()?;
-    let pivots = chol.l_dirty().diagonal().map(|l| l * l);
-    Some(pivots.max() / pivots.min())
+    let (smallest, largest) = Ldlt::new(m)?.pivot_range();
+    Some(largest / smallest)
 }
 
 fn all_finite<'a, S: RealField + Copy>(mut values: impl Iterator<Item = &'a S>) -> bool {
     values.all(|x| x.is_finite())
 }
 
-/// Whether the smallest `|pivot|` exceeds `N ε` times the largest (vacuously
-/// true for `N = 0`).
-fn well_conditioned<S: RealField + Copy, const N: usize>(pivots: impl Iterator<Item = S>) -> bool {
-    let (smallest, largest) = pivots.fold((None, S::zero()), |(small, large), p| {
-        let p = p.abs();
-        (Some(small.map_or(p, |s: S| s.min(p))), large.max(p))
-    });
+/// Whether the smallest pivot's magnitude exceeds `N ε` times the largest
+/// one's (true for `N = 0`, whose range is `(0, 0)`).
+#[inline]
+fn well_conditioned<S: RealField + Copy, const N: usize>((smallest, largest): (S, S)) -> bool {
     let n: S = nalgebra::convert(N as f64);
-    smallest.is_none_or(|s| s > n * S::default_epsilon() * largest)
+    N == 0 || smallest > n * S::default_epsilon() * largest
 }
 
 #[cfg(test)]

@@ -44,13 +44,15 @@ fn impossibly_tight_tolerance_is_refused_up_front() {
 
 #[test]
 fn unreachable_absolute_tolerance_ends_in_a_clean_error_not_a_hang() {
-    // y stays near rounding level (~1e-28) and atol = 1e-300 asks it to be
-    // right to ~1e-42: steps of ~1e-11 manage that, so the run crawls until
-    // its budget of 100 000 steps ends it near t = 1e-6. (While the first
-    // step guess overflowed to h = 0, it stopped at t = 0 having tried
-    // nothing, with "step size underflow".)
+    // y = 1e-10 is asked to be right to rtol |y| + atol ≈ 1e-24, far below
+    // the rounding (~1e-16) that x's terms leave in its acceleration: the
+    // steps shrink until the budget of 100 000 ends the run short of t = 1.
+    // (While the first step guess overflowed to h = 0, it stopped at t = 0
+    // having tried nothing, with "step size underflow".) From exactly
+    // y = 0 it would stay exactly 0, the solve of M q̈ = f being exact there,
+    // and any atol would be met.
     let model = CoupledOscillator { omega: 2.0 };
-    let (q0, qdot0) = (Vector2::new(1.0, 0.0), Vector2::zeros());
+    let (q0, qdot0) = (Vector2::new(1.0, 1e-10), Vector2::zeros());
     let failure = Dopri5::new()
         .rtol(1e-14)
         .atol(1e-300)
@@ -59,7 +61,7 @@ fn unreachable_absolute_tolerance_ends_in_a_clean_error_not_a_hang() {
     let IntegrationError::TooManySteps { t, .. } = failure.error else {
         panic!("expected too many steps, got {}", failure.error);
     };
-    assert!(t > 0.0 && t < 1e-3, "t = {t}");
+    assert!(t > 0.0 && t < 1.0, "t = {t}");
 }
 
 #[test]
