@@ -241,10 +241,12 @@
 //!   recording, input validation, the fixed-step loop and its growth guard,
 //!   the explicit adaptive loop, step-size control, Newton's noise floor.
 //! - `linalg/` (private), the linear algebra in one place, with two public
-//!   modules: [`solve`], `q̈` from `M q̈ = f` on the stack, singular cases
-//!   caught; [`jacobian`], `∂q̈/∂q` and `∂q̈/∂q̇` for the implicit methods'
+//!   modules: [`solve`], `q̈` from `M q̈ = f` on the stack (an inlined
+//!   `L D Lᵀ`), singular cases caught; [`jacobian`], `∂q̈/∂q` and `∂q̈/∂q̇` for the implicit methods'
 //!   Newton iterations; beside them the heap LU and the block solve of the
 //!   implicit Runge–Kutta methods.
+//! - [`trig`]: the sine and cosine the generated code calls, an inline
+//!   `f64` kernel within one ulp that runs several angles side by side.
 //! - [`analysis`]: small motions, [`linearize`](analysis::linearize) at
 //!   any state (`A`, and `B` for models with inputs), equilibria by
 //!   Newton's method, normal modes about them; exact with a model's

@@ -17,3 +17,4 @@ mod more_models;
 mod named_lets;
 mod readme;
 mod textbook_models;
+mod trigonometry;

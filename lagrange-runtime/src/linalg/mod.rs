@@ -1,7 +1,7 @@
 //! The linear algebra of the runtime, in one place.
 //!
-//! - [`solve`]: `q̈` from `M q̈ = f` on the stack (Cholesky, LU with partial
-//!   pivoting as the fallback), with singular and non-finite cases caught;
+//! - [`solve`]: `q̈` from `M q̈ = f` on the stack (Cholesky as `LDLᵀ`, LU
+//!   with partial pivoting as the fallback), with singular and non-finite cases caught;
 //!   every right-hand side goes through it. Also the stack LU of the
 //!   variational integrator's `N × N` Newton systems.
 //! - `ldlt`: `M = L D Lᵀ` (Cholesky without square roots) written out for

@@ -36,7 +36,8 @@ pub enum SolveError {
 /// Solves `M q̈ = f` without allocating.
 ///
 /// Mass matrices are symmetric positive definite whenever the kinetic energy
-/// is, so Cholesky comes first. Where it fails, `M` is either positive
+/// is, so Cholesky comes first (in its square-root-free form `L D Lᵀ`,
+/// whose pivots `D` are Cholesky's `L_ii²`). Where it fails, `M` is either positive
 /// semi-definite up to rounding (a coordinate without inertia, a chart's
 /// pole) or ill-conditioned for Cholesky's pivots, and LU with partial
 /// pivoting decides between a solution and [`SolveError::Singular`]; or `M`
@@ -83,6 +84,7 @@ pub fn solve_mass_matrix<S: RealField + Copy, const N: usize>(
 /// which refactors per solve). The constrained accelerations solve with
 /// `M` for `f` and for each row of `G` through one of these.
 pub(crate) enum MassFactor<S: RealField + Copy, const N: usize> {
+    /// Cholesky, as `L D Lᵀ`.
     Cholesky(Ldlt<S, N>),
     Lu(SMatrix<S, N, N>),
 }

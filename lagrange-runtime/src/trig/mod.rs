@@ -62,7 +62,7 @@ pub fn sin_cos<S: RealField + Copy>(x: S) -> (S, S) {
 #[inline(always)]
 pub fn sin_cos_array<S: RealField + Copy, const K: usize>(x: [S; K]) -> ([S; K], [S; K]) {
     if TypeId::of::<S>() == TypeId::of::<f64>() {
-        let (s, c) = kernel::sin_cos_lanes::<kernel::Native, K>(x.map(|x| x.to_subset_unchecked()));
+        let (s, c) = kernel::sin_cos_many::<kernel::Native, K>(x.map(|x| x.to_subset_unchecked()));
         return (s.map(|s| S::from_subset(&s)), c.map(|c| S::from_subset(&c)));
     }
     let sc = x.map(ComplexField::sin_cos);

@@ -200,7 +200,7 @@ fn generic_entry_points_dispatch_by_type() {
 /// Asserts that each lane of a `K`-lane call is the one-lane call's value,
 /// to the bit.
 fn lanes_match_single_calls<const K: usize>(x: [f64; K]) {
-    let (s, c) = kernel::sin_cos_lanes::<Plain, K>(x);
+    let (s, c) = kernel::sin_cos_many::<Plain, K>(x);
     for i in 0..K {
         let ([s1], [c1]) = kernel::sin_cos_lanes::<Plain, 1>([x[i]]);
         assert_eq!(s[i].to_bits(), s1.to_bits(), "sin, lane {i} of {x:?}");
@@ -223,6 +223,13 @@ fn each_lane_is_its_own_single_call_even_beside_a_declined_lane() {
         lanes_match_single_calls::<8>(x);
         lanes_match_single_calls::<2>([x[0], x[7]]);
     }
+    // Beyond one pass (passes of 8 lanes, the last one padded).
+    let mut x = [0.0; 29];
+    for (x, p) in x.iter_mut().zip(points(7, 29, 50.0)) {
+        *x = p;
+    }
+    x[17] = f64::NAN;
+    lanes_match_single_calls::<29>(x);
     // And through the generic entry point, for f64 and f32.
     let x = [0.3, -2.0, 1.0e6];
     let (s, c) = super::sin_cos_array(x);
