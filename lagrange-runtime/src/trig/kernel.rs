@@ -137,10 +137,9 @@ pub(crate) fn sin_cos_many<A: MulAdd, const K: usize>(x: [f64; K]) -> ([f64; K],
     for start in (0..K).step_by(PASS) {
         let pass: [f64; PASS] = core::array::from_fn(|i| x.get(start + i).copied().unwrap_or(0.0));
         let (s, c) = sin_cos_lanes::<A, PASS>(pass);
-        for i in 0..PASS.min(K - start) {
-            sin[start + i] = s[i];
-            cos[start + i] = c[i];
-        }
+        let n = PASS.min(K - start);
+        sin[start..start + n].copy_from_slice(&s[..n]);
+        cos[start..start + n].copy_from_slice(&c[..n]);
     }
     (sin, cos)
 }
