@@ -8,6 +8,11 @@
 //! `-C target-cpu=native` on a recent x86-64), `a * b + c` otherwise, which
 //! rounds exactly as the sum written out (`c + a * b`) would; never a
 //! software fma.
+//!
+//! Sines and cosines are lanes of the runtime's kernel (`lagrange::trig`):
+//! where the first of them is due, one `sin_cos_array([x, y, ..])` computes
+//! every one whose argument is known by then, side by side; an argument
+//! computed from a sine waits for a later call.
 
 use super::names::Namer;
 use super::outline::{nalgebra, trig};

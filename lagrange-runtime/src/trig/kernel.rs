@@ -117,10 +117,11 @@ fn takes(x: f64, r: f64) -> bool {
     ax < LARGE && r.abs() >= ax * CANCELLED
 }
 
-/// The most lanes the kernel takes in one pass: beyond, the compiler stops
-/// unrolling the lanes and a pass costs twice as much per angle (measured:
-/// 3.3 ns per angle at 14 and 20 lanes, 6.5 at 30), and passes of [`PASS`]
-/// lanes are faster (4.3 ns per angle at 30).
+/// The most lanes the kernel takes in one pass. Beyond, the compiler stops
+/// unrolling the lanes: in a trial, one pass of 30 lanes cost twice as much
+/// per angle as one of 20, and passes of [`PASS`] lanes a third more (the
+/// rows for 20, 21 and 30 angles of `cargo bench --bench trig` show the
+/// passes as they are).
 const ONE_PASS: usize = 20;
 /// The lanes of each pass beyond [`ONE_PASS`].
 const PASS: usize = 8;
