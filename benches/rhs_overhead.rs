@@ -9,7 +9,7 @@
 //! measure). "Chained": each call's state moved by the acceleration the
 //! previous one returned (symplectic Euler, 1 ms steps, 64 in a row), so
 //! each waits for the last, as the stages of an explicit Runge–Kutta step
-//! do (the latency).
+//! do (the latency, with the two multiply-adds of the update in it).
 //!
 //! `cargo bench --bench rhs_overhead` (under `cargo test` it only says so).
 //! Best of several repetitions each, one process; a quick table, not
@@ -82,7 +82,7 @@ fn row<L: Lagrangian<N, Scalar = f64>, const N: usize>(
         for block in 0..calls / 64 {
             let (mut q, mut v) = states[block & 63];
             for _ in 0..64 {
-                let a = acceleration(model, 0.0, black_box(&q), &v).unwrap();
+                let a = acceleration(model, 0.0, &q, &v).unwrap();
                 v += a * 1e-3;
                 q += v * 1e-3;
             }

@@ -61,15 +61,10 @@ impl<S: RealField + Copy, const N: usize> Ldlt<S, N> {
     /// conditioning is judged on (`(0, 0)` for `N = 0`).
     #[inline]
     pub(crate) fn pivot_range(&self) -> (S, S) {
-        let mut range = (S::zero(), S::zero());
-        for j in 0..N {
-            range = if j == 0 {
-                (self.d[0], self.d[0])
-            } else {
-                (range.0.min(self.d[j]), range.1.max(self.d[j]))
-            };
+        match N {
+            0 => (S::zero(), S::zero()),
+            _ => (self.d.min(), self.d.max()),
         }
-        range
     }
 
     /// Cholesky's factor `L √D` (zeros above the diagonal), for the

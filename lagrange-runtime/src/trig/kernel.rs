@@ -118,10 +118,8 @@ fn takes(x: f64, r: f64) -> bool {
 }
 
 /// The most lanes the kernel takes in one pass. Beyond, the compiler stops
-/// unrolling the lanes: in a trial, one pass of 30 lanes cost twice as much
-/// per angle as one of 20, and passes of [`PASS`] lanes a third more (the
-/// rows for 20, 21 and 30 angles of `cargo bench --bench trig` show the
-/// passes as they are).
+/// unrolling the lanes and passes of [`PASS`] lanes are faster per angle
+/// (the rows for 20, 21 and 30 angles of `cargo bench --bench trig`).
 const ONE_PASS: usize = 20;
 /// The lanes of each pass beyond [`ONE_PASS`].
 const PASS: usize = 8;
