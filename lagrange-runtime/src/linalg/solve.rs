@@ -65,6 +65,7 @@ pub enum SolveError {
 /// let m = Matrix2::new(1.0, 0.0, 0.0, -1.0);
 /// assert_eq!(solve_mass_matrix(&m, &Vector2::new(1.0, 1.0)), Err(SolveError::Indefinite));
 /// ```
+#[inline]
 pub fn solve_mass_matrix<S: RealField + Copy, const N: usize>(
     m: &SMatrix<S, N, N>,
     f: &SVector<S, N>,
@@ -92,6 +93,7 @@ pub(crate) enum MassFactor<S: RealField + Copy, const N: usize> {
 /// Factors `M` with the checks of [`solve_mass_matrix`]: non-finite,
 /// indefinite and (for Cholesky) ill-conditioned cases decided here, LU's
 /// own pivots at each solve.
+#[inline]
 pub(crate) fn factor_mass_matrix<S: RealField + Copy, const N: usize>(
     m: &SMatrix<S, N, N>,
 ) -> Result<MassFactor<S, N>, SolveError> {
@@ -111,6 +113,7 @@ pub(crate) fn factor_mass_matrix<S: RealField + Copy, const N: usize>(
 impl<S: RealField + Copy, const N: usize> MassFactor<S, N> {
     /// `M⁻¹ b`; a non-finite result from finite input (overflow) counts as
     /// singular.
+    #[inline]
     pub(crate) fn solve(&self, b: &SVector<S, N>) -> Result<SVector<S, N>, SolveError> {
         let solution = match self {
             Self::Cholesky(ldlt) => ldlt.solve(b),
@@ -216,6 +219,7 @@ pub(crate) fn lu_solve<S: RealField + Copy, const N: usize>(
 /// this is the saddle-point solve of `M q̈ + Gᵀ λ = f`, `G q̈ = −γ`; a
 /// model in minimal coordinates solves `M q̈ = f` as ever. Errors carry `t`
 /// and the state, as the integrators report them.
+#[inline]
 pub fn acceleration<L: Lagrangian<N>, const N: usize>(
     model: &L,
     t: L::Scalar,
