@@ -8,7 +8,7 @@ use super::validate::{invalid, validate};
 use crate::constraints::{DriftControl, ProjectSample, StartOnManifold};
 use crate::events::Watch;
 use crate::solve::acceleration;
-use crate::{Failure, IntegrationError, Lagrangian, Stats, Trajectory};
+use crate::{Failure, IntegrationError, Lagrangian, NonFiniteValue, Stats, Trajectory};
 
 /// Records samples as an integrator passes them and counts its work; owns
 /// the trajectory that a success or a [`Failure`] hands back.
@@ -144,6 +144,8 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
 
     /// A state from dense output projected onto the constraints as a
     /// sample is ([`record_dense`](Self::record_dense)), not recorded.
+    /// A non-finite one (the interpolant overflowed between two finite
+    /// states) is an error, never a sample.
     pub(crate) fn project_sample<L: Lagrangian<N, Scalar = S>>(
         &mut self,
         model: &L,
@@ -151,6 +153,14 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
         q: SVector<S, N>,
         qdot: SVector<S, N>,
     ) -> Result<State<S, N>, IntegrationError<S, N>> {
+        if !q.iter().chain(qdot.iter()).all(|x| x.is_finite()) {
+            return Err(IntegrationError::NonFiniteState {
+                t,
+                q,
+                qdot,
+                value: NonFiniteValue::DenseOutput,
+            });
+        }
         let stats = &mut self.stats;
         let sample = ProjectSample { t, q, qdot, stats };
         model.visit_constraints(sample).unwrap_or(Ok((q, qdot)))

@@ -33,6 +33,10 @@ pub enum NonFiniteValue {
     EventFunction,
     /// The state an event's reset returned.
     EventReset,
+    /// A sample interpolated by a method's dense output between two
+    /// finite states: the interpolant overflowed (states near the largest
+    /// finite number).
+    DenseOutput,
 }
 
 impl fmt::Display for NonFiniteValue {
@@ -53,6 +57,9 @@ impl fmt::Display for NonFiniteValue {
             Self::Inputs => "the control inputs u returned by the controller are NaN or infinite",
             Self::EventFunction => "the event function g(t, q, q̇) is NaN or infinite",
             Self::EventReset => "the state returned by the event's reset is NaN or infinite",
+            Self::DenseOutput => {
+                "the dense output between two finite states is NaN or infinite (it overflowed)"
+            }
         })
     }
 }

@@ -3,7 +3,7 @@
 use lagrange::models::Method;
 use lagrange_runtime::nalgebra::{Matrix2, Vector1, Vector2};
 use lagrange_runtime::prelude::*;
-use lagrange_runtime::InvalidInput;
+use lagrange_runtime::{InvalidInput, NonFiniteValue};
 
 use super::models::{DoublePendulum, Pendulum};
 use super::{run, Settings};
@@ -171,4 +171,40 @@ fn zero_newton_iterations_are_invalid_input() {
         assert_eq!(failure.error, IntegrationError::InvalidInput(expected));
         assert!(failure.trajectory.is_empty());
     }
+}
+
+/// A damped spring released at the largest finite `q`, at tolerance 1:
+/// Dop853's steps stay finite, but its dense output between two of them
+/// overflowed, and the run returned `Ok` with a NaN sample at t = 7.33.
+/// A sample the interpolant cannot represent is now a typed error there,
+/// with the samples before it.
+#[test]
+fn a_dense_output_that_overflows_is_an_error_not_a_nan_sample() {
+    use super::models::DampedSpring;
+    let model = DampedSpring {
+        m: 1.0,
+        k: 0.01,
+        c: 0.5,
+    };
+    let loose = Settings {
+        h: 1.0,
+        rtol: 1.0,
+        atol: 1.0,
+        max_steps: 101,
+    };
+    let times = [7.330937750935154, 8.782849975120511];
+    let failure = run(
+        Method::Dop853,
+        loose,
+        &model,
+        (0.0, [f64::MAX], [0.0]),
+        &times,
+    )
+    .expect_err("the sample at t = 7.33 overflows");
+    let IntegrationError::NonFiniteState { t, value, .. } = failure.error else {
+        panic!("{}", failure.error);
+    };
+    assert_eq!((t, value), (times[0], NonFiniteValue::DenseOutput));
+    assert!(failure.trajectory.is_empty());
+    assert!(failure.trajectory.stats().steps_accepted > 0);
 }
