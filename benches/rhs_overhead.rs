@@ -112,7 +112,8 @@ fn chained<L: Lagrangian<N, Scalar = f64>, const N: usize>(
     })
 }
 
-/// One row: M + f, one right-hand side, and a Dop853 run's time per evaluation.
+/// A model's rows: M + f, one right-hand side (independent and chained),
+/// and the time per evaluation of a Dop853 run and of a Dopri5 run.
 fn row<L: Lagrangian<N, Scalar = f64>, const N: usize>(
     name: &str,
     model: &L,

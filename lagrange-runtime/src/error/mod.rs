@@ -69,7 +69,8 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
     },
 
     /// A NaN or an infinity appeared in the state, or in `M` or `f` as the
-    /// model returned them; continuing would only spread it.
+    /// model returned them, or in a sample a method's dense output
+    /// interpolated; continuing would only spread it.
     #[error("{value} at t = {t:?} (q = {}, q̇ = {})", Row(.q), Row(.qdot))]
     NonFiniteState {
         /// Time of the evaluation.
