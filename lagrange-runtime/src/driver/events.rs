@@ -8,7 +8,7 @@
 
 use nalgebra::RealField;
 
-use super::record::{Recorder, State};
+use super::record::{finite_state, Recorder, State};
 use super::segments::Segment;
 use crate::events::{evaluate_into, first_crossing, EventRecord, Events, Hermite, Watch};
 use crate::{IntegrationError, Lagrangian, NonFiniteValue};
@@ -164,7 +164,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
             return Ok(None);
         };
         let (q, qdot) = *end;
-        if !q.iter().chain(qdot.iter()).all(|x| x.is_finite()) {
+        if !finite_state(&q, &qdot) {
             let value = NonFiniteValue::State;
             return Err(IntegrationError::NonFiniteState {
                 t: t_new,
@@ -281,7 +281,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
                     let Some((q, qdot)) = list[i].apply_reset(at, &state) else {
                         continue;
                     };
-                    if !q.iter().chain(qdot.iter()).all(|x| x.is_finite()) {
+                    if !finite_state(&q, &qdot) {
                         let (event, value) = (list[i].name(), NonFiniteValue::EventReset);
                         return Err(IntegrationError::NonFiniteEvent {
                             event,

@@ -5,7 +5,7 @@
 use nalgebra::{RealField, SVector};
 
 use super::growth::GrowthGuard;
-use super::record::{Recorder, State};
+use super::record::{finite_state, Recorder, State};
 use super::segments::{segments, Segment};
 use super::validate::{check_step_size, invalid};
 use crate::events::Events;
@@ -126,7 +126,7 @@ where
         }
         // The last step's state is not evaluated by the model, so check it
         // here rather than record a NaN.
-        if !(q.iter().chain(qdot.iter()).all(|x| x.is_finite())) {
+        if !finite_state(&q, &qdot) {
             let value = NonFiniteValue::State;
             return Err(IntegrationError::NonFiniteState { t, q, qdot, value });
         }

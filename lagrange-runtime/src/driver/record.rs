@@ -153,7 +153,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
         q: SVector<S, N>,
         qdot: SVector<S, N>,
     ) -> Result<State<S, N>, IntegrationError<S, N>> {
-        if !q.iter().chain(qdot.iter()).all(|x| x.is_finite()) {
+        if !finite_state(&q, &qdot) {
             return Err(IntegrationError::NonFiniteState {
                 t,
                 q,
@@ -178,3 +178,11 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
 
 /// `(q, q̇)`, as a one-step method returns it.
 pub(crate) type State<S, const N: usize> = (SVector<S, N>, SVector<S, N>);
+
+/// Whether every component of `q` and `q̇` is finite.
+pub(crate) fn finite_state<S: RealField + Copy, const N: usize>(
+    q: &SVector<S, N>,
+    qdot: &SVector<S, N>,
+) -> bool {
+    q.iter().chain(qdot.iter()).all(|x| x.is_finite())
+}

@@ -5,7 +5,7 @@
 use nalgebra::{RealField, SVector};
 
 use super::sealed::{Run, Work};
-use crate::driver::{advances, GrowthGuard, Interval, Recorder, Segment, State};
+use crate::driver::{advances, finite_state, GrowthGuard, Interval, Recorder, Segment, State};
 use crate::{IntegrationError, Lagrangian, NonFiniteValue};
 
 /// One step of a fixed-step method, as `driver::fixed_step` takes it.
@@ -84,7 +84,7 @@ where
                     .and_then(|(q, qdot)| run.rec.control_drift(model, t_next, q, qdot))?;
                 // The step's end is not evaluated by the model: check it
                 // before it becomes the state.
-                if !(q.iter().chain(qdot.iter()).all(|x| x.is_finite())) {
+                if !finite_state(&q, &qdot) {
                     let value = NonFiniteValue::State;
                     return Err(IntegrationError::NonFiniteState {
                         t: t_next,
