@@ -13,7 +13,7 @@ use crate::driver::{
 };
 use crate::events::Events;
 use crate::{IntegrationError, IntegrationResult, Lagrangian, NonFiniteValue};
-use tableau::{Dense, Step, Tableau};
+use tableau::{Dense, Stages, Step, Tableau};
 
 mod tableau;
 
@@ -139,7 +139,7 @@ impl<S: RealField + Copy> Dopri5<S> {
             tab: Tableau::new(),
             rtol: self.settings.rtol,
             atol: self.settings.atol,
-            qddot: *qddot,
+            k: Stages::new(qddot),
         }
     }
 
@@ -148,13 +148,14 @@ impl<S: RealField + Copy> Dopri5<S> {
     }
 }
 
-/// One integration's tableau, tolerances, and `q̈` at the current state
-/// (the last stage of the previous step: first same as last).
+/// One integration's tableau, tolerances, and the stages of the last
+/// step attempted (the first holds `q̈` at the current state: the last
+/// stage of the previous step, first same as last).
 pub(crate) struct Pair<S, const N: usize> {
     tab: Tableau<S>,
     rtol: S,
     atol: S,
-    qddot: SVector<S, N>,
+    k: Stages<S, N>,
 }
 
 impl<S: RealField + Copy, const N: usize> EmbeddedPair<S, N> for Pair<S, N> {
@@ -172,7 +173,7 @@ impl<S: RealField + Copy, const N: usize> EmbeddedPair<S, N> for Pair<S, N> {
     ) -> Result<Outcome<S, Step<S, N>>, IntegrationError<S, N>> {
         let step = self
             .tab
-            .step(rec, model, t, t_new, h, q, qdot, &self.qddot)?;
+            .step(rec, model, t, t_new, h, q, qdot, &mut self.k)?;
         let err = self.error_norm(q, qdot, &step);
         if !err.is_finite() {
             // Finite stages, infinite error: an overflow in the sums.
@@ -201,15 +202,15 @@ impl<S: RealField + Copy, const N: usize> EmbeddedPair<S, N> for Pair<S, N> {
         (q, qdot): (&SVector<S, N>, &SVector<S, N>),
         step: &Step<S, N>,
     ) -> Dense<S, N> {
-        Dense::new(&self.tab, h, q, qdot, step)
+        Dense::new(h, q, qdot, step, &self.k)
     }
 
     fn dense_at(dense: &Dense<S, N>, theta: S) -> State<S, N> {
         dense.at(theta)
     }
 
-    fn advance(&mut self, step: &Step<S, N>) {
-        self.qddot = step.k_qdot[6];
+    fn advance(&mut self, _: &Step<S, N>) {
+        self.k.first_same_as_last();
     }
 }
 
