@@ -75,7 +75,14 @@ impl<S: RealField + Copy> Gains<S> {
     /// accepted step's being `err_old`:
     /// `h · safety · err^(−α) · err_old^β`, its ratio to `h` bounded.
     pub(crate) fn after_acceptance(&self, h: S, err: S, err_old: S) -> S {
-        let shrink = err.powf(self.alpha) / err_old.powf(self.beta) / self.safety;
+        // Without stabilization (`β = 0`, DOP853) the old error's factor is
+        // exactly 1: the library call that would compute it is skipped.
+        let stabilization = if self.beta == S::zero() {
+            S::one()
+        } else {
+            err_old.powf(self.beta)
+        };
+        let shrink = err.powf(self.alpha) / stabilization / self.safety;
         let fac = shrink
             .min(S::one() / self.fac_min)
             .max(S::one() / self.fac_max);
