@@ -2,7 +2,8 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::stages::{Stages, Step, Tableau};
+use super::stages::{Stages, Step};
+use super::tableau;
 
 /// Hairer's `contd8` on one accepted step, with `s = θ`, `s₁ = 1 − θ`:
 /// `y(t + θh) = r₁ + s(r₂ + s₁(r₃ + s(r₄ + s₁(r₅ + s(r₆ + s₁(r₇ + s r₈))))))`.
@@ -15,13 +16,12 @@ impl<S: RealField + Copy, const N: usize> Dense<S, N> {
     /// Hairer's coefficients `r₁…r₈` for `q` and `q̇`, from a step whose
     /// stages 13–16 are filled in.
     pub(super) fn new(
-        tab: &Tableau<S>,
         h: S,
         (q, qdot): (&SVector<S, N>, &SVector<S, N>),
         step: &Step<S, N>,
         k: &Stages<S, N>,
     ) -> Self {
-        let high = tab.d.each_ref().map(|d| k.sum(d));
+        let high = tableau::D.each_ref().map(|d| k.sum(d));
         let coefficients = |y0: &SVector<S, N>,
                             y1: &SVector<S, N>,
                             k: &[SVector<S, N>; 16],

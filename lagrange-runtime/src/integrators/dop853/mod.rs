@@ -244,7 +244,7 @@ impl<S: RealField + Copy, const N: usize> EmbeddedPair<S, N> for Pair<S, N> {
         state: (&SVector<S, N>, &SVector<S, N>),
         step: &Step<S, N>,
     ) -> Dense<S, N> {
-        Dense::new(&self.tab, h, state, step, &self.k)
+        Dense::new(h, state, step, &self.k)
     }
 
     fn dense_at(dense: &Dense<S, N>, theta: S) -> State<S, N> {
@@ -340,7 +340,7 @@ mod tests {
             k.q[12] = step.qdot;
             tab.stages(&mut rec, &model, (t, h), (&q, &qdot), 13..16, &mut k)
                 .unwrap();
-            mid = Dense::new(&tab, h, (&q, &qdot), &step, &k).at(0.5);
+            mid = Dense::new(h, (&q, &qdot), &step, &k).at(0.5);
             (q, qdot, t) = (step.q, step.qdot, t + h);
         }
         ((q, qdot), mid)
