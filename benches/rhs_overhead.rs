@@ -43,15 +43,28 @@ lagrangian! {
     }
 }
 
-/// Best time of `reps` runs of `f`, in ns, divided by `per`.
-fn best_ns(reps: usize, per: usize, mut f: impl FnMut()) -> f64 {
-    (0..reps)
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed().as_secs_f64() * 1e9 / per as f64
-        })
-        .fold(f64::INFINITY, f64::min)
+/// The time of one run of `f`, in ns, divided by `per`.
+fn ns_per(per: usize, f: &mut impl FnMut()) -> f64 {
+    let start = Instant::now();
+    f();
+    start.elapsed().as_secs_f64() * 1e9 / per as f64
+}
+
+/// Each timing's best over `rounds` rounds, each round running every timing
+/// once, in turn: a slow spell of the shared machine (one has slowed a
+/// loop by a fifth within one run of this bench) then falls on all of them
+/// alike rather than on one measure alone.
+fn best_interleaved<const K: usize>(
+    rounds: usize,
+    mut timings: [&mut dyn FnMut() -> f64; K],
+) -> [f64; K] {
+    let mut best = [f64::INFINITY; K];
+    for _ in 0..rounds {
+        for (best, timing) in best.iter_mut().zip(timings.iter_mut()) {
+            *best = best.min(timing());
+        }
+    }
+    best
 }
 
 /// `q̈` at `t = 0`, `acceleration` inlined where this is.
@@ -75,40 +88,44 @@ fn called<L: Lagrangian<N, Scalar = f64>, const N: usize>(
 }
 
 /// `eval` on 64 fixed states in turn, `calls` times: ns per call.
-fn independent<L: Lagrangian<N, Scalar = f64>, const N: usize>(
-    model: &L,
-    states: &[(SVector<f64, N>, SVector<f64, N>)],
+fn independent<'a, L: Lagrangian<N, Scalar = f64>, const N: usize>(
+    model: &'a L,
+    states: &'a [(SVector<f64, N>, SVector<f64, N>)],
     calls: usize,
-    eval: impl Fn(&L, &SVector<f64, N>, &SVector<f64, N>) -> SVector<f64, N>,
-) -> f64 {
-    best_ns(7, calls, || {
-        for k in 0..calls {
-            let (q, v) = &states[k & 63];
-            black_box(eval(model, black_box(q), v));
-        }
-    })
+    eval: impl Fn(&L, &SVector<f64, N>, &SVector<f64, N>) -> SVector<f64, N> + 'a,
+) -> impl FnMut() -> f64 + 'a {
+    move || {
+        ns_per(calls, &mut || {
+            for k in 0..calls {
+                let (q, v) = &states[k & 63];
+                black_box(eval(model, black_box(q), v));
+            }
+        })
+    }
 }
 
 /// Chains of 64 symplectic Euler steps of 1 ms from each state in turn
 /// (short enough to stay near the states), each step's `eval` waiting for
 /// the last: ns per call.
-fn chained<L: Lagrangian<N, Scalar = f64>, const N: usize>(
-    model: &L,
-    states: &[(SVector<f64, N>, SVector<f64, N>)],
+fn chained<'a, L: Lagrangian<N, Scalar = f64>, const N: usize>(
+    model: &'a L,
+    states: &'a [(SVector<f64, N>, SVector<f64, N>)],
     calls: usize,
-    eval: impl Fn(&L, &SVector<f64, N>, &SVector<f64, N>) -> SVector<f64, N>,
-) -> f64 {
-    best_ns(7, calls, || {
-        for block in 0..calls / 64 {
-            let (mut q, mut v) = states[block & 63];
-            for _ in 0..64 {
-                let a = eval(model, &q, &v);
-                v += a * 1e-3;
-                q += v * 1e-3;
+    eval: impl Fn(&L, &SVector<f64, N>, &SVector<f64, N>) -> SVector<f64, N> + 'a,
+) -> impl FnMut() -> f64 + 'a {
+    move || {
+        ns_per(calls, &mut || {
+            for block in 0..calls / 64 {
+                let (mut q, mut v) = states[block & 63];
+                for _ in 0..64 {
+                    let a = eval(model, &q, &v);
+                    v += a * 1e-3;
+                    q += v * 1e-3;
+                }
+                black_box((q, v));
             }
-            black_box((q, v));
-        }
-    })
+        })
+    }
 }
 
 /// A model's rows: M + f, one right-hand side (independent and chained),
@@ -127,57 +144,82 @@ fn row<L: Lagrangian<N, Scalar = f64>, const N: usize>(
             (q, v)
         })
         .collect();
-    let calls = 200_000;
-    let mf = best_ns(7, calls, || {
-        for k in 0..calls {
-            let (q, v) = &states[k & 63];
-            black_box(model.mass_matrix_and_forcing(0.0, black_box(q), v));
-        }
-    });
+    // About a millisecond per timing of the evaluation.
+    let calls = (2_000_000 / (N * N)).max(6400);
+    let mut mf = || {
+        ns_per(calls, &mut || {
+            for k in 0..calls {
+                let (q, v) = &states[k & 63];
+                black_box(model.mass_matrix_and_forcing(0.0, black_box(q), v));
+            }
+        })
+    };
     // `acceleration` inlined into the loop, and called through a function
     // that is never inlined: the faster of the two is the evaluation's cost
     // (the integrators inline it, which spares them a round trip through
     // memory; a loop of nothing else may schedule the call better).
-    let rhs =
-        independent(model, &states, calls, inlined).min(independent(model, &states, calls, called));
-    let chained =
-        chained(model, &states, calls, inlined).min(chained(model, &states, calls, called));
+    let (mut independent_inlined, mut independent_called) = (
+        independent(model, &states, calls, inlined),
+        independent(model, &states, calls, called),
+    );
+    let (mut chained_inlined, mut chained_called) = (
+        chained(model, &states, calls, inlined),
+        chained(model, &states, calls, called),
+    );
     // The adaptive methods, each to `t_end` keeping only the final state.
-    let per_method = |method: &str, (evals, per_eval): (usize, f64)| {
+    let start = (q0, t_end);
+    let (dop853, dopri5) = (
+        Dop853::new().rtol(tol).atol(tol),
+        Dopri5::new().rtol(tol).atol(tol),
+    );
+    let (mut dop853, dop853_evals) = per_evaluation(&dop853, model, start);
+    let (mut dopri5, dopri5_evals) = per_evaluation(&dopri5, model, start);
+    let [mf, independent_inlined, independent_called, chained_inlined, chained_called, dop853, dopri5] =
+        best_interleaved(
+            15,
+            [
+                &mut mf,
+                &mut independent_inlined,
+                &mut independent_called,
+                &mut chained_inlined,
+                &mut chained_called,
+                &mut dop853,
+                &mut dopri5,
+            ],
+        );
+    let rhs = independent_inlined.min(independent_called);
+    let chained = chained_inlined.min(chained_called);
+    for (method, evals, per_eval) in [
+        ("Dop853", dop853_evals, dop853),
+        ("Dopri5", dopri5_evals, dopri5),
+    ] {
         println!(
             "| {name} | {method} | {evals} | {mf:.1} | {rhs:.1} | {chained:.1} | {per_eval:.1} | {:.2} | {:.2} |",
             per_eval / rhs,
             per_eval / chained
         );
-    };
-    let start = (q0, t_end);
-    per_method(
-        "Dop853",
-        per_evaluation(&Dop853::new().rtol(tol).atol(tol), model, start),
-    );
-    per_method(
-        "Dopri5",
-        per_evaluation(&Dopri5::new().rtol(tol).atol(tol), model, start),
-    );
+    }
 }
 
-/// A run of `method` from `q0` at rest to `t_end`, keeping only the final
-/// state: its evaluations, and its time divided by them in ns.
-fn per_evaluation<M: Integrator<f64>, L: Lagrangian<N, Scalar = f64>, const N: usize>(
-    method: &M,
-    model: &L,
+/// Runs of `method` from `q0` at rest to `t_end`, keeping only the final
+/// state: a timing of one run, in ns per evaluation, and the evaluations.
+fn per_evaluation<'a, M: Integrator<f64>, L: Lagrangian<N, Scalar = f64>, const N: usize>(
+    method: &'a M,
+    model: &'a L,
     (q0, t_end): (SVector<f64, N>, f64),
-) -> (usize, f64) {
-    let run = || {
+) -> (impl FnMut() -> f64 + 'a, usize) {
+    let run = move || {
         method
             .integrate(model, 0.0, q0, SVector::zeros(), &[t_end])
             .unwrap()
     };
     let evals = run().stats().rhs_evals;
-    let per_eval = best_ns(7, evals, || {
-        black_box(run());
-    });
-    (evals, per_eval)
+    let timing = move || {
+        ns_per(evals, &mut || {
+            black_box(run());
+        })
+    };
+    (timing, evals)
 }
 
 fn main() {
