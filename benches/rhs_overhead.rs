@@ -18,8 +18,9 @@
 //! (BENCHMARKS.md, "What an adaptive step adds").
 //!
 //! `cargo bench --bench rhs_overhead` (under `cargo test` it only says so).
-//! Best of several repetitions each, one process; a quick table, not
-//! criterion's statistics.
+//! Each timing's best of 15, taken in interleaved rounds in one process (a
+//! slow spell of a shared machine then slows every measure, not one); a
+//! quick table, not criterion's statistics.
 
 use lagrange::lagrangian;
 use lagrange::models::DoublePendulum;
