@@ -13,9 +13,10 @@
 //! is timed inlined and through a call, and the faster kept.
 //!
 //! The ratios are fragile: the same `M + f` loop has timed 13.0 and 16.4 ns
-//! in two builds that differ only elsewhere (code placement), so compare
-//! the integrators' own times across builds, and ratios only within one
-//! (BENCHMARKS.md, "What an adaptive step adds").
+//! in two builds that differ only elsewhere (code placement), and they
+//! depend on the machine (1.94 on one whose evaluation took half as long),
+//! so compare the integrators' own times across builds, and ratios only
+//! within one (BENCHMARKS.md, "What an adaptive step adds").
 //!
 //! `cargo bench --bench rhs_overhead` (under `cargo test` it only says so).
 //! Each timing's best of 15, taken in interleaved rounds in one process (a
