@@ -9,9 +9,10 @@ use crate::{IntegrationError, Lagrangian};
 /// One attempted step: the fifth-order solution and the embedded error
 /// estimate. Its stages stay in the [`Stages`] it was computed in, so that
 /// an attempt moves a few vectors, not all seven slopes (a copy through
-/// `memcpy` on every step: with it Dopri5 took 45.6 ns per evaluation on
-/// the double pendulum instead of 41.0, `cargo bench --bench
-/// rhs_overhead`, BENCHMARKS.md, "Constant weights, no copies").
+/// `memcpy` on every step: with it, and with the weights read from a
+/// table built per run, Dopri5 took 45.6 ns per evaluation on the double
+/// pendulum instead of 41.0, `cargo bench --bench rhs_overhead`,
+/// BENCHMARKS.md, "Constant weights, no copies").
 pub(crate) struct Step<S, const N: usize> {
     pub(super) q: SVector<S, N>,
     pub(super) qdot: SVector<S, N>,
