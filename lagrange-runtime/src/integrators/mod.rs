@@ -51,6 +51,7 @@ mod implicit_midpoint;
 mod implicit_rk;
 mod radau5;
 mod rk4;
+mod stages;
 mod symplectic_euler;
 mod variational;
 

@@ -140,6 +140,6 @@ macro_rules! adaptive_methods {
 }
 
 adaptive_methods! {
-    Dopri5 => Dopri5Pair, DOPRI5_CONTROL, |m, _qdot, qddot| m.pair(qddot);
+    Dopri5 => Dopri5Pair, DOPRI5_CONTROL, |m, qdot, qddot| m.pair(qdot, qddot);
     Dop853 => Dop853Pair, DOP853_CONTROL, |m, qdot, qddot| m.pair(qdot, qddot);
 }

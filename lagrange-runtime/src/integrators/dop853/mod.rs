@@ -253,7 +253,7 @@ impl<S: RealField + Copy, const N: usize> EmbeddedPair<S, N> for Pair<S, N> {
 
     /// Stage 13 of the accepted step is the next step's stage 1.
     fn advance(&mut self, _: &Step<S, N>) {
-        self.k.first_same_as_last();
+        self.k.first_same_as_last(12);
     }
 }
 

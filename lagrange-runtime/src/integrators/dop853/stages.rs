@@ -9,76 +9,39 @@ use crate::{IntegrationError, Lagrangian};
 
 /// The slopes of all 16 stages: 1–12 from the step, 13 at the new state,
 /// 14–16 for the dense output (filled only when needed).
-pub(super) struct Stages<S, const N: usize> {
-    /// The `q` part of each slope, which is the stage's own `q̇`.
-    pub(super) q: [SVector<S, N>; 16],
-    /// The `q̇` part of each slope, `q̈`.
-    pub(super) qdot: [SVector<S, N>; 16],
-}
+pub(super) type Stages<S, const N: usize> = crate::integrators::stages::Stages<S, N, 16>;
 
-impl<S: RealField + Copy, const N: usize> Stages<S, N> {
-    /// Stage 1 is `f` at the start, `(q̇, q̈)`; the others are filled by the
-    /// step before anything reads them.
-    pub(super) fn new(qdot: &SVector<S, N>, qddot: &SVector<S, N>) -> Self {
-        Self {
-            q: [*qdot; 16],
-            qdot: [*qddot; 16],
-        }
-    }
-
-    /// After an accepted step, its stage 13 (`f` at the new state) is the
-    /// next step's stage 1: first same as last.
-    pub(super) fn first_same_as_last(&mut self) {
-        self.q[0] = self.q[12];
-        self.qdot[0] = self.qdot[12];
-    }
-
-    /// `(Σ w_j k_q[j], Σ w_j k_q̇[j])` over the nonzero weights, in stage
-    /// order. The weights are one of the tableau's constant rows: inlined
-    /// where it is called, the loop is unrolled and the zeros (a third of
-    /// the tableau) are dropped at compile time, so each step does only the
-    /// products the method needs, with the weights as constants. (With a
-    /// loop over a bit mask of weights converted once per run, and a `pow`
-    /// more per step, Dop853 took 46.6 ns per evaluation on the double
-    /// pendulum instead of 37.8: `cargo bench --bench rhs_overhead`,
-    /// BENCHMARKS.md, "Constant weights, no copies".)
-    #[inline(always)]
-    pub(super) fn sum(&self, weights: &'static [f64]) -> (SVector<S, N>, SVector<S, N>) {
-        let (mut sq, mut sqdot) = (SVector::<S, N>::zeros(), SVector::<S, N>::zeros());
-        for (j, &x) in weights.iter().enumerate() {
-            if x != 0.0 {
-                let w: S = nalgebra::convert(x);
-                sq += self.q[j] * w;
-                sqdot += self.qdot[j] * w;
-            }
-        }
-        (sq, sqdot)
-    }
-
-    /// [`Stages::sum`] over row `i` of `A` (0-based): one arm per row, so
-    /// that each sum is unrolled over its own constant weights.
-    #[inline(always)]
-    fn stage_input(&self, i: usize) -> (SVector<S, N>, SVector<S, N>) {
-        use tableau::A;
-        match i {
-            1 => self.sum(A[1]),
-            2 => self.sum(A[2]),
-            3 => self.sum(A[3]),
-            4 => self.sum(A[4]),
-            5 => self.sum(A[5]),
-            6 => self.sum(A[6]),
-            7 => self.sum(A[7]),
-            8 => self.sum(A[8]),
-            9 => self.sum(A[9]),
-            10 => self.sum(A[10]),
-            11 => self.sum(A[11]),
-            12 => self.sum(A[12]),
-            13 => self.sum(A[13]),
-            14 => self.sum(A[14]),
-            15 => self.sum(A[15]),
-            // Stage 1 is given, never computed.
-            _ => unreachable!("DOP853 has stages 1 to 16"),
-        }
+/// [`Stages::sum`] over row `i` of `A` (0-based): one arm per row, so that
+/// each sum is unrolled over its own constant weights, its zeros (a third
+/// of the tableau) dropped at compile time. (With a loop over a bit mask of
+/// weights converted once per run, and a `pow` more per step, Dop853 took
+/// 46.6 ns per evaluation on the double pendulum instead of 37.8: `cargo
+/// bench --bench rhs_overhead`, BENCHMARKS.md, "Constant weights, no
+/// copies".)
+#[inline(always)]
+fn stage_input<S: RealField + Copy, const N: usize>(
+    k: &Stages<S, N>,
+    i: usize,
+) -> (SVector<S, N>, SVector<S, N>) {
+    use tableau::A;
+    match i {
+        1 => k.sum(A[1]),
+        2 => k.sum(A[2]),
+        3 => k.sum(A[3]),
+        4 => k.sum(A[4]),
+        5 => k.sum(A[5]),
+        6 => k.sum(A[6]),
+        7 => k.sum(A[7]),
+        8 => k.sum(A[8]),
+        9 => k.sum(A[9]),
+        10 => k.sum(A[10]),
+        11 => k.sum(A[11]),
+        12 => k.sum(A[12]),
+        13 => k.sum(A[13]),
+        14 => k.sum(A[14]),
+        15 => k.sum(A[15]),
+        // Stage 1 is given, never computed.
+        _ => unreachable!("DOP853 has stages 1 to 16"),
     }
 }
 
@@ -128,7 +91,7 @@ impl<S: RealField + Copy> Tableau<S> {
         k: &mut Stages<S, N>,
     ) -> Result<(), IntegrationError<S, N>> {
         for i in range {
-            let (dq, dqdot) = k.stage_input(i);
+            let (dq, dqdot) = stage_input(k, i);
             let (qi, qdoti) = (q + dq * h, qdot + dqdot * h);
             k.qdot[i] = rec.rhs(model, t + self.c[i] * h, &qi, &qdoti)?;
             k.q[i] = qdoti;

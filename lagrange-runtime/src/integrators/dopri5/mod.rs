@@ -116,7 +116,7 @@ impl<S: RealField + Copy> Integrator<S> for Dopri5<S> {
     where
         L: Lagrangian<N, Scalar = S>,
     {
-        let pair = |_: &SVector<S, N>, qddot: &SVector<S, N>| self.pair(qddot);
+        let pair = |qdot: &SVector<S, N>, qddot: &SVector<S, N>| self.pair(qdot, qddot);
         adaptive(
             &CONTROL,
             self.settings,
@@ -132,14 +132,18 @@ impl<S: RealField + Copy> Integrator<S> for Dopri5<S> {
 }
 
 impl<S: RealField + Copy> Dopri5<S> {
-    /// The pair for one run (or one [`Stepper`](crate::Stepper)) from `q̈`
-    /// at its start.
-    pub(crate) fn pair<const N: usize>(&self, qddot: &SVector<S, N>) -> Pair<S, N> {
+    /// The pair for one run (or one [`Stepper`](crate::Stepper)) from
+    /// `(q̇, q̈)` at its start.
+    pub(crate) fn pair<const N: usize>(
+        &self,
+        qdot: &SVector<S, N>,
+        qddot: &SVector<S, N>,
+    ) -> Pair<S, N> {
         Pair {
             tab: Tableau::new(),
             rtol: self.settings.rtol,
             atol: self.settings.atol,
-            k: Stages::new(qddot),
+            k: Stages::new(qdot, qddot),
         }
     }
 
@@ -210,7 +214,7 @@ impl<S: RealField + Copy, const N: usize> EmbeddedPair<S, N> for Pair<S, N> {
     }
 
     fn advance(&mut self, _: &Step<S, N>) {
-        self.k.first_same_as_last();
+        self.k.first_same_as_last(6);
     }
 }
 

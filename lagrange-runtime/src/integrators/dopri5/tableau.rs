@@ -20,44 +20,9 @@ pub(crate) struct Step<S, const N: usize> {
     pub(super) err_qdot: SVector<S, N>,
 }
 
-/// The slopes of the seven stages of a step, kept from step to step.
-pub(crate) struct Stages<S, const N: usize> {
-    /// The `q` part of each stage's slope, which is the stage's own `q̇`.
-    q: [SVector<S, N>; 7],
-    /// The `q̇` part of each stage's slope, `q̈`; the seventh is at the new
-    /// state and starts the next step (FSAL).
-    qdot: [SVector<S, N>; 7],
-}
-
-impl<S: RealField + Copy, const N: usize> Stages<S, N> {
-    /// Stages for a run from a state where `q̈` is `qddot`; the others are
-    /// filled by each step before anything reads them.
-    pub(super) fn new(qddot: &SVector<S, N>) -> Self {
-        Self {
-            q: [SVector::zeros(); 7],
-            qdot: [*qddot; 7],
-        }
-    }
-
-    /// `(Σ w_j k_q[j], Σ w_j k_q̇[j])` in stage order, zeros included as
-    /// `dopri5.f` has them, over one of the constant rows below.
-    #[inline(always)]
-    fn sum(&self, weights: &'static [f64]) -> (SVector<S, N>, SVector<S, N>) {
-        let (mut sq, mut sqdot) = (SVector::<S, N>::zeros(), SVector::<S, N>::zeros());
-        for (j, &x) in weights.iter().enumerate() {
-            let w: S = nalgebra::convert(x);
-            sq += self.q[j] * w;
-            sqdot += self.qdot[j] * w;
-        }
-        (sq, sqdot)
-    }
-
-    /// After an accepted step, its last slope (`q̈` at the new state) is the
-    /// next step's first: first same as last.
-    pub(super) fn first_same_as_last(&mut self) {
-        self.qdot[0] = self.qdot[6];
-    }
-}
+/// The slopes of the seven stages of a step; the seventh is at the new
+/// state and starts the next step (FSAL).
+pub(crate) type Stages<S, const N: usize> = crate::integrators::stages::Stages<S, N, 7>;
 
 /// The coefficients, as in `dopri5.f`: row `i` of `A` holds `a_ij` for
 /// `j < i`.
