@@ -9,6 +9,7 @@ mod ensemble;
 mod events;
 #[cfg(feature = "csv")]
 mod export;
+mod fingerprints;
 mod integrator_suite;
 #[cfg(any(feature = "ode_solvers", feature = "diffsol"))]
 mod interop;
