@@ -100,6 +100,8 @@ where
             let last = t + h * c(control.stretch) >= target;
             let h_try = if last { target - t } else { h };
             let t_new = if last { target } else { t + h_try };
+            // The representable step, as in the adaptive driver.
+            let h_try = t_new - t;
 
             let (step, err) =
                 match pair.attempt(&mut run.rec, model, (t, t_new, h_try), (&q, &qdot)) {

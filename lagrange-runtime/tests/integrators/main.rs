@@ -8,6 +8,7 @@ mod models;
 
 mod allocations;
 mod analysis;
+mod clock;
 mod constraints;
 mod dop853;
 mod euler_methods;

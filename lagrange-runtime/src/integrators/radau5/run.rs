@@ -175,6 +175,11 @@ impl<S: RealField + Copy, const N: usize> Run<S, N> {
             }
 
             let t_new = if last { t_end } else { t + h };
+            // The representable step, as in the adaptive driver: the state
+            // advances by exactly the time the clock does. (The LU factors,
+            // made for the `h` before this rounding, differ by `ε t / h`
+            // relative: simplified Newton does not notice.)
+            h = t_new - t;
             self.starting_values(first, h / h_old);
             let newton = self.newton(model, rec, t, t_new, h, &mut faccon, &mut theta);
             let iterations = match newton {
