@@ -103,8 +103,10 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
 
     /// [`watch_dense`](Self::watch_dense) for a method without dense
     /// output: the cubic Hermite interpolant of the step from `start` to
-    /// `end`, whose two accelerations are evaluated only when some event
-    /// changed sign.
+    /// `end`. Its slopes need `q̈` at both ends: the end's is evaluated (one
+    /// right-hand side per step while events are watched) and kept as the
+    /// next step's start, whose own is evaluated only after the state was
+    /// changed in between (a reset, a projection, a new segment).
     pub(crate) fn watch_hermite<L: Lagrangian<N, Scalar = S>>(
         &mut self,
         model: &L,
@@ -112,8 +114,15 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
         (t_new, end): (S, &State<S, N>),
     ) -> Result<Option<Segment<S, N>>, IntegrationError<S, N>> {
         if let Some(g_end) = self.crossed_at_end(t_new, end)? {
-            let qddot0 = self.rhs(model, t, &start.0, &start.1)?;
+            let carried = self.watch.as_mut().and_then(|w| w.slope.take());
+            let qddot0 = match carried {
+                Some((at, state, qddot)) if at == t && state == *start => qddot,
+                _ => self.rhs(model, t, &start.0, &start.1)?,
+            };
             let qddot1 = self.rhs(model, t_new, &end.0, &end.1)?;
+            if let Some(watch) = &mut self.watch {
+                watch.slope = Some((t_new, *end, qddot1));
+            }
             let hermite = Hermite::new((t, *start, qddot0), (t_new, *end, qddot1));
             if let Some(ended) = self.act(model, (t, t_new), end, g_end, |s| hermite.at(s))? {
                 return Ok(Some(ended));
@@ -152,9 +161,10 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
         Ok(Some(Segment::Done))
     }
 
-    /// The events' values at a step's end if one of them changed sign in
-    /// its direction; otherwise `None`, and they become the values the
-    /// next step starts from.
+    /// The events' values at a step's end, when the step must be searched
+    /// for a crossing: always while there are events, since `g` may cross
+    /// zero and come back within the step (found from its rate along the
+    /// interpolant, see `first_crossing`). `None` without events.
     fn crossed_at_end(
         &mut self,
         t_new: S,
@@ -163,6 +173,9 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
         let Some(watch) = &mut self.watch else {
             return Ok(None);
         };
+        if watch.events.is_empty() {
+            return Ok(None);
+        }
         let (q, qdot) = *end;
         if !finite_state(&q, &qdot) {
             let value = NonFiniteValue::State;
@@ -181,14 +194,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
             &mut g,
             &mut self.stats.event_evals,
         )?;
-        if watch.any_crossing(&g) {
-            Ok(Some(g))
-        } else {
-            // The values become the next step's start; the old ones' room
-            // the next step's scratch.
-            watch.scratch = core::mem::replace(&mut watch.g, g);
-            Ok(None)
-        }
+        Ok(Some(g))
     }
 
     fn act<L: Lagrangian<N, Scalar = S>>(
@@ -237,7 +243,10 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
                 evaluations,
             )?;
             let Some(crossing) = found else {
+                // The values become the next step's start; the old ones'
+                // room the next step's scratch.
                 watch.g = g_end;
+                watch.scratch = g_from;
                 return Ok(None);
             };
             let at = crossing.t;

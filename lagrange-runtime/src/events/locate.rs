@@ -34,17 +34,20 @@ pub(crate) struct Crossing<S, const N: usize> {
 const MAX_ITERATIONS: usize = 3000;
 
 /// The first crossing in `(t0, t1]` of any of `events`, on the interpolant
-/// `state_at`, or `None` when no event changes sign in its direction
-/// between `g0` (every event's value at `t0`) and `g1` (at `t1`).
+/// `state_at`, or `None` when no event crosses zero in its direction there.
 ///
-/// Contract: `state_at(t)` is the state at any `t` in `(t0, t1]`, and
+/// Contract: `state_at(t)` is the state at any `t` in `[t0, t1]`, and
 /// `state_at(t1)` is the state `g1` was computed from. Each event that
-/// changes sign is located to within `tolerance` (the final bracket's
-/// width; or adjacent floating-point numbers), and the time returned is the
+/// crosses is located to within `tolerance` (the final bracket's width; or
+/// adjacent floating-point numbers), and the time returned is the
 /// bracket's right end, where `g` has already crossed: continuing from it
-/// with its `g` never finds the same crossing again. A function that
-/// changes sign twice between `t0` and `t1` is not seen. Evaluations of
-/// event functions are added to `evaluations`; a non-finite value is
+/// with its `g` never finds the same crossing again.
+///
+/// A crossing shows as a change of sign between `g0` and `g1`, or, where
+/// `g` has the same sign at both ends, as an extremum between them that
+/// reaches across zero: a dip through zero and back within the step
+/// ([`hidden_extremum`]). Evaluations of event functions are added to
+/// `evaluations`; a non-finite value is
 /// [`NonFiniteEvent`](IntegrationError::NonFiniteEvent) at the state where
 /// it was evaluated.
 pub(crate) fn first_crossing<S: RealField + Copy, const N: usize>(
@@ -58,16 +61,31 @@ pub(crate) fn first_crossing<S: RealField + Copy, const N: usize>(
     let list = events.list();
     let mut first: Option<(S, usize)> = None;
     for (i, event) in list.iter().enumerate() {
-        if !event.crosses(g0[i], g1[i]) {
-            continue;
-        }
         let mut g = |t: S| {
             let (q, qdot) = state_at(t);
             *evaluations += 1;
             finite(event.value(t, &q, &qdot), event.name(), t, (q, qdot))
         };
-        let crossed = |value: S| event.crosses(g0[i], value);
-        let t = illinois(&mut g, crossed, (t0, g0[i]), (t1, g1[i]), tolerance)?;
+        // The bracket: from a point not yet crossed to one crossed, and
+        // the value crossing is judged from.
+        let bracket = if event.crosses(g0[i], g1[i]) {
+            Some(((t0, g0[i]), (t1, g1[i]), g0[i]))
+        } else {
+            match hidden_extremum(&mut g, (t0, g0[i]), (t1, g1[i]), tolerance)? {
+                // Across zero and back: the way there, or the way back.
+                Some(e) if event.crosses(g0[i], e.1) => Some(((t0, g0[i]), e, g0[i])),
+                Some(e) if event.crosses(e.1, g1[i]) => Some((e, (t1, g1[i]), e.1)),
+                _ => None,
+            }
+        };
+        let Some((a, b, from)) = bracket else {
+            continue;
+        };
+        if first.is_some_and(|(earliest, _)| a.0 >= earliest) {
+            continue;
+        }
+        let crossed = |value: S| event.crosses(from, value);
+        let t = illinois(&mut g, crossed, a, b, tolerance)?;
         if first.is_none_or(|(earliest, _)| t < earliest) {
             first = Some((t, i));
         }
@@ -86,6 +104,101 @@ pub(crate) fn first_crossing<S: RealField + Copy, const N: usize>(
         g,
         events,
     }))
+}
+
+/// Where `g` has the same sign at both ends of `[t0, t1]`, the extremum
+/// between them that reaches furthest towards zero, if `g`'s rate shows one:
+/// `g` moving towards zero at `t0` and away from it at `t1`. Returns a time
+/// inside and `g` there: across zero (or at it) when the extremum reaches
+/// it, which the caller turns into the brackets of the two crossings.
+///
+/// The rate is `g`'s own along the interpolant, by differences over
+/// `δ = 2⁻²⁰ (t1 − t0)`: one-sided at the ends, central inside, so that it
+/// needs nothing of the event but its values. The extremum is the rate's
+/// root, located by [`illinois`]; the search stops as soon as a value
+/// across zero is met, or when the quadratic model of `g` about the
+/// bracket (curvature from the rates at its ends) puts the extremum's value
+/// clearly on the same side as the ends. The guarantee that follows: a dip
+/// through zero and back is found whenever `g` along the interpolant has
+/// one extremum in the step; two or more within one step (an oscillation
+/// of `g` faster than the step) can hide one.
+fn hidden_extremum<S: RealField + Copy, E>(
+    g: &mut impl FnMut(S) -> Result<S, E>,
+    (t0, g0): (S, S),
+    (t1, g1): (S, S),
+    tolerance: S,
+) -> Result<Option<(S, S)>, E> {
+    let zero = S::zero();
+    // Unarmed (zero at an end), or a change of sign: not this search's.
+    if g0 == zero || g1 == zero || (g0 > zero) != (g1 > zero) {
+        return Ok(None);
+    }
+    // Towards zero is down for a positive g, up for a negative one.
+    let sign = if g0 > zero { S::one() } else { -S::one() };
+    let delta = (t1 - t0) * nalgebra::convert::<f64, S>(2f64.powi(-20));
+    if !(t0 + delta > t0 && t1 - delta < t1) {
+        return Ok(None);
+    }
+    let at_start = (g(t0 + delta)? - g0) / delta;
+    let at_end = (g1 - g(t1 - delta)?) / delta;
+    if !(sign * at_start < zero && sign * at_end > zero) {
+        return Ok(None);
+    }
+    // Illinois on the rate, from towards zero (a) to away from it (b),
+    // watching every value of g it passes.
+    let (mut a, mut ra) = (t0, sign * at_start);
+    let (mut b, mut rb) = (t1, sign * at_end);
+    // The rates at the bracket's ends as measured (Illinois halves `ra`
+    // or `rb` for its secant, not these).
+    let (mut true_a, mut true_b) = (ra, rb);
+    let two = S::one() + S::one();
+    let mut moved = 0i8;
+    let mut width_before = b - a;
+    for iteration in 1..=MAX_ITERATIONS {
+        let mid = a + (b - a) / two;
+        if b - a <= tolerance || mid <= a || mid >= b {
+            break;
+        }
+        let falsi = b - rb * (b - a) / (rb - ra);
+        let safeguard = iteration % 3 == 0 && b - a > width_before / two;
+        if iteration % 3 == 0 {
+            width_before = b - a;
+        }
+        let inside = falsi.is_finite() && falsi > a + delta && falsi < b - delta;
+        let t = if inside && !safeguard { falsi } else { mid };
+        let (before, after) = (g(t - delta)?, g(t + delta)?);
+        for (s, value) in [(t - delta, before), (t + delta, after)] {
+            if sign * value <= zero {
+                return Ok(Some((s, value)));
+            }
+        }
+        let rate = sign * (after - before) / (delta + delta);
+        // g within the bracket lies above its value at t less about half
+        // the rate's change across the bracket times its width (g's
+        // quadratic model); clearly above zero, the extremum is too.
+        let value = (before + after) / two;
+        if sign * value > (true_b - true_a) * (b - a) {
+            return Ok(None);
+        }
+        if rate >= zero {
+            true_b = rate;
+            (b, rb) = (t, rate);
+            if moved == 1 {
+                ra /= two;
+            }
+            moved = 1;
+        } else {
+            true_a = rate;
+            (a, ra) = (t, rate);
+            if moved == -1 {
+                rb /= two;
+            }
+            moved = -1;
+        }
+    }
+    let t = a + (b - a) / two;
+    let value = g(t)?;
+    Ok((sign * value <= zero).then_some((t, value)))
 }
 
 /// [`evaluate`] into `g` (cleared first), so that a buffer kept from step

@@ -6,7 +6,7 @@ use super::locate::evaluate_into;
 use super::Events;
 use crate::driver::State;
 use crate::IntegrationError;
-use nalgebra::RealField;
+use nalgebra::{RealField, SVector};
 
 /// The state of the watch over a run's events.
 pub(crate) struct Watch<'a, S, const N: usize> {
@@ -20,6 +20,9 @@ pub(crate) struct Watch<'a, S, const N: usize> {
     /// The shortest gap between events the method resolves: its fixed
     /// step, zero for an adaptive method.
     pub(crate) resolution: S,
+    /// `q̈` at the end of the last step a Hermite interpolant was built
+    /// for, with that time and state: the next step's slope at its start.
+    pub(crate) slope: Option<(S, State<S, N>, SVector<S, N>)>,
 }
 
 impl<'a, S: RealField + Copy, const N: usize> Watch<'a, S, N> {
@@ -30,6 +33,7 @@ impl<'a, S: RealField + Copy, const N: usize> Watch<'a, S, N> {
             scratch: Vec::with_capacity(events.len()),
             guard: ZenoGuard::new(),
             resolution: S::zero(),
+            slope: None,
         }
     }
 
@@ -41,12 +45,5 @@ impl<'a, S: RealField + Copy, const N: usize> Watch<'a, S, N> {
         evaluations: &mut usize,
     ) -> Result<(), IntegrationError<S, N>> {
         evaluate_into(self.events, t, state, &mut self.g, evaluations)
-    }
-
-    /// Whether some event changes sign, in its direction, from the current
-    /// values to `g`.
-    pub(crate) fn any_crossing(&self, g: &[S]) -> bool {
-        let list = self.events.list();
-        (0..list.len()).any(|i| list[i].crosses(self.g[i], g[i]))
     }
 }

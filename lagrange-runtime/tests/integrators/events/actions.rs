@@ -148,25 +148,37 @@ fn an_event_at_the_start_is_not_triggered() {
 }
 
 #[test]
-fn max_step_finds_an_excursion_inside_one_step() {
+fn an_excursion_inside_one_step_is_found_with_or_without_a_step_bound() {
     // x = −sin t rises above 0.99 only within ±acos(0.99) = ±0.1415 of
     // t = 3π/2 = 4.712: inside one step of 0.5, from 4.5 to 5.0, whose
-    // ends are both below.
+    // ends are both below. The rate of g along the step's interpolant
+    // shows the maximum between them.
     let high = || Event::new("x = 0.99", |_, q: &Vector1<f64>, _: &_| q[0] - 0.99);
     let (q0, v0) = (Vector1::new(0.0), Vector1::new(-1.0));
     let rk4 = Rk4::new(0.5);
     let times = [5.0];
+    let half_width = 0.99f64.acos();
     let events = Events::new().with(high());
     let coarse = rk4
         .integrate_with_events(&spring(), 0.0, q0, v0, &times, &events)
         .unwrap();
-    assert!(coarse.events().is_empty(), "the documented limit");
+    let found: Vec<f64> = coarse.events().iter().map(|e| e.t).collect();
+    assert_eq!(found.len(), 2, "{found:?}");
+    // RK4 at h = 0.5 errs by ~h⁴/120 ≈ 5e-4 per unit of time in x, and
+    // its Hermite interpolant by h⁴/384 ≈ 2e-4: ~2e-3 in x by t = 4.7,
+    // over |ẋ| = 0.14 at these crossings, ~2e-2 in t.
+    for (t, exact) in found.iter().zip([-half_width, half_width]) {
+        assert!((t - (1.5 * PI + exact)).abs() < 2e-2, "{found:?}");
+    }
+    assert!(
+        found[0] > 4.5 && found[1] < 5.0,
+        "both inside the step: {found:?}"
+    );
     let events = Events::new().with(high()).max_step(0.05);
     let bounded = rk4
         .integrate_with_events(&spring(), 0.0, q0, v0, &times, &events)
         .unwrap();
     let found: Vec<f64> = bounded.events().iter().map(|e| e.t).collect();
-    let half_width = 0.99f64.acos();
     assert_eq!(found.len(), 2);
     // RK4 at 0.05 with the Hermite interpolant: errors ~1e-6 in x, over
     // |ẋ| = 0.14 at these crossings, ~1e-5 in t.
