@@ -13,16 +13,16 @@ use lagrange_runtime::StepMethod;
 
 use crate::models::CoupledOscillator;
 
+/// The times and positions a run reached.
+type Run = Vec<(f64, Vector2<f64>)>;
+
 const T0: f64 = 1_073_741_824.0; // 2³⁰
 const SPAN: f64 = 20.0;
 const TOL: f64 = 1e-12;
 
 /// The largest error against the exact motion over 20 s (about three
 /// periods), sampled every second from `t0`.
-fn worst_error(
-    run: impl Fn(&CoupledOscillator<f64>, f64, &[f64]) -> Vec<(f64, Vector2<f64>)>,
-    t0: f64,
-) -> f64 {
+fn worst_error(run: impl Fn(&CoupledOscillator<f64>, f64, &[f64]) -> Run, t0: f64) -> f64 {
     let model = CoupledOscillator { omega: 1.0 };
     let (q0, v0) = (Vector2::new(1.0, -0.5), Vector2::new(0.0, 0.3));
     // t0 + k is exact for these t0 and k, and so is its difference with t0.
@@ -35,7 +35,7 @@ fn worst_error(
 
 fn integrated<I: Integrator<f64>>(
     method: I,
-) -> impl Fn(&CoupledOscillator<f64>, f64, &[f64]) -> Vec<(f64, Vector2<f64>)> {
+) -> impl Fn(&CoupledOscillator<f64>, f64, &[f64]) -> Run {
     move |model, t0, times| {
         let (q0, v0) = (Vector2::new(1.0, -0.5), Vector2::new(0.0, 0.3));
         let run = method
@@ -47,7 +47,7 @@ fn integrated<I: Integrator<f64>>(
 
 fn stepped<M: StepMethod<f64, 2> + Copy>(
     method: M,
-) -> impl Fn(&CoupledOscillator<f64>, f64, &[f64]) -> Vec<(f64, Vector2<f64>)> {
+) -> impl Fn(&CoupledOscillator<f64>, f64, &[f64]) -> Run {
     move |model, t0, times| {
         let (q0, v0) = (Vector2::new(1.0, -0.5), Vector2::new(0.0, 0.3));
         let model = CoupledOscillator { omega: model.omega };
@@ -72,8 +72,8 @@ fn stepped<M: StepMethod<f64, 2> + Copy>(
 /// to 6e-8 s per step at `2³⁰ s`, put a phase error of 3.3e-6 here.
 #[test]
 fn an_adaptive_clock_far_from_zero_keeps_the_phase() {
-    type Run = Box<dyn Fn(f64) -> f64>;
-    let runs: [(&str, Run, f64); 5] = [
+    type Worst = Box<dyn Fn(f64) -> f64>;
+    let runs: [(&str, Worst, f64); 5] = [
         (
             "dopri5",
             Box::new(|t0| worst_error(integrated(Dopri5::new().rtol(TOL).atol(TOL)), t0)),
