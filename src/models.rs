@@ -3,8 +3,7 @@
 //! Each is a `lagrangian!` invocation in its own file (read the source),
 //! with its usual starting states and, where one exists, its exact
 //! solution. Also every integrator by name ([`Method`]), for studies that
-//! run them all, and [`WithoutJacobians`], for the finite-difference path
-//! of the implicit methods. Three are constrained models, closed loops in
+//! run them all. Three are constrained models, closed loops in
 //! redundant coordinates: [`CartesianPendulum`], [`SliderCrank`] (with its
 //! minimal-coordinate twin) and [`FourBar`]. One has a control input:
 //! [`CartPole`], pushed by a motor force. Two have impacts, as
@@ -25,7 +24,6 @@ mod pendulum_wall;
 mod slider_crank;
 mod stiff_chain;
 mod two_mass_chain;
-mod without_jacobians;
 
 pub use bouncing_ball::BouncingBall;
 pub use cart_pole::CartPole;
@@ -41,4 +39,3 @@ pub use pendulum_wall::PendulumWall;
 pub use slider_crank::{slider_crank_kinematics, MinimalSliderCrank, SliderCrank};
 pub use stiff_chain::StiffChain;
 pub use two_mass_chain::{RayleighTwoMassChain, TwoMassChain};
-pub use without_jacobians::WithoutJacobians;

@@ -123,6 +123,7 @@ impl Stub {
         let actuated = inputs::actuated_impl(&outline, &types, jacobian);
         let actuated = (!actuated.is_empty())
             .then(|| quote!(#[allow(unused_variables, clippy::all)] #actuated));
+        let lets = crate::emit::lets_impl(&self.name, &types);
         quote! {
             #error
             #item
@@ -142,6 +143,7 @@ impl Stub {
             }
             #holonomic
             #actuated
+            #lets
         }
     }
 }

@@ -126,7 +126,7 @@ fn a_constrained_model_gets_the_holonomic_items() {
         "pub fn constraint_bias (",
         "pub fn constrained_system (",
         "impl < S : :: lagrange :: nalgebra :: RealField + :: core :: marker :: Copy > :: lagrange :: Holonomic < 2 , 1 > for CartesianPendulum < S >",
-        "fn visit_constraints < V : :: lagrange :: constraints :: Visitor < S , 2 >> (& self , visitor : V) -> :: core :: option :: Option < V :: Output > { :: core :: option :: Option :: Some (visitor . visit :: < Self , 1 > (self)) }",
+        "fn visit_constraints < V : :: lagrange :: constraints :: Visitor < S , 2 >> (& self , visitor : V) -> :: core :: option :: Option < V :: Output > { :: core :: option :: Option :: Some (visitor . visit :: < Self , 1 > (self , :: core :: default :: Default :: default ())) }",
     ] {
         assert!(tokens.contains(item), "missing `{item}` in\n{tokens}");
     }

@@ -99,7 +99,7 @@ fn inputs_are_fields_not_constructor_arguments() {
         "pub fn set_inputs (& mut self , u :",
         "pub fn with_inputs (mut self , u :",
         ":: lagrange :: Actuated < 2 , 1 > for CartPole < S >",
-        "fn inputs_are_set (& self) -> bool",
+        "fn visit_inputs < V : :: lagrange :: inputs :: Visitor < S , 2 >> (& self , visitor : V)",
     ] {
         assert!(code.contains(item), "{item} missing from {code}");
     }
@@ -145,7 +145,7 @@ fn a_model_without_inputs_has_no_input_items() {
         "INPUTS",
         "input_jacobian",
         "Actuated",
-        "inputs_are_set",
+        "visit_inputs",
         "set_inputs",
     ] {
         assert!(!code.contains(item), "{item} in {code}");

@@ -223,7 +223,8 @@
 //!
 //! # Map of the crate
 //!
-//! - [`Lagrangian`] (`lagrangian.rs`): the contract a model fulfils.
+//! - [`model`]: the contract a model fulfils, [`Lagrangian`], the one list
+//!   of its capabilities, and [`Layered`](model::Layered) models.
 //! - [`constraints`]: models with holonomic constraints, [`Holonomic`]:
 //!   the saddle-point accelerations, drift control (projection by
 //!   default, Baumgarte, none), consistent initial conditions, the
@@ -275,8 +276,8 @@ pub mod export;
 pub mod inputs;
 pub mod integrators;
 pub mod interop;
-mod lagrangian;
 mod linalg;
+pub mod model;
 pub mod stepper;
 mod trajectory;
 pub mod trig;
@@ -295,8 +296,8 @@ pub use integrators::{
     integrate, Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, Integrator, Radau5,
     Rk4, SymplecticEuler, Variational,
 };
-pub use lagrangian::Lagrangian;
 pub use linalg::{jacobian, solve};
+pub use model::{lets, Lagrangian};
 pub use nalgebra;
 pub use stepper::{StepMethod, Stepper};
 pub use trajectory::{Sample, Samples, Stats, Trajectory};

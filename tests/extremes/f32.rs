@@ -17,7 +17,7 @@
 //! `cargo test --release --test extremes -- f32:: --nocapture`.
 
 use crate::support::reference::Reference;
-use lagrange::models::{DoublePendulum, Kepler, StiffChain, WithoutJacobians};
+use lagrange::models::{DoublePendulum, Kepler, StiffChain};
 use lagrange::nalgebra::{self, RealField, SVector, Vector2};
 use lagrange::prelude::*;
 use lagrange::{IntegrationResult, InvalidInput};
@@ -343,7 +343,7 @@ fn kepler_energy<S: RealField + Copy, I: Integrator<S>>(
     let e = 0.6f64;
     let period = 2.0 * std::f64::consts::PI;
     // Without exact Jacobians: Gauss–Legendre differences the acceleration.
-    let model = WithoutJacobians(Kepler::<S>::new(S::one()));
+    let model = (Kepler::<S>::new(S::one())).without_jacobians();
     // The start in f64, rounded once to S.
     let (q0, v0) = Kepler::new(1.0).pericentre(e);
     let (q0, v0) = (q0.map(c), v0.map(c));

@@ -18,7 +18,7 @@ use std::cell::Cell;
 use std::f64::consts::PI;
 use std::time::Instant;
 
-use lagrange::models::{Kepler, Method, WithoutJacobians};
+use lagrange::models::{Kepler, Method};
 use lagrange::nalgebra::{SVector, Vector2};
 use lagrange::prelude::*;
 use lagrange::IntegrationResult;
@@ -162,7 +162,7 @@ fn run(method: Method, exact_jacobians: bool, orbits: usize, samples: usize) -> 
     let (trajectory, usage) = if exact_jacobians {
         measure(|| integrate(method, &Kepler::new(1.0), &times))
     } else {
-        measure(|| integrate(method, &WithoutJacobians(Kepler::new(1.0)), &times))
+        measure(|| integrate(method, &Kepler::new(1.0).without_jacobians(), &times))
     };
     let seconds = clock.elapsed().as_secs_f64();
     let trajectory = trajectory.unwrap_or_else(|f| panic!("{method:?}: {}", f.error));

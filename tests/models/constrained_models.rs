@@ -4,7 +4,7 @@
 //! against the separate methods, and the `Holonomic` impl reached through
 //! `Lagrangian::visit_constraints`.
 
-use lagrange::constraints::Visitor;
+use lagrange::constraints::{ConstraintSettings, Visitor};
 use lagrange::nalgebra::Vector3;
 use lagrange::prelude::*;
 use lagrange::Holonomic;
@@ -83,7 +83,7 @@ struct Count;
 
 impl Visitor<f64, 3> for Count {
     type Output = (usize, &'static str);
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<f64>) -> Self::Output
     where
         H: Holonomic<3, C, Scalar = f64> + ?Sized,
     {

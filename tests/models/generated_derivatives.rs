@@ -126,7 +126,6 @@ fn momenta_gradient_and_nonconservative_forces_rebuild_the_forcing() {
 #[test]
 fn runtime_uses_exact_jacobians_when_the_model_has_them() {
     use lagrange::jacobian::acceleration_jacobians;
-    use lagrange::models::WithoutJacobians;
     use lagrange::solve::acceleration;
 
     let mut rng = StdRng::seed_from_u64(3);
@@ -137,7 +136,7 @@ fn runtime_uses_exact_jacobians_when_the_model_has_them() {
     let (eq, ev) = acceleration_jacobians(&m, t, &q, &v, &a, &mut exact_stats).unwrap();
     let mut fd_stats = Stats::default();
     let (fq, fv) =
-        acceleration_jacobians(&WithoutJacobians(m), t, &q, &v, &a, &mut fd_stats).unwrap();
+        acceleration_jacobians(&m.without_jacobians(), t, &q, &v, &a, &mut fd_stats).unwrap();
     let scale = 1.0 + eq.amax().max(ev.amax());
     assert!((eq - fq).amax() <= 1e-5 * scale, "{eq} vs {fq}");
     assert!((ev - fv).amax() <= 1e-5 * scale, "{ev} vs {fv}");

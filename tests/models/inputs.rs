@@ -3,6 +3,7 @@
 //! constant input against the hand-computed acceleration, a feedback
 //! controller run and counted, a controller's NaN reported where it happened.
 
+use lagrange::analysis::{equilibrium, linearize, modes, AnalysisError};
 use lagrange::models::{CartPole, Method};
 use lagrange::nalgebra::{Matrix2, Vector1, Vector2};
 use lagrange::prelude::*;
@@ -217,7 +218,7 @@ fn a_constrained_model_under_a_controller_moves_as_its_minimal_twin() {
     ] {
         let run = method
             .integrate(
-                &bob_driven.with_drift(drift),
+                &(&bob_driven).with_drift(drift),
                 0.0,
                 q0,
                 Vector2::zeros(),
@@ -239,4 +240,98 @@ fn a_constrained_model_under_a_controller_moves_as_its_minimal_twin() {
         assert!(worst < 1e-9, "{drift:?}: {worst}");
         assert!(closure < 1e-9, "{drift:?}: {closure}");
     }
+}
+
+/// The three drift controls, for the layered runs below.
+fn drifts() -> [Drift<f64>; 3] {
+    [
+        Drift::Projection,
+        Drift::Baumgarte {
+            alpha: 20.0,
+            beta: 20.0,
+        },
+        Drift::None,
+    ]
+}
+
+/// Issue 23, defect 1: a constrained model with inputs never set, given
+/// another drift control, was integrated into "the forcing is NaN at
+/// t = 0" (the drift wrapper did not pass the input check on). It is
+/// refused before the first step, like the model itself.
+#[test]
+fn unset_inputs_are_refused_under_another_drift_control() {
+    let bob = PushedBob::new(0.8, 0.6, 9.81);
+    let (q0, v0) = (Vector2::new(0.0, -0.6), Vector2::zeros());
+    for method in Method::ALL {
+        for drift in drifts() {
+            let failure = method
+                .integrator(1e-3, 1e-8)
+                .integrate(&bob.with_drift(drift), 0.0, q0, v0, &[0.1])
+                .unwrap_err();
+            assert_eq!(
+                failure.error,
+                IntegrationError::InvalidInput(InvalidInput::InputsNotSet { inputs: &["fx"] }),
+                "{method:?}, {drift:?}"
+            );
+            assert!(failure.trajectory.is_empty());
+        }
+    }
+}
+
+/// Issue 23, defect 2: a controlled constrained model whose controller
+/// returns NaN was reported as "the forcing is NaN" (the saddle-point
+/// solve did not ask whom to blame). The inputs are blamed, at a time
+/// after the controller turned, with or without another drift control.
+#[test]
+fn a_constrained_models_nan_controller_is_blamed_with_or_without_a_drift_control() {
+    let bob = PushedBob::new(0.8, 0.6, 9.81);
+    let (q0, v0) = (Vector2::new(0.0, -0.6), Vector2::new(0.5, 0.0));
+    let controller = |t: f64, _: &Vector2<f64>, _: &Vector2<f64>| {
+        Vector1::new(if t < 0.5 { 1.0 } else { f64::NAN })
+    };
+    for method in Method::ALL {
+        let integrator = method.integrator(1e-2, 1e-8);
+        let plain =
+            integrator.integrate(&bob.with_controller(controller), 0.0, q0, v0, &[0.3, 1.0]);
+        let mut runs = vec![("no drift layer".to_string(), plain)];
+        for drift in drifts() {
+            let run = integrator.integrate(
+                &bob.with_controller(controller).with_drift(drift),
+                0.0,
+                q0,
+                v0,
+                &[0.3, 1.0],
+            );
+            runs.push((format!("{drift:?}"), run));
+        }
+        for (layer, run) in runs {
+            let failure = run.unwrap_err();
+            match failure.error {
+                IntegrationError::NonFiniteState { t, value, .. } => {
+                    assert_eq!(value, NonFiniteValue::Inputs, "{method:?}, {layer}");
+                    assert!((0.5..1.0).contains(&t), "{method:?}, {layer}: t = {t}");
+                }
+                other => panic!("{method:?}, {layer}: {other}"),
+            }
+        }
+    }
+}
+
+/// Issue 23, defect 5: linearizing, searching an equilibrium of, or
+/// taking the modes of a model whose inputs were never set said "the
+/// forcing is NaN"; it is the inputs' error, before any evaluation.
+#[test]
+fn analysis_of_a_model_with_inputs_never_set_says_so() {
+    let never_set = |error: AnalysisError<f64, 2>| {
+        assert_eq!(
+            error,
+            AnalysisError::Model(IntegrationError::InvalidInput(InvalidInput::InputsNotSet {
+                inputs: &["force"]
+            })),
+        );
+    };
+    let (q, v) = (Vector2::new(0.0, 0.1), Vector2::zeros());
+    never_set(linearize(&cart(), 0.0, &q, &v).unwrap_err());
+    never_set(modes(&cart(), 0.0, &Vector2::zeros()).unwrap_err());
+    never_set(equilibrium(&cart(), 0.0, &q).unwrap_err());
 }

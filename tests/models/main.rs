@@ -12,6 +12,7 @@ mod generated_derivatives;
 mod indexed_models;
 mod inputs;
 mod latex;
+mod layers;
 mod linearization;
 mod more_models;
 mod named_lets;

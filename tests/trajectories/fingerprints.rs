@@ -3,7 +3,7 @@
 //!
 //! A restructuring must keep every method's samples, events and statistics
 //! bit-identical; a fix that moves them re-blesses the file
-//! (`BLESS=1 cargo test --test trajectories fingerprints`) and says in its
+//! (`LAGRANGE_BLESS=1 cargo test --test trajectories fingerprints`) and says in its
 //! commit which lines moved and by how much (`FINGERPRINT_DUMP=FILE` writes
 //! every sample in full, to compare two builds).
 //!
@@ -427,7 +427,7 @@ fn every_methods_results_keep_their_bits() {
     if let Ok(file) = std::env::var("FINGERPRINT_DUMP") {
         std::fs::write(file, &dump).expect("writes the dump");
     }
-    if std::env::var_os("BLESS").is_some() {
+    if std::env::var_os("LAGRANGE_BLESS").is_some() {
         std::fs::write(path, &text).expect("writes the fingerprints");
         return;
     }

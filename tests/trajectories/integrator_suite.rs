@@ -4,7 +4,7 @@
 //! rest.
 
 use crate::support::fit::{log_slope, sci};
-use lagrange::models::{DoublePendulum, Kepler, PolarKepler, WithoutJacobians};
+use lagrange::models::{DoublePendulum, Kepler, PolarKepler};
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
 
@@ -130,8 +130,8 @@ fn kepler_energy_errors<I: Integrator<f64>>(method: &I, orbits: usize, polar: bo
             .map(|s| ((model.energy(s.t, &s.q, &s.qdot) - e0) / e0).abs())
             .collect()
     } else {
-        let model = WithoutJacobians(Kepler::new(1.0));
-        let (q0, v0) = model.0.pericentre(e);
+        let model = Kepler::new(1.0).without_jacobians();
+        let (q0, v0) = model.model().pericentre(e);
         let e0 = model.energy(0.0, &q0, &v0);
         let t = method.integrate(&model, 0.0, q0, v0, &times).unwrap();
         t.iter()

@@ -60,29 +60,19 @@ pub(crate) fn inherent_methods(outline: &Outline, types: &Types) -> TokenStream 
     }
 }
 
-/// `Lagrangian::inputs_are_set` (every input field finite) and
-/// `Lagrangian::input_names`; `None` for a model without inputs (the
-/// trait's defaults: `true`, none).
-pub(crate) fn inputs_are_set(outline: &Outline) -> Option<TokenStream> {
+/// `Lagrangian::visit_inputs`: the model hands itself, with its number of
+/// inputs, to the runtime's visitor (which reads its `INPUTS` and the
+/// values it holds through `Actuated`); `None` for a model without inputs
+/// (the trait's default: none).
+pub(crate) fn visit_inputs(outline: &Outline, types: &Types) -> Option<TokenStream> {
     if outline.inputs.is_empty() {
         return None;
     }
-    let na = nalgebra();
-    let checks = outline.inputs.iter().map(|f| {
-        let n = &f.name;
-        match f.len {
-            None => quote!(#na::ComplexField::is_finite(&self.#n)),
-            Some(_) => quote!(self.#n.iter().all(#na::ComplexField::is_finite)),
-        }
-    });
+    let (n, k) = (&types.n, &types.k);
     Some(quote! {
         #[inline]
-        fn inputs_are_set(&self) -> bool {
-            #(#checks)&&*
-        }
-        #[inline]
-        fn input_names(&self) -> &'static [&'static str] {
-            const { &Self::INPUTS }
+        fn visit_inputs<V: ::lagrange::inputs::Visitor<S, #n>>(&self, visitor: V) -> ::core::option::Option<V::Output> {
+            ::core::option::Option::Some(visitor.visit::<Self, #k>(self))
         }
     })
 }

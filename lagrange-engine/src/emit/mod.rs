@@ -62,12 +62,14 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
     let lagrangian = lagrangian_impl(&cx);
     let holonomic = holonomic_impl(&cx);
     let actuated = actuated_impl(&cx);
+    let lets = lets_impl(cx.outline.name, &cx.types);
     quote! {
         #item
         #inherent
         #lagrangian
         #holonomic
         #actuated
+        #lets
     }
 }
 
@@ -141,6 +143,40 @@ fn inherent_impl(cx: &Context, texts: (&str, &str)) -> TokenStream {
     }
 }
 
+/// `Lagrangian::visit_lets`, for a model that names `let`s: it hands
+/// itself, with their number, to the runtime's visitor.
+fn visit_lets(types: &Types) -> Option<TokenStream> {
+    if types.let_total == 0 {
+        return None;
+    }
+    let (n, l) = (&types.n, &types.let_count);
+    Some(quote! {
+        #[inline]
+        fn visit_lets<V: ::lagrange::lets::Visitor<S, #n>>(&self, visitor: V) -> ::core::option::Option<V::Output> {
+            ::core::option::Option::Some(visitor.visit::<Self, #l>(self))
+        }
+    })
+}
+
+/// `impl Lets<N, L>`, for a model that names `let`s (and its error stub):
+/// `LETS` and `lets` are the inherent ones.
+pub(crate) fn lets_impl(name: &Ident, types: &Types) -> TokenStream {
+    if types.let_total == 0 {
+        return TokenStream::new();
+    }
+    let na = nalgebra();
+    let (n, l, vector, lets) = (&types.n, &types.let_count, &types.vector, &types.lets);
+    quote! {
+        impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::lets::Lets<#n, #l> for #name<S> {
+            const LETS: [&'static str; #l] = Self::LETS;
+            #[inline]
+            fn lets(&self, t: S, q: &#vector, qdot: &#vector) -> #lets {
+                #name::lets(self, t, q, qdot)
+            }
+        }
+    }
+}
+
 /// `impl Actuated<N, K>`, for a model with inputs only.
 fn actuated_impl(cx: &Context) -> TokenStream {
     let name = cx.outline.name;
@@ -189,7 +225,8 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
         .zip(&cx.roots)
         .map(|(m, roots)| trait_method(cx, m, roots.is_some()));
     let finite = parameters_are_finite(cx);
-    let inputs_are_set = inputs::inputs_are_set(&cx.outline);
+    let visit_inputs = inputs::visit_inputs(&cx.outline, &cx.types);
+    let visit_lets = visit_lets(&cx.types);
     // A constrained model hands itself, with its number of constraints, to
     // the runtime's visitor: how a generic integrator reaches `Holonomic`.
     let visit = (cx.types.constraints > 0).then(|| {
@@ -197,7 +234,7 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
         quote! {
             #[inline]
             fn visit_constraints<V: ::lagrange::constraints::Visitor<S, #n>>(&self, visitor: V) -> ::core::option::Option<V::Output> {
-                ::core::option::Option::Some(visitor.visit::<Self, #c>(self))
+                ::core::option::Option::Some(visitor.visit::<Self, #c>(self, ::core::default::Default::default()))
             }
         }
     });
@@ -210,7 +247,8 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
             fn parameters_are_finite(&self) -> bool {
                 #finite
             }
-            #inputs_are_set
+            #visit_inputs
+            #visit_lets
             #visit
         }
     }
@@ -296,7 +334,7 @@ fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
 }
 
 /// Whether every parameter field is finite, for the runtime's input checks
-/// (not the inputs' fields: unset inputs are NaN, and `inputs_are_set`
+/// (not the inputs' fields: unset inputs are NaN, and `visit_inputs`
 /// reports them in their own words).
 fn parameters_are_finite(cx: &Context) -> TokenStream {
     let fields = cx.outline.fields;

@@ -48,6 +48,8 @@ pub struct Types {
     pub lets: TokenStream,
     /// `L`.
     pub let_count: Literal,
+    /// `L`, as a number.
+    pub let_total: usize,
 }
 
 impl Types {
@@ -78,6 +80,7 @@ impl Types {
                 quote!([S; #l])
             },
             let_count: Literal::usize_unsuffixed(lets),
+            let_total: lets,
             n,
             c,
         }

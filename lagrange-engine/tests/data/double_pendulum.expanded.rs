@@ -424,4 +424,25 @@ for DoublePendulum<S> {
             && ::lagrange::nalgebra::ComplexField::is_finite(&self.l2)
             && ::lagrange::nalgebra::ComplexField::is_finite(&self.g)
     }
+    #[inline]
+    fn visit_lets<V: ::lagrange::lets::Visitor<S, 2>>(
+        &self,
+        visitor: V,
+    ) -> ::core::option::Option<V::Output> {
+        ::core::option::Option::Some(visitor.visit::<Self, 4>(self))
+    }
+}
+impl<
+    S: ::lagrange::nalgebra::RealField + ::core::marker::Copy,
+> ::lagrange::lets::Lets<2, 4> for DoublePendulum<S> {
+    const LETS: [&'static str; 4] = Self::LETS;
+    #[inline]
+    fn lets(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> [S; 4] {
+        DoublePendulum::lets(self, t, q, qdot)
+    }
 }

@@ -86,6 +86,7 @@ impl<S: RealField + Copy> EquilibriumSearch<S> {
         t: S,
         guess: &SVector<S, N>,
     ) -> Result<SVector<S, N>, AnalysisError<S, N>> {
+        crate::model::ready(model).map_err(|e| AnalysisError::Model(e.into()))?;
         if let Some(result) = model.visit_constraints(ManifoldSearch {
             search: self,
             t,
@@ -259,6 +260,7 @@ pub fn is_equilibrium<L: Lagrangian<N>, const N: usize>(
     q: &SVector<L::Scalar, N>,
     tol: L::Scalar,
 ) -> Result<bool, AnalysisError<L::Scalar, N>> {
+    crate::model::ready(model).map_err(|e| AnalysisError::Model(e.into()))?;
     if let Some(result) = model.visit_constraints(ManifoldTest { t, q, tol }) {
         return result;
     }

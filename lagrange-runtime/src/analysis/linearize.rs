@@ -178,6 +178,7 @@ pub fn linearize<L: Lagrangian<N>, const N: usize>(
     q: &SVector<L::Scalar, N>,
     qdot: &SVector<L::Scalar, N>,
 ) -> Result<Linearization<L::Scalar, N>, AnalysisError<L::Scalar, N>> {
+    crate::model::ready(model).map_err(|e| AnalysisError::Model(e.into()))?;
     refuse_constrained(model, t, q)?;
     let qddot = acceleration(model, t, q, qdot)?;
     let jacobian_error = || {

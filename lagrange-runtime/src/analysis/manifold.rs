@@ -2,6 +2,7 @@
 //! `T` of `φ(t, q) = 0`, the consistent velocities, and the reduced
 //! linearization [`linearize_on_manifold`].
 
+use crate::constraints::settings::ConstraintSettings;
 use nalgebra::{ComplexField, DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::derivatives::{central_step, sqrt_epsilon};
@@ -207,6 +208,7 @@ pub fn linearize_on_manifold<L: Lagrangian<N>, const N: usize>(
     q: &SVector<L::Scalar, N>,
     qdot: &SVector<L::Scalar, N>,
 ) -> Result<ManifoldLinearization<L::Scalar, N>, AnalysisError<L::Scalar, N>> {
+    crate::model::ready(model).map_err(|e| AnalysisError::Model(e.into()))?;
     if let Some(result) = model.visit_constraints(Reduce { t, q, qdot }) {
         return result;
     }
@@ -233,7 +235,7 @@ struct Reduce<'a, S, const N: usize> {
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Reduce<'_, S, N> {
     type Output = Result<ManifoldLinearization<S, N>, AnalysisError<S, N>>;
 
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {
@@ -312,7 +314,7 @@ pub(super) fn saddle<H, const N: usize, const C: usize>(
 where
     H: Holonomic<N, C> + ?Sized,
 {
-    Ok(constrained_accelerations(model, t, q, qdot, false)?)
+    Ok(constrained_accelerations(model, t, q, qdot, None)?)
 }
 
 /// `∂q̈/∂q T` (`N × D`) by central differences along the columns of `T`,

@@ -2,6 +2,7 @@
 //! coordinates of its constraint manifold: the part of `∂f/∂u` the
 //! constraints do not carry, exact through the Schur complement.
 
+use crate::constraints::settings::ConstraintSettings;
 use nalgebra::{ComplexField, DMatrix, RealField, SVector};
 
 use super::{linearize_on_manifold, AnalysisError, ManifoldLinearization};
@@ -114,7 +115,7 @@ struct InputResponse<'a, S, const N: usize> {
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for InputResponse<'_, S, N> {
     type Output = Result<SVector<S, N>, AnalysisError<S, N>>;
 
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {

@@ -147,12 +147,13 @@ use crate::Lagrangian;
 /// is.
 ///
 /// ```
-/// use lagrange::models::{DoublePendulum, WithoutJacobians};
+/// use lagrange::models::DoublePendulum;
 /// use lagrange_runtime::analysis::{linearize, Derivatives};
+/// use lagrange_runtime::Lagrangian;
 /// use lagrange_runtime::nalgebra::Vector2;
 ///
 /// let (q, v) = (Vector2::new(0.1, 0.2), Vector2::zeros());
-/// let plain = WithoutJacobians(DoublePendulum::unit());
+/// let plain = DoublePendulum::unit().without_jacobians();
 /// assert_eq!(linearize(&plain, 0.0, &q, &v)?.derivatives, Derivatives::CentralDifferences);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```

@@ -152,6 +152,7 @@ pub fn modes<L: Lagrangian<N>, const N: usize>(
     t: L::Scalar,
     q: &SVector<L::Scalar, N>,
 ) -> Result<Modes<L::Scalar, N>, AnalysisError<L::Scalar, N>> {
+    crate::model::ready(model).map_err(|e| AnalysisError::Model(e.into()))?;
     if let Some(result) = model.visit_constraints(ManifoldModes { t, q }) {
         return result;
     }

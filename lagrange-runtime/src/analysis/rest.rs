@@ -4,6 +4,7 @@
 //! and [`modes`](super::modes) reach these through
 //! [`Lagrangian::visit_constraints`](crate::Lagrangian::visit_constraints).
 
+use crate::constraints::settings::ConstraintSettings;
 use nalgebra::{ComplexField, DMatrix, DVector, RealField, SVector};
 
 use super::derivatives::{relative_noise, sqrt_epsilon};
@@ -102,7 +103,7 @@ pub(super) struct ManifoldSearch<'a, S, const N: usize> {
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for ManifoldSearch<'_, S, N> {
     type Output = Result<SVector<S, N>, AnalysisError<S, N>>;
 
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {
@@ -175,7 +176,7 @@ pub(super) struct ManifoldTest<'a, S, const N: usize> {
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for ManifoldTest<'_, S, N> {
     type Output = Result<bool, AnalysisError<S, N>>;
 
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {
@@ -196,7 +197,7 @@ pub(super) struct ManifoldModes<'a, S, const N: usize> {
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for ManifoldModes<'_, S, N> {
     type Output = Result<Modes<S, N>, AnalysisError<S, N>>;
 
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {

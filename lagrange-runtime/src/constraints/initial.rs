@@ -2,6 +2,7 @@
 //! accepted, projected or refused (see
 //! [the module](super#initial-conditions)).
 
+use crate::constraints::settings::ConstraintSettings;
 use nalgebra::{RealField, SVector};
 
 use super::projection::{
@@ -22,7 +23,7 @@ pub(crate) struct StartOnManifold<'a, S, const N: usize> {
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for StartOnManifold<'_, S, N> {
     type Output = Result<(SVector<S, N>, SVector<S, N>), IntegrationError<S, N>>;
 
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    fn visit<H, const C: usize>(self, model: &H, settings: ConstraintSettings<S>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {
@@ -32,7 +33,6 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for StartOnManifold<'_, 
             qdot0,
             stats,
         } = self;
-        let settings = model.constraint_settings();
         if let super::Drift::Baumgarte { alpha, beta } = settings.drift {
             let valid = |x: S| x.is_finite() && x >= S::zero();
             if !(valid(alpha) && valid(beta)) {

@@ -36,10 +36,10 @@
 //! # Drift, and how to control it
 //!
 //! Integrating `q̈` keeps `φ̈ = 0` only to the method's error, so `φ` and `φ̇`
-//! drift away from zero, linearly and quadratically in time. The choice is
-//! per run, through [`Holonomic::constraint_settings`]; a generated model
-//! has the default, and [`Holonomic::with_drift`] wraps it with another
-//! ([`Constrained`]):
+//! drift away from zero, linearly and quadratically in time. A model has
+//! the default, and [`Holonomic::with_drift`] layers another on it
+//! ([`Constrained`]); the run reads it from the model's visit
+//! ([`Visitor::visit`]'s settings):
 //!
 //! - [`Drift::Projection`] (the default): after every accepted step, `q` is
 //!   moved back onto `φ = 0` by Newton's method on the orthogonal
@@ -82,7 +82,8 @@
 //! `100 ε ‖G_i‖₁ ‖q‖∞` and each `|φ̇_i|` within
 //! `100 ε (‖G_i‖₁ ‖q̇‖∞ + |∂φ_i/∂t|)`: the rounding of evaluating them,
 //! whatever the units. A consistent start is integrated as given. An
-//! inconsistent one is, as [`ConstraintSettings::initial`] says, projected
+//! inconsistent one is, as the run's [`ConstraintSettings::initial`] says
+//! ([`Holonomic::with_initial_conditions`]), projected
 //! as after a step ([`InitialConditions::Project`], the default; the
 //! sizes of the corrections are in [`Stats`](crate::Stats), and the sample
 //! at `t0` is the corrected state), or refused with
@@ -104,33 +105,36 @@
 //! of constraints `C` is a second size that the trait cannot name. A
 //! constrained model therefore overrides one provided method,
 //! [`Lagrangian::visit_constraints`], which hands a [`Visitor`] the model as
-//! a [`Holonomic<N, C>`] with its `C` known: statically dispatched, so the
-//! constrained code is monomorphized for the model's own sizes and nothing
-//! is allocated. `lagrangian!` writes that one line; a model in minimal
-//! coordinates keeps the default (`None`) and pays nothing.
+//! a [`Holonomic<N, C>`] with its `C` known, and the run's
+//! [`ConstraintSettings`]: statically dispatched, so the constrained code is
+//! monomorphized for the model's own sizes and nothing is allocated.
+//! `lagrangian!` writes that one line; a model in minimal coordinates keeps
+//! the default (`None`) and pays nothing. A layer on the model (another
+//! drift control, a controller) hands the visitor the same constraints with
+//! its settings, or joined to its dynamics.
 //!
 //! The files, one concern each: `saddle.rs` (the solve, the accelerations
 //! and multipliers), `projection.rs` (the tolerances, the projections and
 //! drift control after a step), `initial.rs` (the start),
-//! `settings.rs` ([`Drift`], [`InitialConditions`]), `constrained.rs`
-//! ([`Constrained`]), `annotate.rs` ([`annotate`]), `rattle.rs` (the
-//! multipliers of the constrained variational step).
+//! `settings.rs` ([`Drift`], [`InitialConditions`], the layer
+//! [`ConstraintHandling`] that sets them for a run), `annotate.rs`
+//! ([`annotate`]), `rattle.rs` (the multipliers of the constrained
+//! variational step).
 
 use nalgebra::{RealField, SMatrix, SVector};
 
+use crate::model::Layered;
 use crate::{IntegrationError, Lagrangian};
 
 mod annotate;
-mod constrained;
 mod initial;
 mod projection;
 mod rattle;
 mod saddle;
-mod settings;
+pub(crate) mod settings;
 
 pub use annotate::{annotate, ConstrainedSample};
-pub use constrained::Constrained;
-pub use settings::{ConstraintSettings, Drift, InitialConditions};
+pub use settings::{Constrained, ConstraintHandling, ConstraintSettings, Drift, InitialConditions};
 
 pub(crate) use initial::StartOnManifold;
 pub(crate) use projection::{project_position, DriftControl, ProjectSample, VelocityProjection};
@@ -203,32 +207,23 @@ pub trait Holonomic<const N: usize, const C: usize>: Lagrangian<N> {
         )
     }
 
-    /// How this model's constraints are kept during integration: the drift
-    /// control and what to do with an inconsistent start. The default,
-    /// [`ConstraintSettings::default`], projects both; [`Constrained`]
-    /// overrides it.
-    fn constraint_settings(&self) -> ConstraintSettings<Self::Scalar> {
-        ConstraintSettings::default()
-    }
-
-    /// This model with another drift control, for one run:
-    /// `method.integrate(&model.with_drift(Drift::None), ..)`.
-    fn with_drift(&self, drift: Drift<Self::Scalar>) -> Constrained<'_, Self, Self::Scalar, C>
+    /// This model with another drift control, for its runs:
+    /// `method.integrate(&model.with_drift(Drift::None), ..)`. The model
+    /// is taken by value (a model from `lagrangian!` is `Copy`; borrow one
+    /// that is not: `(&model).with_drift(..)`).
+    fn with_drift(self, drift: Drift<Self::Scalar>) -> Constrained<Self, Self::Scalar>
     where
         Self: Sized,
     {
-        Constrained::new(self).drift(drift)
+        Layered::new(self, ConstraintHandling::default()).drift(drift)
     }
 
     /// This model with another rule for inconsistent initial conditions.
-    fn with_initial_conditions(
-        &self,
-        initial: InitialConditions,
-    ) -> Constrained<'_, Self, Self::Scalar, C>
+    fn with_initial_conditions(self, initial: InitialConditions) -> Constrained<Self, Self::Scalar>
     where
         Self: Sized,
     {
-        Constrained::new(self).initial_conditions(initial)
+        Layered::new(self, ConstraintHandling::default()).initial_conditions(initial)
     }
 
     /// The multipliers `λ` of the constrained motion through `(t, q, q̇)`:
@@ -242,7 +237,7 @@ pub trait Holonomic<const N: usize, const C: usize>: Lagrangian<N> {
         q: &SVector<Self::Scalar, N>,
         qdot: &SVector<Self::Scalar, N>,
     ) -> Result<SVector<Self::Scalar, C>, IntegrationError<Self::Scalar, N>> {
-        saddle::constrained_accelerations(self, t, q, qdot, false).map(|(_, lambda)| lambda)
+        saddle::constrained_accelerations(self, t, q, qdot, None).map(|(_, lambda)| lambda)
     }
 }
 
@@ -251,7 +246,7 @@ pub(crate) fn is_constrained<L: Lagrangian<N>, const N: usize>(model: &L) -> boo
     struct Probe;
     impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Probe {
         type Output = ();
-        fn visit<H, const C: usize>(self, _: &H)
+        fn visit<H, const C: usize>(self, _: &H, _: ConstraintSettings<S>)
         where
             H: Holonomic<N, C, Scalar = S> + ?Sized,
         {
@@ -262,13 +257,14 @@ pub(crate) fn is_constrained<L: Lagrangian<N>, const N: usize>(model: &L) -> boo
 
 /// What the integrators do with a constrained model, written once for
 /// every number of constraints: [`Lagrangian::visit_constraints`] calls
-/// [`visit`](Visitor::visit) with the model and its `C`.
+/// [`visit`](Visitor::visit) with the model, its `C` and the settings of
+/// the run.
 pub trait Visitor<S: RealField + Copy, const N: usize> {
     /// What the visit returns.
     type Output;
 
-    /// Runs on a model with `C` constraints.
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    /// Runs on a model with `C` constraints, kept as `settings` say.
+    fn visit<H, const C: usize>(self, model: &H, settings: ConstraintSettings<S>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized;
 }

@@ -2,6 +2,7 @@
 //! projections of `q` onto `φ = 0` and of `q̇` onto `φ̇ = 0` in the metric of
 //! `M`, and the drift control every integrator applies after a step.
 
+use crate::constraints::settings::ConstraintSettings;
 use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use super::saddle::Schur;
@@ -189,7 +190,7 @@ pub(crate) struct DriftControl<'a, S, const N: usize> {
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for DriftControl<'_, S, N> {
     type Output = Result<(SVector<S, N>, SVector<S, N>), IntegrationError<S, N>>;
 
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    fn visit<H, const C: usize>(self, model: &H, settings: ConstraintSettings<S>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {
@@ -212,7 +213,7 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for DriftControl<'_, S, 
         }
         stats.max_position_residual = stats.max_position_residual.max(to_f64(phi.amax()));
         stats.max_velocity_residual = stats.max_velocity_residual.max(to_f64(phidot.amax()));
-        if may_project && model.constraint_settings().projects() {
+        if may_project && settings.projects() {
             project(model, t, &q, &qdot, stats)
         } else {
             Ok((q, qdot))
@@ -232,12 +233,12 @@ pub(crate) struct ProjectSample<'a, S, const N: usize> {
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for ProjectSample<'_, S, N> {
     type Output = Result<(SVector<S, N>, SVector<S, N>), IntegrationError<S, N>>;
 
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    fn visit<H, const C: usize>(self, model: &H, settings: ConstraintSettings<S>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {
         let Self { t, q, qdot, stats } = self;
-        if model.constraint_settings().projects() {
+        if settings.projects() {
             project(model, t, &q, &qdot, stats)
         } else {
             Ok((q, qdot))
@@ -256,7 +257,7 @@ pub(crate) struct VelocityProjection<'a, S, const N: usize> {
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for VelocityProjection<'_, S, N> {
     type Output = Result<(SVector<S, N>, SVector<S, N>), IntegrationError<S, N>>;
 
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {

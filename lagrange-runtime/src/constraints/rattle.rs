@@ -17,6 +17,7 @@
 //! `G` and `M` at `q_k`: it contracts by `O(h)` per iteration, from a
 //! guess (the previous step's force) `O(h)` off.
 
+use crate::constraints::settings::ConstraintSettings;
 use nalgebra::{RealField, SVector};
 
 use super::projection::position_tolerance;
@@ -35,7 +36,7 @@ pub(crate) struct Multipliers<'a, S, const N: usize> {
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Multipliers<'_, S, N> {
     type Output = Result<SVector<S, N>, IntegrationError<S, N>>;
 
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {
@@ -77,7 +78,7 @@ where
 {
     type Output = Result<Outer<S, N>, E>;
 
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {

@@ -1,6 +1,7 @@
 //! The saddle-point solve `M q̈ + Gᵀ λ = f`, `G q̈ = −γ` on the stack, and
 //! the `M⁻¹ Gᵀ (G M⁻¹ Gᵀ)⁻¹` that the projections share with it.
 
+use crate::constraints::settings::ConstraintSettings;
 use nalgebra::{Cholesky, ComplexField, Const, RealField, SMatrix, SVector};
 
 use super::{Holonomic, Visitor};
@@ -149,15 +150,15 @@ fn solve_saddle<S: RealField + Copy, const N: usize, const C: usize>(
 }
 
 /// `(q̈, λ)` of `model` at `(t, q, q̇)`: one right-hand side. With
-/// `baumgarte`, the bias carries the model's Baumgarte terms
-/// `2α φ̇ + β² φ` if it has them.
+/// `baumgarte = Some((2α, β²))`, the bias carries the Baumgarte terms
+/// `2α φ̇ + β² φ` of the run's drift control.
 #[allow(clippy::type_complexity)]
 pub(crate) fn constrained_accelerations<H, const N: usize, const C: usize>(
     model: &H,
     t: H::Scalar,
     q: &SVector<H::Scalar, N>,
     qdot: &SVector<H::Scalar, N>,
-    baumgarte: bool,
+    baumgarte: Option<(H::Scalar, H::Scalar)>,
 ) -> Result<(SVector<H::Scalar, N>, SVector<H::Scalar, C>), IntegrationError<H::Scalar, N>>
 where
     H: Holonomic<N, C> + ?Sized,
@@ -172,10 +173,7 @@ where
         return Err(non_finite(NonFiniteValue::State));
     }
     let (m, f, g, mut gamma) = model.constrained_system(t, q, qdot);
-    if let Some((two_alpha, beta2)) = baumgarte
-        .then(|| model.constraint_settings().baumgarte())
-        .flatten()
-    {
+    if let Some((two_alpha, beta2)) = baumgarte {
         let phi = model.constraints(t, q);
         let phidot = model.constraint_velocities(t, q, qdot);
         gamma += phidot * two_alpha + phi * beta2;
@@ -200,10 +198,12 @@ pub(crate) struct Accelerations<'a, S, const N: usize> {
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Accelerations<'_, S, N> {
     type Output = Result<SVector<S, N>, IntegrationError<S, N>>;
 
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    fn visit<H, const C: usize>(self, model: &H, settings: ConstraintSettings<S>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {
-        constrained_accelerations(model, self.t, self.q, self.qdot, true).map(|(qddot, _)| qddot)
+        let baumgarte = settings.baumgarte();
+        constrained_accelerations(model, self.t, self.q, self.qdot, baumgarte)
+            .map(|(qddot, _)| qddot)
     }
 }

@@ -28,13 +28,7 @@ pub(super) fn validate<L: Lagrangian<N>, const N: usize>(
     if !t0.is_finite() {
         return Err(InvalidInput::NonFiniteStartTime { t0 });
     }
-    if !model.parameters_are_finite() {
-        return Err(InvalidInput::NonFiniteParameters);
-    }
-    if !model.inputs_are_set() {
-        let inputs = model.input_names();
-        return Err(InvalidInput::InputsNotSet { inputs });
-    }
+    crate::model::ready(model)?;
     for (i, coordinate) in L::COORDINATES.into_iter().enumerate() {
         if !q0[i].is_finite() {
             let value = q0[i];

@@ -346,8 +346,9 @@ pub enum InvalidInput<S: RealField + Copy> {
 
     /// The model has control inputs that were never set (they start as
     /// NaN): integrating it would silently run on NaN, or on whatever value
-    /// a default would pick. [`Lagrangian::inputs_are_set`](crate::Lagrangian::inputs_are_set)
-    /// returned `false`.
+    /// a default would pick. Reported for the inputs the model holds (see
+    /// [`Inputs::held_inputs`](crate::inputs::Inputs::held_inputs)), through
+    /// any layer on the model.
     #[error(
         "the model has control inputs ({}) that were never set: integrate \
          `model.with_controller(..)` or `model.with_inputs(..)`",
@@ -355,7 +356,7 @@ pub enum InvalidInput<S: RealField + Copy> {
     )]
     InputsNotSet {
         /// The names of the model's inputs, from
-        /// [`Lagrangian::input_names`](crate::Lagrangian::input_names).
+        /// [`Inputs::NAMES`](crate::inputs::Inputs::NAMES).
         #[cfg_attr(feature = "serde", serde(with = "crate::error::names::list"))]
         inputs: &'static [Name],
     },

@@ -1,5 +1,6 @@
 //! A trajectory written as CSV through the `csv` crate.
 
+use crate::constraints::settings::ConstraintSettings;
 use std::io;
 
 use nalgebra::{RealField, SVector};
@@ -148,7 +149,7 @@ struct AtState<T, const N: usize> {
 impl<T: RealField + Copy, const N: usize> Visitor<T, N> for AtState<T, N> {
     type Output = Result<Vec<T>, IntegrationError<T, N>>;
 
-    fn visit<H, const C: usize>(self, model: &H) -> Self::Output
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<T>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = T> + ?Sized,
     {
@@ -168,7 +169,7 @@ type Named<S, const N: usize> = Result<(Vec<&'static str>, Vec<Vec<S>>), Integra
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Multipliers<'_, S, N> {
     type Output = Named<S, N>;
 
-    fn visit<H, const C: usize>(self, model: &H) -> Named<S, N>
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> Named<S, N>
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {

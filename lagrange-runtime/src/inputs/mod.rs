@@ -11,11 +11,12 @@
 //! no run silently integrates NaN or a zero nobody chose. Two ways to set
 //! them:
 //!
-//! - **constant inputs**: `model.with_inputs(&u)` (generated), integrated
-//!   like any model;
+//! - **constant inputs**: [`model.with_inputs(&u)`](Actuated::with_inputs),
+//!   integrated like any model;
 //! - **a controller**: [`model.with_controller(|t, q, qdot| u)`](Actuated::with_controller),
-//!   a [`Controlled`] model that calls the controller once per evaluation of
-//!   the right-hand side and integrates like any model. A prescribed input
+//!   a [`Controlled`] model (the model under the [`Controller`] layer) that
+//!   calls the controller once per evaluation of the right-hand side and
+//!   integrates like any model. A prescribed input
 //!   `u(t)` is a controller that ignores `q` and `q̇`; a feedback law reads
 //!   them. A controller that returns a NaN or an infinity stops the run
 //!   with [`NonFiniteValue::Inputs`](crate::NonFiniteValue::Inputs) at that
@@ -25,15 +26,76 @@
 //! (`lagrangian!` refuses them there: their time derivatives would be
 //! needed), so `M(t, q)`, `p` and `φ` are evaluated without the controller.
 //!
+//! The runtime reaches a model's inputs through
+//! [`Lagrangian::visit_inputs`], which hands a [`Visitor`] the model as
+//! [`Inputs<N, K>`] with its `K` known: what the inputs are called, and
+//! what they are at a state. That is how a run refuses inputs never set,
+//! and blames a controller's NaN, whatever layers the model is under.
+//!
 //! The compiled example is on `lagrange::models::CartPole`.
 
 mod controlled;
 
-pub use controlled::Controlled;
+pub use controlled::{Controlled, Controller};
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::{RealField, SMatrix, SVector};
 
+use crate::model::Layered;
 use crate::Lagrangian;
+
+/// What the runtime reads of a model's `K` control inputs: their names,
+/// the values the model evaluates with at a state, and the values it
+/// holds, if it holds them. Every [`Actuated`] model is one; so is a model
+/// under a [`Controller`], whose inputs are the controller's.
+pub trait Inputs<const N: usize, const K: usize>: Lagrangian<N> {
+    /// Names of the inputs, in the order of `u`.
+    const NAMES: [&'static str; K];
+
+    /// The inputs the model evaluates its forcing with at `(t, q, q̇)`.
+    fn inputs_at(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> SVector<Self::Scalar, K>;
+
+    /// The inputs the model holds, which a run needs set before its first
+    /// step; `None` where none are held (a controller sets them at every
+    /// evaluation).
+    fn held_inputs(&self) -> Option<SVector<Self::Scalar, K>>;
+}
+
+impl<A: Actuated<N, K>, const N: usize, const K: usize> Inputs<N, K> for A {
+    const NAMES: [&'static str; K] = A::INPUTS;
+
+    #[inline]
+    fn inputs_at(
+        &self,
+        _: A::Scalar,
+        _: &SVector<A::Scalar, N>,
+        _: &SVector<A::Scalar, N>,
+    ) -> SVector<A::Scalar, K> {
+        self.inputs()
+    }
+
+    #[inline]
+    fn held_inputs(&self) -> Option<SVector<A::Scalar, K>> {
+        Some(self.inputs())
+    }
+}
+
+/// What the runtime does with a model's inputs, written once for every
+/// number of inputs: [`Lagrangian::visit_inputs`] calls
+/// [`visit`](Visitor::visit) with the model and its `K`.
+pub trait Visitor<S: RealField + Copy, const N: usize> {
+    /// What the visit returns.
+    type Output;
+
+    /// Runs on a model with `K` inputs.
+    fn visit<A, const K: usize>(self, model: &A) -> Self::Output
+    where
+        A: Inputs<N, K, Scalar = S> + ?Sized;
+}
 
 /// A model with `K` control inputs `u`, held in the model and set by
 /// [`set_inputs`](Actuated::set_inputs).
@@ -55,6 +117,18 @@ pub trait Actuated<const N: usize, const K: usize>: Lagrangian<N> {
     /// Sets the inputs for the following evaluations.
     fn set_inputs(&mut self, u: &SVector<Self::Scalar, K>);
 
+    /// This model with constant inputs `u`: what a run with inputs that
+    /// never change integrates (a controller is
+    /// [`with_controller`](Self::with_controller)).
+    #[must_use]
+    fn with_inputs(mut self, u: &SVector<Self::Scalar, K>) -> Self
+    where
+        Self: Sized,
+    {
+        self.set_inputs(u);
+        self
+    }
+
     /// `∂f/∂u` at `(t, q, q̇)` and the inputs the model holds, `N × K`:
     /// how the forcing responds to each input (`M q̈ = f`, so the
     /// accelerations respond as `M⁻¹ ∂f/∂u`).
@@ -68,12 +142,12 @@ pub trait Actuated<const N: usize, const K: usize>: Lagrangian<N> {
     /// This model driven by `controller`, which maps `(t, q, q̇)` to the
     /// inputs `u` at each evaluation of the right-hand side: integrate the
     /// [`Controlled`] model it returns like the model itself. The model is
-    /// copied per evaluation with the controller's inputs set, so it must
-    /// be `Copy` (generated models are).
+    /// taken by value and copied per evaluation with the controller's
+    /// inputs set, so it must be `Copy` (generated models are).
     ///
     /// A prescribed input `u(t)` is a controller that ignores the state:
     /// `model.with_controller(|t, _, _| Vector1::new(t.sin()))`.
-    fn with_controller<F>(&self, controller: F) -> Controlled<'_, Self, F, K>
+    fn with_controller<F>(self, controller: F) -> Controlled<Self, F, K>
     where
         Self: Copy + Sized,
         F: Fn(
@@ -82,13 +156,51 @@ pub trait Actuated<const N: usize, const K: usize>: Lagrangian<N> {
             &SVector<Self::Scalar, N>,
         ) -> SVector<Self::Scalar, K>,
     {
-        Controlled::new(self, controller)
+        Layered::new(self, Controller::new(controller))
+    }
+}
+
+/// A layer that leaves the inputs alone: a model under it is
+/// [`Actuated`] as the model is, so that a controller can go on top of it
+/// (`model.with_drift(..).with_controller(..)`). Not a [`Controller`]: a
+/// controlled model's inputs are the controller's, never set by hand.
+pub trait KeepsInputs {}
+
+impl<S> KeepsInputs for crate::constraints::ConstraintHandling<S> {}
+impl KeepsInputs for crate::model::FiniteDifferences {}
+
+impl<M, A, const N: usize, const K: usize> Actuated<N, K> for Layered<M, A>
+where
+    M: Actuated<N, K>,
+    A: crate::model::Layer<M, N> + KeepsInputs,
+{
+    const INPUTS: [&'static str; K] = M::INPUTS;
+
+    #[inline]
+    fn inputs(&self) -> SVector<Self::Scalar, K> {
+        self.model().inputs()
+    }
+
+    #[inline]
+    fn set_inputs(&mut self, u: &SVector<Self::Scalar, K>) {
+        self.model_mut().set_inputs(u);
+    }
+
+    #[inline]
+    fn input_jacobian(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> SMatrix<Self::Scalar, N, K> {
+        self.model().input_jacobian(t, q, qdot)
     }
 }
 
 /// The input that explains a non-finite evaluation at `(t, q, q̇)`:
 /// [`NonFiniteValue::Inputs`](crate::NonFiniteValue::Inputs) when the
-/// model's controller returned a non-finite `u` there, else `value`.
+/// inputs the model evaluates with there (its controller's) are not
+/// finite, else `value`.
 pub(crate) fn blame<L: Lagrangian<N>, const N: usize>(
     model: &L,
     value: crate::NonFiniteValue,
@@ -97,14 +209,65 @@ pub(crate) fn blame<L: Lagrangian<N>, const N: usize>(
     qdot: &SVector<L::Scalar, N>,
 ) -> crate::NonFiniteValue {
     use crate::NonFiniteValue as V;
+    struct Finite<'a, S, const N: usize> {
+        t: S,
+        q: &'a SVector<S, N>,
+        qdot: &'a SVector<S, N>,
+    }
+    impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Finite<'_, S, N> {
+        type Output = bool;
+        fn visit<A, const K: usize>(self, model: &A) -> bool
+        where
+            A: Inputs<N, K, Scalar = S> + ?Sized,
+        {
+            let u = model.inputs_at(self.t, self.q, self.qdot);
+            u.iter().all(|x| x.is_finite())
+        }
+    }
     match value {
         V::Forcing | V::LagrangianGradient | V::NonconservativeForces | V::Jacobian
-            if !model.inputs_are_finite_at(t, q, qdot) =>
+            if model.visit_inputs(Finite { t, q, qdot }) == Some(false) =>
         {
             V::Inputs
         }
         _ => value,
     }
+}
+
+/// An error of an evaluation at a state, with a non-finite value blamed on
+/// the inputs where they are to blame (see [`blame`]).
+pub(crate) fn blame_error<L: Lagrangian<N>, const N: usize>(
+    model: &L,
+    error: crate::IntegrationError<L::Scalar, N>,
+) -> crate::IntegrationError<L::Scalar, N> {
+    match error {
+        crate::IntegrationError::NonFiniteState { t, q, qdot, value } => {
+            let value = blame(model, value, t, &q, &qdot);
+            crate::IntegrationError::NonFiniteState { t, q, qdot, value }
+        }
+        error => error,
+    }
+}
+
+/// The names of `model`'s inputs, if it holds inputs that were never set
+/// (not finite): refused before a run's first step. `None` for a model
+/// without inputs, with every input set, or under a controller.
+pub(crate) fn never_set<L: Lagrangian<N>, const N: usize>(
+    model: &L,
+) -> Option<&'static [&'static str]> {
+    struct Unset;
+    impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Unset {
+        type Output = Option<&'static [&'static str]>;
+        fn visit<A, const K: usize>(self, model: &A) -> Self::Output
+        where
+            A: Inputs<N, K, Scalar = S> + ?Sized,
+        {
+            let u = model.held_inputs()?;
+            let names: &'static [&'static str] = const { &A::NAMES };
+            (!u.iter().all(|x| x.is_finite())).then_some(names)
+        }
+    }
+    model.visit_inputs(Unset).flatten()
 }
 
 /// An input not set: NaN, what a generated model's inputs hold until

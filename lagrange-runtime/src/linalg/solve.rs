@@ -236,7 +236,8 @@ pub fn acceleration<L: Lagrangian<N>, const N: usize>(
         return Err(non_finite(NonFiniteValue::State));
     }
     if let Some(constrained) = model.visit_constraints(Accelerations { t, q, qdot }) {
-        return constrained;
+        // A controller's non-finite inputs show as a non-finite forcing.
+        return constrained.map_err(|error| crate::inputs::blame_error(model, error));
     }
     let (m, f) = model.mass_matrix_and_forcing(t, q, qdot);
     solve_mass_matrix(&m, &f).map_err(|err| match err {

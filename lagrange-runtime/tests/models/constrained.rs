@@ -83,7 +83,7 @@ impl<S: RealField + Copy> Lagrangian<2> for CartesianPendulum<S> {
         Some(Vector2::new(S::zero(), -self.m * self.g))
     }
     fn visit_constraints<V: Visitor<S, 2>>(&self, visitor: V) -> Option<V::Output> {
-        Some(visitor.visit::<Self, 1>(self))
+        Some(visitor.visit::<Self, 1>(self, Default::default()))
     }
 }
 
@@ -144,7 +144,7 @@ impl Lagrangian<3> for ParallelAtOne {
         Some(Vector3::zeros())
     }
     fn visit_constraints<V: Visitor<f64, 3>>(&self, visitor: V) -> Option<V::Output> {
-        Some(visitor.visit::<Self, 2>(self))
+        Some(visitor.visit::<Self, 2>(self, Default::default()))
     }
 }
 
@@ -205,7 +205,7 @@ impl Lagrangian<2> for VanishingGradient {
         Some(Vector2::new(1.0, 0.0))
     }
     fn visit_constraints<V: Visitor<f64, 2>>(&self, visitor: V) -> Option<V::Output> {
-        Some(visitor.visit::<Self, 1>(self))
+        Some(visitor.visit::<Self, 1>(self, Default::default()))
     }
 }
 

@@ -1,7 +1,7 @@
 //! Linearization at arbitrary states against central differences of the
 //! accelerations.
 
-use lagrange::models::{DoublePendulum, WithoutJacobians};
+use lagrange::models::DoublePendulum;
 use lagrange_runtime::analysis::{linearize, AnalysisError, Derivatives};
 use lagrange_runtime::nalgebra::{Matrix2, Vector2};
 use lagrange_runtime::solve::solve_mass_matrix;
@@ -103,7 +103,7 @@ fn linearization_without_jacobians_is_by_central_differences() {
     let (pendulum, _, _) = DoublePendulum::<f64>::regular();
     let (q, qdot) = (Vector2::new(-2.0, 0.7), Vector2::new(1.0, 2.5));
     let exact = linearize(&pendulum, 0.0, &q, &qdot).unwrap();
-    let numeric = linearize(&WithoutJacobians(pendulum), 0.0, &q, &qdot).unwrap();
+    let numeric = linearize(&pendulum.without_jacobians(), 0.0, &q, &qdot).unwrap();
     assert_eq!(numeric.derivatives, Derivatives::CentralDifferences);
     assert_eq!(numeric.qddot, exact.qddot);
     assert!((numeric.dqddot_dq - exact.dqddot_dq).amax() < tolerance(&qdot));

@@ -58,7 +58,7 @@ fn without_control_the_constraint_drifts_and_the_drift_grows() {
     let times = every(0.1, 40.0);
     let rk4 = Rk4::new(0.01);
     let free = rk4
-        .integrate(&model.with_drift(Drift::None), 0.0, q0, qdot0, &times)
+        .integrate(&(&model).with_drift(Drift::None), 0.0, q0, qdot0, &times)
         .unwrap();
     let drift = residuals(&free);
     let (early, late) = (max(&drift[..100]), max(&drift[300..]));
@@ -87,10 +87,10 @@ fn baumgarte_keeps_the_drift_bounded() {
         beta: 10.0,
     };
     let held = rk4
-        .integrate(&model.with_drift(baumgarte), 0.0, q0, qdot0, &times)
+        .integrate(&(&model).with_drift(baumgarte), 0.0, q0, qdot0, &times)
         .unwrap();
     let free = rk4
-        .integrate(&model.with_drift(Drift::None), 0.0, q0, qdot0, &times)
+        .integrate(&(&model).with_drift(Drift::None), 0.0, q0, qdot0, &times)
         .unwrap();
     let (held, free) = (residuals(&held), residuals(&free));
     let (early, late) = (max(&held[..100]), max(&held[300..]));

@@ -2,7 +2,7 @@
 //! on request, naming the constraint.
 
 use super::{pendulum, start};
-use lagrange_runtime::constraints::{Constrained, InitialConditions};
+use lagrange_runtime::constraints::InitialConditions;
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::{ConstraintLevel, Holonomic, InvalidInput};
@@ -55,7 +55,7 @@ fn consistent_start_is_kept_as_given() {
 #[test]
 fn inconsistent_start_is_refused_on_request() {
     let model = pendulum();
-    let strict = Constrained::new(&model).initial_conditions(InitialConditions::Reject);
+    let strict = (&model).with_initial_conditions(InitialConditions::Reject);
     let (q0, qdot0) = off();
     let failure = Dopri5::new()
         .integrate(&strict, 0.0, q0, qdot0, &[1.0])

@@ -1,17 +1,59 @@
-//! The contract between a derived model and the integrators.
+//! The model contract: what a model is ([`Lagrangian`]: `M`, `f`, the
+//! energies, the names) and what else it can do, each capability reached
+//! one way, and the one wrapper through which a model is given another
+//! setting without losing any of it ([`Layered`]).
+//!
+//! # What a model can do
+//!
+//! The core is required: `M(t, q)`, `f(t, q, q̇)`, `T`, `V` and the names of
+//! the coordinates. Everything else is a capability, `None` where a model
+//! lacks it, and this is the one list of them (as `lagrange-engine`'s
+//! `emit/api.rs` is the one list of what is generated):
+//!
+//! | capability | reached through | who uses it |
+//! |---|---|---|
+//! | exact derivatives | [`Lagrangian::residual_jacobians`] | the implicit methods' Newton iterations, [`analysis`](crate::analysis) |
+//! | the action | [`Lagrangian::momentum`], [`Lagrangian::lagrangian_gradient`], [`Lagrangian::nonconservative_forces`], [`Lagrangian::CONSERVATIVE`] | [`Variational`](crate::Variational) |
+//! | holonomic constraints | [`Lagrangian::visit_constraints`] → [`Holonomic<N, C>`](crate::Holonomic) and the run's [`ConstraintSettings`](crate::constraints::ConstraintSettings) | every method (the saddle-point solve, drift control) |
+//! | control inputs | [`Lagrangian::visit_inputs`] → [`Inputs<N, K>`](crate::inputs::Inputs) | the checks before a run (inputs never set) and the blame for a non-finite value |
+//! | named `let`s | [`Lagrangian::visit_lets`] → [`Lets<N, K>`](lets::Lets) | drawing, export, fits of measured outputs |
+//!
+//! The sized capabilities (a model's number of constraints `C`, of inputs
+//! `K`, of `let`s) are reached by a visitor, which is handed the model with
+//! its size known, statically dispatched: generic code over `Lagrangian<N>`
+//! reaches them without naming the size, and a model without one pays
+//! nothing.
+//!
+//! # Layers
+//!
+//! A model with another drift control ([`Holonomic::with_drift`](crate::Holonomic::with_drift)),
+//! driven by a controller ([`Actuated::with_controller`](crate::Actuated::with_controller))
+//! or seen without its exact Jacobians ([`Lagrangian::without_jacobians`])
+//! is a [`Layered`] model: the model and a [`Layer`] that changes one
+//! capability. Every other capability is passed on by `Layered`'s one
+//! implementation of this trait, so a layer cannot lose what it does not
+//! touch; layers nest in any order.
 
 use nalgebra::{RealField, SMatrix, SVector};
 
-/// A mechanical system in minimal generalized coordinates, written as
-/// `M(t, q) q̈ = f(t, q, q̇)`.
+pub(crate) mod layer;
+pub mod lets;
+mod reference;
+
+pub use layer::{At, FiniteDifferences, Layer, Layered, WithoutJacobians};
+
+/// A mechanical system written as `M(t, q) q̈ = f(t, q, q̇)`: the contract
+/// between a model and everything that runs it.
 ///
 /// `lagrangian!` implements this trait for every model it derives; the
-/// integrators consume nothing else. `N` is the number of degrees of freedom.
+/// integrators consume nothing else. `N` is the number of coordinates.
 ///
 /// Only [`mass_matrix`](Lagrangian::mass_matrix), [`forcing`](Lagrangian::forcing)
-/// and the two energies are required. Generated code also overrides
+/// and the two energies are required: a model written by hand is those four
+/// functions and its coordinates' names. Generated code also overrides
 /// [`mass_matrix_and_forcing`](Lagrangian::mass_matrix_and_forcing) so that the
-/// subexpressions `M` and `f` share are computed once per right-hand side.
+/// subexpressions `M` and `f` share are computed once per right-hand side,
+/// and provides the capabilities it has ([the list](self#what-a-model-can-do)).
 ///
 /// ```
 /// use lagrange_runtime::Lagrangian;
@@ -161,14 +203,40 @@ pub trait Lagrangian<const N: usize> {
     }
 
     /// Hands `visitor` this model as a [`Holonomic`](crate::Holonomic)
-    /// model with its number of constraints `C`, if it has constraints:
-    /// how the integrators reach them (see [`constraints`](crate::constraints)).
-    /// `None`, the default, is a model in minimal coordinates. A model with
-    /// a `constraints:` section overrides it with one line,
-    /// `Some(visitor.visit::<Self, C>(self))`.
+    /// model with its number of constraints `C`, and the constraint
+    /// settings of the run, if it has constraints: how the integrators
+    /// reach them (see [`constraints`](crate::constraints)). `None`, the
+    /// default, is a model in minimal coordinates. A model with a
+    /// `constraints:` section overrides it with one line,
+    /// `Some(visitor.visit::<Self, C>(self, Default::default()))`.
     fn visit_constraints<V>(&self, visitor: V) -> Option<V::Output>
     where
         V: crate::constraints::Visitor<Self::Scalar, N>,
+    {
+        let _ = visitor;
+        None
+    }
+
+    /// Hands `visitor` this model's control inputs with their number `K`,
+    /// if it has any (see [`inputs`](crate::inputs)): how the runtime
+    /// refuses inputs never set and blames a controller's NaN. `None`, the
+    /// default, is a model without inputs; a model with an `inputs:`
+    /// section overrides it with `Some(visitor.visit::<Self, K>(self))`.
+    fn visit_inputs<V>(&self, visitor: V) -> Option<V::Output>
+    where
+        V: crate::inputs::Visitor<Self::Scalar, N>,
+    {
+        let _ = visitor;
+        None
+    }
+
+    /// Hands `visitor` this model's named `let`s with their number `K`, if
+    /// it names any (see [`lets`]). `None`, the default, names
+    /// none; a model from `lagrangian!` with `let`s overrides it with
+    /// `Some(visitor.visit::<Self, K>(self))`.
+    fn visit_lets<V>(&self, visitor: V) -> Option<V::Output>
+    where
+        V: lets::Visitor<Self::Scalar, N>,
     {
         let _ = visitor;
         None
@@ -180,36 +248,29 @@ pub trait Lagrangian<const N: usize> {
         true
     }
 
-    /// Whether every control input of the model holds a value (see
-    /// [`Actuated`](crate::Actuated)). A model from `lagrangian!` with
-    /// `inputs:` starts with its inputs NaN, meaning "not set", and
-    /// integrators refuse it before the first step
-    /// ([`InvalidInput::InputsNotSet`](crate::InvalidInput::InputsNotSet))
-    /// rather than run on NaN or on a default nobody chose. A model without
-    /// inputs, and a model under a controller, are always set.
-    fn inputs_are_set(&self) -> bool {
-        true
+    /// This model without its exact [`residual_jacobians`](Self::residual_jacobians):
+    /// the implicit methods and the linearizations take theirs by finite
+    /// differences instead, the path of a model written without
+    /// `#[lagrange(jacobians)]`. Everything else is the model's own.
+    fn without_jacobians(self) -> Layered<Self, FiniteDifferences>
+    where
+        Self: Sized,
+    {
+        Layered::new(self, FiniteDifferences)
     }
+}
 
-    /// The names of the model's control inputs, for the error that says
-    /// which were never set (empty for a model without inputs).
-    fn input_names(&self) -> &'static [&'static str] {
-        &[]
+/// Whether `model` can be evaluated at all: every parameter finite, and
+/// every input it holds set. What a run checks before its first step, and
+/// an analysis before its first evaluation.
+pub(crate) fn ready<L: Lagrangian<N>, const N: usize>(
+    model: &L,
+) -> Result<(), crate::InvalidInput<L::Scalar>> {
+    if !model.parameters_are_finite() {
+        return Err(crate::InvalidInput::NonFiniteParameters);
     }
-
-    /// Whether the control inputs that drive the model at `(t, q, q̇)` are
-    /// finite. Only a model under a controller
-    /// ([`Controlled`](crate::inputs::Controlled)) can answer `false`; the
-    /// integrators ask when an evaluation came back non-finite, to report
-    /// [`NonFiniteValue::Inputs`](crate::NonFiniteValue::Inputs) instead of
-    /// blaming the forcing.
-    fn inputs_are_finite_at(
-        &self,
-        t: Self::Scalar,
-        q: &SVector<Self::Scalar, N>,
-        qdot: &SVector<Self::Scalar, N>,
-    ) -> bool {
-        let _ = (t, q, qdot);
-        true
+    if let Some(inputs) = crate::inputs::never_set(model) {
+        return Err(crate::InvalidInput::InputsNotSet { inputs });
     }
+    Ok(())
 }
