@@ -6,9 +6,9 @@
 //! `cargo bench --bench constraints`
 
 use criterion::{criterion_group, Criterion};
+use lagrange::dynamics::acceleration;
 use lagrange::models::{CartesianPendulum, FourBar, Pendulum, SliderCrank};
 use lagrange::nalgebra::{Vector1, Vector3};
-use lagrange::solve::acceleration;
 use std::hint::black_box;
 
 fn right_hand_sides(c: &mut Criterion) {

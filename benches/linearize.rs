@@ -15,9 +15,9 @@ use std::time::Instant;
 
 use criterion::{criterion_group, Criterion};
 use lagrange::analysis::linearize;
+use lagrange::dynamics::acceleration;
 use lagrange::lagrangian;
 use lagrange::nalgebra::{SMatrix, SVector};
-use lagrange::solve::acceleration;
 use lagrange::Lagrangian;
 use num_dual::{jacobian, DualSVec64};
 

@@ -1,6 +1,6 @@
 //! What an adaptive integrator adds to each right-hand side: the time of a
 //! Dop853 run, and of a Dopri5 run, divided by its evaluations, against one
-//! evaluation alone (`lagrange::solve::acceleration`: the generated `M + f`
+//! evaluation alone (`lagrange::dynamics::acceleration`: the generated `M + f`
 //! and the solve), on the double pendulum and a 10-link chain. Issue 14's
 //! target: at most 1.3× the evaluation.
 //!
@@ -23,11 +23,11 @@
 //! slow spell of a shared machine then slows every measure, not one); a
 //! quick table, not criterion's statistics.
 
+use lagrange::dynamics::acceleration;
 use lagrange::lagrangian;
 use lagrange::models::DoublePendulum;
 use lagrange::nalgebra::SVector;
 use lagrange::prelude::*;
-use lagrange::solve::acceleration;
 use std::hint::black_box;
 use std::time::Instant;
 

@@ -1,5 +1,5 @@
 //! Side by side with an established Rust ODE crate, `ode_solvers`, on the
-//! same generated right-hand side (both call `lagrange::solve::acceleration`
+//! same generated right-hand side (both call `lagrange::dynamics::acceleration`
 //! on the derived double pendulum), the same problem (the chaotic double
 //! pendulum from rest at (2, 2.5), to t = 2, against the 25-digit reference)
 //! and the same tolerances: the error reached, the evaluations and the time.
@@ -12,10 +12,10 @@
 mod reference;
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use lagrange::dynamics::acceleration;
 use lagrange::models::DoublePendulum;
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
-use lagrange::solve::acceleration;
 use reference::Reference;
 use std::hint::black_box;
 

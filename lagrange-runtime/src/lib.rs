@@ -187,7 +187,7 @@
 //! a solver tolerance; or, once it no longer contracts fast, when the
 //! correction is below the noise of evaluating the equations,
 //! `ε (1000 + 10 N κ)` with `κ` the pivot ratio of `M`
-//! ([`pivot_ratio`](solve::pivot_ratio)): an ill-conditioned mass
+//! ([`pivot_ratio`](linalg::solve::pivot_ratio)): an ill-conditioned mass
 //! matrix (a light body beside a heavy one) makes the accelerations, and so
 //! the corrections, only that accurate. If it diverges, or has not
 //! converged in `max_iterations`, the step fails with
@@ -241,11 +241,15 @@
 //! - `driver/` (private): what the methods share, apart from them: sample
 //!   recording, input validation, the fixed-step loop and its growth guard,
 //!   the explicit adaptive loop, step-size control, Newton's noise floor.
-//! - `linalg/` (private), the linear algebra in one place, with two public
-//!   modules: [`solve`], `q̈` from `M q̈ = f` on the stack (an inlined
-//!   `L D Lᵀ`), singular cases caught; [`jacobian`], `∂q̈/∂q` and `∂q̈/∂q̇` for the implicit methods'
-//!   Newton iterations; beside them the heap LU and the block solve of the
-//!   implicit Runge–Kutta methods.
+//! - [`dynamics`]: `q̈` (and `λ`) of a model at a state,
+//!   [`acceleration`](dynamics::acceleration), constrained or not, every
+//!   method's right-hand side; `∂q̈/∂q` and `∂q̈/∂q̇`
+//!   ([`acceleration_jacobians`](dynamics::acceleration_jacobians)); whom
+//!   to blame for a non-finite value.
+//! - [`linalg`]: the linear algebra, knowing no models:
+//!   [`solve_mass_matrix`](linalg::solve::solve_mass_matrix) (an inlined
+//!   `L D Lᵀ`), singular cases caught; the saddle-point system, the heap
+//!   LU and the block solve of the implicit Runge–Kutta methods.
 //! - [`trig`]: the sine and cosine the generated code calls, an inline
 //!   `f64` kernel within one ulp that runs several angles side by side.
 //! - [`analysis`]: small motions, [`linearize`](analysis::linearize) at
@@ -270,14 +274,19 @@
 pub mod analysis;
 pub mod constraints;
 mod driver;
+pub mod dynamics;
 pub mod error;
 pub mod events;
 pub mod export;
 pub mod inputs;
 pub mod integrators;
 pub mod interop;
-mod linalg;
+#[cfg(test)]
+mod layers;
+pub mod linalg;
 pub mod model;
+#[cfg(feature = "serde")]
+mod names;
 pub mod stepper;
 mod trajectory;
 pub mod trig;
@@ -290,21 +299,20 @@ pub use diffsol;
 pub use error::{
     ConstraintLevel, Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue,
 };
-pub use events::{Event, EventRecord, Events};
+pub use events::{Event, Events};
 pub use inputs::Actuated;
 pub use integrators::{
     integrate, Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, Integrator, Radau5,
     Rk4, SymplecticEuler, Variational,
 };
-pub use linalg::{jacobian, solve};
 pub use model::{lets, Lagrangian};
 pub use nalgebra;
 pub use stepper::{StepMethod, Stepper};
-pub use trajectory::{Sample, Samples, Stats, Trajectory};
+pub use trajectory::{EventRecord, Sample, Samples, Stats, Trajectory};
 
 /// The names a simulation needs: `use lagrange_runtime::prelude::*;`.
 pub mod prelude {
-    pub use crate::constraints::{Drift, InitialConditions};
+    pub use crate::constraints::{Drift, InitialConditions, Multipliers};
     pub use crate::{
         integrate, Actuated, Dop853, Dopri5, Event, Events, ExplicitEuler, Failure, GaussLegendre,
         Holonomic, ImplicitMidpoint, IntegrationError, Integrator, Lagrangian, Radau5, Rk4,

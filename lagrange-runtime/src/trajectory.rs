@@ -5,8 +5,6 @@
 
 use nalgebra::{RealField, SVector};
 
-use crate::events::EventRecord;
-
 /// The state `(q, q̇)` at each requested sample time, in order, and the work
 /// it took.
 ///
@@ -269,3 +267,41 @@ impl<S: RealField + Copy, const N: usize> Iterator for Samples<'_, S, N> {
 }
 
 impl<S: RealField + Copy, const N: usize> ExactSizeIterator for Samples<'_, S, N> {}
+
+/// An event that happened: which, when, in which state, and the state a
+/// reset made of it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(bound(
+        serialize = "S: serde::Serialize + nalgebra::Scalar",
+        deserialize = "S: serde::Deserialize<'de> + nalgebra::Scalar"
+    ))
+)]
+#[non_exhaustive]
+pub struct EventRecord<S, const N: usize> {
+    /// The event's name.
+    #[cfg_attr(feature = "serde", serde(with = "crate::names::one"))]
+    pub name: Name,
+    /// Its index in the [`Events`](crate::events::Events) set.
+    pub index: usize,
+    /// The located time.
+    pub t: S,
+    /// `q` at `t`, before any reset.
+    pub q: SVector<S, N>,
+    /// `q̇` at `t`, before any reset.
+    pub qdot: SVector<S, N>,
+    /// For a reset, the state `(q, q̇)` the run restarted from (after all
+    /// resets at this time, projected onto the constraints of a constrained
+    /// model); `None` for a recorded or stopping event.
+    pub after: Option<(SVector<S, N>, SVector<S, N>)>,
+}
+
+/// `(q, q̇)`, as a one-step method returns it.
+pub(crate) type State<S, const N: usize> = (SVector<S, N>, SVector<S, N>);
+
+/// A name from a model's or a method's constants (a coordinate, a
+/// constraint, an input, an event): `&'static str`, named so that serde
+/// takes it as an owned string, not one borrowed from its input.
+pub type Name = &'static str;

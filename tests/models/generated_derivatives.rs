@@ -125,8 +125,8 @@ fn momenta_gradient_and_nonconservative_forces_rebuild_the_forcing() {
 /// scale, so 1e-5), and the exact path costs no right-hand side.
 #[test]
 fn runtime_uses_exact_jacobians_when_the_model_has_them() {
-    use lagrange::jacobian::acceleration_jacobians;
-    use lagrange::solve::acceleration;
+    use lagrange::dynamics::acceleration;
+    use lagrange::dynamics::acceleration_jacobians;
 
     let mut rng = StdRng::seed_from_u64(3);
     let m = model(&mut rng);

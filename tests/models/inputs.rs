@@ -63,7 +63,7 @@ fn a_constant_input_gives_the_hand_computed_acceleration() {
     let model = cart().with_inputs(&Vector1::new(3.0));
     assert_eq!(model.inputs(), Vector1::new(3.0));
     let (q, v) = (Vector2::new(0.4, 0.7), Vector2::new(-0.2, 1.3));
-    let qdd = lagrange::solve::acceleration(&model, 0.0, &q, &v).unwrap();
+    let qdd = lagrange::dynamics::acceleration(&model, 0.0, &q, &v).unwrap();
     let expected = hand_acceleration(&model, 3.0, q, v);
     // A 2 × 2 solve of entries of order 10: rounding ~1e-15, 1e-12 is ample.
     assert!((qdd - expected).norm() < 1e-12, "{qdd} vs {expected}");

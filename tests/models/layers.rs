@@ -8,11 +8,11 @@
 //! check.
 
 use lagrange::constraints::{ConstraintSettings, Visitor as ConstraintVisitor};
+use lagrange::dynamics::acceleration;
 use lagrange::inputs::{Inputs, Visitor as InputVisitor};
 use lagrange::lets::{Lets, Visitor as LetVisitor};
 use lagrange::nalgebra::{Vector1, Vector2};
 use lagrange::prelude::*;
-use lagrange::solve::acceleration;
 use lagrange::{InvalidInput, NonFiniteValue};
 
 lagrange::lagrangian! {

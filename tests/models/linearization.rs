@@ -4,9 +4,9 @@
 
 use crate::support::closed_form::{rng, uniform};
 use lagrange::analysis::{linearize_with_inputs, Derivatives};
+use lagrange::dynamics::acceleration;
 use lagrange::models::CartPole;
 use lagrange::nalgebra::{Vector1, Vector2};
-use lagrange::solve::acceleration;
 
 fn model() -> CartPole {
     CartPole::new(1.3, 0.4, 0.7, 9.81)

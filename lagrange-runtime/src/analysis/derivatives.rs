@@ -4,8 +4,9 @@
 use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use super::{AnalysisError, Derivatives};
-use crate::constraints::is_constrained;
-use crate::{IntegrationError, Lagrangian, NonFiniteValue};
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::model::constraints::is_constrained;
+use crate::model::Lagrangian;
 
 /// The central-difference step for a variable of size `x`:
 /// `ε^(1/3) max(1, |x|)`, which balances the truncation error `h² |F'''| / 6`

@@ -7,7 +7,7 @@ use super::derivatives::forcing_at_rest;
 use super::rest::{ManifoldSearch, ManifoldTest};
 use super::AnalysisError;
 use crate::linalg::solve::lu_solve;
-use crate::Lagrangian;
+use crate::model::Lagrangian;
 
 /// Newton's method on `f(t, q, 0) = 0` with its settings; [`equilibrium`]
 /// runs it with the defaults.

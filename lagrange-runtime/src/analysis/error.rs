@@ -4,7 +4,7 @@
 use nalgebra::{RealField, SVector};
 
 use crate::error::Row;
-use crate::{ConstraintLevel, IntegrationError};
+use crate::error::{ConstraintLevel, IntegrationError};
 
 /// Why [`linearize`](super::linearize), [`equilibrium`](super::equilibrium)
 /// or [`modes`](super::modes) gave no result.

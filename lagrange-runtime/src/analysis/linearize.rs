@@ -5,8 +5,11 @@ use nalgebra::{DMatrix, RealField, SMatrix, SVector};
 
 use super::derivatives::{refuse_constrained, shifted};
 use super::{AnalysisError, Derivatives};
-use crate::linalg::solve::{acceleration, factor_mass_matrix, mass_error, MassFactor};
-use crate::{Actuated, IntegrationError, Lagrangian, NonFiniteValue};
+use crate::dynamics::{acceleration, mass_error};
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::solve::{factor_mass_matrix, MassFactor};
+use crate::model::inputs::Actuated;
+use crate::model::Lagrangian;
 
 /// The first-order response of the accelerations at a state `(t, q, q̇)`:
 /// `δq̈ = ∂q̈/∂q δq + ∂q̈/∂q̇ δq̇`, the lower blocks of the state matrix

@@ -2,13 +2,15 @@
 //! `T` of `φ(t, q) = 0`, the consistent velocities, and the reduced
 //! linearization [`linearize_on_manifold`].
 
-use crate::constraints::settings::ConstraintSettings;
+use crate::model::settings::ConstraintSettings;
 use nalgebra::{ComplexField, DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::derivatives::{central_step, sqrt_epsilon};
 use super::{linearize, AnalysisError, Derivatives};
-use crate::constraints::{constrained_accelerations, Holonomic, Visitor};
-use crate::{ConstraintLevel, IntegrationError, Lagrangian, NonFiniteValue};
+use crate::dynamics::saddle::constrained_accelerations;
+use crate::error::{ConstraintLevel, IntegrationError, NonFiniteValue};
+use crate::model::constraints::{Holonomic, Visitor};
+use crate::model::Lagrangian;
 
 /// The tangent space of the constraints at `q`: `T` (`N × D`, `D = N − C`,
 /// orthonormal columns spanning the null space of `G`), and the thin
@@ -187,7 +189,7 @@ impl<S: RealField + Copy, const N: usize> ManifoldLinearization<S, N> {
 /// along each column of `T` for `q` (`2D` saddle solves), along each
 /// coordinate for `q̇` (`2N`), and of `φ̇` along `T` for `W`. Rank-deficient
 /// constraints (a change point) are
-/// [`SingularConstraints`](crate::IntegrationError::SingularConstraints)
+/// [`SingularConstraints`](crate::error::IntegrationError::SingularConstraints)
 /// in [`AnalysisError::Model`], with the state.
 ///
 /// ```

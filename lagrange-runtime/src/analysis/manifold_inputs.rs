@@ -2,13 +2,16 @@
 //! coordinates of its constraint manifold: the part of `∂f/∂u` the
 //! constraints do not carry, exact through the Schur complement.
 
-use crate::constraints::settings::ConstraintSettings;
+use crate::dynamics::saddle::saddle_error;
+use crate::model::settings::ConstraintSettings;
 use nalgebra::{ComplexField, DMatrix, RealField, SVector};
 
 use super::{linearize_on_manifold, AnalysisError, ManifoldLinearization};
-use crate::constraints::{Holonomic, Schur, Visitor};
-use crate::linalg::solve::{factor_mass_matrix, mass_error};
-use crate::Actuated;
+use crate::dynamics::mass_error;
+use crate::linalg::schur::Schur;
+use crate::linalg::solve::factor_mass_matrix;
+use crate::model::constraints::{Holonomic, Visitor};
+use crate::model::inputs::Actuated;
 
 /// A [`ManifoldLinearization`] of an actuated model with its input matrix
 /// in the independent coordinates.
@@ -123,7 +126,8 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for InputResponse<'_, S,
         let mass = factor_mass_matrix(&model.mass_matrix(t, q))
             .map_err(|err| AnalysisError::from(mass_error(err, t, q, qdot)))?;
         let g = model.constraint_jacobian(t, q);
-        let schur = Schur::new(&mass, &g).map_err(|e| AnalysisError::from(e.at(t, q, qdot)))?;
+        let schur =
+            Schur::new(&mass, &g).map_err(|e| AnalysisError::from(saddle_error(e, t, q, qdot)))?;
         let lambda = schur.solve(&(g * self.free));
         Ok(self.free - schur.x * lambda)
     }

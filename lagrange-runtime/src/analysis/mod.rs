@@ -38,7 +38,7 @@
 //! rounding `O(ε / h)`, leaving a relative error `≈ ε^(2/3)` (`4·10⁻¹¹` in
 //! `f64`, times the ratio of the model's third to first derivatives).
 //! Each result says which it is. `B` always comes from the model's exact
-//! [`input_jacobian`](crate::Actuated::input_jacobian).
+//! [`input_jacobian`](crate::model::inputs::Actuated::input_jacobian).
 //!
 //! # Equilibria and modes
 //!
@@ -90,7 +90,7 @@
 //! derivatives are central differences of the saddle-point `q̈`
 //! ([`Derivatives::CentralDifferences`]) whatever the model provides.
 //! Rank-deficient constraints (a change point) are the saddle solve's
-//! [`SingularConstraints`](crate::IntegrationError::SingularConstraints),
+//! [`SingularConstraints`](crate::error::IntegrationError::SingularConstraints),
 //! with the state.
 //!
 //! ```
@@ -141,7 +141,7 @@ pub use manifold_inputs::{linearize_on_manifold_with_inputs, ManifoldInputLinear
 pub use modes::{modes, Mode, ModeKind, Modes};
 
 #[cfg(doc)]
-use crate::Lagrangian;
+use crate::model::Lagrangian;
 
 /// How the derivatives of a result were obtained, and so how accurate it
 /// is.

@@ -8,8 +8,9 @@ use super::derivatives::{forcing_at_rest, relative_noise, sqrt_epsilon};
 use super::equilibrium::within;
 use super::rest::ManifoldModes;
 use super::{AnalysisError, Derivatives};
-use crate::linalg::solve::{factor_mass_matrix, mass_error, MassFactor, SolveError};
-use crate::Lagrangian;
+use crate::dynamics::mass_error;
+use crate::linalg::solve::{factor_mass_matrix, MassFactor, SolveError};
+use crate::model::Lagrangian;
 
 /// What small motions along one mode do, from the sign of its `ω²`.
 #[derive(Debug, Clone, Copy, PartialEq)]

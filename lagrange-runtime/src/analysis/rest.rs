@@ -2,9 +2,9 @@
 //! (`f − Gᵀ λ = 0` with `φ = 0`), the test for one, and its modes there.
 //! [`equilibrium`](super::equilibrium), [`is_equilibrium`](super::is_equilibrium)
 //! and [`modes`](super::modes) reach these through
-//! [`Lagrangian::visit_constraints`](crate::Lagrangian::visit_constraints).
+//! [`Lagrangian::visit_constraints`](crate::model::Lagrangian::visit_constraints).
 
-use crate::constraints::settings::ConstraintSettings;
+use crate::model::settings::ConstraintSettings;
 use nalgebra::{ComplexField, DMatrix, DVector, RealField, SVector};
 
 use super::derivatives::{relative_noise, sqrt_epsilon};
@@ -12,9 +12,12 @@ use super::equilibrium::{EquilibriumSearch, Progress, Verdict};
 use super::manifold::{along_basis, on_constraints, saddle, Tangent};
 use super::modes::{solve_modes, Modes};
 use super::{AnalysisError, Derivatives};
-use crate::constraints::{project_position, Holonomic, Visitor};
-use crate::solve::{mass_error, SolveError};
-use crate::{IntegrationError, NonFiniteValue, Stats};
+use crate::dynamics::mass_error;
+use crate::dynamics::projection::project_position;
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::solve::SolveError;
+use crate::model::constraints::{Holonomic, Visitor};
+use crate::trajectory::Stats;
 
 /// A configuration at rest, seen in the independent coordinates
 /// `δq = T δz` tangent to the constraints.

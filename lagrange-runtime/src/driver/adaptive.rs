@@ -4,18 +4,20 @@
 //! extension, so that the methods only supply their stages, error estimate
 //! and dense output.
 //!
-//! [`Dopri5`]: crate::Dopri5
-//! [`Dop853`]: crate::Dop853
+//! [`Dopri5`]: crate::integrators::Dopri5
+//! [`Dop853`]: crate::integrators::Dop853
 
 use nalgebra::{RealField, SVector};
 
 use super::growth::GrowthGuard;
-use super::record::{Recorder, State};
+use super::record::Recorder;
 use super::segments::{segments, Segment};
 use super::step_control::{advances, initial_step};
 use super::validate::{check_tolerances, invalid};
+use crate::error::{IntegrationError, IntegrationResult};
 use crate::events::Events;
-use crate::{IntegrationError, IntegrationResult, Lagrangian};
+use crate::model::Lagrangian;
+use crate::trajectory::State;
 
 /// A step-size controller's constants, as Hairer's codes set them:
 /// `h_new = h · safety · err^(−α) · err_old^β`, the ratio `h_new / h` kept
@@ -55,7 +57,7 @@ impl Controller {
 }
 
 /// A [`Controller`] in the scalar of a run: the step-size rule the
-/// adaptive driver and a [`Stepper`](crate::Stepper) share.
+/// adaptive driver and a [`Stepper`](crate::stepper::Stepper) share.
 pub(crate) struct Gains<S> {
     safety: S,
     /// Smallest step-size ratio, also the cut after a failed evaluation.

@@ -8,10 +8,13 @@
 
 use nalgebra::RealField;
 
-use super::record::{finite_state, Recorder, State};
+use super::record::{finite_state, Recorder};
 use super::segments::Segment;
-use crate::events::{evaluate_into, first_crossing, EventRecord, Events, Hermite, Watch};
-use crate::{IntegrationError, Lagrangian, NonFiniteValue};
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::events::{evaluate_into, first_crossing, Events, Hermite, Watch};
+use crate::model::Lagrangian;
+use crate::trajectory::EventRecord;
+use crate::trajectory::State;
 
 impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     /// Watches `events` from now on (nothing to watch if there are none).
@@ -21,7 +24,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
         }
     }
 
-    /// A [`Stepper`](crate::Stepper)'s start of a call: the events of the
+    /// A [`Stepper`](crate::stepper::Stepper)'s start of a call: the events of the
     /// previous call forgotten (their room kept).
     pub(crate) fn forget_events(&mut self) {
         self.trajectory.clear_events();

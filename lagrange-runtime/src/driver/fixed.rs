@@ -5,11 +5,13 @@
 use nalgebra::{RealField, SVector};
 
 use super::growth::GrowthGuard;
-use super::record::{finite_state, Recorder, State};
+use super::record::{finite_state, Recorder};
 use super::segments::{segments, Segment};
 use super::validate::{check_step_size, invalid};
+use crate::error::{IntegrationError, IntegrationResult, NonFiniteValue};
 use crate::events::Events;
-use crate::{IntegrationError, IntegrationResult, Lagrangian, NonFiniteValue};
+use crate::model::Lagrangian;
+use crate::trajectory::State;
 
 /// The loop every fixed-step method shares, so that they all land on the
 /// sample times the same way and only differ in `step`.
@@ -176,7 +178,7 @@ impl<S: RealField + Copy> Interval<S> {
     /// The number of steps, if the whole budget `max_steps` could cover it.
     /// `None` means the interval alone needs more steps than the budget:
     /// the run must stop with
-    /// [`TooManySteps`](crate::IntegrationError::TooManySteps) before its
+    /// [`TooManySteps`](crate::error::IntegrationError::TooManySteps) before its
     /// first step, rather than spend the budget on a run that cannot reach
     /// the sample (or, as a saturating count would, stretch the step).
     pub(crate) fn steps(&self, max_steps: usize) -> Option<usize> {

@@ -4,7 +4,7 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::record::State;
+use crate::trajectory::State;
 
 /// Watches a run for step-size instability, by two signatures of
 /// a mode that the step amplifies but cannot resolve. Both only count once

@@ -33,7 +33,7 @@ pub(crate) use adaptive::{adaptive, Controller, EmbeddedPair, Outcome, Tolerance
 pub(crate) use fixed::{fixed_segment, fixed_step, Interval};
 pub(crate) use growth::GrowthGuard;
 pub(crate) use newton::newton_noise_floor;
-pub(crate) use record::{finite_state, Recorder, State};
+pub(crate) use record::{finite_state, Recorder};
 pub(crate) use segments::{segments, Segment};
 pub(crate) use step_control::{advances, default_tolerance, initial_step};
 pub(crate) use validate::{check_step_size, check_tolerances, invalid};

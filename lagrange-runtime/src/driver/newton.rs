@@ -3,8 +3,8 @@
 
 use nalgebra::{RealField, SVector};
 
-use crate::solve::pivot_ratio;
-use crate::Lagrangian;
+use crate::linalg::solve::pivot_ratio;
+use crate::model::Lagrangian;
 
 /// Below this size relative to the state, a Newton correction that no
 /// longer shrinks is the noise of evaluating the equations, and the iterate

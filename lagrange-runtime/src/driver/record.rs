@@ -4,11 +4,16 @@
 
 use nalgebra::{RealField, SVector};
 
+use crate::trajectory::State;
+
 use super::validate::{invalid, validate};
-use crate::constraints::{DriftControl, ProjectSample, StartOnManifold};
+use crate::dynamics::acceleration;
+use crate::dynamics::projection::{DriftControl, ProjectSample};
+use crate::dynamics::start::StartOnManifold;
+use crate::error::{Failure, IntegrationError, NonFiniteValue};
 use crate::events::Watch;
-use crate::solve::acceleration;
-use crate::{Failure, IntegrationError, Lagrangian, NonFiniteValue, Stats, Trajectory};
+use crate::model::Lagrangian;
+use crate::trajectory::{Stats, Trajectory};
 
 /// Records samples as an integrator passes them and counts its work; owns
 /// the trajectory that a success or a [`Failure`] hands back.
@@ -175,9 +180,6 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
         Failure::boxed(error, self.finish())
     }
 }
-
-/// `(q, q̇)`, as a one-step method returns it.
-pub(crate) type State<S, const N: usize> = (SVector<S, N>, SVector<S, N>);
 
 /// Whether every component of `q` and `q̇` is finite.
 pub(crate) fn finite_state<S: RealField + Copy, const N: usize>(

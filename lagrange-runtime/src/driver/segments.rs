@@ -8,11 +8,13 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::record::{Recorder, State};
+use super::record::Recorder;
 use super::step_control::advances;
 use super::validate::invalid;
+use crate::error::{IntegrationError, IntegrationResult};
 use crate::events::Events;
-use crate::{IntegrationError, IntegrationResult, Lagrangian};
+use crate::model::Lagrangian;
+use crate::trajectory::State;
 
 /// How a segment ended, short of an error.
 pub(crate) enum Segment<S, const N: usize> {
@@ -27,7 +29,7 @@ pub(crate) enum Segment<S, const N: usize> {
 ///
 /// After a reset at `t*`, a sample time too close to step to from `t*`
 /// (`t_s − t*` at most `10 ε |t*|`, see `advances`) takes the state after
-/// the reset. An [`InvalidInput`](crate::InvalidInput) met before the first
+/// the reset. An [`InvalidInput`](crate::error::InvalidInput) met before the first
 /// step (a model that lacks what the method needs) is reported with an
 /// empty trajectory, as every invalid input is.
 #[allow(clippy::type_complexity)]

@@ -5,7 +5,7 @@
 use nalgebra::{RealField, SVector};
 
 use super::record::Recorder;
-use crate::Lagrangian;
+use crate::model::Lagrangian;
 
 /// The adaptive methods' default `rtol = atol`: `1e-8`, raised to `100 ε`
 /// for scalar types with fewer digits (`1.2e-5` for `f32`).
@@ -88,7 +88,7 @@ where
 
 /// Whether an attempt of size `h` from `t` is still possible: `h` above
 /// `10 ε |t|` and `t + h ≠ t`. Below that, the adaptive methods stop with
-/// [`StepSizeUnderflow`](crate::IntegrationError::StepSizeUnderflow) (or
+/// [`StepSizeUnderflow`](crate::error::IntegrationError::StepSizeUnderflow) (or
 /// the model failure that made them shrink `h`).
 pub(crate) fn advances<S: RealField + Copy>(t: S, h: S) -> bool {
     let underflow = nalgebra::convert::<f64, S>(10.0) * S::default_epsilon();

@@ -4,7 +4,9 @@
 
 use nalgebra::{ComplexField, RealField, SVector};
 
-use crate::{Failure, InvalidInput, Lagrangian, Trajectory};
+use crate::error::{Failure, InvalidInput};
+use crate::model::Lagrangian;
+use crate::trajectory::Trajectory;
 
 /// A failure before any work: empty trajectory.
 pub(crate) fn invalid<S: RealField + Copy, const N: usize>(

@@ -8,17 +8,13 @@ use core::fmt;
 
 use nalgebra::{RealField, SVector};
 
-use crate::Trajectory;
+use crate::trajectory::Trajectory;
 
-#[cfg(feature = "serde")]
-pub(crate) mod names;
 mod non_finite;
 
 pub use non_finite::NonFiniteValue;
 
-/// A name an error carries: of a coordinate, a constraint, an input or a
-/// method, from the model's or the method's constants.
-pub type Name = &'static str;
+pub use crate::trajectory::Name;
 
 /// Why an integration stopped before the last requested sample time.
 ///
@@ -154,7 +150,7 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
     /// sign or moving against its own velocity from one step to the next).
     /// No resolved motion does that, so this is the step size amplifying a
     /// fast mode: a fixed step too large for a stiff model, or, for
-    /// [`Dopri5`](crate::Dopri5) and [`Dop853`](crate::Dop853), a tolerance
+    /// [`Dopri5`](crate::integrators::Dopri5) and [`Dop853`](crate::integrators::Dop853), a tolerance
     /// so loose (`rtol` near 1 or above, or `atol` above the solution's
     /// size) that the error control no longer holds the step within the
     /// stability region. Stopped before the state overflows to infinity or
@@ -215,8 +211,8 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         /// Time of the projection.
         t: S,
         /// The constraint furthest from zero, from
-        /// [`Holonomic::CONSTRAINTS`](crate::Holonomic::CONSTRAINTS).
-        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        /// [`Holonomic::CONSTRAINTS`](crate::model::constraints::Holonomic::CONSTRAINTS).
+        #[cfg_attr(feature = "serde", serde(with = "crate::names::one"))]
         constraint: Name,
         /// Its value `φ_i` after the last iteration.
         residual: S,
@@ -234,7 +230,7 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
     #[error("event `{event}`: {value} at t = {t:?} (q = {}, q̇ = {})", Row(.q), Row(.qdot))]
     NonFiniteEvent {
         /// The event's name.
-        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        #[cfg_attr(feature = "serde", serde(with = "crate::names::one"))]
         event: Name,
         /// Time of the evaluation.
         t: S,
@@ -322,8 +318,8 @@ pub enum InvalidInput<S: RealField + Copy> {
     /// A component of `q0` is NaN or infinite.
     #[error("the initial position of coordinate `{coordinate}` is {value:?}, not a finite number")]
     NonFiniteInitialPosition {
-        /// Name of the coordinate, from [`Lagrangian::COORDINATES`](crate::Lagrangian::COORDINATES).
-        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        /// Name of the coordinate, from [`Lagrangian::COORDINATES`](crate::model::Lagrangian::COORDINATES).
+        #[cfg_attr(feature = "serde", serde(with = "crate::names::one"))]
         coordinate: Name,
         /// The value given.
         value: S,
@@ -332,14 +328,14 @@ pub enum InvalidInput<S: RealField + Copy> {
     /// A component of `q̇0` is NaN or infinite.
     #[error("the initial velocity of coordinate `{coordinate}` is {value:?}, not a finite number")]
     NonFiniteInitialVelocity {
-        /// Name of the coordinate, from [`Lagrangian::COORDINATES`](crate::Lagrangian::COORDINATES).
-        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        /// Name of the coordinate, from [`Lagrangian::COORDINATES`](crate::model::Lagrangian::COORDINATES).
+        #[cfg_attr(feature = "serde", serde(with = "crate::names::one"))]
         coordinate: Name,
         /// The value given.
         value: S,
     },
 
-    /// [`Lagrangian::parameters_are_finite`](crate::Lagrangian::parameters_are_finite)
+    /// [`Lagrangian::parameters_are_finite`](crate::model::Lagrangian::parameters_are_finite)
     /// returned `false`.
     #[error("a parameter of the model is NaN or infinite")]
     NonFiniteParameters,
@@ -357,7 +353,7 @@ pub enum InvalidInput<S: RealField + Copy> {
     InputsNotSet {
         /// The names of the model's inputs, from
         /// [`Inputs::NAMES`](crate::inputs::Inputs::NAMES).
-        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::list"))]
+        #[cfg_attr(feature = "serde", serde(with = "crate::names::list"))]
         inputs: &'static [Name],
     },
 
@@ -399,7 +395,7 @@ pub enum InvalidInput<S: RealField + Copy> {
         t0: S,
     },
 
-    /// A [`Stepper`](crate::Stepper) asked to move to a time that is not
+    /// A [`Stepper`](crate::stepper::Stepper) asked to move to a time that is not
     /// after its own (it advances forward only), or not finite; also a
     /// `dt` too small to change `t`.
     #[error(
@@ -446,20 +442,20 @@ pub enum InvalidInput<S: RealField + Copy> {
     #[error("{method} needs at least one Newton iteration per step, but max_iterations = 0")]
     NoNewtonIterations {
         /// The integrator.
-        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        #[cfg_attr(feature = "serde", serde(with = "crate::names::one"))]
         method: Name,
     },
 
     /// The method needs something of the model that it does not provide
-    /// (a hand-written [`Lagrangian`](crate::Lagrangian) without the
+    /// (a hand-written [`Lagrangian`](crate::model::Lagrangian) without the
     /// optional method; models from `lagrangian!` provide them all).
     #[error("{method} needs `Lagrangian::{needs}`, which this model does not provide")]
     ModelLacks {
         /// The integrator.
-        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        #[cfg_attr(feature = "serde", serde(with = "crate::names::one"))]
         method: Name,
         /// The missing trait method.
-        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        #[cfg_attr(feature = "serde", serde(with = "crate::names::one"))]
         needs: Name,
     },
 
@@ -473,8 +469,8 @@ pub enum InvalidInput<S: RealField + Copy> {
     )]
     InconsistentInitialConditions {
         /// The first violated constraint, from
-        /// [`Holonomic::CONSTRAINTS`](crate::Holonomic::CONSTRAINTS).
-        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        /// [`Holonomic::CONSTRAINTS`](crate::model::constraints::Holonomic::CONSTRAINTS).
+        #[cfg_attr(feature = "serde", serde(with = "crate::names::one"))]
         constraint: Name,
         /// Whether its position `φ` or its velocity `φ̇` is off.
         level: ConstraintLevel,
@@ -504,12 +500,12 @@ pub enum InvalidInput<S: RealField + Copy> {
     #[error("the event setting {setting} = {value:?} must be {requirement}")]
     InvalidEventSetting {
         /// `time_tolerance`, `min_separation` or `max_step`.
-        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        #[cfg_attr(feature = "serde", serde(with = "crate::names::one"))]
         setting: Name,
         /// The value given.
         value: S,
         /// What it must be.
-        #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
+        #[cfg_attr(feature = "serde", serde(with = "crate::names::one"))]
         requirement: Name,
     },
 }

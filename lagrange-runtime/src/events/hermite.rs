@@ -8,7 +8,7 @@
 
 use nalgebra::{RealField, SVector};
 
-use crate::driver::State;
+use crate::trajectory::State;
 
 /// One step's interpolant, from `(t0, q0, q̇0, q̈0)` to `(t1, q1, q̇1, q̈1)`.
 pub(crate) struct Hermite<S, const N: usize> {

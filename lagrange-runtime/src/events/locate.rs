@@ -14,8 +14,8 @@
 use nalgebra::RealField;
 
 use super::Events;
-use crate::driver::State;
-use crate::{IntegrationError, NonFiniteValue};
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::trajectory::State;
 
 /// The earliest crossing on a step: the time, the interpolated state there,
 /// every event's `g` there, and which events crossed (in the order they

@@ -9,12 +9,12 @@
 //! with restitution or a mode switch, after which the integration restarts
 //! from the new state. Event functions, resets and the observer are
 //! `Send + Sync` closures (plain functions of the state are), so that runs
-//! and [`Stepper`](crate::Stepper)s watching them can move between threads.
+//! and [`Stepper`](crate::stepper::Stepper)s watching them can move between threads.
 //! An [`Events`] set, handed to
-//! [`Integrator::integrate_with_events`](crate::Integrator::integrate_with_events),
+//! [`Integrator::integrate_with_events`](crate::integrators::Integrator::integrate_with_events),
 //! holds them with the settings of the search; what happened is in
-//! [`Trajectory::events`](crate::Trajectory::events) and
-//! [`Trajectory::stopped`](crate::Trajectory::stopped).
+//! [`Trajectory::events`](crate::trajectory::Trajectory::events) and
+//! [`Trajectory::stopped`](crate::trajectory::Trajectory::stopped).
 //!
 //! ```
 //! use lagrange_runtime::prelude::*;
@@ -68,9 +68,9 @@
 //! interpolant by the Illinois variant of regula falsi (`locate.rs`) to the
 //! [time tolerance](Events::time_tolerance), by default `4 ε max(|t|, 1)`,
 //! a few ulps of `t`. The interpolant is the method's own dense output for
-//! [`Dopri5`](crate::Dopri5) (order 4), [`Dop853`](crate::Dop853) (order 7,
+//! [`Dopri5`](crate::integrators::Dopri5) (order 4), [`Dop853`](crate::integrators::Dop853) (order 7,
 //! whose three extra stages are then computed on every step, 15 right-hand
-//! sides instead of 12) and [`Radau5`](crate::Radau5) (order 3); for the
+//! sides instead of 12) and [`Radau5`](crate::integrators::Radau5) (order 3); for the
 //! fixed-step methods it is the cubic Hermite interpolant of `(q, q̇)` with
 //! slopes `(q̇, q̈)` at both ends (the end's `q̈` is one more right-hand side
 //! per step, counted; the start's is the previous step's end). The event
@@ -78,7 +78,7 @@
 //! interpolant, whatever the method's order. The variational integrator
 //! computes `q̇` from its momenta at every step end while events are
 //! watched (one conversion each, counted in `rhs_evals`). Evaluations of
-//! event functions are counted in [`Stats::event_evals`](crate::Stats::event_evals).
+//! event functions are counted in [`Stats::event_evals`](crate::trajectory::Stats::event_evals).
 //!
 //! # Crossings inside one step
 //!
@@ -129,7 +129,7 @@
 //!   steps).
 //! - **Stop**: samples up to the event time come from the step's
 //!   interpolant; later ones are not recorded; the event is
-//!   [`Trajectory::stopped`](crate::Trajectory::stopped).
+//!   [`Trajectory::stopped`](crate::trajectory::Trajectory::stopped).
 //! - **Reset**: samples up to the event time come from the step's
 //!   interpolant, with the state before; then the state is replaced by the
 //!   closure's and the method restarts from the event time as from a new
@@ -147,7 +147,7 @@
 //!
 //! - **Zeno**: a run of events accumulating in finite time (a bouncing
 //!   ball coming to rest makes infinitely many bounces before a finite
-//!   time) ends with [`IntegrationError::Zeno`](crate::IntegrationError::Zeno)
+//!   time) ends with [`IntegrationError::Zeno`](crate::error::IntegrationError::Zeno)
 //!   when three gaps in a row between events are shorter than the
 //!   [minimum separation](Events::min_separation), by default 1000 time
 //!   tolerances (gaps that short are resolved to no more than three
@@ -156,11 +156,11 @@
 //!   fall through the floor unseen). Restitution below about 0.5 can
 //!   shrink the gaps from four steps to less than one within three bounces:
 //!   set a larger separation for such a fixed-step run.
-//!   The [`Failure`](crate::Failure) holds the trajectory and the events so
+//!   The [`Failure`](crate::error::Failure) holds the trajectory and the events so
 //!   far.
 //! - An event function returning NaN or an infinity, or a reset returning
 //!   a non-finite state, is
-//!   [`IntegrationError::NonFiniteEvent`](crate::IntegrationError::NonFiniteEvent),
+//!   [`IntegrationError::NonFiniteEvent`](crate::error::IntegrationError::NonFiniteEvent),
 //!   naming the event.
 //! - Settings out of range (a negative or NaN tolerance, a non-positive
 //!   step bound) are [`InvalidInput::InvalidEventSetting`],
@@ -170,13 +170,14 @@ use core::fmt;
 
 use nalgebra::{RealField, SVector};
 
-use crate::InvalidInput;
+use crate::error::InvalidInput;
 
 mod guard;
 mod hermite;
 mod locate;
 mod watch;
 
+pub use crate::trajectory::EventRecord;
 pub(crate) use hermite::Hermite;
 pub(crate) use locate::{evaluate_into, first_crossing};
 pub(crate) use watch::Watch;
@@ -398,7 +399,7 @@ impl<S: RealField + Copy, const N: usize> Default for Events<'_, S, N> {
 
 impl<'a, S: RealField + Copy, const N: usize> Events<'a, S, N> {
     /// No events: a run that watches nothing, exactly as
-    /// [`integrate`](crate::Integrator::integrate).
+    /// [`integrate`](crate::integrators::Integrator::integrate).
     pub fn new() -> Self {
         Self {
             events: Vec::new(),
@@ -410,13 +411,13 @@ impl<'a, S: RealField + Copy, const N: usize> Events<'a, S, N> {
     }
 
     /// An observer (`Send + Sync`, like the event functions, so that a
-    /// [`Stepper`](crate::Stepper) watching it can move between threads),
+    /// [`Stepper`](crate::stepper::Stepper) watching it can move between threads),
     /// called with `(t, q, q̇)` at the end of every accepted step (after the events located in it): a progress bar, a log, a
     /// watchdog. Returning [`Observation::Break`] stops the run cleanly
     /// there: the samples up to that time are recorded (inside the step
     /// from its interpolant), later ones are not, and
-    /// [`Trajectory::interrupted`](crate::Trajectory::interrupted) says
-    /// when. A [`Stepper`](crate::Stepper) ends its call there.
+    /// [`Trajectory::interrupted`](crate::trajectory::Trajectory::interrupted) says
+    /// when. A [`Stepper`](crate::stepper::Stepper) ends its call there.
     ///
     /// ```
     /// use core::ops::ControlFlow;
@@ -483,7 +484,7 @@ impl<'a, S: RealField + Copy, const N: usize> Events<'a, S, N> {
     }
 
     /// The Zeno guard: a run stops with
-    /// [`Zeno`](crate::IntegrationError::Zeno) when three gaps in a row
+    /// [`Zeno`](crate::error::IntegrationError::Zeno) when three gaps in a row
     /// between events are shorter than this. Non-negative and finite (zero
     /// turns the guard off). By default 1000 time tolerances, and for a
     /// fixed-step method at least four steps: events that come closer than
@@ -566,34 +567,4 @@ impl<'a, S: RealField + Copy, const N: usize> Events<'a, S, N> {
         }
         Ok(())
     }
-}
-
-/// An event that happened: which, when, in which state, and the state a
-/// reset made of it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(
-    feature = "serde",
-    serde(bound(
-        serialize = "S: serde::Serialize + nalgebra::Scalar",
-        deserialize = "S: serde::Deserialize<'de> + nalgebra::Scalar"
-    ))
-)]
-#[non_exhaustive]
-pub struct EventRecord<S, const N: usize> {
-    /// The event's name.
-    #[cfg_attr(feature = "serde", serde(with = "crate::error::names::one"))]
-    pub name: crate::error::Name,
-    /// Its index in the [`Events`] set.
-    pub index: usize,
-    /// The located time.
-    pub t: S,
-    /// `q` at `t`, before any reset.
-    pub q: SVector<S, N>,
-    /// `q̇` at `t`, before any reset.
-    pub qdot: SVector<S, N>,
-    /// For a reset, the state `(q, q̇)` the run restarted from (after all
-    /// resets at this time, projected onto the constraints of a constrained
-    /// model); `None` for a recorded or stopping event.
-    pub after: Option<(SVector<S, N>, SVector<S, N>)>,
 }

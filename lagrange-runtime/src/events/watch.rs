@@ -4,8 +4,8 @@
 use super::guard::ZenoGuard;
 use super::locate::evaluate_into;
 use super::Events;
-use crate::driver::State;
-use crate::IntegrationError;
+use crate::error::IntegrationError;
+use crate::trajectory::State;
 use nalgebra::{RealField, SVector};
 
 /// The state of the watch over a run's events.

@@ -1,12 +1,15 @@
 //! A trajectory written as CSV through the `csv` crate.
 
-use crate::constraints::settings::ConstraintSettings;
+use crate::dynamics::saddle::Multipliers as _;
+use crate::model::settings::ConstraintSettings;
 use std::io;
 
 use nalgebra::{RealField, SVector};
 
-use crate::constraints::{Holonomic, Visitor};
-use crate::{IntegrationError, Lagrangian, Trajectory};
+use crate::error::IntegrationError;
+use crate::model::constraints::{Holonomic, Visitor};
+use crate::model::Lagrangian;
+use crate::trajectory::Trajectory;
 
 /// Why a trajectory could not be written.
 #[derive(Debug, thiserror::Error)]

@@ -3,9 +3,11 @@
 use nalgebra::{RealField, SVector};
 
 use super::Integrator;
-use crate::driver::{fixed_step, Recorder, State};
+use crate::driver::{fixed_step, Recorder};
+use crate::error::{IntegrationError, IntegrationResult};
 use crate::events::Events;
-use crate::{IntegrationError, IntegrationResult, Lagrangian};
+use crate::model::Lagrangian;
+use crate::trajectory::State;
 
 /// Explicit Euler with a fixed step `h`: one right-hand side per step,
 /// global error `O(h)`, no error control.
@@ -14,11 +16,11 @@ use crate::{IntegrationError, IntegrationResult, Lagrangian};
 /// right choice: on an undamped oscillator it multiplies the energy by
 /// `1 + h² ω²` every step, so a long run spirals outwards. Use it to check a
 /// model cheaply, or as the reference point of a convergence study;
-/// [`SymplecticEuler`](crate::SymplecticEuler) costs the same and does not
-/// drift, [`Rk4`](crate::Rk4) and [`Dopri5`](crate::Dopri5) are far more
+/// [`SymplecticEuler`](crate::integrators::SymplecticEuler) costs the same and does not
+/// drift, [`Rk4`](crate::integrators::Rk4) and [`Dopri5`](crate::integrators::Dopri5) are far more
 /// accurate per evaluation.
 ///
-/// Sample times are hit exactly, as with [`Rk4`](crate::Rk4): each interval
+/// Sample times are hit exactly, as with [`Rk4`](crate::integrators::Rk4): each interval
 /// between consecutive sample times is cut into the fewest equal steps no
 /// longer than `h`.
 ///
@@ -60,7 +62,7 @@ impl<S: RealField + Copy> ExplicitEuler<S> {
         self.h
     }
 
-    /// The step budget, for a [`Stepper`](crate::Stepper).
+    /// The step budget, for a [`Stepper`](crate::stepper::Stepper).
     pub(crate) fn step_budget(&self) -> usize {
         self.max_steps
     }

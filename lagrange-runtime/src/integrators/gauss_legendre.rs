@@ -4,8 +4,9 @@ use nalgebra::{DMatrix, DVector, RealField, SVector};
 
 use super::implicit_rk::{self, Settings, Tableau};
 use super::Integrator;
+use crate::error::IntegrationResult;
 use crate::events::Events;
-use crate::{IntegrationResult, Lagrangian};
+use crate::model::Lagrangian;
 
 /// The `s`-stage Gauss–Legendre method with a fixed step `h`: collocation at
 /// the Gauss nodes, order `2 s` (the highest of any `s`-stage Runge–Kutta
@@ -96,7 +97,7 @@ impl<S: RealField + Copy> GaussLegendre<S> {
     }
 
     /// The step budget (default 10 000 000); exceeding it is
-    /// [`TooManySteps`](crate::IntegrationError::TooManySteps): at once,
+    /// [`TooManySteps`](crate::error::IntegrationError::TooManySteps): at once,
     /// before any step, when the interval to the next sample alone needs
     /// more steps of `h` (the step is never lengthened to fit).
     pub fn max_steps(mut self, max_steps: usize) -> Self {
@@ -105,9 +106,9 @@ impl<S: RealField + Copy> GaussLegendre<S> {
     }
 
     /// Newton iterations allowed per step (default 20) before
-    /// [`NewtonDivergence`](crate::IntegrationError::NewtonDivergence); at
+    /// [`NewtonDivergence`](crate::error::IntegrationError::NewtonDivergence); at
     /// least 1, zero being
-    /// [`NoNewtonIterations`](crate::InvalidInput::NoNewtonIterations). From
+    /// [`NoNewtonIterations`](crate::error::InvalidInput::NoNewtonIterations). From
     /// the extrapolated starting guess a step at a sensible `h` needs a few.
     pub fn max_iterations(mut self, max_iterations: usize) -> Self {
         self.settings.max_iterations = max_iterations;
@@ -119,7 +120,7 @@ impl<S: RealField + Copy> GaussLegendre<S> {
         self.settings.h
     }
 
-    /// The step size, budget and Newton limit, for a [`Stepper`](crate::Stepper).
+    /// The step size, budget and Newton limit, for a [`Stepper`](crate::stepper::Stepper).
     pub(crate) fn settings(&self) -> Settings<S> {
         self.settings
     }

@@ -4,8 +4,9 @@ use nalgebra::{DMatrix, DVector, RealField, SVector};
 
 use super::implicit_rk::{self, Settings, Tableau};
 use super::Integrator;
+use crate::error::IntegrationResult;
 use crate::events::Events;
-use crate::{IntegrationResult, Lagrangian};
+use crate::model::Lagrangian;
 
 /// The implicit midpoint rule with a fixed step `h`:
 /// `y_{n+1} = y_n + h F(t_n + h/2, (y_n + y_{n+1}) / 2)`.
@@ -18,13 +19,13 @@ use crate::{IntegrationResult, Lagrangian};
 /// shares its solver: each step solves for the stage increment
 /// `Z = (y_{n+1} − y_n) / 2` by simplified Newton, with the Jacobian of `q̈`
 /// at the step start (exact when the model provides
-/// [`residual_jacobians`](crate::Lagrangian::residual_jacobians), forward
+/// [`residual_jacobians`](crate::model::Lagrangian::residual_jacobians), forward
 /// differences otherwise), one LU factorization per step, and a starting
 /// guess extrapolated from the previous step. Iterations stop when the
 /// correction is below `10 ε` of the state's size; a step whose iteration
 /// diverges, or has not converged after
 /// [`max_iterations`](Self::max_iterations), is
-/// [`NewtonDivergence`](crate::IntegrationError::NewtonDivergence).
+/// [`NewtonDivergence`](crate::error::IntegrationError::NewtonDivergence).
 ///
 /// ```
 /// use lagrange_runtime::ImplicitMidpoint;
@@ -49,7 +50,7 @@ impl<S: RealField + Copy> ImplicitMidpoint<S> {
     }
 
     /// The step budget; exceeding it is
-    /// [`TooManySteps`](crate::IntegrationError::TooManySteps): at once,
+    /// [`TooManySteps`](crate::error::IntegrationError::TooManySteps): at once,
     /// before any step, when the interval to the next sample alone needs
     /// more steps of `h` (the step is never lengthened to fit).
     pub fn max_steps(mut self, max_steps: usize) -> Self {
@@ -58,9 +59,9 @@ impl<S: RealField + Copy> ImplicitMidpoint<S> {
     }
 
     /// Newton iterations allowed per step before
-    /// [`NewtonDivergence`](crate::IntegrationError::NewtonDivergence); at
+    /// [`NewtonDivergence`](crate::error::IntegrationError::NewtonDivergence); at
     /// least 1, zero being
-    /// [`NoNewtonIterations`](crate::InvalidInput::NoNewtonIterations).
+    /// [`NoNewtonIterations`](crate::error::InvalidInput::NoNewtonIterations).
     pub fn max_iterations(mut self, max_iterations: usize) -> Self {
         self.settings.max_iterations = max_iterations;
         self
@@ -71,7 +72,7 @@ impl<S: RealField + Copy> ImplicitMidpoint<S> {
         self.settings.h
     }
 
-    /// The step size, budget and Newton limit, for a [`Stepper`](crate::Stepper).
+    /// The step size, budget and Newton limit, for a [`Stepper`](crate::stepper::Stepper).
     pub(crate) fn settings(&self) -> Settings<S> {
         self.settings
     }

@@ -24,12 +24,14 @@
 use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
 use crate::driver::{
-    check_step_size, fixed_segment, invalid, newton_noise_floor, segments, Recorder, State,
+    check_step_size, fixed_segment, invalid, newton_noise_floor, segments, Recorder,
 };
+use crate::dynamics::acceleration_jacobians;
+use crate::error::{IntegrationError, IntegrationResult, InvalidInput};
 use crate::events::Events;
-use crate::jacobian::acceleration_jacobians;
 use crate::linalg::lu::Lu;
-use crate::{IntegrationError, IntegrationResult, InvalidInput, Lagrangian};
+use crate::model::Lagrangian;
+use crate::trajectory::State;
 
 /// Butcher tableau of an implicit method, with `dᵀ = bᵀ A⁻¹` precomputed.
 #[derive(Debug, Clone)]
@@ -105,7 +107,7 @@ const TOLERANCE: f64 = 10.0;
 const SLOW: f64 = 0.5;
 
 /// The workspace of the stage system, allocated once per integration (or
-/// per [`Stepper`](crate::Stepper)) so that a step allocates nothing. Stage
+/// per [`Stepper`](crate::stepper::Stepper)) so that a step allocates nothing. Stage
 /// `j` occupies rows `2 N j .. 2 N (j + 1)` of the stage vectors: its `q`
 /// part, then its `v` part.
 pub(crate) struct StageSolver<S: RealField + Copy, const N: usize> {

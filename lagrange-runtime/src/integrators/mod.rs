@@ -1,7 +1,7 @@
 //! Time integrators, one per file or folder, all behind [`Integrator`].
 //!
 //! Each integrator advances the first-order system `y = (q, q̇)`,
-//! `ẏ = (q̇, q̈)` with `q̈` from [`acceleration`](crate::solve::acceleration),
+//! `ẏ = (q̇, q̈)` with `q̈` from [`acceleration`](crate::dynamics::acceleration),
 //! and records the state at the requested sample times only.
 //! [`Variational`] is the exception: it advances `(q, p)` by the discrete
 //! Euler–Lagrange equations of the Lagrangian itself, and converts to
@@ -11,27 +11,27 @@
 //!
 //! - Input is validated before the first step: non-finite `t0`, `q0`, `q̇0`
 //!   or model parameters, and sample times that are not finite, decrease, or
-//!   precede `t0` are [`InvalidInput`](crate::InvalidInput).
+//!   precede `t0` are [`InvalidInput`](crate::error::InvalidInput).
 //! - Integration runs forward from `t0` to the last sample time. Samples
 //!   equal to `t0` are the initial state, unchanged.
 //! - A failure returns the samples computed so far in
-//!   [`Failure`](crate::Failure).
+//!   [`Failure`](crate::error::Failure).
 //! - What was asked is never changed quietly. A fixed step `h` is never
 //!   lengthened: each interval between sample times is cut into the fewest
 //!   equal steps no longer than `h` (up to 8 ulps of `t` forgiven to the
 //!   rounding of the sample times), and an interval that alone needs more
 //!   steps than `max_steps` is
-//!   [`TooManySteps`](crate::IntegrationError::TooManySteps) before its
+//!   [`TooManySteps`](crate::error::IntegrationError::TooManySteps) before its
 //!   first step. Tolerances are used as given: `rtol` below `10 ε`, a
 //!   non-positive `atol`, a non-finite or non-positive `h` and
-//!   `max_iterations = 0` are [`InvalidInput`](crate::InvalidInput), and
+//!   `max_iterations = 0` are [`InvalidInput`](crate::error::InvalidInput), and
 //!   loose tolerances are honoured (where one is too loose to keep
 //!   [`Dopri5`] or [`Dop853`] within its stability region, they stop with
-//!   [`Unstable`](crate::IntegrationError::Unstable), as a fixed step beyond
+//!   [`Unstable`](crate::error::IntegrationError::Unstable), as a fixed step beyond
 //!   its limit does; [`Radau5`], L-stable, needs no such guard).
 //! - A mass matrix that is not positive definite, a kinetic energy negative
 //!   for some velocities, is a modelling error:
-//!   [`IndefiniteMassMatrix`](crate::IntegrationError::IndefiniteMassMatrix)
+//!   [`IndefiniteMassMatrix`](crate::error::IntegrationError::IndefiniteMassMatrix)
 //!   where it is first met, at the first state for a model indefinite
 //!   everywhere.
 //!
@@ -75,8 +75,9 @@ pub(crate) use symplectic_euler::symplectic_step;
 
 use nalgebra::{RealField, SVector};
 
+use crate::error::IntegrationResult;
 use crate::events::Events;
-use crate::{IntegrationResult, Lagrangian};
+use crate::model::Lagrangian;
 
 /// A method that integrates a [`Lagrangian`] model and samples it at
 /// requested times.
@@ -138,7 +139,7 @@ pub trait Integrator<S: RealField + Copy> {
 
     /// [`integrate`](Integrator::integrate), watching `events`: each
     /// crossing located, recorded in
-    /// [`Trajectory::events`](crate::Trajectory::events), and acted on
+    /// [`Trajectory::events`](crate::trajectory::Trajectory::events), and acted on
     /// (stop, or reset and restart; see [`events`](crate::events)). With
     /// no events it is `integrate`, to the bit.
     fn integrate_with_events<L, const N: usize>(

@@ -3,9 +3,11 @@
 use nalgebra::{RealField, SVector};
 
 use super::Integrator;
-use crate::driver::{fixed_step, Recorder, State};
+use crate::driver::{fixed_step, Recorder};
+use crate::error::{IntegrationError, IntegrationResult};
 use crate::events::Events;
-use crate::{IntegrationError, IntegrationResult, Lagrangian};
+use crate::model::Lagrangian;
+use crate::trajectory::State;
 
 /// Classic RK4 with a fixed step `h`: four right-hand sides per step,
 /// global error `O(h⁴)`, no error control.
@@ -53,7 +55,7 @@ impl<S: RealField + Copy> Rk4<S> {
         self.h
     }
 
-    /// The step budget, for a [`Stepper`](crate::Stepper).
+    /// The step budget, for a [`Stepper`](crate::stepper::Stepper).
     pub(crate) fn step_budget(&self) -> usize {
         self.max_steps
     }

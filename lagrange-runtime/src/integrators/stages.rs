@@ -2,8 +2,8 @@
 //! the sums over them that a tableau's rows weigh: shared by [`Dopri5`]
 //! (7 stages) and [`Dop853`] (16).
 //!
-//! [`Dopri5`]: crate::Dopri5
-//! [`Dop853`]: crate::Dop853
+//! [`Dopri5`]: crate::integrators::Dopri5
+//! [`Dop853`]: crate::integrators::Dop853
 
 use nalgebra::{RealField, SVector};
 

@@ -3,9 +3,11 @@
 use nalgebra::{RealField, SVector};
 
 use super::Integrator;
-use crate::driver::{fixed_step, Recorder, State};
+use crate::driver::{fixed_step, Recorder};
+use crate::error::{IntegrationError, IntegrationResult};
 use crate::events::Events;
-use crate::{IntegrationError, IntegrationResult, Lagrangian};
+use crate::model::Lagrangian;
+use crate::trajectory::State;
 
 /// Semi-implicit Euler with a fixed step `h`: the velocity first, then the
 /// position with the *new* velocity,
@@ -23,14 +25,14 @@ use crate::{IntegrationError, IntegrationResult, Lagrangian};
 /// and forces that do not depend on `q̇`. Then the map is symplectic, and
 /// the energy error stays bounded, `O(h)`, over arbitrarily many steps
 /// instead of drifting: an oscillator keeps its amplitude where
-/// [`ExplicitEuler`](crate::ExplicitEuler) spirals outwards. With a
+/// [`ExplicitEuler`](crate::integrators::ExplicitEuler) spirals outwards. With a
 /// configuration-dependent `M(q)` (a double pendulum) or velocity-dependent
 /// forces (damping, gyroscopic terms) that guarantee is gone and it is merely
 /// a cheap first-order method. Games and real-time simulations use it for
 /// its stability on stiff-ish oscillators at one evaluation per step; for
-/// accuracy, use [`Rk4`](crate::Rk4) or an adaptive method.
+/// accuracy, use [`Rk4`](crate::integrators::Rk4) or an adaptive method.
 ///
-/// Sample times are hit exactly, as with [`Rk4`](crate::Rk4): each interval
+/// Sample times are hit exactly, as with [`Rk4`](crate::integrators::Rk4): each interval
 /// between consecutive sample times is cut into the fewest equal steps no
 /// longer than `h`.
 ///
@@ -72,7 +74,7 @@ impl<S: RealField + Copy> SymplecticEuler<S> {
         self.h
     }
 
-    /// The step budget, for a [`Stepper`](crate::Stepper).
+    /// The step budget, for a [`Stepper`](crate::stepper::Stepper).
     pub(crate) fn step_budget(&self) -> usize {
         self.max_steps
     }

@@ -3,7 +3,7 @@
 //! [`problem`] builds diffsol's `OdeSolverProblem` for the state
 //! `y = (q, q̇)` (nalgebra matrices, the same nalgebra as this crate):
 //! the right-hand side `(q̇, q̈)` with `q̈` from
-//! [`acceleration`](crate::solve::acceleration()), and the Jacobian-vector
+//! [`acceleration`](crate::dynamics::acceleration()), and the Jacobian-vector
 //! product `J v` with `J = [[0, I], [∂q̈/∂q, ∂q̈/∂q̇]]` from
 //! [`acceleration_jacobians`]:
 //! exact for a model with `#[lagrange(jacobians)]`, central differences
@@ -53,9 +53,10 @@ use diffsol::{
 };
 use nalgebra::SVector;
 
-use crate::jacobian::acceleration_jacobians;
-use crate::solve::acceleration;
-use crate::{Lagrangian, Stats};
+use crate::dynamics::acceleration;
+use crate::dynamics::acceleration_jacobians;
+use crate::model::Lagrangian;
+use crate::trajectory::Stats;
 
 /// The state `(q, q̇)` from diffsol's slice.
 fn split<const N: usize>(y: &[f64]) -> (SVector<f64, N>, SVector<f64, N>) {

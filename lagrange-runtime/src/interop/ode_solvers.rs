@@ -4,7 +4,7 @@
 //! `ode_solvers` integrates `ẏ = F(t, y)` for a state vector of its own
 //! nalgebra version; [`FirstOrder`] is that system for `y = (q, q̇)` of
 //! length `2N`, `F = (q̇, q̈)` with `q̈` from
-//! [`acceleration`](crate::solve::acceleration()). The state's length is
+//! [`acceleration`](crate::dynamics::acceleration()). The state's length is
 //! checked at compile time.
 //!
 //! `ode_solvers`' `System::system` cannot fail. Where the model cannot be
@@ -60,8 +60,9 @@ use core::cell::Cell;
 
 use nalgebra::SVector;
 
-use crate::solve::acceleration;
-use crate::{IntegrationError, Lagrangian};
+use crate::dynamics::acceleration;
+use crate::error::IntegrationError;
+use crate::model::Lagrangian;
 
 /// `model` as the first-order system `ẏ = (q̇, q̈)` on `y = (q, q̇)`.
 pub struct FirstOrder<'a, M: Lagrangian<N>, const N: usize> {

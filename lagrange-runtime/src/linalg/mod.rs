@@ -1,24 +1,26 @@
-//! The linear algebra of the runtime, in one place.
+//! The linear algebra of the runtime, in one place. It knows matrices, not
+//! models: the model's side of every solve is in
+//! [`dynamics`](crate::dynamics).
 //!
-//! - [`solve`]: `q̈` from `M q̈ = f` on the stack (Cholesky as `LDLᵀ`, LU
-//!   with partial pivoting as the fallback), with singular and non-finite cases caught;
-//!   every right-hand side goes through it. Also the stack LU of the
+//! - [`solve`]: `M q̈ = f` on the stack, `M` and `f` given (Cholesky as
+//!   `LDLᵀ`, LU with partial pivoting as the fallback), with singular,
+//!   indefinite and non-finite cases caught. Also the stack LU of the
 //!   variational integrator's `N × N` Newton systems.
 //! - `ldlt`: `M = L D Lᵀ` (Cholesky without square roots) written out for
 //!   the hot path: inlined, one division per column.
-//! - [`jacobian`]: `∂q̈/∂q` and `∂q̈/∂q̇`, exact from the model or by
-//!   forward differences, for the implicit methods' Newton iterations.
+//! - `schur`: the saddle-point system `M q̈ + Gᵀ λ = f`, `G q̈ = −γ`, and
+//!   the Schur complement `G M⁻¹ Gᵀ` judged for rank, which the
+//!   projections onto the constraints share.
 //! - `lu`: LU factors in storage allocated once per integration, real or
 //!   complex, for the implicit Runge–Kutta methods' iteration matrices.
 //! - `second_order`: the `2N × 2N` systems `(γ I − J) x = b` of those
 //!   methods solved at size `N`, using `J = [[0, I], [∂q̈/∂q, ∂q̈/∂q̇]]`.
 //!
-//! `solve` and `jacobian` are public, at the crate root
-//! (`lagrange_runtime::solve`, `lagrange_runtime::jacobian`); the other two
-//! are the integrators' own.
+//! `solve` is public (`lagrange_runtime::linalg::solve`); the others are
+//! the runtime's own.
 
-pub mod jacobian;
 pub(crate) mod ldlt;
 pub(crate) mod lu;
+pub(crate) mod schur;
 pub(crate) mod second_order;
 pub mod solve;

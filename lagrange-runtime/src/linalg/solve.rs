@@ -1,16 +1,13 @@
-//! The accelerations: solving `M q̈ = f` on the stack.
-//!
-//! Every integrator gets `q̈` from [`acceleration`], so singular and
-//! non-finite cases are detected in one place and never leak out as NaN.
+//! Solving `M q̈ = f` on the stack, `M` and `f` given: the mass matrix's
+//! checks (singular, indefinite, non-finite) in one place, so that they
+//! never leak out as NaN. The model's side, `q̈` at a state, is
+//! [`acceleration`](crate::dynamics::acceleration).
 
 use core::cmp::Ordering;
 
-use nalgebra::{ComplexField, RealField, SMatrix, SVector};
+use nalgebra::{RealField, SMatrix, SVector};
 
 use super::ldlt::Ldlt;
-
-use crate::constraints::Accelerations;
-use crate::{IntegrationError, Lagrangian, NonFiniteValue};
 
 /// Why `M q̈ = f` has no usable solution.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
@@ -50,7 +47,7 @@ pub enum SolveError {
 /// singular too.
 ///
 /// ```
-/// use lagrange_runtime::solve::{solve_mass_matrix, SolveError};
+/// use lagrange_runtime::linalg::solve::{solve_mass_matrix, SolveError};
 /// use nalgebra::{Matrix2, Vector2};
 ///
 /// let m = Matrix2::new(2.0, 1.0, 1.0, 2.0);
@@ -213,63 +210,6 @@ pub(crate) fn lu_solve<S: RealField + Copy, const N: usize>(
     Ok(b)
 }
 
-/// `q̈` of `model` in the state `(t, q, q̇)`: one right-hand side evaluation.
-///
-/// For a model with constraints (see [`constraints`](crate::constraints))
-/// this is the saddle-point solve of `M q̈ + Gᵀ λ = f`, `G q̈ = −γ`; a
-/// model in minimal coordinates solves `M q̈ = f` as ever. Errors carry `t`
-/// and the state, as the integrators report them.
-#[inline]
-pub fn acceleration<L: Lagrangian<N>, const N: usize>(
-    model: &L,
-    t: L::Scalar,
-    q: &SVector<L::Scalar, N>,
-    qdot: &SVector<L::Scalar, N>,
-) -> Result<SVector<L::Scalar, N>, IntegrationError<L::Scalar, N>> {
-    let non_finite = |value| IntegrationError::NonFiniteState {
-        t,
-        q: *q,
-        qdot: *qdot,
-        value,
-    };
-    if !t.is_finite() || !all_finite(q.iter()) || !all_finite(qdot.iter()) {
-        return Err(non_finite(NonFiniteValue::State));
-    }
-    if let Some(constrained) = model.visit_constraints(Accelerations { t, q, qdot }) {
-        // A controller's non-finite inputs show as a non-finite forcing.
-        return constrained.map_err(|error| crate::inputs::blame_error(model, error));
-    }
-    let (m, f) = model.mass_matrix_and_forcing(t, q, qdot);
-    solve_mass_matrix(&m, &f).map_err(|err| match err {
-        // A controller's non-finite inputs show as a non-finite forcing.
-        SolveError::NonFiniteForcing => non_finite(crate::inputs::blame(
-            model,
-            NonFiniteValue::Forcing,
-            t,
-            q,
-            qdot,
-        )),
-        err => mass_error(err, t, q, qdot),
-    })
-}
-
-/// A failed solve with `M` as the integrators report it, at `(t, q, q̇)`.
-pub(crate) fn mass_error<S: RealField + Copy, const N: usize>(
-    err: SolveError,
-    t: S,
-    q: &SVector<S, N>,
-    qdot: &SVector<S, N>,
-) -> IntegrationError<S, N> {
-    let (q, qdot) = (*q, *qdot);
-    let non_finite = |value| IntegrationError::NonFiniteState { t, q, qdot, value };
-    match err {
-        SolveError::NonFiniteMassMatrix => non_finite(NonFiniteValue::MassMatrix),
-        SolveError::NonFiniteForcing => non_finite(NonFiniteValue::Forcing),
-        SolveError::Singular => IntegrationError::SingularMassMatrix { t, q, qdot },
-        SolveError::Indefinite => IntegrationError::IndefiniteMassMatrix { t, q, qdot },
-    }
-}
-
 /// How much solving `M x = b` may amplify rounding: the ratio of the
 /// largest to the smallest pivot of `M`'s Cholesky factorization, the
 /// quantity [`solve_mass_matrix`] refuses above `1 / (N ε)`. It is the
@@ -277,7 +217,7 @@ pub(crate) fn mass_error<S: RealField + Copy, const N: usize>(
 /// for `N = 2`). `None` when `M` is not positive definite.
 ///
 /// ```
-/// use lagrange_runtime::solve::pivot_ratio;
+/// use lagrange_runtime::linalg::solve::pivot_ratio;
 /// use nalgebra::Matrix2;
 ///
 /// // A light bob beside a heavy one: pivots 1 and 1e-6.

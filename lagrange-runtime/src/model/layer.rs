@@ -10,13 +10,14 @@
 use nalgebra::{RealField, SMatrix, SVector};
 
 use super::Lagrangian;
-use crate::constraints::{ConstraintSettings, Holonomic, Visitor as ConstraintVisitor};
-use crate::inputs::Visitor as InputVisitor;
+use crate::model::constraints::{Holonomic, Visitor as ConstraintVisitor};
+use crate::model::inputs::Visitor as InputVisitor;
 use crate::model::lets::Visitor as LetVisitor;
+use crate::model::settings::ConstraintSettings;
 
 /// A model `M` with a [`Layer`] `A` that changes one of its capabilities:
 /// another drift control ([`Holonomic::with_drift`]), a controller
-/// ([`Actuated::with_controller`](crate::Actuated::with_controller)), no
+/// ([`Actuated::with_controller`](crate::model::inputs::Actuated::with_controller)), no
 /// exact Jacobians ([`Lagrangian::without_jacobians`]). Integrate it like
 /// the model itself; layers nest in any order
 /// (`model.with_controller(..).with_drift(..)`), the outer one applied
@@ -121,7 +122,7 @@ pub trait Layer<M: Lagrangian<N>, const N: usize>: Sized {
     /// Hands `visitor` the constraints `constraints` met in the model, with
     /// the run's `settings`, as the layered model's: as they are by
     /// default; joined to the layered dynamics by a layer that changes them
-    /// ([`Joined`]).
+    /// (the controller's).
     #[inline]
     fn visit_constrained<V, H, const C: usize>(
         layered: &Layered<M, Self>,

@@ -13,8 +13,8 @@
 //! | capability | reached through | who uses it |
 //! |---|---|---|
 //! | exact derivatives | [`Lagrangian::residual_jacobians`] | the implicit methods' Newton iterations, [`analysis`](crate::analysis) |
-//! | the action | [`Lagrangian::momentum`], [`Lagrangian::lagrangian_gradient`], [`Lagrangian::nonconservative_forces`], [`Lagrangian::CONSERVATIVE`] | [`Variational`](crate::Variational) |
-//! | holonomic constraints | [`Lagrangian::visit_constraints`] → [`Holonomic<N, C>`](crate::Holonomic) and the run's [`ConstraintSettings`](crate::constraints::ConstraintSettings) | every method (the saddle-point solve, drift control) |
+//! | the action | [`Lagrangian::momentum`], [`Lagrangian::lagrangian_gradient`], [`Lagrangian::nonconservative_forces`], [`Lagrangian::CONSERVATIVE`] | [`Variational`](crate::integrators::Variational) |
+//! | holonomic constraints | [`Lagrangian::visit_constraints`] → [`Holonomic<N, C>`](crate::model::constraints::Holonomic) and the run's [`ConstraintSettings`](crate::constraints::ConstraintSettings) | every method (the saddle-point solve, drift control) |
 //! | control inputs | [`Lagrangian::visit_inputs`] → [`Inputs<N, K>`](crate::inputs::Inputs) | the checks before a run (inputs never set) and the blame for a non-finite value |
 //! | named `let`s | [`Lagrangian::visit_lets`] → [`Lets<N, K>`](lets::Lets) | drawing, export, fits of measured outputs |
 //!
@@ -26,8 +26,8 @@
 //!
 //! # Layers
 //!
-//! A model with another drift control ([`Holonomic::with_drift`](crate::Holonomic::with_drift)),
-//! driven by a controller ([`Actuated::with_controller`](crate::Actuated::with_controller))
+//! A model with another drift control ([`Holonomic::with_drift`](crate::model::constraints::Holonomic::with_drift)),
+//! driven by a controller ([`Actuated::with_controller`](crate::model::inputs::Actuated::with_controller))
 //! or seen without its exact Jacobians ([`Lagrangian::without_jacobians`])
 //! is a [`Layered`] model: the model and a [`Layer`] that changes one
 //! capability. Every other capability is passed on by `Layered`'s one
@@ -36,9 +36,13 @@
 
 use nalgebra::{RealField, SMatrix, SVector};
 
+pub(crate) mod constraints;
+pub(crate) mod controller;
+pub(crate) mod inputs;
 pub(crate) mod layer;
 pub mod lets;
 mod reference;
+pub(crate) mod settings;
 
 pub use layer::{At, FiniteDifferences, Layer, Layered, WithoutJacobians};
 
@@ -202,7 +206,7 @@ pub trait Lagrangian<const N: usize> {
         Self::CONSERVATIVE.then(SVector::zeros)
     }
 
-    /// Hands `visitor` this model as a [`Holonomic`](crate::Holonomic)
+    /// Hands `visitor` this model as a [`Holonomic`](crate::model::constraints::Holonomic)
     /// model with its number of constraints `C`, and the constraint
     /// settings of the run, if it has constraints: how the integrators
     /// reach them (see [`constraints`](crate::constraints)). `None`, the
@@ -211,7 +215,7 @@ pub trait Lagrangian<const N: usize> {
     /// `Some(visitor.visit::<Self, C>(self, Default::default()))`.
     fn visit_constraints<V>(&self, visitor: V) -> Option<V::Output>
     where
-        V: crate::constraints::Visitor<Self::Scalar, N>,
+        V: constraints::Visitor<Self::Scalar, N>,
     {
         let _ = visitor;
         None
@@ -224,7 +228,7 @@ pub trait Lagrangian<const N: usize> {
     /// section overrides it with `Some(visitor.visit::<Self, K>(self))`.
     fn visit_inputs<V>(&self, visitor: V) -> Option<V::Output>
     where
-        V: crate::inputs::Visitor<Self::Scalar, N>,
+        V: inputs::Visitor<Self::Scalar, N>,
     {
         let _ = visitor;
         None
@@ -265,12 +269,12 @@ pub trait Lagrangian<const N: usize> {
 /// an analysis before its first evaluation.
 pub(crate) fn ready<L: Lagrangian<N>, const N: usize>(
     model: &L,
-) -> Result<(), crate::InvalidInput<L::Scalar>> {
+) -> Result<(), crate::error::InvalidInput<L::Scalar>> {
     if !model.parameters_are_finite() {
-        return Err(crate::InvalidInput::NonFiniteParameters);
+        return Err(crate::error::InvalidInput::NonFiniteParameters);
     }
-    if let Some(inputs) = crate::inputs::never_set(model) {
-        return Err(crate::InvalidInput::InputsNotSet { inputs });
+    if let Some(inputs) = inputs::never_set(model) {
+        return Err(crate::error::InvalidInput::InputsNotSet { inputs });
     }
     Ok(())
 }

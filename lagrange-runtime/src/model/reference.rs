@@ -1,13 +1,13 @@
 //! A borrowed model is a model: `&L` passes everything on to `L`, so that
-//! a layer or a [`Stepper`](crate::Stepper) can own a reference where the
+//! a layer or a [`Stepper`](crate::stepper::Stepper) can own a reference where the
 //! caller keeps the model (`(&model).with_drift(..)`).
 
 use nalgebra::{SMatrix, SVector};
 
 use super::layer::{FiniteDifferences, Layered};
 use super::Lagrangian;
-use crate::constraints::{Holonomic, Visitor as ConstraintVisitor};
-use crate::inputs::Visitor as InputVisitor;
+use crate::model::constraints::{Holonomic, Visitor as ConstraintVisitor};
+use crate::model::inputs::Visitor as InputVisitor;
 use crate::model::lets::Visitor as LetVisitor;
 
 #[warn(clippy::missing_trait_methods)]

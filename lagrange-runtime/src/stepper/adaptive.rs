@@ -10,7 +10,8 @@ use super::sealed::{Run, Work};
 use crate::driver::{
     advances, initial_step, Controller, EmbeddedPair, GrowthGuard, Outcome, Segment, Tolerances,
 };
-use crate::{IntegrationError, Lagrangian};
+use crate::error::IntegrationError;
+use crate::model::Lagrangian;
 
 /// How a stepper builds a method's pair from `(q̇, q̈)` at the state.
 pub(crate) trait PairOf<S: RealField + Copy, const N: usize> {

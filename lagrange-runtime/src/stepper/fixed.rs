@@ -5,8 +5,10 @@
 use nalgebra::{RealField, SVector};
 
 use super::sealed::{Run, Work};
-use crate::driver::{advances, finite_state, GrowthGuard, Interval, Recorder, Segment, State};
-use crate::{IntegrationError, Lagrangian, NonFiniteValue};
+use crate::driver::{advances, finite_state, GrowthGuard, Interval, Recorder, Segment};
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::model::Lagrangian;
+use crate::trajectory::State;
 
 /// One step of a fixed-step method, as `driver::fixed_step` takes it.
 pub(crate) trait FixedStep<S: RealField + Copy, const N: usize> {

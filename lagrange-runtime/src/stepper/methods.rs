@@ -5,15 +5,17 @@ use nalgebra::{RealField, SVector};
 use super::adaptive::{AdaptiveWork, PairOf};
 use super::fixed::{FixedStep, FixedWork};
 use super::StepMethod;
-use crate::driver::{check_step_size, check_tolerances, Recorder, State};
+use crate::driver::{check_step_size, check_tolerances, Recorder};
+use crate::error::{IntegrationError, InvalidInput};
 use crate::integrators::{
     euler_step, rk4_step, symplectic_step, Dop853Pair, Dopri5Pair, StageSolver, DOP853_CONTROL,
     DOPRI5_CONTROL,
 };
-use crate::{
-    Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, IntegrationError, InvalidInput,
-    Lagrangian, Rk4, SymplecticEuler,
+use crate::integrators::{
+    Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, Rk4, SymplecticEuler,
 };
+use crate::model::Lagrangian;
+use crate::trajectory::State;
 
 /// A fixed-step method's step, by name: the same function its `integrate`
 /// hands to the fixed-step driver.

@@ -2,7 +2,7 @@
 //! loops and anything else that moves a state forward in small pieces
 //! between other work.
 //!
-//! [`Integrator::integrate`](crate::Integrator::integrate) is a whole run:
+//! [`Integrator::integrate`](crate::integrators::Integrator::integrate) is a whole run:
 //! it validates, picks an initial step, allocates a trajectory and returns
 //! it. Called once per frame it does all of that per frame, and an adaptive
 //! method starts every frame from a fresh step-size guess. A [`Stepper`]
@@ -20,7 +20,7 @@
 //!   control wants is one shortened step that lands on the frame time, and
 //!   the next frame starts again from the step the control had chosen.
 //!   Fixed-step methods cut each frame into the fewest equal steps no longer
-//!   than `h`, as [`integrate`](crate::Integrator::integrate) cuts the
+//!   than `h`, as [`integrate`](crate::integrators::Integrator::integrate) cuts the
 //!   intervals between samples: `h` is never lengthened.
 //! - **The model is the caller's between calls**:
 //!   [`model_mut`](Stepper::model_mut) changes parameters or inputs,
@@ -44,8 +44,8 @@
 //! The methods that step: [`ExplicitEuler`], [`SymplecticEuler`], [`Rk4`],
 //! [`ImplicitMidpoint`] and [`GaussLegendre`] (fixed step; the implicit
 //! ones' Newton workspace allocated in [`Stepper::new`]), [`Dopri5`] and
-//! [`Dop853`] (adaptive). [`Radau5`](crate::Radau5) and
-//! [`Variational`](crate::Variational) run their own loops and are not
+//! [`Dop853`] (adaptive). [`Radau5`](crate::integrators::Radau5) and
+//! [`Variational`](crate::integrators::Variational) run their own loops and are not
 //! offered here: they integrate through `integrate`.
 //!
 //! Constrained models are kept on their constraints after each step, as in
@@ -90,13 +90,13 @@
 //! # Ok::<(), lagrange_runtime::IntegrationError<f64, 1>>(())
 //! ```
 //!
-//! [`Dopri5`]: crate::Dopri5
-//! [`Dop853`]: crate::Dop853
-//! [`ExplicitEuler`]: crate::ExplicitEuler
-//! [`SymplecticEuler`]: crate::SymplecticEuler
-//! [`Rk4`]: crate::Rk4
-//! [`ImplicitMidpoint`]: crate::ImplicitMidpoint
-//! [`GaussLegendre`]: crate::GaussLegendre
+//! [`Dopri5`]: crate::integrators::Dopri5
+//! [`Dop853`]: crate::integrators::Dop853
+//! [`ExplicitEuler`]: crate::integrators::ExplicitEuler
+//! [`SymplecticEuler`]: crate::integrators::SymplecticEuler
+//! [`Rk4`]: crate::integrators::Rk4
+//! [`ImplicitMidpoint`]: crate::integrators::ImplicitMidpoint
+//! [`GaussLegendre`]: crate::integrators::GaussLegendre
 
 // A method's side of a stepper is sealed: `StepMethod::Work` names types
 // whose traits (the fixed step, the embedded pair, the recorder) are the
@@ -110,16 +110,20 @@ mod methods;
 
 use nalgebra::{ComplexField, RealField, SVector};
 
-use crate::driver::{Recorder, Segment, State};
-use crate::events::{EventRecord, Events};
-use crate::{IntegrationError, InvalidInput, Lagrangian, Stats};
+use crate::driver::{Recorder, Segment};
+use crate::error::{IntegrationError, InvalidInput};
+use crate::events::Events;
+use crate::model::Lagrangian;
+use crate::trajectory::EventRecord;
+use crate::trajectory::State;
+use crate::trajectory::Stats;
 
 /// What a [`Stepper`] needs of a method: implemented for
-/// [`ExplicitEuler`](crate::ExplicitEuler),
-/// [`SymplecticEuler`](crate::SymplecticEuler), [`Rk4`](crate::Rk4),
-/// [`ImplicitMidpoint`](crate::ImplicitMidpoint),
-/// [`GaussLegendre`](crate::GaussLegendre), [`Dopri5`](crate::Dopri5) and
-/// [`Dop853`](crate::Dop853); it cannot be implemented outside this crate.
+/// [`ExplicitEuler`](crate::integrators::ExplicitEuler),
+/// [`SymplecticEuler`](crate::integrators::SymplecticEuler), [`Rk4`](crate::integrators::Rk4),
+/// [`ImplicitMidpoint`](crate::integrators::ImplicitMidpoint),
+/// [`GaussLegendre`](crate::integrators::GaussLegendre), [`Dopri5`](crate::integrators::Dopri5) and
+/// [`Dop853`](crate::integrators::Dop853); it cannot be implemented outside this crate.
 pub trait StepMethod<S: RealField + Copy, const N: usize> {
     /// The method's state between calls: its slopes and step size.
     #[doc(hidden)]
@@ -372,7 +376,7 @@ where
 
     /// The work done so far: steps, rejected steps, right-hand sides, and
     /// for a constrained model the residuals seen (as in
-    /// [`Trajectory::stats`](crate::Trajectory::stats)).
+    /// [`Trajectory::stats`](crate::trajectory::Trajectory::stats)).
     pub fn stats(&self) -> Stats {
         self.run.rec.stats
     }

@@ -5,10 +5,10 @@
 
 use crate::models::{max_error, stages, CartPole, CoupledOscillator};
 use lagrange::models::Method;
-use lagrange_runtime::jacobian::acceleration_jacobians;
+use lagrange_runtime::dynamics::acceleration;
+use lagrange_runtime::dynamics::acceleration_jacobians;
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;
-use lagrange_runtime::solve::acceleration;
 use lagrange_runtime::Stats;
 
 /// The pendulum released from 1.2 rad while the cart is pushed: a large,

@@ -143,8 +143,8 @@ fn invalid_step_sizes_are_refused_before_any_work() {
 #[test]
 fn an_ill_conditioned_mass_matrix_does_not_fail_a_converged_newton_iteration() {
     use crate::models::LightJoint;
+    use lagrange_runtime::linalg::solve::pivot_ratio;
     use lagrange_runtime::nalgebra::Matrix2;
-    use lagrange_runtime::solve::pivot_ratio;
 
     let model = LightJoint { mu: 1e-6 };
     let m = model.mass_matrix(0.0, &Vector2::zeros());

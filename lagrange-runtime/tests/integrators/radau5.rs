@@ -7,7 +7,7 @@ use crate::models::{
     assert_exhausted_budget_keeps_the_samples, max_error, BlowUp, CoupledOscillator,
     ElasticPendulum, ForcingBreaksDown, InertiaVanishes, StiffChain,
 };
-use lagrange_runtime::jacobian::acceleration_jacobians;
+use lagrange_runtime::dynamics::acceleration_jacobians;
 use lagrange_runtime::nalgebra::{SMatrix, SVector, Vector1, Vector2};
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::{InvalidInput, NonFiniteValue, Stats};
@@ -232,7 +232,7 @@ fn hand_written_pendulum_jacobians_match_finite_differences() {
     );
     // A generic state, moving, so every term of the Jacobians matters.
     let (q, qdot) = (Vector2::new(1.05, 0.7), Vector2::new(-0.3, 1.2));
-    let qddot = lagrange_runtime::solve::acceleration(&exact, 0.0, &q, &qdot).unwrap();
+    let qddot = lagrange_runtime::dynamics::acceleration(&exact, 0.0, &q, &qdot).unwrap();
     let mut stats = Stats::default();
     let (eq, ev) = acceleration_jacobians(&exact, 0.0, &q, &qdot, &qddot, &mut stats).unwrap();
     let (aq, av) =

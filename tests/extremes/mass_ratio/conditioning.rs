@@ -1,8 +1,8 @@
 //! The mass matrices of both extremes, solved to their conditioning.
 
 use super::{chain, heavy_start, light_start, reference};
+use lagrange::linalg::solve::{pivot_ratio, solve_mass_matrix};
 use lagrange::nalgebra::Vector2;
-use lagrange::solve::{pivot_ratio, solve_mass_matrix};
 
 /// A backward-stable Cholesky solve of `M x = f` has a relative error of at
 /// most `c N ε κ(M)` (Higham, *Accuracy and Stability*, Thm. 10.4, with

@@ -14,10 +14,12 @@ use nalgebra::{RealField, SVector};
 
 use super::Integrator;
 use crate::driver::{
-    adaptive, default_tolerance, Controller, EmbeddedPair, Outcome, Recorder, State, Tolerances,
+    adaptive, default_tolerance, Controller, EmbeddedPair, Outcome, Recorder, Tolerances,
 };
+use crate::error::{IntegrationError, IntegrationResult, NonFiniteValue};
 use crate::events::Events;
-use crate::{IntegrationError, IntegrationResult, Lagrangian, NonFiniteValue};
+use crate::model::Lagrangian;
+use crate::trajectory::State;
 use dense::Dense;
 use stages::{Stages, Step, Tableau};
 
@@ -32,7 +34,7 @@ mod tableau;
 /// state, which is the next step's first stage); a rejected step costs
 /// eleven. Because the controlled error falls as `h⁸`, halving the
 /// tolerance shrinks the steps by only 8 % (`2^(-1/8)`), against 13 % for
-/// [`Dopri5`](crate::Dopri5): at tight tolerances it needs markedly fewer
+/// [`Dopri5`](crate::integrators::Dopri5): at tight tolerances it needs markedly fewer
 /// evaluations for the same accuracy (at `rtol = 1e-12`, 6× fewer on a
 /// harmonic oscillator, 2× fewer on a double pendulum), while at loose ones
 /// its twelve stages can cost more (1.3× Dopri5's evaluations on the
@@ -70,7 +72,7 @@ pub struct Dop853<S> {
 }
 
 impl<S: RealField + Copy> Dop853<S> {
-    /// The same defaults as [`Dopri5`](crate::Dopri5), so that swapping the
+    /// The same defaults as [`Dopri5`](crate::integrators::Dopri5), so that swapping the
     /// method keeps the accuracy: `rtol = atol = 1e-8`, raised to `100 ε`
     /// for scalar types with fewer digits (`1.2e-5` for `f32`), and a budget
     /// of 100 000 steps (DOP853's `NMAX`).
@@ -90,7 +92,7 @@ impl<S: RealField + Copy> Dop853<S> {
     /// control no longer holds an explicit step within its stability region,
     /// and a run that then blows up stops with
     /// [`Unstable`](IntegrationError::Unstable), as a fixed step beyond its
-    /// limit does (use [`Radau5`](crate::Radau5) for such tolerances).
+    /// limit does (use [`Radau5`](crate::integrators::Radau5) for such tolerances).
     pub fn rtol(mut self, rtol: S) -> Self {
         self.settings.rtol = rtol;
         self
@@ -160,7 +162,7 @@ impl<S: RealField + Copy> Integrator<S> for Dop853<S> {
 }
 
 impl<S: RealField + Copy> Dop853<S> {
-    /// The pair for one run (or one [`Stepper`](crate::Stepper)) from
+    /// The pair for one run (or one [`Stepper`](crate::stepper::Stepper)) from
     /// `(q̇, q̈)` at its start. One set of slopes for the whole run,
     /// overwritten by each attempt: nothing of this size is copied per step.
     pub(crate) fn pair<const N: usize>(

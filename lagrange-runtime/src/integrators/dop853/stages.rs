@@ -5,7 +5,8 @@ use nalgebra::{RealField, SVector};
 
 use super::tableau;
 use crate::driver::Recorder;
-use crate::{IntegrationError, Lagrangian};
+use crate::error::IntegrationError;
+use crate::model::Lagrangian;
 
 /// The slopes of all 16 stages: 1–12 from the step, 13 at the new state,
 /// 14–16 for the dense output (filled only when needed).

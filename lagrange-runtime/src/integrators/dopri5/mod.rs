@@ -9,10 +9,12 @@ use nalgebra::{RealField, SVector};
 
 use super::Integrator;
 use crate::driver::{
-    adaptive, default_tolerance, Controller, EmbeddedPair, Outcome, Recorder, State, Tolerances,
+    adaptive, default_tolerance, Controller, EmbeddedPair, Outcome, Recorder, Tolerances,
 };
+use crate::error::{IntegrationError, IntegrationResult, NonFiniteValue};
 use crate::events::Events;
-use crate::{IntegrationError, IntegrationResult, Lagrangian, NonFiniteValue};
+use crate::model::Lagrangian;
+use crate::trajectory::State;
 use tableau::{Dense, Stages, Step, Tableau};
 
 mod tableau;
@@ -64,7 +66,7 @@ impl<S: RealField + Copy> Dopri5<S> {
     /// control no longer holds an explicit step within its stability region,
     /// and a run that then blows up stops with
     /// [`Unstable`](IntegrationError::Unstable), as a fixed step beyond its
-    /// limit does (use [`Radau5`](crate::Radau5) for such tolerances).
+    /// limit does (use [`Radau5`](crate::integrators::Radau5) for such tolerances).
     pub fn rtol(mut self, rtol: S) -> Self {
         self.settings.rtol = rtol;
         self
@@ -132,7 +134,7 @@ impl<S: RealField + Copy> Integrator<S> for Dopri5<S> {
 }
 
 impl<S: RealField + Copy> Dopri5<S> {
-    /// The pair for one run (or one [`Stepper`](crate::Stepper)) from
+    /// The pair for one run (or one [`Stepper`](crate::stepper::Stepper)) from
     /// `(q̇, q̈)` at its start.
     pub(crate) fn pair<const N: usize>(
         &self,

@@ -4,7 +4,8 @@
 use nalgebra::{RealField, SVector};
 
 use crate::driver::Recorder;
-use crate::{IntegrationError, Lagrangian};
+use crate::error::IntegrationError;
+use crate::model::Lagrangian;
 
 /// One attempted step: the fifth-order solution and the embedded error
 /// estimate. Its stages stay in the [`Stages`] it was computed in, so that

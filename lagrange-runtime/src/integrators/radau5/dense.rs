@@ -5,7 +5,8 @@ use nalgebra::{RealField, SVector};
 
 use super::run::{split, Run};
 use crate::driver::Recorder;
-use crate::{IntegrationError, Lagrangian};
+use crate::error::IntegrationError;
+use crate::model::Lagrangian;
 
 impl<S: RealField + Copy, const N: usize> Run<S, N> {
     /// Moves to the end of an accepted step and keeps its collocation

@@ -6,7 +6,7 @@ use super::run::{evaluate, Run};
 use super::ERR_FLOOR;
 use crate::driver::Recorder;
 use crate::linalg::second_order::solve_block;
-use crate::Lagrangian;
+use crate::model::Lagrangian;
 
 impl<S: RealField + Copy, const N: usize> Run<S, N> {
     /// RADAU5's `ESTRAD`: the scaled RMS norm of the embedded error

@@ -24,8 +24,9 @@ use nalgebra::{RealField, SVector};
 
 use super::Integrator;
 use crate::driver::{check_tolerances, default_tolerance, invalid, segments, Segment};
+use crate::error::IntegrationResult;
 use crate::events::Events;
-use crate::{IntegrationResult, Lagrangian};
+use crate::model::Lagrangian;
 use run::Run;
 
 mod coefficients;
@@ -41,10 +42,10 @@ mod run;
 ///
 /// Each step solves the implicit stage equations by simplified Newton with
 /// the Jacobians of
-/// [`acceleration_jacobians`](crate::jacobian::acceleration_jacobians):
+/// [`acceleration_jacobians`](crate::dynamics::acceleration_jacobians):
 /// exact when the model provides [`Lagrangian::residual_jacobians`], forward
 /// differences (`2N` extra right-hand sides) otherwise. The costs, all counted in
-/// [`Stats`](crate::Stats):
+/// [`Stats`](crate::trajectory::Stats):
 ///
 /// - per Newton iteration: three right-hand sides and one solve of the
 ///   transformed system (a real and a complex `N × N` triangular solve);
@@ -59,7 +60,7 @@ mod run;
 /// All vectors and matrices (`O(N²)`) are allocated once per call to
 /// [`integrate`](Integrator::integrate); steps allocate nothing.
 ///
-/// **Tolerances** are the user's, as for [`Dopri5`](crate::Dopri5). The
+/// **Tolerances** are the user's, as for [`Dopri5`](crate::integrators::Dopri5). The
 /// error estimate is of order three while the solution is of order five, so
 /// RADAU5 controls the local error against `rtol' = 0.1 rtol^(2/3)` (and
 /// `atol' = atol rtol'/rtol`), and so do we: the global error then grows
@@ -81,7 +82,7 @@ mod run;
 /// iteration that diverges or converges too slowly, or a singular iteration
 /// matrix reject the step and retry with a smaller one; if `h` underflows
 /// the error reported is the last model failure, else
-/// [`StepSizeUnderflow`](crate::IntegrationError::StepSizeUnderflow). The
+/// [`StepSizeUnderflow`](crate::error::IntegrationError::StepSizeUnderflow). The
 /// derivative and the Jacobians at an accepted state are needed to go on,
 /// so a model failure there is reported at once.
 ///
@@ -131,7 +132,7 @@ pub struct Radau5<S> {
 }
 
 impl<S: RealField + Copy> Radau5<S> {
-    /// Defaults as for [`Dopri5`](crate::Dopri5): `rtol = atol = 1e-8`,
+    /// Defaults as for [`Dopri5`](crate::integrators::Dopri5): `rtol = atol = 1e-8`,
     /// raised to `100 ε` for scalar types with fewer digits, and RADAU5's
     /// budget of 100 000 steps.
     pub fn new() -> Self {

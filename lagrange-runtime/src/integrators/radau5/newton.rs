@@ -7,10 +7,11 @@ use nalgebra::{Complex, RealField, SVector};
 use super::run::{evaluate, split, Run};
 use super::{MAX_NEWTON, THETA_REUSE};
 use crate::driver::Recorder;
-use crate::jacobian::acceleration_jacobians;
+use crate::dynamics::acceleration_jacobians;
+use crate::error::{IntegrationError, NonFiniteValue};
 use crate::linalg::lu::Singular;
 use crate::linalg::second_order::{factor_block, solve_block};
-use crate::{IntegrationError, Lagrangian, NonFiniteValue};
+use crate::model::Lagrangian;
 
 /// How a Newton iteration ended.
 pub(super) enum Newton<S: RealField + Copy, const N: usize> {

@@ -7,8 +7,9 @@ use super::coefficients::Coefficients;
 use super::newton::Newton;
 use super::{Radau5, FAC_L, FAC_R, KEEP_H, MAX_NEWTON, SAFETY, THETA_REUSE};
 use crate::driver::{advances, Recorder, Segment};
+use crate::error::{IntegrationError, NonFiniteValue};
 use crate::linalg::lu::Lu;
-use crate::{IntegrationError, Lagrangian, NonFiniteValue};
+use crate::model::Lagrangian;
 
 /// Everything one integration needs, allocated once in [`Run::new`]: the
 /// vectors have `2N` entries (`q` then `q̇`), the matrices `N × N`.

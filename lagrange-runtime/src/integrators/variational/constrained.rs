@@ -26,11 +26,13 @@
 use nalgebra::{RealField, SVector};
 
 use super::newton::{DiscreteEulerLagrange, StepFailure};
+use super::rattle::{Outer, RattleStep};
 use super::velocity::{velocity, VelocityHistory};
 use super::Variational;
-use crate::constraints::{Outer, RattleStep, VelocityProjection};
 use crate::driver::Recorder;
-use crate::{IntegrationError, Lagrangian};
+use crate::dynamics::projection::VelocityProjection;
+use crate::error::IntegrationError;
+use crate::model::Lagrangian;
 
 impl<S: RealField + Copy> Variational<S> {
     /// `(v̄, ∂L/∂q + Q, Gᵀ λ)` of one constrained step from `del`'s

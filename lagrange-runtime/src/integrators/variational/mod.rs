@@ -29,16 +29,20 @@
 use nalgebra::{RealField, SVector};
 
 use super::Integrator;
-use crate::constraints::{is_constrained, Multipliers};
-use crate::driver::{check_step_size, invalid, segments, Interval, Recorder, Segment, State};
+use crate::driver::{check_step_size, invalid, segments, Interval, Recorder, Segment};
+use crate::error::{IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue};
 use crate::events::Events;
 use crate::linalg::solve::positive_semidefinite;
-use crate::{IntegrationError, IntegrationResult, InvalidInput, Lagrangian, NonFiniteValue};
+use crate::model::constraints::is_constrained;
+use crate::model::Lagrangian;
+use crate::trajectory::State;
 use newton::{DiscreteEulerLagrange, StepFailure};
+use rattle::StartForce;
 use velocity::{velocity, with_velocity, VelocityHistory};
 
 mod constrained;
 mod newton;
+mod rattle;
 mod velocity;
 
 /// The midpoint-rule variational integrator with a fixed step `h`: second
@@ -92,13 +96,13 @@ mod velocity;
 /// of one `N × N` LU solve and one residual each (the last residual, at the
 /// solution, also gives `p_{k+1}`). A residual is one call each of
 /// `momentum`, `lagrangian_gradient` and `nonconservative_forces`;
-/// [`Stats::rhs_evals`](crate::Stats::rhs_evals) counts residuals, plus
+/// [`Stats::rhs_evals`](crate::trajectory::Stats::rhs_evals) counts residuals, plus
 /// the conversions between `q̇` and `p` at the start and at each sample
 /// time. Nothing is allocated.
 ///
 /// # Steps, samples and velocities
 ///
-/// Sample times are hit exactly: as in [`Rk4`](crate::Rk4), each interval
+/// Sample times are hit exactly: as in [`Rk4`](crate::integrators::Rk4), each interval
 /// between consecutive sample times is cut into the fewest equal steps no
 /// longer than `h`. A step of another length is still a symplectic,
 /// momentum-conserving map of `(q, p)`, so this costs nothing but the
@@ -241,7 +245,7 @@ impl<S: RealField + Copy> Variational<S> {
         // which carries the constraint force `Gᵀ λ` from step to step as
         // the next one's guess, starting from the continuous one.
         let constrained = is_constrained(model);
-        let start = Multipliers {
+        let start = StartForce {
             t: t0,
             q: &q0,
             qdot: &qdot0,

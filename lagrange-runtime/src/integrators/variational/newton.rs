@@ -5,8 +5,10 @@ use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use super::{all_finite, epsilon, lacks, Variational};
 use crate::driver::newton_noise_floor;
-use crate::solve::{lu_solve, solve_mass_matrix, SolveError};
-use crate::{IntegrationError, Lagrangian, NonFiniteValue, Stats};
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::solve::{lu_solve, solve_mass_matrix, SolveError};
+use crate::model::Lagrangian;
+use crate::trajectory::Stats;
 
 /// Why a step's Newton iteration stopped.
 pub(super) enum StepFailure<S: RealField + Copy, const N: usize> {
@@ -131,7 +133,7 @@ impl<L: Lagrangian<N>, const N: usize> DiscreteEulerLagrange<'_, L, N> {
             t,
             q,
             qdot: *v,
-            value: crate::inputs::blame(model, value, t, &q, v),
+            value: crate::dynamics::blame::blame(model, value, t, &q, v),
         };
         if !all_finite(&q) || !all_finite(v) {
             return Err(non_finite(NonFiniteValue::State));
@@ -163,7 +165,7 @@ impl<L: Lagrangian<N>, const N: usize> DiscreteEulerLagrange<'_, L, N> {
 
     /// `∂r/∂v̄` by forward differences of `r` around `v̄`, where `r` is
     /// `r(v̄)`: `N` counted residual evaluations, step `√ε · max(1, |v̄_i|)`
-    /// as in [`jacobian`](crate::jacobian). `r` is nearly linear in `v̄`
+    /// as in [`acceleration_jacobians`](crate::dynamics::acceleration_jacobians). `r` is nearly linear in `v̄`
     /// (`∂r/∂v̄ = −M + O(h)`), so the `√ε` relative error only slows the
     /// chord iteration, never stops it.
     fn jacobian(

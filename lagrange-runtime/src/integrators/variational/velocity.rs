@@ -5,8 +5,10 @@ use nalgebra::{RealField, SVector};
 
 use super::{all_finite, lacks};
 use crate::driver::Recorder;
-use crate::solve::{solve_mass_matrix, SolveError};
-use crate::{IntegrationError, Lagrangian, NonFiniteValue, Stats};
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::solve::{solve_mass_matrix, SolveError};
+use crate::model::Lagrangian;
+use crate::trajectory::Stats;
 
 /// `q̇ = M(t, q)⁻¹ (p − ∂L/∂q̇(t, q, 0))`: the velocity with momenta `p`,
 /// for a Lagrangian quadratic in `q̇`.

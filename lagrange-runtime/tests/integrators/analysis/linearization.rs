@@ -3,8 +3,8 @@
 
 use lagrange::models::DoublePendulum;
 use lagrange_runtime::analysis::{linearize, AnalysisError, Derivatives};
+use lagrange_runtime::linalg::solve::solve_mass_matrix;
 use lagrange_runtime::nalgebra::{Matrix2, Vector2};
-use lagrange_runtime::solve::solve_mass_matrix;
 use lagrange_runtime::Lagrangian;
 
 use super::{differences, Rng};

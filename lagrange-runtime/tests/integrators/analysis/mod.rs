@@ -9,8 +9,8 @@ mod manifold;
 mod models;
 mod modes;
 
+use lagrange_runtime::dynamics::acceleration;
 use lagrange_runtime::nalgebra::{SMatrix, SVector};
-use lagrange_runtime::solve::acceleration;
 use lagrange_runtime::Lagrangian;
 
 /// `(∂q̈/∂q, ∂q̈/∂q̇)` by central differences of [`acceleration`], written

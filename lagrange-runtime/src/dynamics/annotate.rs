@@ -2,8 +2,10 @@
 
 use nalgebra::SVector;
 
-use super::Holonomic;
-use crate::{IntegrationError, Trajectory};
+use super::saddle::Multipliers;
+use crate::error::IntegrationError;
+use crate::model::constraints::Holonomic;
+use crate::trajectory::Trajectory;
 
 /// A sample of a constrained model's trajectory with what the constraints
 /// do there.
@@ -16,7 +18,7 @@ pub struct ConstrainedSample<S, const N: usize, const C: usize> {
     /// Generalized velocities at `t`.
     pub qdot: SVector<S, N>,
     /// The multipliers `λ`: the constraint force on the coordinates is
-    /// `−Gᵀ λ` ([`Holonomic::multipliers`]).
+    /// `−Gᵀ λ` ([`Multipliers::multipliers`]).
     pub multipliers: SVector<S, C>,
     /// `φ(t, q)`: how far the sample is off the constraints.
     pub residual: SVector<S, C>,

@@ -5,9 +5,10 @@ use core::cell::Cell;
 
 use nalgebra::{ComplexField, SMatrix, SVector};
 
-use super::{Actuated, Inputs, Visitor as InputVisitor};
-use crate::constraints::{ConstraintSettings, Holonomic, Visitor as ConstraintVisitor};
+use super::inputs::{Actuated, Inputs, Visitor as InputVisitor};
+use crate::model::constraints::{Holonomic, Visitor as ConstraintVisitor};
 use crate::model::layer::{At, Joined};
+use crate::model::settings::ConstraintSettings;
 use crate::model::{Layer, Layered};
 
 /// The layer that sets a model's `K` inputs to `controller(t, q, q̇)` at
@@ -15,13 +16,13 @@ use crate::model::{Layer, Layered};
 /// evaluation made by the copy. Built by [`Actuated::with_controller`].
 ///
 /// The controller is called once per right-hand side
-/// ([`mass_matrix_and_forcing`](crate::Lagrangian::mass_matrix_and_forcing);
+/// ([`mass_matrix_and_forcing`](crate::model::Lagrangian::mass_matrix_and_forcing);
 /// the variational integrator, which asks for `∂L/∂q` and the
 /// non-conservative forces apart, calls it twice per residual), and
 /// [`controller_calls`](Controlled::controller_calls) counts the calls.
 /// Where it returns a NaN or an infinity, the evaluation returns NaN,
 /// which the integrators report as
-/// [`NonFiniteValue::Inputs`](crate::NonFiniteValue::Inputs) at that `t`
+/// [`NonFiniteValue::Inputs`](crate::error::NonFiniteValue::Inputs) at that `t`
 /// and state; the inputs are never passed on.
 ///
 /// What takes no `q̇` cannot call the controller: `mass_matrix` and

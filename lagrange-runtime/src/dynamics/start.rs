@@ -2,14 +2,16 @@
 //! accepted, projected or refused (see
 //! [the module](super#initial-conditions)).
 
-use crate::constraints::settings::ConstraintSettings;
+use crate::model::settings::ConstraintSettings;
 use nalgebra::{RealField, SVector};
 
 use super::projection::{
     position_tolerance, project_position, project_velocity, velocity_tolerance, worst_violation,
 };
-use super::{Holonomic, InitialConditions, Visitor};
-use crate::{ConstraintLevel, IntegrationError, InvalidInput, NonFiniteValue, Stats};
+use crate::error::{ConstraintLevel, IntegrationError, InvalidInput, NonFiniteValue};
+use crate::model::constraints::{Holonomic, Visitor};
+use crate::model::settings::{Drift, InitialConditions};
+use crate::trajectory::Stats;
 
 /// The consistent initial state of a constrained run, the corrections
 /// recorded in [`Stats`].
@@ -33,7 +35,7 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for StartOnManifold<'_, 
             qdot0,
             stats,
         } = self;
-        if let super::Drift::Baumgarte { alpha, beta } = settings.drift {
+        if let Drift::Baumgarte { alpha, beta } = settings.drift {
             let valid = |x: S| x.is_finite() && x >= S::zero();
             if !(valid(alpha) && valid(beta)) {
                 return Err(InvalidInput::InvalidBaumgarte { alpha, beta }.into());

@@ -14,9 +14,9 @@
 //!
 //! # The solve
 //!
-//! Every right-hand side ([`acceleration`](crate::solve::acceleration))
+//! Every right-hand side ([`acceleration`](crate::dynamics::acceleration))
 //! eliminates `q̈` on the stack: the Cholesky factor `L` of `M` (with the
-//! checks of [`solve_mass_matrix`](crate::solve::solve_mass_matrix)),
+//! checks of [`solve_mass_matrix`](crate::linalg::solve::solve_mass_matrix)),
 //! `Y = L⁻¹ Gᵀ`, the Schur complement `G M⁻¹ Gᵀ = Yᵀ Y` (`C × C`) and its
 //! Cholesky factor, then
 //!
@@ -95,7 +95,7 @@
 //! The constraint force on the coordinates is `−Gᵀ λ`, so `λ` depends on
 //! how the constraint is written: `φ = x² + y² − l²` (`G = 2 (x, y)`) for a
 //! bob on a rod gives `λ = T / (2 l)` for a rod tension `T`, `φ = √(x² +
-//! y²) − l` gives `λ = T` itself. [`Holonomic::multipliers`] gives them at
+//! y²) − l` gives `λ = T` itself. [`Multipliers::multipliers`] gives them at
 //! a state, [`annotate`] for every sample of a trajectory, with the
 //! residuals `φ` and `φ̇` beside them.
 //!
@@ -113,158 +113,18 @@
 //! drift control, a controller) hands the visitor the same constraints with
 //! its settings, or joined to its dynamics.
 //!
-//! The files, one concern each: `saddle.rs` (the solve, the accelerations
-//! and multipliers), `projection.rs` (the tolerances, the projections and
-//! drift control after a step), `initial.rs` (the start),
-//! `settings.rs` ([`Drift`], [`InitialConditions`], the layer
-//! [`ConstraintHandling`] that sets them for a run), `annotate.rs`
-//! ([`annotate`]), `rattle.rs` (the multipliers of the constrained
-//! variational step).
+//! Where it lives: the contract, [`Holonomic`], its [`Visitor`] and the
+//! settings, in `model/constraints.rs` and `model/settings.rs`; the solve,
+//! the projections, the start and [`annotate`] in `dynamics/` (`saddle.rs`,
+//! `projection.rs`, `start.rs`, `annotate.rs`); the constrained variational
+//! step in `integrators/variational/` (`constrained.rs`, `rattle.rs`). This
+//! module gathers what a user names.
 
-use nalgebra::{RealField, SMatrix, SVector};
-
-use crate::model::Layered;
-use crate::{IntegrationError, Lagrangian};
-
-mod annotate;
-mod initial;
-mod projection;
-mod rattle;
-mod saddle;
-pub(crate) mod settings;
-
-pub use annotate::{annotate, ConstrainedSample};
-pub use settings::{Constrained, ConstraintHandling, ConstraintSettings, Drift, InitialConditions};
-
-pub(crate) use initial::StartOnManifold;
-pub(crate) use projection::{project_position, DriftControl, ProjectSample, VelocityProjection};
-pub(crate) use rattle::{Multipliers, Outer, RattleStep};
-pub(crate) use saddle::{constrained_accelerations, Accelerations, Schur};
-
-/// A model with `C` holonomic constraints `φ(t, q) = 0` on its `N`
-/// coordinates (`C < N`).
-///
-/// `lagrangian!` implements it for every model with a `constraints:`
-/// section; the four required methods are generated from the constraints
-/// symbolically.
-pub trait Holonomic<const N: usize, const C: usize>: Lagrangian<N> {
-    /// Names of the constraints, in the order of `φ`.
-    const CONSTRAINTS: [&'static str; C];
-
-    /// The constraint values `φ(t, q)`: zero on the constraint manifold.
-    fn constraints(
-        &self,
-        t: Self::Scalar,
-        q: &SVector<Self::Scalar, N>,
-    ) -> SVector<Self::Scalar, C>;
-
-    /// The constraint Jacobian `G(t, q) = ∂φ/∂q`, `C × N`.
-    fn constraint_jacobian(
-        &self,
-        t: Self::Scalar,
-        q: &SVector<Self::Scalar, N>,
-    ) -> SMatrix<Self::Scalar, C, N>;
-
-    /// The constraint velocities `φ̇ = G q̇ + ∂φ/∂t`: zero for a state on
-    /// the manifold moving along it.
-    fn constraint_velocities(
-        &self,
-        t: Self::Scalar,
-        q: &SVector<Self::Scalar, N>,
-        qdot: &SVector<Self::Scalar, N>,
-    ) -> SVector<Self::Scalar, C>;
-
-    /// The bias `γ(t, q, q̇)` with `φ̈ = G q̈ + γ`: the part of the constraint
-    /// accelerations that does not depend on `q̈`.
-    fn constraint_bias(
-        &self,
-        t: Self::Scalar,
-        q: &SVector<Self::Scalar, N>,
-        qdot: &SVector<Self::Scalar, N>,
-    ) -> SVector<Self::Scalar, C>;
-
-    /// `M`, `f`, `G` and `γ` together: generated models compute their
-    /// shared subexpressions once. The constrained right-hand side calls
-    /// this, once per evaluation.
-    #[allow(clippy::type_complexity)]
-    fn constrained_system(
-        &self,
-        t: Self::Scalar,
-        q: &SVector<Self::Scalar, N>,
-        qdot: &SVector<Self::Scalar, N>,
-    ) -> (
-        SMatrix<Self::Scalar, N, N>,
-        SVector<Self::Scalar, N>,
-        SMatrix<Self::Scalar, C, N>,
-        SVector<Self::Scalar, C>,
-    ) {
-        let (m, f) = self.mass_matrix_and_forcing(t, q, qdot);
-        (
-            m,
-            f,
-            self.constraint_jacobian(t, q),
-            self.constraint_bias(t, q, qdot),
-        )
-    }
-
-    /// This model with another drift control, for its runs:
-    /// `method.integrate(&model.with_drift(Drift::None), ..)`. The model
-    /// is taken by value (a model from `lagrangian!` is `Copy`; borrow one
-    /// that is not: `(&model).with_drift(..)`).
-    fn with_drift(self, drift: Drift<Self::Scalar>) -> Constrained<Self, Self::Scalar>
-    where
-        Self: Sized,
-    {
-        Layered::new(self, ConstraintHandling::default()).drift(drift)
-    }
-
-    /// This model with another rule for inconsistent initial conditions.
-    fn with_initial_conditions(self, initial: InitialConditions) -> Constrained<Self, Self::Scalar>
-    where
-        Self: Sized,
-    {
-        Layered::new(self, ConstraintHandling::default()).initial_conditions(initial)
-    }
-
-    /// The multipliers `λ` of the constrained motion through `(t, q, q̇)`:
-    /// the constraint force on the coordinates is `−Gᵀ λ` (see
-    /// [the module](crate::constraints#multipliers) for their units). They
-    /// use `γ` itself, not a Baumgarte-modified bias: the forces of the
-    /// exact constrained motion.
-    fn multipliers(
-        &self,
-        t: Self::Scalar,
-        q: &SVector<Self::Scalar, N>,
-        qdot: &SVector<Self::Scalar, N>,
-    ) -> Result<SVector<Self::Scalar, C>, IntegrationError<Self::Scalar, N>> {
-        saddle::constrained_accelerations(self, t, q, qdot, None).map(|(_, lambda)| lambda)
-    }
-}
-
-/// Whether `model` has constraints: a visit that does nothing.
-pub(crate) fn is_constrained<L: Lagrangian<N>, const N: usize>(model: &L) -> bool {
-    struct Probe;
-    impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Probe {
-        type Output = ();
-        fn visit<H, const C: usize>(self, _: &H, _: ConstraintSettings<S>)
-        where
-            H: Holonomic<N, C, Scalar = S> + ?Sized,
-        {
-        }
-    }
-    model.visit_constraints(Probe).is_some()
-}
-
-/// What the integrators do with a constrained model, written once for
-/// every number of constraints: [`Lagrangian::visit_constraints`] calls
-/// [`visit`](Visitor::visit) with the model, its `C` and the settings of
-/// the run.
-pub trait Visitor<S: RealField + Copy, const N: usize> {
-    /// What the visit returns.
-    type Output;
-
-    /// Runs on a model with `C` constraints, kept as `settings` say.
-    fn visit<H, const C: usize>(self, model: &H, settings: ConstraintSettings<S>) -> Self::Output
-    where
-        H: Holonomic<N, C, Scalar = S> + ?Sized;
-}
+pub use crate::dynamics::annotate::{annotate, ConstrainedSample};
+pub use crate::dynamics::saddle::Multipliers;
+pub use crate::model::constraints::{Holonomic, Visitor};
+pub use crate::model::settings::{
+    Constrained, ConstraintHandling, ConstraintSettings, Drift, InitialConditions,
+};
+#[doc(no_inline)]
+pub use crate::model::Lagrangian;

@@ -1,16 +1,14 @@
-//! The saddle-point solve `M q̈ + Gᵀ λ = f`, `G q̈ = −γ` on the stack, and
-//! the `M⁻¹ Gᵀ (G M⁻¹ Gᵀ)⁻¹` that the projections share with it.
+//! The saddle-point system `M q̈ + Gᵀ λ = f`, `G q̈ = −γ` on the stack,
+//! and the `M⁻¹ Gᵀ (G M⁻¹ Gᵀ)⁻¹` that the projections share with it:
+//! matrices in, matrices out, no model.
 
-use crate::constraints::settings::ConstraintSettings;
-use nalgebra::{Cholesky, ComplexField, Const, RealField, SMatrix, SVector};
+use nalgebra::{Cholesky, Const, RealField, SMatrix, SVector};
 
-use super::{Holonomic, Visitor};
-use crate::solve::{mass_error, MassFactor, SolveError};
-use crate::{IntegrationError, NonFiniteValue};
+use super::solve::{MassFactor, SolveError};
 
 /// Why the saddle-point system has no usable solution.
 pub(crate) enum SaddleError {
-    /// Solving with `M` failed, as [`solve_mass_matrix`](crate::solve::solve_mass_matrix) says.
+    /// Solving with `M` failed, as [`solve_mass_matrix`](super::solve::solve_mass_matrix) says.
     Mass(SolveError),
     /// `G M⁻¹ Gᵀ` is singular or numerically so.
     Singular,
@@ -19,25 +17,6 @@ pub(crate) enum SaddleError {
 impl From<SolveError> for SaddleError {
     fn from(error: SolveError) -> Self {
         Self::Mass(error)
-    }
-}
-
-impl SaddleError {
-    /// The error as the integrators report it, at `(t, q, q̇)`.
-    pub(crate) fn at<S: RealField + Copy, const N: usize>(
-        self,
-        t: S,
-        q: &SVector<S, N>,
-        qdot: &SVector<S, N>,
-    ) -> IntegrationError<S, N> {
-        match self {
-            Self::Mass(error) => mass_error(error, t, q, qdot),
-            Self::Singular => IntegrationError::SingularConstraints {
-                t,
-                q: *q,
-                qdot: *qdot,
-            },
-        }
     }
 }
 
@@ -132,7 +111,7 @@ impl<S: RealField + Copy, const N: usize, const C: usize> Schur<S, N, C> {
 }
 
 /// `(q̈, λ)` of the saddle-point system with bias `gamma`.
-fn solve_saddle<S: RealField + Copy, const N: usize, const C: usize>(
+pub(crate) fn solve_saddle<S: RealField + Copy, const N: usize, const C: usize>(
     mass: &MassFactor<S, N>,
     f: &SVector<S, N>,
     g: &SMatrix<S, C, N>,
@@ -146,64 +125,5 @@ fn solve_saddle<S: RealField + Copy, const N: usize, const C: usize>(
         Ok((qddot, lambda))
     } else {
         Err(SaddleError::Singular)
-    }
-}
-
-/// `(q̈, λ)` of `model` at `(t, q, q̇)`: one right-hand side. With
-/// `baumgarte = Some((2α, β²))`, the bias carries the Baumgarte terms
-/// `2α φ̇ + β² φ` of the run's drift control.
-#[allow(clippy::type_complexity)]
-pub(crate) fn constrained_accelerations<H, const N: usize, const C: usize>(
-    model: &H,
-    t: H::Scalar,
-    q: &SVector<H::Scalar, N>,
-    qdot: &SVector<H::Scalar, N>,
-    baumgarte: Option<(H::Scalar, H::Scalar)>,
-) -> Result<(SVector<H::Scalar, N>, SVector<H::Scalar, C>), IntegrationError<H::Scalar, N>>
-where
-    H: Holonomic<N, C> + ?Sized,
-{
-    let non_finite = |value| IntegrationError::NonFiniteState {
-        t,
-        q: *q,
-        qdot: *qdot,
-        value,
-    };
-    if !t.is_finite() || !q.iter().chain(qdot.iter()).all(|x| x.is_finite()) {
-        return Err(non_finite(NonFiniteValue::State));
-    }
-    let (m, f, g, mut gamma) = model.constrained_system(t, q, qdot);
-    if let Some((two_alpha, beta2)) = baumgarte {
-        let phi = model.constraints(t, q);
-        let phidot = model.constraint_velocities(t, q, qdot);
-        gamma += phidot * two_alpha + phi * beta2;
-    }
-    let mass = crate::solve::factor_mass_matrix(&m).map_err(|e| mass_error(e, t, q, qdot))?;
-    if !f.iter().all(|x| x.is_finite()) {
-        return Err(non_finite(NonFiniteValue::Forcing));
-    }
-    if !g.iter().chain(gamma.iter()).all(|x| x.is_finite()) {
-        return Err(non_finite(NonFiniteValue::Constraints));
-    }
-    solve_saddle(&mass, &f, &g, &gamma).map_err(|e| e.at(t, q, qdot))
-}
-
-/// `q̈` of a constrained model, for [`acceleration`](crate::solve::acceleration).
-pub(crate) struct Accelerations<'a, S, const N: usize> {
-    pub(crate) t: S,
-    pub(crate) q: &'a SVector<S, N>,
-    pub(crate) qdot: &'a SVector<S, N>,
-}
-
-impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Accelerations<'_, S, N> {
-    type Output = Result<SVector<S, N>, IntegrationError<S, N>>;
-
-    fn visit<H, const C: usize>(self, model: &H, settings: ConstraintSettings<S>) -> Self::Output
-    where
-        H: Holonomic<N, C, Scalar = S> + ?Sized,
-    {
-        let baumgarte = settings.baumgarte();
-        constrained_accelerations(model, self.t, self.q, self.qdot, baumgarte)
-            .map(|(qddot, _)| qddot)
     }
 }

@@ -4,8 +4,8 @@
 
 use nalgebra::RealField;
 
+use crate::model::Lagrangian;
 use crate::model::{Layer, Layered};
-use crate::Lagrangian;
 
 /// How the drift of `φ` and `φ̇` away from zero is controlled (see
 /// [the module](super#drift-and-how-to-control-it) for what each costs).
@@ -34,17 +34,17 @@ pub enum Drift<S> {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum InitialConditions {
     /// Project it as after a step, report the corrections in
-    /// [`Stats`](crate::Stats) and integrate from the corrected state (the
+    /// [`Stats`](crate::trajectory::Stats) and integrate from the corrected state (the
     /// sample at `t0` is that state). The default.
     #[default]
     Project,
     /// Refuse it with
-    /// [`InconsistentInitialConditions`](crate::InvalidInput::InconsistentInitialConditions).
+    /// [`InconsistentInitialConditions`](crate::error::InvalidInput::InconsistentInitialConditions).
     Reject,
 }
 
 /// The constraint handling of one run, as a constrained model hands it to
-/// a [`Visitor`](super::Visitor) with its constraints.
+/// a [`Visitor`](super::constraints::Visitor) with its constraints.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct ConstraintSettings<S> {
@@ -100,8 +100,8 @@ impl<S> Default for ConstraintHandling<S> {
 }
 
 /// A constrained model with its own drift control or rule for inconsistent
-/// initial conditions: [`Holonomic::with_drift`](super::Holonomic::with_drift),
-/// [`Holonomic::with_initial_conditions`](super::Holonomic::with_initial_conditions).
+/// initial conditions: [`Holonomic::with_drift`](super::constraints::Holonomic::with_drift),
+/// [`Holonomic::with_initial_conditions`](super::constraints::Holonomic::with_initial_conditions).
 /// Integrate it like the model itself:
 ///
 /// ```text

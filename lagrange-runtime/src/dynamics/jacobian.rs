@@ -4,15 +4,18 @@
 //! `∂q̈/∂q̇ = −M⁻¹ ∂r/∂q̇`. With the model's exact residual Jacobians
 //! (`#[lagrange(jacobians)]`) Newton converges quadratically; without them
 //! they come from forward differences of `q̈`, `N` extra right-hand sides per
-//! block, counted in [`Stats::rhs_evals`](crate::Stats). A constrained
+//! block, counted in [`Stats::rhs_evals`](crate::trajectory::Stats). A constrained
 //! model always takes the differences: its `q̈` comes from the saddle-point
 //! system, which the residual Jacobians do not describe.
 
 use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
-use super::solve::{acceleration, solve_mass_matrix, SolveError};
-use crate::constraints::is_constrained;
-use crate::{IntegrationError, Lagrangian, NonFiniteValue, Stats};
+use super::acceleration;
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::solve::{solve_mass_matrix, SolveError};
+use crate::model::constraints::is_constrained;
+use crate::model::Lagrangian;
+use crate::trajectory::Stats;
 
 /// `(∂q̈/∂q, ∂q̈/∂q̇)` at `(t, q, q̇)`, where `qddot` is `q̈` there.
 #[allow(clippy::type_complexity)]

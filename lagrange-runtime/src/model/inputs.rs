@@ -1,47 +1,14 @@
-//! Control inputs: models whose forces depend on values `u` that change
-//! during a run, set by a controller.
-//!
-//! A model written with an `inputs:` section implements [`Actuated`]
-//! besides [`Lagrangian`]: its `K` inputs are fields of the model that a
-//! controller sets before each evaluation, and `∂f/∂u` is generated
-//! symbolically beside `M` and `f`.
-//!
-//! Inputs start unset (NaN), and the integrators refuse a model whose
-//! inputs were never set ([`InvalidInput::InputsNotSet`](crate::InvalidInput::InputsNotSet)):
-//! no run silently integrates NaN or a zero nobody chose. Two ways to set
-//! them:
-//!
-//! - **constant inputs**: [`model.with_inputs(&u)`](Actuated::with_inputs),
-//!   integrated like any model;
-//! - **a controller**: [`model.with_controller(|t, q, qdot| u)`](Actuated::with_controller),
-//!   a [`Controlled`] model (the model under the [`Controller`] layer) that
-//!   calls the controller once per evaluation of the right-hand side and
-//!   integrates like any model. A prescribed input
-//!   `u(t)` is a controller that ignores `q` and `q̇`; a feedback law reads
-//!   them. A controller that returns a NaN or an infinity stops the run
-//!   with [`NonFiniteValue::Inputs`](crate::NonFiniteValue::Inputs) at that
-//!   `t` and state.
-//!
-//! Inputs never appear in the mass matrix, the momenta or the constraints
-//! (`lagrangian!` refuses them there: their time derivatives would be
-//! needed), so `M(t, q)`, `p` and `φ` are evaluated without the controller.
-//!
-//! The runtime reaches a model's inputs through
-//! [`Lagrangian::visit_inputs`], which hands a [`Visitor`] the model as
-//! [`Inputs<N, K>`] with its `K` known: what the inputs are called, and
-//! what they are at a state. That is how a run refuses inputs never set,
-//! and blames a controller's NaN, whatever layers the model is under.
-//!
-//! The compiled example is on `lagrange::models::CartPole`.
-
-mod controlled;
-
-pub use controlled::{Controlled, Controller};
+//! The contract of a model with control inputs: [`Actuated`] (inputs held
+//! in the model and set by hand), [`Inputs`] (what the runtime reads of
+//! them, also under a controller) and the [`Visitor`] through which a run
+//! reaches them (see [`inputs`](crate::inputs) for how they are used).
 
 use nalgebra::{RealField, SMatrix, SVector};
 
-use crate::model::Layered;
-use crate::Lagrangian;
+use super::controller::{Controlled, Controller};
+use super::layer::{FiniteDifferences, Layer, Layered};
+use super::settings::ConstraintHandling;
+use super::Lagrangian;
 
 /// What the runtime reads of a model's `K` control inputs: their names,
 /// the values the model evaluates with at a state, and the values it
@@ -166,13 +133,13 @@ pub trait Actuated<const N: usize, const K: usize>: Lagrangian<N> {
 /// controlled model's inputs are the controller's, never set by hand.
 pub trait KeepsInputs {}
 
-impl<S> KeepsInputs for crate::constraints::ConstraintHandling<S> {}
-impl KeepsInputs for crate::model::FiniteDifferences {}
+impl<S> KeepsInputs for ConstraintHandling<S> {}
+impl KeepsInputs for FiniteDifferences {}
 
 impl<M, A, const N: usize, const K: usize> Actuated<N, K> for Layered<M, A>
 where
     M: Actuated<N, K>,
-    A: crate::model::Layer<M, N> + KeepsInputs,
+    A: Layer<M, N> + KeepsInputs,
 {
     const INPUTS: [&'static str; K] = M::INPUTS;
 
@@ -194,58 +161,6 @@ where
         qdot: &SVector<Self::Scalar, N>,
     ) -> SMatrix<Self::Scalar, N, K> {
         self.model().input_jacobian(t, q, qdot)
-    }
-}
-
-/// The input that explains a non-finite evaluation at `(t, q, q̇)`:
-/// [`NonFiniteValue::Inputs`](crate::NonFiniteValue::Inputs) when the
-/// inputs the model evaluates with there (its controller's) are not
-/// finite, else `value`.
-pub(crate) fn blame<L: Lagrangian<N>, const N: usize>(
-    model: &L,
-    value: crate::NonFiniteValue,
-    t: L::Scalar,
-    q: &SVector<L::Scalar, N>,
-    qdot: &SVector<L::Scalar, N>,
-) -> crate::NonFiniteValue {
-    use crate::NonFiniteValue as V;
-    struct Finite<'a, S, const N: usize> {
-        t: S,
-        q: &'a SVector<S, N>,
-        qdot: &'a SVector<S, N>,
-    }
-    impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Finite<'_, S, N> {
-        type Output = bool;
-        fn visit<A, const K: usize>(self, model: &A) -> bool
-        where
-            A: Inputs<N, K, Scalar = S> + ?Sized,
-        {
-            let u = model.inputs_at(self.t, self.q, self.qdot);
-            u.iter().all(|x| x.is_finite())
-        }
-    }
-    match value {
-        V::Forcing | V::LagrangianGradient | V::NonconservativeForces | V::Jacobian
-            if model.visit_inputs(Finite { t, q, qdot }) == Some(false) =>
-        {
-            V::Inputs
-        }
-        _ => value,
-    }
-}
-
-/// An error of an evaluation at a state, with a non-finite value blamed on
-/// the inputs where they are to blame (see [`blame`]).
-pub(crate) fn blame_error<L: Lagrangian<N>, const N: usize>(
-    model: &L,
-    error: crate::IntegrationError<L::Scalar, N>,
-) -> crate::IntegrationError<L::Scalar, N> {
-    match error {
-        crate::IntegrationError::NonFiniteState { t, q, qdot, value } => {
-            let value = blame(model, value, t, &q, &qdot);
-            crate::IntegrationError::NonFiniteState { t, q, qdot, value }
-        }
-        error => error,
     }
 }
 

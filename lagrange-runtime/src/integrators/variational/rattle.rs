@@ -17,23 +17,26 @@
 //! `G` and `M` at `q_k`: it contracts by `O(h)` per iteration, from a
 //! guess (the previous step's force) `O(h)` off.
 
-use crate::constraints::settings::ConstraintSettings;
+use crate::dynamics::saddle::saddle_error;
+use crate::model::settings::ConstraintSettings;
 use nalgebra::{RealField, SVector};
 
-use super::projection::position_tolerance;
-use super::saddle::Schur;
-use super::{Holonomic, Visitor};
-use crate::solve::{factor_mass_matrix, mass_error};
-use crate::{IntegrationError, NonFiniteValue};
+use crate::dynamics::mass_error;
+use crate::dynamics::projection::position_tolerance;
+use crate::dynamics::saddle::Multipliers;
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::schur::Schur;
+use crate::linalg::solve::factor_mass_matrix;
+use crate::model::constraints::{Holonomic, Visitor};
 
 /// The constraint force `Gᵀ λ` at a state: the first step's guess.
-pub(crate) struct Multipliers<'a, S, const N: usize> {
+pub(crate) struct StartForce<'a, S, const N: usize> {
     pub(crate) t: S,
     pub(crate) q: &'a SVector<S, N>,
     pub(crate) qdot: &'a SVector<S, N>,
 }
 
-impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Multipliers<'_, S, N> {
+impl<S: RealField + Copy, const N: usize> Visitor<S, N> for StartForce<'_, S, N> {
     type Output = Result<SVector<S, N>, IntegrationError<S, N>>;
 
     fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> Self::Output
@@ -99,7 +102,7 @@ where
             let (q, qdot, value) = (*q, *qdot, NonFiniteValue::Constraints);
             return Err(IntegrationError::NonFiniteState { t, q, qdot, value }.into());
         }
-        let schur = Schur::new(&mass, &g).map_err(|e| e.at(t, q, qdot))?;
+        let schur = Schur::new(&mass, &g).map_err(|e| saddle_error(e, t, q, qdot))?;
         // The previous force's components along the rows of G, in the
         // metric of M⁻¹: exact where G has not changed.
         let mut lambda = schur.solve(&(schur.x.transpose() * guess));

@@ -2,13 +2,16 @@
 //! projections of `q` onto `φ = 0` and of `q̇` onto `φ̇ = 0` in the metric of
 //! `M`, and the drift control every integrator applies after a step.
 
-use crate::constraints::settings::ConstraintSettings;
+use crate::dynamics::saddle::saddle_error;
+use crate::model::settings::ConstraintSettings;
 use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
-use super::saddle::Schur;
-use super::{Holonomic, Visitor};
-use crate::solve::{factor_mass_matrix, mass_error};
-use crate::{IntegrationError, NonFiniteValue, Stats};
+use crate::dynamics::mass_error;
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::schur::Schur;
+use crate::linalg::solve::factor_mass_matrix;
+use crate::model::constraints::{Holonomic, Visitor};
+use crate::trajectory::Stats;
 
 /// Newton iterations a position projection may take. From the end of a
 /// step (`|φ|` the size of the local error) one or two reach rounding; an
@@ -119,8 +122,10 @@ where
                 qdot: *qdot,
             });
         }
-        let schur = Schur::new(&mass, &g).map_err(|e| e.at(t, &q, qdot))?;
-        let (delta, _) = schur.correction(&phi).map_err(|e| e.at(t, &q, qdot))?;
+        let schur = Schur::new(&mass, &g).map_err(|e| saddle_error(e, t, &q, qdot))?;
+        let (delta, _) = schur
+            .correction(&phi)
+            .map_err(|e| saddle_error(e, t, &q, qdot))?;
         q += delta;
         iterations += 1;
         stats.projection_iterations += 1;
@@ -149,8 +154,10 @@ where
         let (q, qdot, value) = (*q, *qdot, NonFiniteValue::Constraints);
         return Err(IntegrationError::NonFiniteState { t, q, qdot, value });
     }
-    let schur = Schur::new(&mass, &g).map_err(|e| e.at(t, q, qdot))?;
-    let (delta, mu) = schur.correction(&phidot).map_err(|e| e.at(t, q, qdot))?;
+    let schur = Schur::new(&mass, &g).map_err(|e| saddle_error(e, t, q, qdot))?;
+    let (delta, mu) = schur
+        .correction(&phidot)
+        .map_err(|e| saddle_error(e, t, q, qdot))?;
     Ok((qdot + delta, mu))
 }
 

@@ -1,0 +1,89 @@
+//! The dynamics of a model: `q̈` (and, with constraints, `λ`) at a state,
+//! and whom to blame for a value that is not finite. Between the linear
+//! algebra, which knows no models (`linalg/`), and the run loops
+//! (`driver/`): every method's right-hand side is [`acceleration`].
+//!
+//! - `mod.rs`: [`acceleration`], constrained or not, its errors at
+//!   `(t, q, q̇)`;
+//! - `saddle.rs`: the constrained accelerations and multipliers
+//!   ([`Multipliers`](saddle::Multipliers));
+//! - `blame.rs`: a non-finite value blamed on the inputs where they are not
+//!   finite at that state;
+//! - `jacobian.rs`: [`acceleration_jacobians`], `∂q̈/∂q` and `∂q̈/∂q̇`;
+//! - `projection.rs`: the constraints' rounding-level tolerances, the
+//!   projections onto them and the drift control after a step;
+//! - `start.rs`: a constrained run's initial state, projected or refused;
+//! - `annotate.rs`: the multipliers and residuals of every sample.
+
+use nalgebra::{ComplexField, RealField, SVector};
+
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::solve::{solve_mass_matrix, SolveError};
+use crate::model::Lagrangian;
+use saddle::Accelerations;
+
+pub(crate) mod annotate;
+pub(crate) mod blame;
+mod jacobian;
+pub(crate) mod projection;
+pub(crate) mod saddle;
+pub(crate) mod start;
+
+pub use jacobian::acceleration_jacobians;
+
+/// `q̈` of `model` in the state `(t, q, q̇)`: one right-hand side evaluation.
+///
+/// For a model with constraints (see [`constraints`](crate::constraints))
+/// this is the saddle-point solve of `M q̈ + Gᵀ λ = f`, `G q̈ = −γ`; a
+/// model in minimal coordinates solves `M q̈ = f` as ever. Errors carry `t`
+/// and the state, as the integrators report them.
+#[inline]
+pub fn acceleration<L: Lagrangian<N>, const N: usize>(
+    model: &L,
+    t: L::Scalar,
+    q: &SVector<L::Scalar, N>,
+    qdot: &SVector<L::Scalar, N>,
+) -> Result<SVector<L::Scalar, N>, IntegrationError<L::Scalar, N>> {
+    let non_finite = |value| IntegrationError::NonFiniteState {
+        t,
+        q: *q,
+        qdot: *qdot,
+        value,
+    };
+    if !t.is_finite() || !all_finite(q.iter()) || !all_finite(qdot.iter()) {
+        return Err(non_finite(NonFiniteValue::State));
+    }
+    if let Some(constrained) = model.visit_constraints(Accelerations { t, q, qdot }) {
+        // A controller's non-finite inputs show as a non-finite forcing.
+        return constrained.map_err(|error| blame::blame_error(model, error));
+    }
+    let (m, f) = model.mass_matrix_and_forcing(t, q, qdot);
+    solve_mass_matrix(&m, &f).map_err(|err| match err {
+        // A controller's non-finite inputs show as a non-finite forcing.
+        SolveError::NonFiniteForcing => {
+            non_finite(blame::blame(model, NonFiniteValue::Forcing, t, q, qdot))
+        }
+        err => mass_error(err, t, q, qdot),
+    })
+}
+
+/// A failed solve with `M` as the integrators report it, at `(t, q, q̇)`.
+pub(crate) fn mass_error<S: RealField + Copy, const N: usize>(
+    err: SolveError,
+    t: S,
+    q: &SVector<S, N>,
+    qdot: &SVector<S, N>,
+) -> IntegrationError<S, N> {
+    let (q, qdot) = (*q, *qdot);
+    let non_finite = |value| IntegrationError::NonFiniteState { t, q, qdot, value };
+    match err {
+        SolveError::NonFiniteMassMatrix => non_finite(NonFiniteValue::MassMatrix),
+        SolveError::NonFiniteForcing => non_finite(NonFiniteValue::Forcing),
+        SolveError::Singular => IntegrationError::SingularMassMatrix { t, q, qdot },
+        SolveError::Indefinite => IntegrationError::IndefiniteMassMatrix { t, q, qdot },
+    }
+}
+
+fn all_finite<'a, S: RealField + Copy>(mut values: impl Iterator<Item = &'a S>) -> bool {
+    values.all(|x| x.is_finite())
+}

@@ -1,0 +1,109 @@
+//! `q̈` and `λ` of a constrained model: the saddle-point solve of
+//! `linalg/schur.rs` on the model's `M`, `f`, `G` and `γ`, with the
+//! run's Baumgarte terms, errors at `(t, q, q̇)`.
+
+use nalgebra::{ComplexField, RealField, SVector};
+
+use super::mass_error;
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::schur::{solve_saddle, SaddleError};
+use crate::linalg::solve::factor_mass_matrix;
+use crate::model::constraints::{Holonomic, Visitor};
+use crate::model::settings::ConstraintSettings;
+
+/// A failed saddle-point solve as the integrators report it, at
+/// `(t, q, q̇)`.
+pub(crate) fn saddle_error<S: RealField + Copy, const N: usize>(
+    error: SaddleError,
+    t: S,
+    q: &SVector<S, N>,
+    qdot: &SVector<S, N>,
+) -> IntegrationError<S, N> {
+    match error {
+        SaddleError::Mass(error) => mass_error(error, t, q, qdot),
+        SaddleError::Singular => IntegrationError::SingularConstraints {
+            t,
+            q: *q,
+            qdot: *qdot,
+        },
+    }
+}
+
+/// `(q̈, λ)` of `model` at `(t, q, q̇)`: one right-hand side. With
+/// `baumgarte = Some((2α, β²))`, the bias carries the Baumgarte terms
+/// `2α φ̇ + β² φ` of the run's drift control.
+#[allow(clippy::type_complexity)]
+pub(crate) fn constrained_accelerations<H, const N: usize, const C: usize>(
+    model: &H,
+    t: H::Scalar,
+    q: &SVector<H::Scalar, N>,
+    qdot: &SVector<H::Scalar, N>,
+    baumgarte: Option<(H::Scalar, H::Scalar)>,
+) -> Result<(SVector<H::Scalar, N>, SVector<H::Scalar, C>), IntegrationError<H::Scalar, N>>
+where
+    H: Holonomic<N, C> + ?Sized,
+{
+    let non_finite = |value| IntegrationError::NonFiniteState {
+        t,
+        q: *q,
+        qdot: *qdot,
+        value,
+    };
+    if !t.is_finite() || !q.iter().chain(qdot.iter()).all(|x| x.is_finite()) {
+        return Err(non_finite(NonFiniteValue::State));
+    }
+    let (m, f, g, mut gamma) = model.constrained_system(t, q, qdot);
+    if let Some((two_alpha, beta2)) = baumgarte {
+        let phi = model.constraints(t, q);
+        let phidot = model.constraint_velocities(t, q, qdot);
+        gamma += phidot * two_alpha + phi * beta2;
+    }
+    let mass = factor_mass_matrix(&m).map_err(|e| mass_error(e, t, q, qdot))?;
+    if !f.iter().all(|x| x.is_finite()) {
+        return Err(non_finite(NonFiniteValue::Forcing));
+    }
+    if !g.iter().chain(gamma.iter()).all(|x| x.is_finite()) {
+        return Err(non_finite(NonFiniteValue::Constraints));
+    }
+    solve_saddle(&mass, &f, &g, &gamma).map_err(|e| saddle_error(e, t, q, qdot))
+}
+
+/// `q̈` of a constrained model, for [`acceleration`](super::acceleration).
+pub(crate) struct Accelerations<'a, S, const N: usize> {
+    pub(crate) t: S,
+    pub(crate) q: &'a SVector<S, N>,
+    pub(crate) qdot: &'a SVector<S, N>,
+}
+
+impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Accelerations<'_, S, N> {
+    type Output = Result<SVector<S, N>, IntegrationError<S, N>>;
+
+    fn visit<H, const C: usize>(self, model: &H, settings: ConstraintSettings<S>) -> Self::Output
+    where
+        H: Holonomic<N, C, Scalar = S> + ?Sized,
+    {
+        let baumgarte = settings.baumgarte();
+        constrained_accelerations(model, self.t, self.q, self.qdot, baumgarte)
+            .map(|(qddot, _)| qddot)
+    }
+}
+
+/// The multipliers of a constrained model: [`multipliers`](Multipliers::multipliers)
+/// for every [`Holonomic`] model (in the prelude).
+pub trait Multipliers<const N: usize, const C: usize>: Holonomic<N, C> {
+    /// The multipliers `λ` of the constrained motion through `(t, q, q̇)`:
+    /// the constraint force on the coordinates is `−Gᵀ λ` (see
+    /// [the module](crate::constraints#multipliers) for their units). They
+    /// use `γ` itself, not a Baumgarte-modified bias: the forces of the
+    /// exact constrained motion.
+    fn multipliers(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> Result<SVector<Self::Scalar, C>, IntegrationError<Self::Scalar, N>> {
+        constrained_accelerations(self, t, q, qdot, None).map(|(_, lambda)| lambda)
+    }
+}
+
+impl<H: Holonomic<N, C> + ?Sized, const N: usize, const C: usize> Multipliers<N, C> for H {}

@@ -1,0 +1,105 @@
+//! The runtime's layers, checked: every module imports only from modules
+//! below it, by the real path of what it imports (never through the
+//! crate root's re-exports), so there is no import loop and no import
+//! from a lower layer to a higher one. ARCHITECTURE.md draws the same
+//! order.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+/// The top-level modules, lowest first. A module may import from the
+/// ones before it. `constraints` and `inputs` are the user's doors (docs
+/// and re-exports of the contract and the dynamics): nothing inside
+/// imports through them.
+const LAYERS: &[&str] = &[
+    "names",       // serde of the names errors and events carry
+    "trig",        // the sine and cosine of generated code
+    "trajectory",  // samples, events, statistics: data
+    "error",       // what went wrong, with the trajectory so far
+    "linalg",      // matrices, no models
+    "model",       // the contract: Lagrangian, its capabilities, layers
+    "dynamics",    // q̈ and λ of a model at a state; blame
+    "events",      // functions of the state, located on an interpolant
+    "driver",      // the run loops, recording, validation
+    "integrators", // one method per file
+    "stepper",     // frame by frame
+    "analysis",    // small motions
+    "export",      // results out
+    "interop",     // other crates' solvers
+    "constraints", // the user's door to constraints
+    "inputs",      // the user's door to inputs
+];
+
+/// Every `crate::<module>` a source file names in code (comments, doc
+/// comments included, are skipped), with `use crate::{a, b}` groups split.
+fn imported(source: &str) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    for line in source.lines() {
+        let code = line.split("//").next().unwrap_or("");
+        let mut rest = code;
+        while let Some(at) = rest.find("crate::") {
+            rest = &rest[at + "crate::".len()..];
+            if let Some(group) = rest.strip_prefix('{') {
+                let end = group.find('}').unwrap_or(group.len());
+                for item in group[..end].split(',') {
+                    let name = item.trim().split("::").next().unwrap_or("");
+                    out.insert(name.trim().to_string());
+                }
+            } else {
+                let name: String = rest
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect();
+                out.insert(name);
+            }
+        }
+    }
+    out.remove("");
+    out
+}
+
+fn sources(dir: &Path, out: &mut Vec<(String, String)>) {
+    for entry in std::fs::read_dir(dir).expect("reads the source tree") {
+        let path = entry.expect("an entry").path();
+        if path.is_dir() {
+            sources(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            let text = std::fs::read_to_string(&path).expect("reads a source file");
+            out.push((path.display().to_string(), text));
+        }
+    }
+}
+
+#[test]
+fn every_module_imports_only_from_the_layers_below_it() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    sources(&src, &mut files);
+    let mut wrong = Vec::new();
+    for (path, text) in &files {
+        let relative = path.trim_start_matches(&*src.display().to_string());
+        let module = relative
+            .trim_start_matches('/')
+            .split('/')
+            .next()
+            .unwrap_or("")
+            .trim_end_matches(".rs");
+        if module == "lib" || module == "layers" {
+            continue;
+        }
+        let Some(level) = LAYERS.iter().position(|m| *m == module) else {
+            wrong.push(format!("{relative}: module `{module}` is in no layer"));
+            continue;
+        };
+        for name in imported(text) {
+            match LAYERS.iter().position(|m| *m == name) {
+                Some(at) if at < level || name == module => {}
+                Some(_) => wrong.push(format!("{relative}: `{module}` imports `{name}`, above it")),
+                None => wrong.push(format!(
+                    "{relative}: `crate::{name}` goes through the crate root, not the module that defines it"
+                )),
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}

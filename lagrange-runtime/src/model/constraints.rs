@@ -1,0 +1,125 @@
+//! The contract of a model with holonomic constraints: [`Holonomic`], and
+//! the [`Visitor`] through which a run reaches it (see
+//! [`constraints`](crate::constraints) for what the runtime does with it).
+
+use nalgebra::{RealField, SMatrix, SVector};
+
+use super::layer::Layered;
+use super::settings::{
+    Constrained, ConstraintHandling, ConstraintSettings, Drift, InitialConditions,
+};
+use super::Lagrangian;
+
+/// A model with `C` holonomic constraints `φ(t, q) = 0` on its `N`
+/// coordinates (`C < N`).
+///
+/// `lagrangian!` implements it for every model with a `constraints:`
+/// section; the four required methods are generated from the constraints
+/// symbolically.
+pub trait Holonomic<const N: usize, const C: usize>: Lagrangian<N> {
+    /// Names of the constraints, in the order of `φ`.
+    const CONSTRAINTS: [&'static str; C];
+
+    /// The constraint values `φ(t, q)`: zero on the constraint manifold.
+    fn constraints(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+    ) -> SVector<Self::Scalar, C>;
+
+    /// The constraint Jacobian `G(t, q) = ∂φ/∂q`, `C × N`.
+    fn constraint_jacobian(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+    ) -> SMatrix<Self::Scalar, C, N>;
+
+    /// The constraint velocities `φ̇ = G q̇ + ∂φ/∂t`: zero for a state on
+    /// the manifold moving along it.
+    fn constraint_velocities(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> SVector<Self::Scalar, C>;
+
+    /// The bias `γ(t, q, q̇)` with `φ̈ = G q̈ + γ`: the part of the constraint
+    /// accelerations that does not depend on `q̈`.
+    fn constraint_bias(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> SVector<Self::Scalar, C>;
+
+    /// `M`, `f`, `G` and `γ` together: generated models compute their
+    /// shared subexpressions once. The constrained right-hand side calls
+    /// this, once per evaluation.
+    #[allow(clippy::type_complexity)]
+    fn constrained_system(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> (
+        SMatrix<Self::Scalar, N, N>,
+        SVector<Self::Scalar, N>,
+        SMatrix<Self::Scalar, C, N>,
+        SVector<Self::Scalar, C>,
+    ) {
+        let (m, f) = self.mass_matrix_and_forcing(t, q, qdot);
+        (
+            m,
+            f,
+            self.constraint_jacobian(t, q),
+            self.constraint_bias(t, q, qdot),
+        )
+    }
+
+    /// This model with another drift control, for its runs:
+    /// `method.integrate(&model.with_drift(Drift::None), ..)`. The model
+    /// is taken by value (a model from `lagrangian!` is `Copy`; borrow one
+    /// that is not: `(&model).with_drift(..)`).
+    fn with_drift(self, drift: Drift<Self::Scalar>) -> Constrained<Self, Self::Scalar>
+    where
+        Self: Sized,
+    {
+        Layered::new(self, ConstraintHandling::default()).drift(drift)
+    }
+
+    /// This model with another rule for inconsistent initial conditions.
+    fn with_initial_conditions(self, initial: InitialConditions) -> Constrained<Self, Self::Scalar>
+    where
+        Self: Sized,
+    {
+        Layered::new(self, ConstraintHandling::default()).initial_conditions(initial)
+    }
+}
+
+/// Whether `model` has constraints: a visit that does nothing.
+pub(crate) fn is_constrained<L: Lagrangian<N>, const N: usize>(model: &L) -> bool {
+    struct Probe;
+    impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Probe {
+        type Output = ();
+        fn visit<H, const C: usize>(self, _: &H, _: ConstraintSettings<S>)
+        where
+            H: Holonomic<N, C, Scalar = S> + ?Sized,
+        {
+        }
+    }
+    model.visit_constraints(Probe).is_some()
+}
+
+/// What the integrators do with a constrained model, written once for
+/// every number of constraints: [`Lagrangian::visit_constraints`] calls
+/// [`visit`](Visitor::visit) with the model, its `C` and the settings of
+/// the run.
+pub trait Visitor<S: RealField + Copy, const N: usize> {
+    /// What the visit returns.
+    type Output;
+
+    /// Runs on a model with `C` constraints, kept as `settings` say.
+    fn visit<H, const C: usize>(self, model: &H, settings: ConstraintSettings<S>) -> Self::Output
+    where
+        H: Holonomic<N, C, Scalar = S> + ?Sized;
+}
