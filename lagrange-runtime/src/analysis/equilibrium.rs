@@ -1,13 +1,45 @@
 //! Equilibria: configurations where the model stays at rest,
 //! `f(t, q, 0) = 0`, found by Newton's method.
 
-use nalgebra::{RealField, SMatrix, SVector};
+use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
-use super::derivatives::forcing_at_rest;
+use super::derivatives::{forcing_at_rest, relative_noise};
+use super::neutral::Neutral;
 use super::rest::{ManifoldSearch, ManifoldTest};
 use super::AnalysisError;
-use crate::linalg::solve::lu_solve;
 use crate::model::Lagrangian;
+
+/// An equilibrium, and the directions along which a family of them
+/// extends.
+///
+/// ```
+/// use lagrange::models::CartPole;
+/// use lagrange_runtime::analysis::equilibrium;
+/// use lagrange_runtime::nalgebra::{Vector1, Vector2};
+/// use lagrange_runtime::Actuated;
+///
+/// // The pole upright stays so wherever the cart stands: a family.
+/// let cart = CartPole::new(1.0, 0.2, 0.5, 9.81).with_inputs(&Vector1::new(0.0));
+/// let upright = equilibrium(&cart, 0.0, &Vector2::new(0.7, 3.0))?;
+/// assert!((upright.q - Vector2::new(0.7, std::f64::consts::PI)).amax() < 1e-12);
+/// assert_eq!(upright.neutral.len(), 1); // along the cart's position
+/// assert!((upright.neutral[0][0].abs() - 1.0).abs() < 1e-12);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct Equilibrium<S, const N: usize> {
+    /// The configuration at rest.
+    pub q: SVector<S, N>,
+    /// An orthonormal basis of the neutral directions at `q`: the
+    /// displacements `v` with `K v = 0` (`K = −∂f/∂q` at rest; for a
+    /// constrained model its part tangent to the constraints, mapped to
+    /// the coordinates), to the accuracy of the derivatives. Moving along
+    /// them changes no force to first order: the equilibrium is one of a
+    /// family (a cyclic coordinate, a free body, a symmetry). Empty for an
+    /// isolated equilibrium.
+    pub neutral: Vec<SVector<S, N>>,
+}
 
 /// Newton's method on `f(t, q, 0) = 0` with its settings; [`equilibrium`]
 /// runs it with the defaults.
@@ -23,6 +55,15 @@ use crate::model::Lagrangian;
 /// guess outside the basin of attraction) or the iterations run out.
 /// Models with inputs are searched at the inputs they hold.
 ///
+/// Where `∂f/∂q` is singular (a family of equilibria: the cart of an
+/// upright cart-pole may stand anywhere) the step is the minimum-norm
+/// Newton step, through the singular values of `∂f/∂q` (a singular value
+/// below the derivatives' accuracy counts as zero): it leaves the neutral
+/// directions alone, so the search converges to the member of the family
+/// nearest the guess, and the result names the neutral directions. Where
+/// `∂f/∂q` moves nothing at all and the force is not zero (a falling
+/// body), there is no equilibrium: [`AnalysisError::SingularStiffness`].
+///
 /// A constrained model's guess is first projected onto `φ = 0`; each
 /// iteration then solves `K_z δz = Tᵀ f` in the coordinates tangent to the
 /// constraints (`K_z` by central differences of the saddle-point `q̈`,
@@ -35,9 +76,9 @@ use crate::model::Lagrangian;
 /// use lagrange_runtime::nalgebra::Vector2;
 ///
 /// let search = EquilibriumSearch::new().max_iterations(20);
-/// let q = search.solve(&DoublePendulum::unit(), 0.0, &Vector2::new(3.0, 0.2))?;
+/// let found = search.solve(&DoublePendulum::unit(), 0.0, &Vector2::new(3.0, 0.2))?;
 /// // The upper rod upright, the lower one hanging.
-/// assert!((q - Vector2::new(std::f64::consts::PI, 0.0)).amax() < 1e-12);
+/// assert!((found.q - Vector2::new(std::f64::consts::PI, 0.0)).amax() < 1e-12);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -76,16 +117,17 @@ impl<S: RealField + Copy> EquilibriumSearch<S> {
         self
     }
 
-    /// An equilibrium near `guess` at time `t`: [`AnalysisError::NotConverged`]
-    /// (with the last finite iterate and its residual) when the iterations
-    /// run out or diverge, [`AnalysisError::SingularStiffness`] when
-    /// `∂f/∂q` is singular on the way.
+    /// An equilibrium near `guess` at time `t`, with its neutral
+    /// directions: [`AnalysisError::NotConverged`] (with the last finite
+    /// iterate and its residual) when the iterations run out or diverge,
+    /// [`AnalysisError::SingularStiffness`] when `∂f/∂q` moves no
+    /// coordinate while the force is not zero.
     pub fn solve<L: Lagrangian<N, Scalar = S>, const N: usize>(
         &self,
         model: &L,
         t: S,
         guess: &SVector<S, N>,
-    ) -> Result<SVector<S, N>, AnalysisError<S, N>> {
+    ) -> Result<Equilibrium<S, N>, AnalysisError<S, N>> {
         crate::model::ready(model).map_err(|e| AnalysisError::Model(e.into()))?;
         if let Some(result) = model.visit_constraints(ManifoldSearch {
             search: self,
@@ -98,11 +140,18 @@ impl<S: RealField + Copy> EquilibriumSearch<S> {
         let mut progress = Progress::new(guess);
         let mut residual = SVector::zeros();
         for iteration in 1..=self.max_iterations {
-            let (f, jacobian, _) = forcing_at_rest(model, t, &q)?;
+            let (f, jacobian, derivatives) = forcing_at_rest(model, t, &q)?;
             residual = f;
-            let Ok(step) = lu_solve(jacobian, -f) else {
+            let stiffness = Neutral::new(&dynamic(&jacobian), relative_noise(derivatives, N));
+            let Some(step) = stiffness.solve(&DVector::from_column_slice((-f).as_slice())) else {
+                // No direction responds: every one is neutral. At rest
+                // already, or at no equilibrium at all (a falling body).
+                if within(&f, &jacobian, &q, self.tolerance) {
+                    return family(model, t, q);
+                }
                 return Err(AnalysisError::SingularStiffness { t, q, residual: f });
             };
+            let step = SVector::from_column_slice(step.as_slice());
             let next = q + step;
             let not_converged = AnalysisError::NotConverged {
                 t,
@@ -112,8 +161,10 @@ impl<S: RealField + Copy> EquilibriumSearch<S> {
             };
             match progress.update(&step, &next) {
                 Verdict::Diverging => return Err(not_converged),
-                Verdict::Rounding => return Ok(next),
-                Verdict::Stalled if within(&f, &jacobian, &q, self.tolerance) => return Ok(next),
+                Verdict::Rounding => return family(model, t, next),
+                Verdict::Stalled if within(&f, &jacobian, &q, self.tolerance) => {
+                    return family(model, t, next)
+                }
                 _ => {}
             }
             q = next;
@@ -206,6 +257,28 @@ impl<'a, S: RealField + Copy, const N: usize> Progress<'a, S, N> {
     }
 }
 
+/// `q`, an equilibrium of `model`, with the neutral directions of the
+/// stiffness there.
+fn family<L: Lagrangian<N>, const N: usize>(
+    model: &L,
+    t: L::Scalar,
+    q: SVector<L::Scalar, N>,
+) -> Result<Equilibrium<L::Scalar, N>, AnalysisError<L::Scalar, N>> {
+    let (_, jacobian, derivatives) = forcing_at_rest(model, t, &q)?;
+    let stiffness = Neutral::new(&dynamic(&jacobian), relative_noise(derivatives, N));
+    let neutral = stiffness
+        .directions()
+        .iter()
+        .map(|v| SVector::from_column_slice(v.as_slice()))
+        .collect();
+    Ok(Equilibrium { q, neutral })
+}
+
+/// A stack matrix on the heap, for the singular value decomposition.
+pub(super) fn dynamic<S: RealField + Copy, const N: usize>(k: &SMatrix<S, N, N>) -> DMatrix<S> {
+    DMatrix::from_column_slice(N, N, k.as_slice())
+}
+
 /// An equilibrium of `model` near `guess` at time `t`, by
 /// [`EquilibriumSearch`] with its defaults.
 ///
@@ -214,15 +287,16 @@ impl<'a, S: RealField + Copy, const N: usize> Progress<'a, S, N> {
 /// use lagrange_runtime::analysis::equilibrium;
 /// use lagrange_runtime::nalgebra::Vector2;
 ///
-/// let q = equilibrium(&DoublePendulum::unit(), 0.0, &Vector2::new(0.3, -0.2))?;
-/// assert!(q.amax() < 1e-14); // hanging
+/// let hanging = equilibrium(&DoublePendulum::unit(), 0.0, &Vector2::new(0.3, -0.2))?;
+/// assert!(hanging.q.amax() < 1e-14);
+/// assert!(hanging.neutral.is_empty()); // isolated
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn equilibrium<L: Lagrangian<N>, const N: usize>(
     model: &L,
     t: L::Scalar,
     guess: &SVector<L::Scalar, N>,
-) -> Result<SVector<L::Scalar, N>, AnalysisError<L::Scalar, N>> {
+) -> Result<Equilibrium<L::Scalar, N>, AnalysisError<L::Scalar, N>> {
     EquilibriumSearch::new().solve(model, t, guess)
 }
 

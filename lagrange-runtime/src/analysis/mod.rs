@@ -44,7 +44,8 @@
 //!
 //! An equilibrium is a `q` where the model can stay at rest:
 //! `f(t, q, 0) = 0` (for a model with inputs, at the inputs it holds).
-//! [`equilibrium`] finds one by Newton's method from a guess, with
+//! [`equilibrium`] finds one by Newton's method from a guess (and, for a
+//! family of them, the member nearest it and the neutral directions), with
 //! `∂f/∂q` at rest as above; [`is_equilibrium`] tests a point with a
 //! tolerance relative to the model's own stiffness, free of units.
 //!
@@ -61,7 +62,7 @@
 //! use lagrange_runtime::nalgebra::Vector2;
 //!
 //! let pendulum = DoublePendulum::unit();
-//! let hanging = equilibrium(&pendulum, 0.0, &Vector2::new(0.2, -0.1))?;
+//! let hanging = equilibrium(&pendulum, 0.0, &Vector2::new(0.2, -0.1))?.q;
 //! let modes = modes(&pendulum, 0.0, &hanging)?;
 //! assert!(modes.is_stable());
 //!
@@ -100,7 +101,7 @@
 //!
 //! let (g, l): (f64, f64) = (9.81, 2.0);
 //! let pendulum = CartesianPendulum::new(1.0, l, g);
-//! let hanging = equilibrium(&pendulum, 0.0, &Vector2::new(0.3, -1.8))?; // off the circle
+//! let hanging = equilibrium(&pendulum, 0.0, &Vector2::new(0.3, -1.8))?.q; // off the circle
 //! assert!((hanging - Vector2::new(0.0, -l)).amax() < 1e-14);
 //! let swing = &modes(&pendulum, 0.0, &hanging)?.modes[0];
 //! assert!((swing.omega_squared - g / l).abs() < 1e-8);
@@ -131,9 +132,10 @@ mod linearize;
 mod manifold;
 mod manifold_inputs;
 mod modes;
+mod neutral;
 mod rest;
 
-pub use equilibrium::{equilibrium, is_equilibrium, EquilibriumSearch};
+pub use equilibrium::{equilibrium, is_equilibrium, Equilibrium, EquilibriumSearch};
 pub use error::AnalysisError;
 pub use linearize::{linearize, linearize_with_inputs, InputLinearization, Linearization};
 pub use manifold::{linearize_on_manifold, ManifoldLinearization};

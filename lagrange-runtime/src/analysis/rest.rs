@@ -8,9 +8,10 @@ use crate::model::settings::ConstraintSettings;
 use nalgebra::{ComplexField, DMatrix, DVector, RealField, SVector};
 
 use super::derivatives::{relative_noise, sqrt_epsilon};
-use super::equilibrium::{EquilibriumSearch, Progress, Verdict};
+use super::equilibrium::{Equilibrium, EquilibriumSearch, Progress, Verdict};
 use super::manifold::{along_basis, on_constraints, saddle, Tangent};
 use super::modes::{solve_modes, Modes};
+use super::neutral::Neutral;
 use super::{AnalysisError, Derivatives};
 use crate::dynamics::mass_error;
 use crate::dynamics::projection::project_position;
@@ -96,7 +97,8 @@ impl<S: RealField + Copy, const N: usize> Rest<S, N> {
 /// [`EquilibriumSearch::solve`] for a constrained model: the guess is
 /// projected onto `φ = 0` (the Newton projection of the integrators, in the
 /// metric of `M`), then each iteration takes the Newton step on the tangent
-/// force, `K_z δz = Tᵀ f`, moves by `T δz`, and projects back.
+/// force, `K_z δz = Tᵀ f` (the minimum-norm one where `K_z` is singular),
+/// moves by `T δz`, and projects back.
 pub(super) struct ManifoldSearch<'a, S, const N: usize> {
     pub(super) search: &'a EquilibriumSearch<S>,
     pub(super) t: S,
@@ -104,26 +106,39 @@ pub(super) struct ManifoldSearch<'a, S, const N: usize> {
 }
 
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for ManifoldSearch<'_, S, N> {
-    type Output = Result<SVector<S, N>, AnalysisError<S, N>>;
+    type Output = Result<Equilibrium<S, N>, AnalysisError<S, N>>;
 
     fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> Self::Output
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {
         let t = self.t;
+        // K_z is by central differences of the saddle-point q̈.
+        let noise = relative_noise::<S>(Derivatives::CentralDifferences, N - C);
         let zero = SVector::zeros();
         let mut stats = Stats::default();
         let mut project = |q: &SVector<S, N>| project_position(model, t, q, &zero, &mut stats);
         let mut q = project(self.guess)?;
         let mut progress = Progress::new(self.guess);
         let mut residual = SVector::zeros();
-        let d = N - C;
         for iteration in 1..=self.search.iterations() {
             let rest = at_rest(model, t, &q)?;
             residual = rest.unbalanced;
-            let singular = AnalysisError::SingularStiffness { t, q, residual };
-            let Some(dz) = solve(rest.stiffness.clone(), &rest.residual, d) else {
-                return Err(singular);
+            let found = |q: SVector<S, N>| -> Self::Output {
+                let rest = at_rest(model, t, &q)?;
+                let neutral = Neutral::new(&rest.stiffness, noise)
+                    .directions()
+                    .iter()
+                    .map(|v| SVector::from_fn(|i, _| (rest.tangent.basis.row(i) * v)[0]))
+                    .collect();
+                Ok(Equilibrium { q, neutral })
+            };
+            let Some(dz) = Neutral::new(&rest.stiffness, noise).solve(&rest.residual) else {
+                // Every tangent direction neutral: at rest, or none.
+                if rest.within(&q, self.search.tolerance_of()) {
+                    return found(q);
+                }
+                return Err(AnalysisError::SingularStiffness { t, q, residual });
             };
             let moved = q + SVector::<S, N>::from_fn(|i, _| (rest.tangent.basis.row(i) * &dz)[0]);
             let not_converged = AnalysisError::NotConverged {
@@ -138,8 +153,10 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for ManifoldSearch<'_, S
             let next = project(&moved)?;
             match progress.update(&(next - q), &next) {
                 Verdict::Diverging => return Err(not_converged),
-                Verdict::Rounding => return Ok(next),
-                Verdict::Stalled if rest.within(&q, self.search.tolerance_of()) => return Ok(next),
+                Verdict::Rounding => return found(next),
+                Verdict::Stalled if rest.within(&q, self.search.tolerance_of()) => {
+                    return found(next)
+                }
                 _ => {}
             }
             q = next;
@@ -152,20 +169,6 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for ManifoldSearch<'_, S
             iterations,
         })
     }
-}
-
-/// `K⁻¹ r` by LU, `None` when a pivot is zero or below `D ε` of the
-/// largest (the rule of the stack LU the free search uses).
-fn solve<S: RealField + Copy>(k: DMatrix<S>, r: &DVector<S>, d: usize) -> Option<DVector<S>> {
-    let lu = k.lu();
-    let pivots = lu.u().diagonal().map(|p| p.abs());
-    let n: S = nalgebra::convert(d as f64);
-    let (smallest, largest) = (pivots.min(), pivots.max());
-    if d > 0 && (!smallest.is_finite() || smallest <= n * S::default_epsilon() * largest) {
-        return None;
-    }
-    let x = lu.solve(r)?;
-    x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
 /// [`is_equilibrium`](super::is_equilibrium) for a constrained model: on

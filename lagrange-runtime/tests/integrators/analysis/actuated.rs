@@ -57,7 +57,7 @@ fn pushed_spring_rests_where_the_spring_balances_the_push() {
         c: 0.5,
         u: 4.0,
     };
-    let x = equilibrium(&model, 0.0, &Vector1::new(0.0)).unwrap()[0];
+    let x = equilibrium(&model, 0.0, &Vector1::new(0.0)).unwrap().q[0];
     // Newton to rounding on a function of slope ≈ 10: residual a few ε·4.
     assert!((8.0 * x - 4.0 * x.cos()).abs() < 1e-14, "{x}");
 }

@@ -87,7 +87,7 @@ fn equilibrium_of_the_cartesian_pendulum_is_found_from_off_the_circle() {
         (Vector2::new(0.5, -1.7), Vector2::new(0.0, -L)),
         (Vector2::new(-0.3, 2.4), Vector2::new(0.0, L)),
     ] {
-        let q = equilibrium(&model, 0.0, &guess).unwrap();
+        let q = equilibrium(&model, 0.0, &guess).unwrap().q;
         println!("equilibrium from {guess:?}: {q:?}");
         assert!((q - target).amax() < 1e-14, "{q} vs {target}");
         assert!(model.constraints(0.0, &q)[0].abs() < 1e-13);
@@ -190,7 +190,7 @@ fn hanging_four_bar_has_one_mode_with_the_simulated_period() {
     // (a scan of `FourBar::state`); start 0.33 rad away, off the loop.
     let (start, _) = linkage.state(-1.5, 0.0).unwrap();
     let guess = start + Vector3::new(0.0, 0.01, -0.02);
-    let rest = equilibrium(&linkage, 0.0, &guess).unwrap();
+    let rest = equilibrium(&linkage, 0.0, &guess).unwrap().q;
     let phi = linkage.constraints(0.0, &rest);
     assert!(phi.amax() < 1e-14, "{phi}");
     assert!(is_equilibrium(&linkage, 0.0, &rest, 1e-10).unwrap());
