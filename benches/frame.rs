@@ -36,7 +36,7 @@ fn frame_time<S: RealField + Copy>(k: usize) -> S {
 fn stepper<S, M>(method: M) -> (f64, f64)
 where
     S: RealField + Copy,
-    M: StepMethod<S, N> + Copy,
+    M: StepMethod<S> + Copy,
 {
     best_of_five(|| {
         let start = Instant::now();
@@ -47,7 +47,7 @@ where
 
 /// `FRAMES` frames of the chain from its release in a stepper; the
 /// right-hand sides it took.
-fn stepped<S: RealField + Copy, M: StepMethod<S, N>>(method: M) -> usize {
+fn stepped<S: RealField + Copy, M: StepMethod<S>>(method: M) -> usize {
     let (model, q0) = chain::<S>();
     let mut stepper = Stepper::new(model, method, S::zero(), q0, SVector::zeros()).unwrap();
     for k in 1..=FRAMES {

@@ -15,9 +15,10 @@
 mod csv_option;
 
 use lagrange::constraints::{annotate, Drift};
-use lagrange::models::{FourBar, Method};
+use lagrange::models::FourBar;
 use lagrange::nalgebra::Vector3;
 use lagrange::prelude::*;
+use lagrange::Method;
 use plotters::prelude::*;
 use std::error::Error;
 use std::time::Instant;

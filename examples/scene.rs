@@ -65,7 +65,7 @@ fn game_loop<S, L, M, const D: usize>(
 where
     S: lagrange::nalgebra::RealField + Copy + Into<f64>,
     L: Lagrangian<D, Scalar = S>,
-    M: StepMethod<S, D>,
+    M: StepMethod<S>,
     lagrange::IntegrationError<S, D>: Error + 'static,
 {
     // Frame k ends at k/60 s, rounded once to S (accumulating `dt` in f32

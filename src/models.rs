@@ -2,8 +2,7 @@
 //! benchmarks and anyone who wants a known model to try an integrator on.
 //! Each is a `lagrangian!` invocation in its own file (read the source),
 //! with its usual starting states and, where one exists, its exact
-//! solution. Also every integrator by name ([`Method`]), for studies that
-//! run them all. Three are constrained models, closed loops in
+//! solution. Three are constrained models, closed loops in
 //! redundant coordinates: [`CartesianPendulum`], [`SliderCrank`] (with its
 //! minimal-coordinate twin) and [`FourBar`]. One has a control input:
 //! [`CartPole`], pushed by a motor force. Two have impacts, as
@@ -17,7 +16,6 @@ mod chain;
 mod double_pendulum;
 mod four_bar;
 mod kepler;
-mod methods;
 mod oscillator;
 mod pendulum;
 mod pendulum_wall;
@@ -32,7 +30,6 @@ pub use chain::Chain;
 pub use double_pendulum::DoublePendulum;
 pub use four_bar::FourBar;
 pub use kepler::{Kepler, PolarKepler};
-pub use methods::{AnyIntegrator, Method};
 pub use oscillator::Oscillator;
 pub use pendulum::Pendulum;
 pub use pendulum_wall::PendulumWall;

@@ -25,9 +25,10 @@ mod plot;
 mod reference;
 mod systems;
 
-use lagrange::models::{Kepler, Method};
+use lagrange::models::Kepler;
 use lagrange::prelude::*;
 use lagrange::IntegrationResult;
+use lagrange::Method;
 use std::time::Instant;
 use systems::Problem;
 

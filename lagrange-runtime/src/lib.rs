@@ -70,17 +70,12 @@
 //! Every method implements [`Integrator`], so switching is a one-word
 //! change. Costs are right-hand side evaluations (one `M q̈ = f` solve each).
 //!
-//! | Method | Order | Kind | Cost per step | When to use it |
-//! |---|---|---|---|---|
-//! | [`Dopri5`] | 5 (estimate 4) | adaptive, dense output of order 4 | 6 | The default ([`integrate`]): smooth problems at everyday tolerances, `1e-3` to `1e-9`. |
-//! | [`Dop853`] | 8 (estimates 5 and 3) | adaptive, dense output of order 7 | 12, +3 on steps with samples inside | Tight tolerances, below about `1e-9`: 2–6× fewer evaluations than [`Dopri5`] at `1e-12`. |
-//! | [`Rk4`] | 4 | fixed step | 4 | A step size you choose: reproducible steps, real-time budgets. |
-//! | [`SymplecticEuler`] | 1 | fixed step, explicit; symplectic only for constant `M` and `q̇`-free forces | 1 | Games and long oscillations where bounded energy matters more than accuracy; merely first order with `M(q)` or damping. |
-//! | [`ExplicitEuler`] | 1 | fixed step | 1 | A baseline for convergence studies and teaching; pumps energy into oscillators. |
-//! | [`ImplicitMidpoint`] | 2 | fixed step, implicit, symmetric | a Jacobian, an LU of order `2N`, 3–7 Newton iterations of 1 | Long runs without energy drift, cheapest implicit. |
-//! | [`GaussLegendre`] | 4 or 6 | fixed step, implicit, symmetric | a Jacobian, an LU of order `2Ns`, 3–7 Newton iterations of `s` | Long runs without energy drift, accurately. |
-//! | [`Variational`] | 2 | fixed step, implicit, symplectic in `(q, p)` for any `M(q)` | one `N × N` Newton solve per step | Exact discrete momentum maps (discrete Noether) and no energy drift, from the same Lagrangian. |
-//! | [`Radau5`] | 5 | adaptive, implicit, L-stable, dense output of order 3 | 3 per Newton iteration (1–2 typical); Jacobians and two `N × N` LUs when needed | Stiff models: hard springs beside soft ones, strong damping ([below](#stiff-models)). |
+//! Every method, its order, kind, cost per step and when to use it, is in
+//! the table on [`Method`], written from the integrators' registry (so a
+//! method added there is in it): in short, [`Dopri5`] by default, [`Dop853`]
+//! for tight tolerances, [`Radau5`] for stiff models, [`Rk4`] for a step you
+//! choose, the Gauss methods and [`Variational`] for long runs without
+//! energy drift.
 //!
 //! The implicit Runge–Kutta methods are symmetric and conserve quadratic
 //! invariants; they are symplectic for a constant mass matrix, and for
@@ -301,21 +296,20 @@ pub use error::{
 };
 pub use events::{Event, Events};
 pub use inputs::Actuated;
-pub use integrators::{
-    integrate, Dop853, Dopri5, ExplicitEuler, GaussLegendre, ImplicitMidpoint, Integrator, Radau5,
-    Rk4, SymplecticEuler, Variational,
-};
+pub use integrators::all::*;
+pub use integrators::StepMethod;
+pub use integrators::{integrate, AnyIntegrator, Integrator, Method};
 pub use model::{lets, Lagrangian};
 pub use nalgebra;
-pub use stepper::{StepMethod, Stepper};
+pub use stepper::Stepper;
 pub use trajectory::{EventRecord, Sample, Samples, Stats, Trajectory};
 
 /// The names a simulation needs: `use lagrange_runtime::prelude::*;`.
 pub mod prelude {
     pub use crate::constraints::{Drift, InitialConditions, Multipliers};
+    pub use crate::integrators::all::*;
     pub use crate::{
-        integrate, Actuated, Dop853, Dopri5, Event, Events, ExplicitEuler, Failure, GaussLegendre,
-        Holonomic, ImplicitMidpoint, IntegrationError, Integrator, Lagrangian, Radau5, Rk4,
-        Stepper, SymplecticEuler, Trajectory, Variational,
+        integrate, Actuated, Event, Events, Failure, Holonomic, IntegrationError, Integrator,
+        Lagrangian, StepMethod, Stepper, Trajectory,
     };
 }

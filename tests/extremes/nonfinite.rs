@@ -10,9 +10,9 @@
 //! Every test prints its figures; `cargo test --release --test extremes --
 //! nonfinite:: --nocapture --test-threads=1` shows them in order.
 
-use lagrange::models::Method;
 use lagrange::nalgebra::Vector1;
 use lagrange::prelude::*;
+use lagrange::Method;
 use lagrange::{IntegrationResult, InvalidInput, NonFiniteValue, Stats};
 
 lagrangian! {

@@ -23,10 +23,11 @@
 //! `cargo test --release --test extremes -- separatrix:: --nocapture`.
 
 use crate::support::elliptic::{complete_k, jacobi, Swing};
-use lagrange::models::{Method, Pendulum};
+use lagrange::models::Pendulum;
 use lagrange::nalgebra::Vector1;
 use lagrange::prelude::*;
 use lagrange::IntegrationResult;
+use lagrange::Method;
 
 /// `g = l = 1`: `ω₀ = 1`, energies in units of `m g l`.
 fn pendulum() -> Pendulum {

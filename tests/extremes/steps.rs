@@ -8,9 +8,10 @@
 //! Every test prints its figures; `cargo test --release --test extremes --
 //! steps:: --nocapture --test-threads=1` shows them in order.
 
-use lagrange::models::{Method, Oscillator};
+use lagrange::models::Oscillator;
 use lagrange::nalgebra::{SVector, Vector1, Vector2};
 use lagrange::prelude::*;
+use lagrange::Method;
 use lagrange::{IntegrationResult, InvalidInput};
 use std::time::Instant;
 

@@ -4,9 +4,10 @@
 //! controller run and counted, a controller's NaN reported where it happened.
 
 use lagrange::analysis::{equilibrium, linearize, modes, AnalysisError};
-use lagrange::models::{CartPole, Method};
+use lagrange::models::CartPole;
 use lagrange::nalgebra::{Matrix2, Vector1, Vector2};
 use lagrange::prelude::*;
+use lagrange::Method;
 use lagrange::{InvalidInput, NonFiniteValue};
 
 fn cart() -> CartPole {

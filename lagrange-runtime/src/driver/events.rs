@@ -9,7 +9,7 @@
 use nalgebra::RealField;
 
 use super::record::{finite_state, Recorder};
-use super::segments::Segment;
+use super::run::Segment;
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::events::{evaluate_into, first_crossing, Events, Hermite, Watch};
 use crate::model::Lagrangian;

@@ -1,142 +1,182 @@
-//! The fixed-step driver: how every fixed-step method lands on the sample
-//! times, counts its steps against the budget and is watched for growth,
-//! so that the methods only differ in their step.
+//! The fixed-step kind: how every fixed-step method lands on the sample
+//! times (or a stepper's frame times), counts its steps against the
+//! budget and is watched for growth, so that the methods only differ in
+//! their step.
 
 use nalgebra::{RealField, SVector};
 
 use super::growth::GrowthGuard;
 use super::record::{finite_state, Recorder};
-use super::segments::{segments, Segment};
-use super::validate::{check_step_size, invalid};
-use crate::error::{IntegrationError, IntegrationResult, NonFiniteValue};
-use crate::events::Events;
+use super::run::{Advanced, Flow, Fresh, Run, Walk};
+use crate::error::{IntegrationError, NonFiniteValue};
 use crate::model::Lagrangian;
 use crate::trajectory::State;
 
-/// The loop every fixed-step method shares, so that they all land on the
-/// sample times the same way and only differ in `step`.
-///
-/// Sample times are hit exactly, not interpolated: each interval between
-/// consecutive sample times is cut into the fewest equal steps no longer than
-/// `h` ([`Interval`]). `step(rec, model, t, q, q̇, h)` advances one step,
-/// evaluating the model through `rec` so that its work is counted; its error
-/// ends the integration with the samples so far. Every step counts against
-/// `max_steps`. A constrained model's state is brought back onto its
-/// constraints after each step ([`Recorder::control_drift`]). After a reset
-/// by an event the loop starts again from the event ([`segments`]).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn fixed_step<S, L, const N: usize, F>(
-    model: &L,
-    h: S,
-    max_steps: usize,
-    t0: S,
-    q0: SVector<S, N>,
-    qdot0: SVector<S, N>,
-    times: &[S],
-    events: &Events<'_, S, N>,
-    mut step: F,
-) -> IntegrationResult<S, N>
-where
-    S: RealField + Copy,
-    L: Lagrangian<N, Scalar = S>,
-    F: FnMut(
-        &mut Recorder<'_, S, N>,
-        &L,
-        S,
-        &SVector<S, N>,
-        &SVector<S, N>,
-        S,
-    ) -> Result<State<S, N>, IntegrationError<S, N>>,
-{
-    check_step_size(h).map_err(invalid)?;
-    segments(model, t0, q0, qdot0, times, events, |rec, t, state| {
-        fixed_segment(rec, model, (h, max_steps), (t, state), &mut step)
-    })
+/// One step of a fixed-step method.
+pub trait FixedStep<S: RealField + Copy, const N: usize> {
+    /// One step of size `h` from `(t, q, q̇)`, evaluating the model through
+    /// `rec` so that its work is counted.
+    fn step<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        rec: &mut Recorder<'_, S, N>,
+        model: &L,
+        t: S,
+        state: (&SVector<S, N>, &SVector<S, N>),
+        h: S,
+    ) -> Result<State<S, N>, IntegrationError<S, N>>;
+
+    /// Forgets what the previous step carries into the next (an implicit
+    /// method's starting guess): after a reset, or a change of the model
+    /// or the state.
+    fn restart(&mut self) {}
 }
 
-/// One segment of [`fixed_step`]: from `(t0, q0, q̇0)` to the last sample
-/// time, or to an event that stops the run or resets its state. A method
-/// whose step keeps a workspace (the implicit Runge–Kutta methods) makes a
-/// fresh one per segment, so nothing of the motion before a reset carries
-/// over.
-pub(crate) fn fixed_segment<S, L, const N: usize, F>(
-    rec: &mut Recorder<'_, S, N>,
-    model: &L,
-    (h, max_steps): (S, usize),
-    (t0, (q0, qdot0)): (S, State<S, N>),
-    step: &mut F,
-) -> Result<Segment<S, N>, IntegrationError<S, N>>
+/// The fixed-step loop, resumable, around a method's [`FixedStep`].
+///
+/// Sample times are hit exactly, not interpolated: each interval between
+/// consecutive stops (the sample times, the target) is cut into the fewest
+/// equal steps no longer than `h` ([`Interval`]). Every step counts
+/// against `max_steps` (per call). A constrained model's state is brought
+/// back onto its constraints after each step
+/// ([`Recorder::control_drift`]).
+pub struct FixedWalk<S, F> {
+    pub(crate) step: F,
+    pub(crate) h: S,
+    pub(crate) max_steps: usize,
+    /// `h` bounded by the events' `max_step`, for the current segment.
+    bounded: S,
+    growth: Option<GrowthGuard<S>>,
+}
+
+impl<S: RealField + Copy, F> FixedWalk<S, F> {
+    pub(crate) fn new(step: F, h: S, max_steps: usize) -> Self {
+        Self {
+            step,
+            h,
+            max_steps,
+            bounded: h,
+            growth: None,
+        }
+    }
+}
+
+impl<S, F, const N: usize> Walk<S, N> for FixedWalk<S, F>
 where
     S: RealField + Copy,
-    L: Lagrangian<N, Scalar = S>,
-    F: FnMut(
-        &mut Recorder<'_, S, N>,
-        &L,
-        S,
-        &SVector<S, N>,
-        &SVector<S, N>,
-        S,
-    ) -> Result<State<S, N>, IntegrationError<S, N>>,
+    F: FixedStep<S, N>,
 {
-    let h = rec.bound_step(h);
-    rec.resolve_events(h);
-    let (mut t, mut q, mut qdot) = (t0, q0, qdot0);
-    let mut growth = GrowthGuard::new(&q0, &qdot0);
-
-    while let Some(target) = rec.pending() {
-        let interval = Interval::new(t, target, h);
-        if interval.underflows() {
-            let h = interval.step;
-            return Err(IntegrationError::StepSizeUnderflow { t, h, q, qdot });
-        }
-        let Some(steps) = interval.steps(max_steps) else {
-            return Err(IntegrationError::TooManySteps {
-                t,
-                max_steps,
-                q,
-                qdot,
-            });
-        };
-        for k in 1..=steps {
-            if rec.stats.steps_accepted >= max_steps {
+    fn advance<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        run: &mut Run<'_, S, N>,
+        model: &L,
+        target: S,
+    ) -> Result<Advanced, IntegrationError<S, N>> {
+        let max_steps = self.max_steps;
+        let budget_start = run.rec.stats.steps_accepted;
+        loop {
+            if run.fresh != Fresh::No {
+                if run.fresh == Fresh::Segment {
+                    run.arm()?;
+                    // Events closer than a few steps are beyond a fixed
+                    // step (the Zeno guard's default separation).
+                    self.bounded = run.rec.bound_step(self.h);
+                    run.rec.resolve_events(self.bounded);
+                    self.growth = Some(GrowthGuard::new(&run.q, &run.qdot));
+                } else {
+                    run.arm()?;
+                }
+                self.step.restart();
+                run.fresh = Fresh::No;
+            }
+            if run.t >= target {
+                return Ok(Advanced::Reached);
+            }
+            // The next stop: a sample time, or the target.
+            let stop = run
+                .rec
+                .pending()
+                .filter(|&ts| ts < target)
+                .unwrap_or(target);
+            let (t, (q, qdot)) = (run.t, run.state());
+            let interval = Interval::new(t, stop, self.bounded);
+            if interval.underflows() {
+                let h = interval.step;
+                return Err(IntegrationError::StepSizeUnderflow { t, h, q, qdot });
+            }
+            let Some(steps) = interval.steps(max_steps) else {
                 return Err(IntegrationError::TooManySteps {
                     t,
                     max_steps,
                     q,
                     qdot,
                 });
+            };
+            let growth = self
+                .growth
+                .get_or_insert_with(|| GrowthGuard::new(&q, &qdot));
+            let mut restarted = false;
+            for k in 1..=steps {
+                let (t, before) = (run.t, run.state());
+                if run.rec.stats.steps_accepted - budget_start >= max_steps {
+                    let (q, qdot) = before;
+                    return Err(IntegrationError::TooManySteps {
+                        t,
+                        max_steps,
+                        q,
+                        qdot,
+                    });
+                }
+                let t_next = interval.time(k, steps);
+                let dt = t_next - t;
+                let (q, qdot) = self
+                    .step
+                    .step(&mut run.rec, model, t, (&before.0, &before.1), dt)
+                    .and_then(|(q, qdot)| run.rec.control_drift(model, t_next, q, qdot))?;
+                // The step's end is not evaluated by the model: check it
+                // before it becomes the state.
+                if !finite_state(&q, &qdot) {
+                    let value = NonFiniteValue::State;
+                    return Err(IntegrationError::NonFiniteState {
+                        t: t_next,
+                        q,
+                        qdot,
+                        value,
+                    });
+                }
+                run.rec.stats.steps_accepted += 1;
+                if let Some(steps) = growth.unstable(before, (&q, &qdot), dt) {
+                    return Err(IntegrationError::Unstable {
+                        t: t_next,
+                        h: interval.step,
+                        steps,
+                        q,
+                        qdot,
+                    });
+                }
+                let crossed = if run.rec.watching() {
+                    run.rec
+                        .watch_hermite(model, (t, &before), (t_next, &(q, qdot)))?
+                } else {
+                    None
+                };
+                match run.take((t_next, q, qdot), crossed, target) {
+                    Flow::Go => {}
+                    Flow::Stopped => return Ok(Advanced::Stopped),
+                    Flow::Restarted(at_target) => {
+                        if at_target {
+                            run.t = target;
+                            return Ok(Advanced::Reached);
+                        }
+                        restarted = true;
+                        break;
+                    }
+                }
             }
-            let t_next = interval.time(k, steps);
-            let (before, dt) = ((q, qdot), t_next - t);
-            (q, qdot) = step(rec, model, t, &q, &qdot, dt)
-                .and_then(|(q, qdot)| rec.control_drift(model, t_next, q, qdot))?;
-            let t_before = t;
-            t = t_next;
-            rec.stats.steps_accepted += 1;
-            if let Some(steps) = growth.unstable(before, (&q, &qdot), dt) {
-                return Err(IntegrationError::Unstable {
-                    t,
-                    h: interval.step,
-                    steps,
-                    q,
-                    qdot,
-                });
+            if !restarted {
+                run.record_landed();
             }
-            if let Some(end) = rec.watch_hermite(model, (t_before, &before), (t, &(q, qdot)))? {
-                return Ok(end);
-            }
-        }
-        // The last step's state is not evaluated by the model, so check it
-        // here rather than record a NaN.
-        if !finite_state(&q, &qdot) {
-            let value = NonFiniteValue::State;
-            return Err(IntegrationError::NonFiniteState { t, q, qdot, value });
-        }
-        while rec.pending() == Some(target) {
-            rec.record(target, q, qdot);
         }
     }
-    Ok(Segment::Done)
 }
 
 /// The interval from `start` to the next sample time `target`, cut into

@@ -17,7 +17,7 @@ use crate::trajectory::{Stats, Trajectory};
 
 /// Records samples as an integrator passes them and counts its work; owns
 /// the trajectory that a success or a [`Failure`] hands back.
-pub(crate) struct Recorder<'a, S: RealField + Copy, const N: usize> {
+pub struct Recorder<'a, S: RealField + Copy, const N: usize> {
     times: &'a [S],
     next: usize,
     pub(super) trajectory: Trajectory<S, N>,

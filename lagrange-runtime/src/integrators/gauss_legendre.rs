@@ -1,12 +1,11 @@
 //! Gauss–Legendre collocation with two or three stages: orders 4 and 6.
 
-use nalgebra::{DMatrix, DVector, RealField, SVector};
+use nalgebra::{DMatrix, DVector, RealField};
 
-use super::implicit_rk::{self, Settings, Tableau};
-use super::Integrator;
-use crate::error::IntegrationResult;
-use crate::events::Events;
-use crate::model::Lagrangian;
+use super::implicit_rk::{self, Settings, StageSolver, Tableau};
+use super::StepMethod;
+use crate::driver::fixed::FixedWalk;
+use crate::error::InvalidInput;
 
 /// The `s`-stage Gauss–Legendre method with a fixed step `h`: collocation at
 /// the Gauss nodes, order `2 s` (the highest of any `s`-stage Runge–Kutta
@@ -120,11 +119,6 @@ impl<S: RealField + Copy> GaussLegendre<S> {
         self.settings.h
     }
 
-    /// The step size, budget and Newton limit, for a [`Stepper`](crate::stepper::Stepper).
-    pub(crate) fn settings(&self) -> Settings<S> {
-        self.settings
-    }
-
     /// The number of stages `s`.
     pub fn stages(&self) -> usize {
         match self.stages {
@@ -178,30 +172,11 @@ impl<S: RealField + Copy> GaussLegendre<S> {
     }
 }
 
-impl<S: RealField + Copy> Integrator<S> for GaussLegendre<S> {
-    fn integrate_with_events<L, const N: usize>(
-        &self,
-        model: &L,
-        t0: S,
-        q0: SVector<S, N>,
-        qdot0: SVector<S, N>,
-        times: &[S],
-        events: &Events<'_, S, N>,
-    ) -> IntegrationResult<S, N>
-    where
-        L: Lagrangian<N, Scalar = S>,
-    {
-        let tableau = self.tableau();
-        let start = (t0, q0, qdot0);
-        implicit_rk::integrate(
-            "GaussLegendre",
-            &tableau,
-            self.settings,
-            model,
-            start,
-            times,
-            events,
-        )
+impl<S: RealField + Copy> StepMethod<S> for GaussLegendre<S> {
+    type Walker<const N: usize> = FixedWalk<S, StageSolver<S, N>>;
+
+    fn walker<const N: usize>(&self) -> Result<Self::Walker<N>, InvalidInput<S>> {
+        implicit_rk::walker("GaussLegendre", self.tableau(), self.settings)
     }
 }
 

@@ -1,12 +1,11 @@
 //! The implicit midpoint rule: the one-stage Gauss method.
 
-use nalgebra::{DMatrix, DVector, RealField, SVector};
+use nalgebra::{DMatrix, DVector, RealField};
 
-use super::implicit_rk::{self, Settings, Tableau};
-use super::Integrator;
-use crate::error::IntegrationResult;
-use crate::events::Events;
-use crate::model::Lagrangian;
+use super::implicit_rk::{self, Settings, StageSolver, Tableau};
+use super::StepMethod;
+use crate::driver::fixed::FixedWalk;
+use crate::error::InvalidInput;
 
 /// The implicit midpoint rule with a fixed step `h`:
 /// `y_{n+1} = y_n + h F(t_n + h/2, (y_n + y_{n+1}) / 2)`.
@@ -72,11 +71,6 @@ impl<S: RealField + Copy> ImplicitMidpoint<S> {
         self.settings.h
     }
 
-    /// The step size, budget and Newton limit, for a [`Stepper`](crate::stepper::Stepper).
-    pub(crate) fn settings(&self) -> Settings<S> {
-        self.settings
-    }
-
     /// `a = ½`, `b = 1`, `c = ½`, hence `d = bᵀ A⁻¹ = 2`.
     pub(crate) fn tableau(&self) -> Tableau<S> {
         let half: S = nalgebra::convert(0.5);
@@ -89,30 +83,11 @@ impl<S: RealField + Copy> ImplicitMidpoint<S> {
     }
 }
 
-impl<S: RealField + Copy> Integrator<S> for ImplicitMidpoint<S> {
-    fn integrate_with_events<L, const N: usize>(
-        &self,
-        model: &L,
-        t0: S,
-        q0: SVector<S, N>,
-        qdot0: SVector<S, N>,
-        times: &[S],
-        events: &Events<'_, S, N>,
-    ) -> IntegrationResult<S, N>
-    where
-        L: Lagrangian<N, Scalar = S>,
-    {
-        let tableau = self.tableau();
-        let start = (t0, q0, qdot0);
-        implicit_rk::integrate(
-            "ImplicitMidpoint",
-            &tableau,
-            self.settings,
-            model,
-            start,
-            times,
-            events,
-        )
+impl<S: RealField + Copy> StepMethod<S> for ImplicitMidpoint<S> {
+    type Walker<const N: usize> = FixedWalk<S, StageSolver<S, N>>;
+
+    fn walker<const N: usize>(&self) -> Result<Self::Walker<N>, InvalidInput<S>> {
+        implicit_rk::walker("ImplicitMidpoint", self.tableau(), self.settings)
     }
 }
 

@@ -23,19 +23,17 @@
 
 use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
-use crate::driver::{
-    check_step_size, fixed_segment, invalid, newton_noise_floor, segments, Recorder,
-};
+use crate::driver::fixed::{FixedStep, FixedWalk};
+use crate::driver::{check_step_size, newton_noise_floor, Recorder};
 use crate::dynamics::acceleration_jacobians;
-use crate::error::{IntegrationError, IntegrationResult, InvalidInput};
-use crate::events::Events;
+use crate::error::{IntegrationError, InvalidInput};
 use crate::linalg::lu::Lu;
 use crate::model::Lagrangian;
 use crate::trajectory::State;
 
 /// Butcher tableau of an implicit method, with `dᵀ = bᵀ A⁻¹` precomputed.
 #[derive(Debug, Clone)]
-pub(crate) struct Tableau<S> {
+pub struct Tableau<S> {
     pub(crate) a: DMatrix<S>,
     /// The weights: the step uses `d` instead, and the tests check `d`
     /// against them.
@@ -53,7 +51,7 @@ impl<S: RealField + Copy> Tableau<S> {
 
 /// The settings every fixed-step implicit method has.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Settings<S> {
+pub struct Settings<S> {
     pub(crate) h: S,
     pub(crate) max_steps: usize,
     pub(crate) max_iterations: usize,
@@ -69,31 +67,37 @@ impl<S: RealField + Copy> Settings<S> {
     }
 }
 
-/// Integrates `model` with the implicit method of `tableau`, named `method`
-/// in errors, landing on the sample times like every fixed-step method; a
-/// fresh stage workspace per segment, so that the Newton starting guess
-/// never extrapolates across a reset.
-pub(crate) fn integrate<S: RealField + Copy, L: Lagrangian<N, Scalar = S>, const N: usize>(
+/// The walker of an implicit method of `tableau`, named `method` in
+/// errors: the fixed-step loop around its stage solver, whose workspace is
+/// allocated here, once per run (or per [`Stepper`](crate::stepper::Stepper)).
+pub(crate) fn walker<S: RealField + Copy, const N: usize>(
     method: &'static str,
-    tableau: &Tableau<S>,
+    tableau: Tableau<S>,
     settings: Settings<S>,
-    model: &L,
-    (t0, q0, qdot0): (S, SVector<S, N>, SVector<S, N>),
-    times: &[S],
-    events: &Events<'_, S, N>,
-) -> IntegrationResult<S, N> {
+) -> Result<FixedWalk<S, StageSolver<S, N>>, InvalidInput<S>> {
     if settings.max_iterations == 0 {
-        return Err(invalid(InvalidInput::NoNewtonIterations { method }));
+        return Err(InvalidInput::NoNewtonIterations { method });
     }
-    let (h, max_steps) = (settings.h, settings.max_steps);
-    check_step_size(h).map_err(invalid)?;
-    segments(model, t0, q0, qdot0, times, events, |rec, t, state| {
-        let mut stages = StageSolver::<S, N>::new(tableau.clone(), settings.max_iterations);
-        let mut step = |rec: &mut Recorder<'_, S, N>, model: &L, t, q: &_, qdot: &_, h| {
-            stages.step(rec, model, t, q, qdot, h)
-        };
-        fixed_segment(rec, model, (h, max_steps), (t, state), &mut step)
-    })
+    check_step_size(settings.h)?;
+    let stages = StageSolver::new(tableau, settings.max_iterations);
+    Ok(FixedWalk::new(stages, settings.h, settings.max_steps))
+}
+
+impl<S: RealField + Copy, const N: usize> FixedStep<S, N> for StageSolver<S, N> {
+    fn step<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        rec: &mut Recorder<'_, S, N>,
+        model: &L,
+        t: S,
+        (q, qdot): (&SVector<S, N>, &SVector<S, N>),
+        h: S,
+    ) -> Result<State<S, N>, IntegrationError<S, N>> {
+        StageSolver::step(self, rec, model, t, q, qdot, h)
+    }
+
+    fn restart(&mut self) {
+        StageSolver::restart(self);
+    }
 }
 
 /// The Newton iteration stops once the scaled correction is below
@@ -110,7 +114,7 @@ const SLOW: f64 = 0.5;
 /// per [`Stepper`](crate::stepper::Stepper)) so that a step allocates nothing. Stage
 /// `j` occupies rows `2 N j .. 2 N (j + 1)` of the stage vectors: its `q`
 /// part, then its `v` part.
-pub(crate) struct StageSolver<S: RealField + Copy, const N: usize> {
+pub struct StageSolver<S: RealField + Copy, const N: usize> {
     tableau: Tableau<S>,
     max_iterations: usize,
     /// Stage increments `Z`.

@@ -11,7 +11,7 @@
 //!
 //! - Input is validated before the first step: non-finite `t0`, `q0`, `q̇0`
 //!   or model parameters, and sample times that are not finite, decrease, or
-//!   precede `t0` are [`InvalidInput`](crate::error::InvalidInput).
+//!   precede `t0` are [`InvalidInput`].
 //! - Integration runs forward from `t0` to the last sample time. Samples
 //!   equal to `t0` are the initial state, unchanged.
 //! - A failure returns the samples computed so far in
@@ -24,7 +24,7 @@
 //!   [`TooManySteps`](crate::error::IntegrationError::TooManySteps) before its
 //!   first step. Tolerances are used as given: `rtol` below `10 ε`, a
 //!   non-positive `atol`, a non-finite or non-positive `h` and
-//!   `max_iterations = 0` are [`InvalidInput`](crate::error::InvalidInput), and
+//!   `max_iterations = 0` are [`InvalidInput`], and
 //!   loose tolerances are honoured (where one is too loose to keep
 //!   [`Dopri5`] or [`Dop853`] within its stability region, they stop with
 //!   [`Unstable`](crate::error::IntegrationError::Unstable), as a fixed step beyond
@@ -43,41 +43,139 @@
 //! to choose, and what the implicit ones conserve, is in the
 //! [crate documentation](crate#choosing-a-method).
 
-mod dop853;
-mod dopri5;
-mod euler;
-mod gauss_legendre;
-mod implicit_midpoint;
 mod implicit_rk;
-mod radau5;
-mod rk4;
+mod registry;
 mod stages;
-mod symplectic_euler;
-mod variational;
-
-pub use dop853::Dop853;
-pub use dopri5::Dopri5;
-pub use euler::ExplicitEuler;
-pub use gauss_legendre::GaussLegendre;
-pub use implicit_midpoint::ImplicitMidpoint;
-pub use radau5::Radau5;
-pub use rk4::Rk4;
-pub use symplectic_euler::SymplecticEuler;
-pub use variational::Variational;
-
-// What a `Stepper` drives: the explicit methods' steps and pairs.
-pub(crate) use dop853::{Pair as Dop853Pair, CONTROL as DOP853_CONTROL};
-pub(crate) use dopri5::{Pair as Dopri5Pair, CONTROL as DOPRI5_CONTROL};
-pub(crate) use euler::euler_step;
-pub(crate) use implicit_rk::StageSolver;
-pub(crate) use rk4::rk4_step;
-pub(crate) use symplectic_euler::symplectic_step;
 
 use nalgebra::{RealField, SVector};
 
-use crate::error::IntegrationResult;
+use crate::driver::invalid;
+use crate::driver::run::{integrate as drive, Advanced, Run, Walk};
+use crate::error::{IntegrationError, IntegrationResult, InvalidInput};
 use crate::events::Events;
 use crate::model::Lagrangian;
+use registry::{is_adaptive, registry, with_tolerances};
+
+// The registry: one entry per integrator, its module and type, then its
+// named settings (each a `Method`): id, order, kind, Jacobians, how it is
+// built from a step `h`, and its row of the table of methods. Everything
+// else a method needs follows from this list (`registry.rs`).
+registry! {
+    euler::ExplicitEuler {
+        ExplicitEuler = "explicit_euler", order 1, fixed, jacobians false, |h| ExplicitEuler::new(h),
+        "fixed step | 1 | A baseline for convergence studies and teaching; pumps energy into oscillators.";
+    }
+    symplectic_euler::SymplecticEuler {
+        SymplecticEuler = "symplectic_euler", order 1, fixed, jacobians false, |h| SymplecticEuler::new(h),
+        "fixed step, explicit; symplectic only for constant `M` and `q̇`-free forces | 1 | Games and long oscillations where bounded energy matters more than accuracy; merely first order with `M(q)` or damping.";
+    }
+    rk4::Rk4 {
+        Rk4 = "rk4", order 4, fixed, jacobians false, |h| Rk4::new(h),
+        "fixed step | 4 | A step size you choose: reproducible steps, real-time budgets.";
+    }
+    implicit_midpoint::ImplicitMidpoint {
+        ImplicitMidpoint = "implicit_midpoint", order 2, fixed, jacobians true, |h| ImplicitMidpoint::new(h),
+        "fixed step, implicit, symmetric: the one-stage Gauss method | a Jacobian, an LU of order `2N`, 3–7 Newton iterations of 1 | Long runs without energy drift, cheapest implicit.";
+    }
+    gauss_legendre::GaussLegendre {
+        GaussLegendre2 = "gauss_legendre_2", order 4, fixed, jacobians true, |h| GaussLegendre::two_stage(h),
+        "fixed step, implicit, symmetric: two-stage Gauss | a Jacobian, an LU of order `4N`, 3–7 Newton iterations of 2 | Long runs without energy drift, accurately.";
+        GaussLegendre3 = "gauss_legendre_3", order 6, fixed, jacobians true, |h| GaussLegendre::three_stage(h),
+        "fixed step, implicit, symmetric: three-stage Gauss | a Jacobian, an LU of order `6N`, 3–7 Newton iterations of 3 | Long runs without energy drift, most accurately.";
+    }
+    variational::Variational {
+        Variational = "variational", order 2, fixed, jacobians false, |h| Variational::new(h),
+        "fixed step, implicit, symplectic in `(q, p)` for any `M(q)` | one `N × N` Newton solve per step | Exact discrete momentum maps (discrete Noether) and no energy drift, from the same Lagrangian.";
+    }
+    dopri5::Dopri5 {
+        Dopri5 = "dopri5", order 5, adaptive, jacobians false, |h| Dopri5::new(),
+        "adaptive (estimate of order 4), dense output of order 4 | 6 | The default ([`integrate`]): smooth problems at everyday tolerances, `1e-3` to `1e-9`.";
+    }
+    dop853::Dop853 {
+        Dop853 = "dop853", order 8, adaptive, jacobians false, |h| Dop853::new(),
+        "adaptive (estimates 5 and 3), dense output of order 7 | 12, +3 on steps with samples inside | Tight tolerances, below about `1e-9`: 2–6× fewer evaluations than Dopri5 at `1e-12`.";
+    }
+    radau5::Radau5 {
+        Radau5 = "radau5", order 5, adaptive, jacobians true, |h| Radau5::new(),
+        "adaptive, implicit, L-stable, dense output of order 3 | 3 per Newton iteration (1–2 typical); Jacobians and two `N × N` LUs when needed | Stiff models: hard springs beside soft ones, strong damping ([stiff models](crate#stiff-models)).";
+    }
+}
+
+impl Method {
+    /// The methods that step by a given `h`.
+    pub const FIXED_STEP: [Method; Self::count(false)] = Self::select(false);
+
+    /// The methods that choose their steps to meet a tolerance.
+    pub const ADAPTIVE: [Method; Self::count(true)] = Self::select(true);
+
+    /// The Gauss collocation methods, one to three stages (order `2s`):
+    /// symmetric, and keeping every quadratic invariant.
+    pub const GAUSS: [Method; 3] = [
+        Method::ImplicitMidpoint,
+        Method::GaussLegendre2,
+        Method::GaussLegendre3,
+    ];
+
+    const fn count(adaptive: bool) -> usize {
+        let (mut i, mut n) = (0, 0);
+        while i < Self::ALL.len() {
+            if Self::ALL[i].is_adaptive() == adaptive {
+                n += 1;
+            }
+            i += 1;
+        }
+        n
+    }
+
+    const fn select<const K: usize>(adaptive: bool) -> [Method; K] {
+        let mut out = [Method::ALL[0]; K];
+        let (mut i, mut k) = (0, 0);
+        while i < Self::ALL.len() {
+            if Self::ALL[i].is_adaptive() == adaptive {
+                out[k] = Self::ALL[i];
+                k += 1;
+            }
+            i += 1;
+        }
+        out
+    }
+
+    /// The fixed-step methods with step `h`; the adaptive ones with
+    /// `rtol = atol = tol`.
+    pub fn integrator<S: RealField + Copy>(self, h: S, tol: S) -> AnyIntegrator<S> {
+        self.with_step(h).tolerances(tol, tol)
+    }
+
+    /// An adaptive method with `rtol = atol = tol`.
+    ///
+    /// # Panics
+    ///
+    /// For a fixed-step method, which has no tolerance.
+    pub fn with_tolerance<S: RealField + Copy>(self, tol: S) -> AnyIntegrator<S> {
+        assert!(
+            self.is_adaptive(),
+            "{self:?} has a fixed step, no tolerance"
+        );
+        self.integrator(S::zero(), tol)
+    }
+}
+
+/// What a method is to the run loops: the walker of its kind (see
+/// `driver/run.rs`), built from its settings. Every integrator implements
+/// it, in its own file; [`Integrator`] and the
+/// [`Stepper`](crate::stepper::Stepper) follow from it. It cannot be
+/// implemented outside this crate: the walkers are the crate's own.
+pub trait StepMethod<S: RealField + Copy> {
+    /// The method's work between steps for a model of `N` coordinates.
+    #[doc(hidden)]
+    type Walker<const N: usize>: Walk<S, N>;
+
+    /// The walker for a new run, or the method's settings refused (a step
+    /// that is not positive and finite, tolerances out of range, no Newton
+    /// iterations).
+    #[doc(hidden)]
+    fn walker<const N: usize>(&self) -> Result<Self::Walker<N>, InvalidInput<S>>;
+}
 
 /// A method that integrates a [`Lagrangian`] model and samples it at
 /// requested times.
@@ -120,6 +218,11 @@ use crate::model::Lagrangian;
 /// assert!((height_after_one_second(&Rk4::new(0.1)) + 4.905).abs() < 1e-12);
 /// assert!((height_after_one_second(&Dopri5::new()) + 4.905).abs() < 1e-12);
 /// ```
+///
+/// Every method of this crate is an `Integrator` through its
+/// [`StepMethod`] (the registry writes the implementation); another crate
+/// may implement the trait for a method of its own by
+/// `integrate_with_events`.
 pub trait Integrator<S: RealField + Copy> {
     /// Integrates `model` from `(t0, q0, q̇0)` and returns the state at each
     /// of `times` (non-decreasing, none before `t0`).

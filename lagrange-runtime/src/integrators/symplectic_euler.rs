@@ -2,10 +2,10 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::Integrator;
-use crate::driver::{fixed_step, Recorder};
-use crate::error::{IntegrationError, IntegrationResult};
-use crate::events::Events;
+use super::StepMethod;
+use crate::driver::fixed::{FixedStep, FixedWalk};
+use crate::driver::{check_step_size, Recorder};
+use crate::error::{IntegrationError, InvalidInput};
 use crate::model::Lagrangian;
 use crate::trajectory::State;
 
@@ -74,37 +74,31 @@ impl<S: RealField + Copy> SymplecticEuler<S> {
         self.h
     }
 
-    /// The step budget, for a [`Stepper`](crate::stepper::Stepper).
-    pub(crate) fn step_budget(&self) -> usize {
-        self.max_steps
+}
+
+impl<S: RealField + Copy> StepMethod<S> for SymplecticEuler<S> {
+    type Walker<const N: usize> = FixedWalk<S, SymplecticStep>;
+
+    fn walker<const N: usize>(&self) -> Result<Self::Walker<N>, InvalidInput<S>> {
+        check_step_size(self.h)?;
+        Ok(FixedWalk::new(SymplecticStep, self.h, self.max_steps))
     }
 }
 
-impl<S: RealField + Copy> Integrator<S> for SymplecticEuler<S> {
-    fn integrate_with_events<L, const N: usize>(
-        &self,
+/// [`symplectic_step`] as the fixed-step loop takes it.
+#[doc(hidden)]
+pub struct SymplecticStep;
+
+impl<S: RealField + Copy, const N: usize> FixedStep<S, N> for SymplecticStep {
+    fn step<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        rec: &mut Recorder<'_, S, N>,
         model: &L,
-        t0: S,
-        q0: SVector<S, N>,
-        qdot0: SVector<S, N>,
-        times: &[S],
-        events: &Events<'_, S, N>,
-    ) -> IntegrationResult<S, N>
-    where
-        L: Lagrangian<N, Scalar = S>,
-    {
-        let (h, max_steps) = (self.h, self.max_steps);
-        fixed_step(
-            model,
-            h,
-            max_steps,
-            t0,
-            q0,
-            qdot0,
-            times,
-            events,
-            symplectic_step,
-        )
+        t: S,
+        (q, qdot): (&SVector<S, N>, &SVector<S, N>),
+        h: S,
+    ) -> Result<State<S, N>, IntegrationError<S, N>> {
+        symplectic_step(rec, model, t, q, qdot, h)
     }
 }
 

@@ -15,10 +15,14 @@
 //!   checks this over 10⁶ steps in the runtime's tests; watching events
 //!   allocates nothing per step either, and a located crossing allocates
 //!   its few small working vectors).
+//! - **One loop**: a stepper runs the very loop `integrate` runs for its
+//!   kind of method (`driver/run.rs`), each call an advance to the frame's
+//!   time where `integrate` is one advance through the samples.
 //! - **The step size is kept** between calls by the adaptive methods
-//!   ([`Dopri5`], [`Dop853`]): a frame shorter than the step the error
-//!   control wants is one shortened step that lands on the frame time, and
-//!   the next frame starts again from the step the control had chosen.
+//!   ([`Dopri5`], [`Dop853`], [`Radau5`], with its Jacobian and LU
+//!   factors): a frame shorter than the step the error control wants is one
+//!   shortened step that lands on the frame time, and the next frame starts
+//!   again from the step the control had chosen.
 //!   Fixed-step methods cut each frame into the fewest equal steps no longer
 //!   than `h`, as [`integrate`](crate::integrators::Integrator::integrate) cuts the
 //!   intervals between samples: `h` is never lengthened.
@@ -35,18 +39,22 @@
 //!   [`Events`] as `integrate_with_events`, located on each step's
 //!   interpolant; [`events`](Stepper::events) lists those of the last call,
 //!   a stop ends the call at the event, a reset replaces the state and the
-//!   call goes on.
+//!   call goes on from it as `integrate` does, as from a new start (an
+//!   adaptive method guesses its first step again).
 //! - **Failures are typed**: an [`IntegrationError`] with `t` and the state
 //!   where it happened. The stepper keeps the last good state (the end of
 //!   the last step that succeeded) and can be advanced again, for instance
 //!   after the caller changed the model.
 //!
-//! The methods that step: [`ExplicitEuler`], [`SymplecticEuler`], [`Rk4`],
-//! [`ImplicitMidpoint`] and [`GaussLegendre`] (fixed step; the implicit
-//! ones' Newton workspace allocated in [`Stepper::new`]), [`Dopri5`] and
-//! [`Dop853`] (adaptive). [`Radau5`](crate::integrators::Radau5) and
-//! [`Variational`](crate::integrators::Variational) run their own loops and are not
-//! offered here: they integrate through `integrate`.
+//! Every method steps ([`StepMethod`]): the fixed-step ones
+//! ([`ExplicitEuler`], [`SymplecticEuler`], [`Rk4`], [`ImplicitMidpoint`],
+//! [`GaussLegendre`], [`Variational`]; the implicit ones' workspace and the
+//! variational step's history allocated in [`Stepper::new`]), the
+//! adaptive ones ([`Dopri5`], [`Dop853`], [`Radau5`], whose `O(N²)`
+//! workspace is allocated there too), and [`AnyIntegrator`], any of them
+//! chosen at run time. The variational step's state between frames is
+//! `(q, p)`: its `q̇` is worked out at each frame's end (one conversion,
+//! counted in `rhs_evals`).
 //!
 //! Constrained models are kept on their constraints after each step, as in
 //! `integrate` (the model's drift control; see
@@ -97,116 +105,20 @@
 //! [`Rk4`]: crate::integrators::Rk4
 //! [`ImplicitMidpoint`]: crate::integrators::ImplicitMidpoint
 //! [`GaussLegendre`]: crate::integrators::GaussLegendre
+//! [`Radau5`]: crate::integrators::Radau5
+//! [`Variational`]: crate::integrators::Variational
+//! [`AnyIntegrator`]: crate::integrators::AnyIntegrator
+//! [`StepMethod`]: crate::integrators::StepMethod
 
-// A method's side of a stepper is sealed: `StepMethod::Work` names types
-// whose traits (the fixed step, the embedded pair, the recorder) are the
-// crate's own, so no one outside can implement a method.
-#[allow(private_bounds, private_interfaces)]
-mod adaptive;
-#[allow(private_bounds, private_interfaces)]
-mod fixed;
-#[allow(private_bounds, private_interfaces)]
-mod methods;
+use nalgebra::{ComplexField, SVector};
 
-use nalgebra::{ComplexField, RealField, SVector};
-
-use crate::driver::{Recorder, Segment};
+use crate::driver::run::{Fresh, Run, Walk};
+use crate::driver::Recorder;
 use crate::error::{IntegrationError, InvalidInput};
 use crate::events::Events;
+use crate::integrators::StepMethod;
 use crate::model::Lagrangian;
-use crate::trajectory::EventRecord;
-use crate::trajectory::State;
-use crate::trajectory::Stats;
-
-/// What a [`Stepper`] needs of a method: implemented for
-/// [`ExplicitEuler`](crate::integrators::ExplicitEuler),
-/// [`SymplecticEuler`](crate::integrators::SymplecticEuler), [`Rk4`](crate::integrators::Rk4),
-/// [`ImplicitMidpoint`](crate::integrators::ImplicitMidpoint),
-/// [`GaussLegendre`](crate::integrators::GaussLegendre), [`Dopri5`](crate::integrators::Dopri5) and
-/// [`Dop853`](crate::integrators::Dop853); it cannot be implemented outside this crate.
-pub trait StepMethod<S: RealField + Copy, const N: usize> {
-    /// The method's state between calls: its slopes and step size.
-    #[doc(hidden)]
-    type Work: sealed::Work<S, N>;
-
-    /// The work for a new stepper, or the method's settings refused.
-    #[doc(hidden)]
-    fn work(&self) -> Result<Self::Work, InvalidInput<S>>;
-}
-
-pub(crate) mod sealed {
-    use super::*;
-
-    /// A method's side of a stepper: advances `run` to `target`.
-    pub trait Work<S: RealField + Copy, const N: usize> {
-        /// Advances `run` to `target` (`> run.t`), in one or more steps,
-        /// or to the time of an event that stops it. On error, `run` holds
-        /// the end of the last step that succeeded.
-        fn advance<L: Lagrangian<N, Scalar = S>>(
-            &mut self,
-            run: &mut Run<'_, S, N>,
-            model: &L,
-            target: S,
-        ) -> Result<(), IntegrationError<S, N>>;
-    }
-
-    /// The state a stepper owns, apart from the method's work.
-    pub struct Run<'e, S: RealField + Copy, const N: usize> {
-        pub(crate) t: S,
-        pub(crate) q: SVector<S, N>,
-        pub(crate) qdot: SVector<S, N>,
-        /// Counts the work, watches the events; samples none (it has no
-        /// sample times).
-        pub(crate) rec: Recorder<'e, S, N>,
-        /// The model or the state changed since the last step: slopes
-        /// carried from it (first same as last) must be recomputed, and
-        /// the events' values at the state too.
-        pub(crate) stale: bool,
-    }
-
-    impl<S: RealField + Copy, const N: usize> Run<'_, S, N> {
-        pub(crate) fn state(&self) -> State<S, N> {
-            (self.q, self.qdot)
-        }
-
-        /// After an accepted step to `(t, q, q̇)` that an event function may
-        /// have crossed on the way (its values compared by the recorder,
-        /// the crossing located on `crossed`, the step's own result):
-        /// `true` when an event stopped the call, the state then being the
-        /// event's; after a reset the state is the reset's, the slopes
-        /// stale and the events armed again.
-        pub(crate) fn take(
-            &mut self,
-            (t, q, qdot): (S, SVector<S, N>, SVector<S, N>),
-            crossed: Option<Segment<S, N>>,
-        ) -> Result<bool, IntegrationError<S, N>> {
-            match crossed {
-                None => {
-                    (self.t, self.q, self.qdot) = (t, q, qdot);
-                    Ok(false)
-                }
-                Some(Segment::Done) => {
-                    // A stopping event, at its time; or the observer, at
-                    // the step's end.
-                    (self.t, self.q, self.qdot) = match self.rec.events_so_far().1 {
-                        Some(stop) => (stop.t, stop.q, stop.qdot),
-                        None => (t, q, qdot),
-                    };
-                    self.stale = true;
-                    Ok(true)
-                }
-                Some(Segment::Restart { t, state }) => {
-                    (self.t, self.q, self.qdot) = (t, state.0, state.1);
-                    self.rec.arm_events(t, &state)?;
-                    self.stale = true;
-                    Ok(false)
-                }
-            }
-        }
-    }
-}
-
-use sealed::{Run, Work};
+use crate::trajectory::{EventRecord, Stats};
 
 /// A model, a method and a state, advanced by the caller a piece at a time
 /// without allocating; see [the module](self). `'e` is the lifetime of the
@@ -214,17 +126,17 @@ use sealed::{Run, Work};
 pub struct Stepper<'e, L, M, const N: usize>
 where
     L: Lagrangian<N>,
-    M: StepMethod<L::Scalar, N>,
+    M: StepMethod<L::Scalar>,
 {
     model: L,
-    work: M::Work,
+    walker: M::Walker<N>,
     run: Run<'e, L::Scalar, N>,
 }
 
 impl<'e, L, M, const N: usize> Stepper<'e, L, M, N>
 where
     L: Lagrangian<N>,
-    M: StepMethod<L::Scalar, N>,
+    M: StepMethod<L::Scalar>,
 {
     /// A stepper at `(t0, q0, q̇0)`. The start and the method's settings are
     /// checked here, as `integrate` checks them
@@ -238,7 +150,7 @@ where
         q0: SVector<L::Scalar, N>,
         qdot0: SVector<L::Scalar, N>,
     ) -> Result<Self, IntegrationError<L::Scalar, N>> {
-        let work = method.work()?;
+        let walker = method.walker::<N>()?;
         let (rec, (q, qdot)) =
             Recorder::start(&model, t0, &q0, &qdot0, Default::default()).map_err(|f| f.error)?;
         let run = Run {
@@ -246,9 +158,9 @@ where
             q,
             qdot,
             rec,
-            stale: true,
+            fresh: Fresh::Segment,
         };
-        Ok(Self { model, work, run })
+        Ok(Self { model, walker, run })
     }
 
     /// Watches `events` from now on: each call locates, records and acts
@@ -256,9 +168,9 @@ where
     /// [`events`](crate::events)); [`events`](Self::events) lists those of
     /// the last call. A **stop** ends the call early, at the event, the
     /// stepper's state the event's, and the next call goes on from there;
-    /// a **reset** replaces the state and the call goes on to its target,
-    /// the method's carried slopes recomputed (an adaptive method keeps its
-    /// step size). The events' settings are checked here
+    /// a **reset** replaces the state and the call goes on to its target
+    /// as from a new start, as in `integrate`. The events' settings are
+    /// checked here
     /// ([`InvalidEventSetting`](InvalidInput::InvalidEventSetting)), and
     /// their values taken at the current state: an event already at zero
     /// is not armed.
@@ -268,7 +180,7 @@ where
     ) -> Result<Self, IntegrationError<L::Scalar, N>> {
         events.validate()?;
         self.run.rec.watch_events(events);
-        self.run.stale = true;
+        self.changed();
         Ok(self)
     }
 
@@ -303,12 +215,17 @@ where
             return Err(InvalidInput::TargetNotAhead { t, target }.into());
         }
         self.run.rec.forget_events();
-        if self.run.stale {
-            // The events' values at a state they were not evaluated at.
-            let state = self.run.state();
-            self.run.rec.arm_events(t, &state)?;
+        self.walker.advance(&mut self.run, &self.model, target)?;
+        Ok(())
+    }
+
+    /// The caller changed the model, the state, the clock or the events:
+    /// the method's carried slopes and the events' values are taken anew
+    /// before the next step (a start still to come stays one).
+    fn changed(&mut self) {
+        if self.run.fresh == Fresh::No {
+            self.run.fresh = Fresh::Slopes;
         }
-        self.work.advance(&mut self.run, &self.model, target)
     }
 
     /// The time of the state.
@@ -342,7 +259,7 @@ where
         rec.put_watch(self.run.rec.take_watch());
         self.run.rec = rec;
         (self.run.q, self.run.qdot) = (q, qdot);
-        self.run.stale = true;
+        self.changed();
         Ok(())
     }
 
@@ -358,7 +275,7 @@ where
             return Err(InvalidInput::NonFiniteStartTime { t0: t }.into());
         }
         self.run.t = t;
-        self.run.stale = true;
+        self.changed();
         Ok(())
     }
 
@@ -370,7 +287,7 @@ where
     /// The model, to change its parameters or inputs before the next call;
     /// the method's carried slopes are recomputed from it.
     pub fn model_mut(&mut self) -> &mut L {
-        self.run.stale = true;
+        self.changed();
         &mut self.model
     }
 

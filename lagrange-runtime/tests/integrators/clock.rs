@@ -45,7 +45,7 @@ fn integrated<I: Integrator<f64>>(
     }
 }
 
-fn stepped<M: StepMethod<f64, 2> + Copy>(
+fn stepped<M: StepMethod<f64> + Copy>(
     method: M,
 ) -> impl Fn(&CoupledOscillator<f64>, f64, &[f64]) -> Run {
     move |model, t0, times| {

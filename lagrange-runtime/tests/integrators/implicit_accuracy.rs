@@ -4,7 +4,7 @@
 //! times hit exactly.
 
 use crate::models::{max_error, stages, CartPole, CoupledOscillator};
-use lagrange::models::Method;
+use lagrange::Method;
 use lagrange_runtime::dynamics::acceleration;
 use lagrange_runtime::dynamics::acceleration_jacobians;
 use lagrange_runtime::nalgebra::Vector2;

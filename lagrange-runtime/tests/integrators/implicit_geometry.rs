@@ -4,7 +4,8 @@
 //! runs alongside to show that each test can fail.
 
 use crate::models::{stages, CartPole};
-use lagrange::models::{Kepler, Method};
+use lagrange::models::Kepler;
+use lagrange::Method;
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::Sample;

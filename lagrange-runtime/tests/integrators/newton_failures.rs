@@ -3,7 +3,7 @@
 //! breaks is still the model's error, not Newton's.
 
 use crate::models::{BlowUp, CartPole, ForcingBreaksDown};
-use lagrange::models::Method;
+use lagrange::Method;
 use lagrange_runtime::nalgebra::{Vector1, Vector2};
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::{InvalidInput, NonFiniteValue};

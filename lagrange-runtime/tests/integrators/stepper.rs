@@ -6,7 +6,7 @@
 
 use crate::allocations::allocations;
 use crate::models::{CartesianPendulum, CoupledOscillator, ForcingBreaksDown};
-use lagrange::models::BouncingBall;
+use lagrange::models::{BouncingBall, Oscillator};
 use lagrange_runtime::nalgebra::{Vector1, Vector2};
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::{InvalidInput, Stats, StepMethod};
@@ -24,7 +24,7 @@ fn spring() -> (CoupledOscillator<f64>, Vector2<f64>, Vector2<f64>) {
 /// Steps `frames` frames of `1/60` s and returns the state after each.
 fn frames<M>(method: M, frames: usize) -> Vec<(f64, Vector2<f64>, Vector2<f64>)>
 where
-    M: StepMethod<f64, 2>,
+    M: StepMethod<f64>,
 {
     let (model, q0, v0) = spring();
     let mut stepper = Stepper::new(model, method, 0.0, q0, v0).unwrap();
@@ -79,6 +79,47 @@ fn fixed_steps_frame_by_frame_equal_integrate_bit_for_bit() {
             .integrate(&model, 0.0, q0, v0, &times)
             .unwrap(),
     );
+    // The variational step carries its momenta and velocity history from
+    // frame to frame as from sample to sample (on a generated model: it
+    // needs the momenta, which the hand-written spring does not give).
+    let spring = Oscillator::new(1.0, 4.0, 0.0);
+    let (x0, xd0) = (Vector1::new(1.0), Vector1::new(0.0));
+    let mut stepper = Stepper::new(spring, Variational::new(h), 0.0, x0, xd0).unwrap();
+    let run = Variational::new(h)
+        .integrate(&spring, 0.0, x0, xd0, &times)
+        .unwrap();
+    for s in run.iter() {
+        stepper.advance_to(s.t).unwrap();
+        assert_eq!(
+            (stepper.t(), *stepper.q(), *stepper.qdot()),
+            (s.t, s.q, s.qdot)
+        );
+    }
+}
+
+/// Radau5 steps frame by frame too: its step size, Jacobian and LU factors
+/// are kept between frames, a step shortened to land on a frame. Over 10 s
+/// at 60 Hz it stays within its tolerance's reach of the exact motion
+/// (its global error grows like `rtol^(5/6)` per unit of time scale, see
+/// its docs: 1e-8 at `rtol = 1e-10` over these three periods, so 1e-7),
+/// and costs fewer right-hand sides than one `integrate` per frame, which
+/// guesses a first step and factors anew every frame.
+#[test]
+fn radau5_steps_frame_by_frame() {
+    let (model, q0, v0) = spring();
+    let n = 600;
+    let radau = Radau5::new().rtol(1e-10).atol(1e-10);
+    let (stats, (t, q, v)) = stepped(radau, n);
+    let (q_exact, v_exact) = model.exact(t, q0, v0);
+    let err = (q - q_exact).amax().max((v - v_exact).amax());
+    let per_frame_integrate = per_frame(&model, radau, n);
+    println!(
+        "Radau5 at 1e-10: stepper {} right-hand sides in {} steps, one integrate per frame {}; error {err:.1e}",
+        stats.rhs_evals, stats.steps_accepted, per_frame_integrate
+    );
+    assert!(err < 1e-7, "{err}");
+    assert!(stats.rhs_evals < per_frame_integrate);
+    assert_eq!(t, n as f64 / HZ);
 }
 
 /// The adaptive methods keep their step size between frames: at these
@@ -132,10 +173,7 @@ fn adaptive_steps_keep_their_size_between_frames() {
     }
 }
 
-fn stepped<M: StepMethod<f64, 2>>(
-    method: M,
-    n: usize,
-) -> (Stats, (f64, Vector2<f64>, Vector2<f64>)) {
+fn stepped<M: StepMethod<f64>>(method: M, n: usize) -> (Stats, (f64, Vector2<f64>, Vector2<f64>)) {
     let (model, q0, v0) = spring();
     let mut stepper = Stepper::new(model, method, 0.0, q0, v0).unwrap();
     for k in 1..=n {
@@ -297,10 +335,7 @@ fn refusals_and_failures_are_typed_and_keep_the_last_good_state() {
     check_breakdown("Dopri5", adaptive);
 }
 
-fn check_breakdown<M: StepMethod<f64, 1>>(
-    name: &str,
-    mut stepper: Stepper<ForcingBreaksDown, M, 1>,
-) {
+fn check_breakdown<M: StepMethod<f64>>(name: &str, mut stepper: Stepper<ForcingBreaksDown, M, 1>) {
     let error = (1..=60)
         .find_map(|k| stepper.advance_to(k as f64 / HZ).err())
         .expect("the model breaks down at 0.5");
@@ -332,6 +367,13 @@ fn a_stepper_does_not_allocate_per_step() {
     let pendulum = CartesianPendulum::unit();
     let (pq, pv) = pendulum.state(1.0, 0.0);
     let mut constrained = Stepper::new(pendulum, Dopri5::new(), 0.0, pq, pv).unwrap();
+    // Radau5's workspace and the variational step's history are allocated
+    // in `Stepper::new`.
+    let mut radau = Stepper::new(spring().0, Radau5::new(), 0.0, q0, v0).unwrap();
+    let spring_with_momenta = Oscillator::new(1.0, 4.0, 0.0);
+    let (x0, xd0) = (Vector1::new(1.0), Vector1::new(0.0));
+    let mut variational =
+        Stepper::new(spring_with_momenta, Variational::new(1e-2), 0.0, x0, xd0).unwrap();
 
     let before = allocations();
     for k in 1..=1_000_000 {
@@ -350,8 +392,12 @@ fn a_stepper_does_not_allocate_per_step() {
         let t = k as f64 / HZ;
         constrained.advance_to(t).unwrap();
         gauss.advance_to(t).unwrap();
+        radau.advance_to(t).unwrap();
+        variational.advance_to(t).unwrap();
         if k == 5_000 {
             gauss.model_mut().omega = 3.0;
+            radau.model_mut().omega = 3.0;
+            variational.set_state(x0, xd0).unwrap();
         }
     }
     let allocated = allocations() - before;
@@ -359,7 +405,9 @@ fn a_stepper_does_not_allocate_per_step() {
         + dopri.stats().steps_accepted
         + dop853.stats().steps_accepted
         + constrained.stats().steps_accepted
-        + gauss.stats().steps_accepted;
+        + gauss.stats().steps_accepted
+        + radau.stats().steps_accepted
+        + variational.stats().steps_accepted;
     println!("{steps} steps, {allocated} allocations");
     assert!(steps >= 1_230_000);
     assert_eq!(allocated, 0);

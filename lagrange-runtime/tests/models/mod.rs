@@ -23,7 +23,7 @@ pub use oscillators::{CoupledOscillator, DrivenOscillator};
 pub use stiff_chain::StiffChain;
 pub use without::Without;
 
-use lagrange::models::Method;
+use lagrange::Method;
 use lagrange_runtime::nalgebra::{RealField, SVector, Vector2};
 use lagrange_runtime::{IntegrationError, Integrator};
 

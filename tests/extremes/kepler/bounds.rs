@@ -2,7 +2,7 @@
 
 use super::flight::{growth_exponent, Flight};
 use super::EPS;
-use lagrange::models::Method;
+use lagrange::Method;
 
 /// A symplectic or symmetric method on a reversible orbit: by backward
 /// error analysis it follows a modified Hamiltonian `H̃ = H + O(hᵖ)` exactly

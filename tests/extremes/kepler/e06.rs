@@ -7,7 +7,8 @@ use super::flight::{fly, sci, Flight};
 use super::{
     cartesian_angular_momentum, cartesian_start, polar_angular_momentum, polar_start, EPS,
 };
-use lagrange::models::{Kepler, Method, PolarKepler};
+use lagrange::models::{Kepler, PolarKepler};
+use lagrange::Method;
 
 /// The e = 0.6 orbit in Cartesian coordinates at h = T/100 (pericentre
 /// passage ≈ 0.2 time units, three steps): coarse, but every method here is

@@ -7,7 +7,7 @@ use super::tableau;
 
 /// Hairer's `contd8` on one accepted step, with `s = θ`, `s₁ = 1 − θ`:
 /// `y(t + θh) = r₁ + s(r₂ + s₁(r₃ + s(r₄ + s₁(r₅ + s(r₆ + s₁(r₇ + s r₈))))))`.
-pub(crate) struct Dense<S, const N: usize> {
+pub struct Dense<S, const N: usize> {
     q: [SVector<S, N>; 8],
     qdot: [SVector<S, N>; 8],
 }

@@ -12,12 +12,11 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::Integrator;
-use crate::driver::{
-    adaptive, default_tolerance, Controller, EmbeddedPair, Outcome, Recorder, Tolerances,
-};
-use crate::error::{IntegrationError, IntegrationResult, NonFiniteValue};
-use crate::events::Events;
+use super::StepMethod;
+use crate::driver::{check_tolerances, default_tolerance};
+use crate::driver::pair::{Controller, Embedded, EmbeddedPair, Outcome, PairWalk, Tolerances};
+use crate::driver::Recorder;
+use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::model::Lagrangian;
 use crate::trajectory::State;
 use dense::Dense;
@@ -122,7 +121,7 @@ impl<S: RealField + Copy> Default for Dop853<S> {
 /// `dop853.f`): `fac_min` is Hairer's 0.333, and there is no Lund
 /// stabilization by default (`BETA = 0`), a pure I-controller with exponent
 /// 1/8; `β` is kept so the formula reads as Hairer's.
-pub(crate) const CONTROL: Controller = Controller {
+const CONTROL: Controller = Controller {
     safety: 0.9,
     fac_min: 0.333,
     fac_max: 6.0,
@@ -133,43 +132,26 @@ pub(crate) const CONTROL: Controller = Controller {
     stretch: 1.01,
 };
 
-impl<S: RealField + Copy> Integrator<S> for Dop853<S> {
-    fn integrate_with_events<L, const N: usize>(
-        &self,
-        model: &L,
-        t0: S,
-        q0: SVector<S, N>,
-        qdot0: SVector<S, N>,
-        times: &[S],
-        events: &Events<'_, S, N>,
-    ) -> IntegrationResult<S, N>
-    where
-        L: Lagrangian<N, Scalar = S>,
-    {
-        let pair = |qdot: &SVector<S, N>, qddot: &SVector<S, N>| self.pair(qdot, qddot);
-        adaptive(
-            &CONTROL,
-            self.settings,
-            model,
-            t0,
-            q0,
-            qdot0,
-            times,
-            events,
-            pair,
-        )
+impl<S: RealField + Copy> StepMethod<S> for Dop853<S> {
+    type Walker<const N: usize> = PairWalk<S, Self, N>;
+
+    fn walker<const N: usize>(&self) -> Result<Self::Walker<N>, InvalidInput<S>> {
+        check_tolerances(self.settings.rtol, self.settings.atol)?;
+        Ok(PairWalk::new(*self))
     }
 }
 
-impl<S: RealField + Copy> Dop853<S> {
-    /// The pair for one run (or one [`Stepper`](crate::stepper::Stepper)) from
-    /// `(q̇, q̈)` at its start. One set of slopes for the whole run,
-    /// overwritten by each attempt: nothing of this size is copied per step.
-    pub(crate) fn pair<const N: usize>(
-        &self,
-        qdot: &SVector<S, N>,
-        qddot: &SVector<S, N>,
-    ) -> Pair<S, N> {
+impl<S: RealField + Copy, const N: usize> Embedded<S, N> for Dop853<S> {
+    type Pair = Pair<S, N>;
+    const CONTROL: Controller = CONTROL;
+
+    fn tolerances(&self) -> Tolerances<S> {
+        self.settings
+    }
+
+    /// The pair for one run (or one [`Stepper`](crate::stepper::Stepper))
+    /// from `(q̇, q̈)` at its start.
+    fn pair(&self, qdot: &SVector<S, N>, qddot: &SVector<S, N>) -> Pair<S, N> {
         Pair {
             tab: Tableau::new(),
             rtol: self.settings.rtol,
@@ -177,15 +159,11 @@ impl<S: RealField + Copy> Dop853<S> {
             k: Stages::new(qdot, qddot),
         }
     }
-
-    pub(crate) fn settings(&self) -> Tolerances<S> {
-        self.settings
-    }
 }
 
 /// One integration's tableau, tolerances and slopes; stage 1 of `k` is `f`
 /// at the current state.
-pub(crate) struct Pair<S, const N: usize> {
+pub struct Pair<S, const N: usize> {
     tab: Tableau<S>,
     rtol: S,
     atol: S,

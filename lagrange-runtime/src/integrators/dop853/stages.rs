@@ -49,7 +49,7 @@ fn stage_input<S: RealField + Copy, const N: usize>(
 /// One attempted step: the eighth-order solution and both error estimates
 /// (per unit step, as in Hairer's code, for `q` and `q̇`). Its stages stay
 /// in the [`Stages`] it was computed in.
-pub(crate) struct Step<S, const N: usize> {
+pub struct Step<S, const N: usize> {
     pub(super) q: SVector<S, N>,
     pub(super) qdot: SVector<S, N>,
     pub(super) err5: (SVector<S, N>, SVector<S, N>),

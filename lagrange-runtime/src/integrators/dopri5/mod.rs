@@ -7,12 +7,11 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::Integrator;
-use crate::driver::{
-    adaptive, default_tolerance, Controller, EmbeddedPair, Outcome, Recorder, Tolerances,
-};
-use crate::error::{IntegrationError, IntegrationResult, NonFiniteValue};
-use crate::events::Events;
+use super::StepMethod;
+use crate::driver::{check_tolerances, default_tolerance};
+use crate::driver::pair::{Controller, Embedded, EmbeddedPair, Outcome, PairWalk, Tolerances};
+use crate::driver::Recorder;
+use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::model::Lagrangian;
 use crate::trajectory::State;
 use tableau::{Dense, Stages, Step, Tableau};
@@ -94,7 +93,7 @@ impl<S: RealField + Copy> Default for Dopri5<S> {
 
 /// DOPRI5's step-size controller: its defaults, with Lund stabilization
 /// (`β = 0.04`).
-pub(crate) const CONTROL: Controller = Controller {
+const CONTROL: Controller = Controller {
     safety: 0.9,
     fac_min: 0.2,
     fac_max: 10.0,
@@ -105,42 +104,26 @@ pub(crate) const CONTROL: Controller = Controller {
     stretch: 1.01,
 };
 
-impl<S: RealField + Copy> Integrator<S> for Dopri5<S> {
-    fn integrate_with_events<L, const N: usize>(
-        &self,
-        model: &L,
-        t0: S,
-        q0: SVector<S, N>,
-        qdot0: SVector<S, N>,
-        times: &[S],
-        events: &Events<'_, S, N>,
-    ) -> IntegrationResult<S, N>
-    where
-        L: Lagrangian<N, Scalar = S>,
-    {
-        let pair = |qdot: &SVector<S, N>, qddot: &SVector<S, N>| self.pair(qdot, qddot);
-        adaptive(
-            &CONTROL,
-            self.settings,
-            model,
-            t0,
-            q0,
-            qdot0,
-            times,
-            events,
-            pair,
-        )
+impl<S: RealField + Copy> StepMethod<S> for Dopri5<S> {
+    type Walker<const N: usize> = PairWalk<S, Self, N>;
+
+    fn walker<const N: usize>(&self) -> Result<Self::Walker<N>, InvalidInput<S>> {
+        check_tolerances(self.settings.rtol, self.settings.atol)?;
+        Ok(PairWalk::new(*self))
     }
 }
 
-impl<S: RealField + Copy> Dopri5<S> {
-    /// The pair for one run (or one [`Stepper`](crate::stepper::Stepper)) from
-    /// `(q̇, q̈)` at its start.
-    pub(crate) fn pair<const N: usize>(
-        &self,
-        qdot: &SVector<S, N>,
-        qddot: &SVector<S, N>,
-    ) -> Pair<S, N> {
+impl<S: RealField + Copy, const N: usize> Embedded<S, N> for Dopri5<S> {
+    type Pair = Pair<S, N>;
+    const CONTROL: Controller = CONTROL;
+
+    fn tolerances(&self) -> Tolerances<S> {
+        self.settings
+    }
+
+    /// The pair for one run (or one [`Stepper`](crate::stepper::Stepper))
+    /// from `(q̇, q̈)` at its start.
+    fn pair(&self, qdot: &SVector<S, N>, qddot: &SVector<S, N>) -> Pair<S, N> {
         Pair {
             tab: Tableau::new(),
             rtol: self.settings.rtol,
@@ -148,16 +131,12 @@ impl<S: RealField + Copy> Dopri5<S> {
             k: Stages::new(qdot, qddot),
         }
     }
-
-    pub(crate) fn settings(&self) -> Tolerances<S> {
-        self.settings
-    }
 }
 
 /// One integration's tableau, tolerances, and the stages of the last
 /// step attempted (the first holds `q̈` at the current state: the last
 /// stage of the previous step, first same as last).
-pub(crate) struct Pair<S, const N: usize> {
+pub struct Pair<S, const N: usize> {
     tab: Tableau<S>,
     rtol: S,
     atol: S,

@@ -14,7 +14,7 @@ use crate::model::Lagrangian;
 /// table built per run, Dopri5 took 45.6 ns per evaluation on the double
 /// pendulum instead of 41.0, `cargo bench --bench rhs_overhead`,
 /// BENCHMARKS.md, "Constant weights, no copies").
-pub(crate) struct Step<S, const N: usize> {
+pub struct Step<S, const N: usize> {
     pub(super) q: SVector<S, N>,
     pub(super) qdot: SVector<S, N>,
     pub(super) err_q: SVector<S, N>,
@@ -129,7 +129,7 @@ impl<S: RealField + Copy> Tableau<S> {
 
 /// Hairer's continuous extension of order four on one accepted step:
 /// `y(t + θh) = r₁ + θ(r₂ + (1-θ)(r₃ + θ(r₄ + (1-θ) r₅)))`.
-pub(crate) struct Dense<S, const N: usize> {
+pub struct Dense<S, const N: usize> {
     q: [SVector<S, N>; 5],
     qdot: [SVector<S, N>; 5],
 }

@@ -3,12 +3,12 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::run::{split, Run};
+use super::work::{split, Work};
 use crate::driver::Recorder;
 use crate::error::IntegrationError;
 use crate::model::Lagrangian;
 
-impl<S: RealField + Copy, const N: usize> Run<S, N> {
+impl<S: RealField + Copy, const N: usize> Work<S, N> {
     /// Moves to the end of an accepted step and keeps its collocation
     /// polynomial, in Newton form on the nodes `0, c₂ − 1, c₁ − 1` (the
     /// stage times relative to the new `t`, in units of `h`) and `−1`.

@@ -2,13 +2,13 @@
 
 use nalgebra::RealField;
 
-use super::run::{evaluate, Run};
+use super::work::{evaluate, Work};
 use super::ERR_FLOOR;
 use crate::driver::Recorder;
 use crate::linalg::second_order::solve_block;
 use crate::model::Lagrangian;
 
-impl<S: RealField + Copy, const N: usize> Run<S, N> {
+impl<S: RealField + Copy, const N: usize> Work<S, N> {
     /// RADAU5's `ESTRAD`: the scaled RMS norm of the embedded error
     /// estimate `(γ̂/h − J)⁻¹ (f(y) + Σ dᵢ Zᵢ / h)`, re-estimated from
     /// `f(y + err)` when it fails on a first or rejected step (where the

@@ -14,26 +14,25 @@
 //! of `(γ I − J) x = b` gives `x_q` from `x_q̇`, so each system is `N × N`:
 //! an eighth of the factorization work of the `2N × 2N` one.
 //!
-//! The files follow RADAU5's subroutines: `run.rs` the step loop (`RADCOR`)
-//! and the workspace, `newton.rs` the Jacobians, factorizations and the
+//! The files follow RADAU5's subroutines: `walk.rs` the step loop
+//! (`RADCOR`, resumable), `work.rs` the workspace, `newton.rs` the Jacobians, factorizations and the
 //! Newton iteration, `estimate.rs` the error estimate (`ESTRAD`),
 //! `dense.rs` acceptance and the collocation polynomial (`CONTR5`),
 //! `coefficients.rs` the method's constants.
 
-use nalgebra::{RealField, SVector};
+use nalgebra::RealField;
 
-use super::Integrator;
-use crate::driver::{check_tolerances, default_tolerance, invalid, segments, Segment};
-use crate::error::IntegrationResult;
-use crate::events::Events;
-use crate::model::Lagrangian;
-use run::Run;
+use super::StepMethod;
+use crate::driver::{check_tolerances, default_tolerance};
+use crate::error::InvalidInput;
+use walk::Radau5Walk;
 
 mod coefficients;
 mod dense;
 mod estimate;
 mod newton;
-mod run;
+mod walk;
+mod work;
 
 /// Radau IIA of order 5 with adaptive steps (three stages, L-stable,
 /// stiffly accurate): the method for stiff models, where a hard spring or a
@@ -43,7 +42,7 @@ mod run;
 /// Each step solves the implicit stage equations by simplified Newton with
 /// the Jacobians of
 /// [`acceleration_jacobians`](crate::dynamics::acceleration_jacobians):
-/// exact when the model provides [`Lagrangian::residual_jacobians`], forward
+/// exact when the model provides [`Lagrangian::residual_jacobians`](crate::Lagrangian::residual_jacobians), forward
 /// differences (`2N` extra right-hand sides) otherwise. The costs, all counted in
 /// [`Stats`](crate::trajectory::Stats):
 ///
@@ -58,7 +57,7 @@ mod run;
 ///   20 %, the step size and the LU factors are kept too.
 ///
 /// All vectors and matrices (`O(N²)`) are allocated once per call to
-/// [`integrate`](Integrator::integrate); steps allocate nothing.
+/// [`integrate`](crate::Integrator::integrate); steps allocate nothing.
 ///
 /// **Tolerances** are the user's, as for [`Dopri5`](crate::integrators::Dopri5). The
 /// error estimate is of order three while the solution is of order five, so
@@ -188,36 +187,12 @@ const MAX_NEWTON: usize = 7;
 /// Smallest error norm: keeps the Gustafsson ratio finite.
 const ERR_FLOOR: f64 = 1e-10;
 
-impl<S: RealField + Copy> Integrator<S> for Radau5<S> {
-    fn integrate_with_events<L, const N: usize>(
-        &self,
-        model: &L,
-        t0: S,
-        q0: SVector<S, N>,
-        qdot0: SVector<S, N>,
-        times: &[S],
-        events: &Events<'_, S, N>,
-    ) -> IntegrationResult<S, N>
-    where
-        L: Lagrangian<N, Scalar = S>,
-    {
-        check_tolerances(self.rtol, self.atol).map_err(invalid)?;
-        // A fresh workspace per segment: after a reset by an event, the
-        // step loop starts again as from a new start.
-        segments(
-            model,
-            t0,
-            q0,
-            qdot0,
-            times,
-            events,
-            |rec, t0, (q0, qdot0)| {
-                let (Some(_), Some(t_end)) = (rec.pending(), rec.end()) else {
-                    return Ok(Segment::Done);
-                };
-                let mut run = Run::<S, N>::new(self, &q0, &qdot0);
-                run.integrate(model, rec, t0, t_end)
-            },
-        )
+impl<S: RealField + Copy> StepMethod<S> for Radau5<S> {
+    type Walker<const N: usize> = Radau5Walk<S, N>;
+
+    /// The workspace, `O(N²)`, allocated once per run or stepper.
+    fn walker<const N: usize>(&self) -> Result<Self::Walker<N>, InvalidInput<S>> {
+        check_tolerances(self.rtol, self.atol)?;
+        Ok(Radau5Walk::new(self))
     }
 }

@@ -4,7 +4,7 @@
 
 use nalgebra::{Complex, RealField, SVector};
 
-use super::run::{evaluate, split, Run};
+use super::work::{evaluate, split, Work};
 use super::{MAX_NEWTON, THETA_REUSE};
 use crate::driver::Recorder;
 use crate::dynamics::acceleration_jacobians;
@@ -26,7 +26,7 @@ pub(super) enum Newton<S: RealField + Copy, const N: usize> {
     StageFailed(IntegrationError<S, N>),
 }
 
-impl<S: RealField + Copy, const N: usize> Run<S, N> {
+impl<S: RealField + Copy, const N: usize> Work<S, N> {
     /// `∂q̈/∂q` and `∂q̈/∂q̇` at `(t, y)`, where `f0` holds `ẏ`.
     pub(super) fn jacobian<L: Lagrangian<N, Scalar = S>>(
         &mut self,

@@ -28,22 +28,18 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::Integrator;
-use crate::driver::{check_step_size, invalid, segments, Interval, Recorder, Segment};
-use crate::error::{IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue};
-use crate::events::Events;
-use crate::linalg::solve::positive_semidefinite;
-use crate::model::constraints::is_constrained;
+use super::StepMethod;
+use crate::driver::{check_step_size, Recorder};
+use crate::error::{IntegrationError, InvalidInput};
 use crate::model::Lagrangian;
-use crate::trajectory::State;
-use newton::{DiscreteEulerLagrange, StepFailure};
-use rattle::StartForce;
-use velocity::{velocity, with_velocity, VelocityHistory};
+use velocity::{with_velocity, VelocityHistory};
+use walk::VariationalWalk;
 
 mod constrained;
 mod newton;
 mod rattle;
 mod velocity;
+mod walk;
 
 /// The midpoint-rule variational integrator with a fixed step `h`: second
 /// order, symplectic, and it conserves the momentum of every symmetry of the
@@ -166,174 +162,16 @@ impl<S: RealField + Copy> Variational<S> {
     }
 }
 
-impl<S: RealField + Copy> Integrator<S> for Variational<S> {
-    fn integrate_with_events<L, const N: usize>(
-        &self,
-        model: &L,
-        t0: S,
-        q0: SVector<S, N>,
-        qdot0: SVector<S, N>,
-        times: &[S],
-        events: &Events<'_, S, N>,
-    ) -> IntegrationResult<S, N>
-    where
-        L: Lagrangian<N, Scalar = S>,
-    {
-        check_step_size(self.h).map_err(invalid)?;
+impl<S: RealField + Copy> StepMethod<S> for Variational<S> {
+    type Walker<const N: usize> = VariationalWalk<S, N>;
+
+    fn walker<const N: usize>(&self) -> Result<Self::Walker<N>, InvalidInput<S>> {
+        check_step_size(self.h)?;
         if self.max_iterations == 0 {
             let method = "Variational";
-            return Err(invalid(InvalidInput::NoNewtonIterations { method }));
+            return Err(InvalidInput::NoNewtonIterations { method });
         }
-        segments(model, t0, q0, qdot0, times, events, |rec, t0, state| {
-            self.segment(rec, model, t0, state)
-        })
-    }
-}
-
-impl<S: RealField + Copy> Variational<S> {
-    /// From `(t0, q0, q̇0)` to the last sample time, or to an event that
-    /// stops the run or resets it: `p0` from `q̇0`, then steps in `(q, p)`.
-    fn segment<L: Lagrangian<N, Scalar = S>, const N: usize>(
-        &self,
-        rec: &mut Recorder<'_, S, N>,
-        model: &L,
-        t0: S,
-        (q0, qdot0): State<S, N>,
-    ) -> Result<Segment<S, N>, IntegrationError<S, N>> {
-        let h = rec.bound_step(self.h);
-        rec.resolve_events(h);
-        // Refuse a model without the three methods before the first step.
-        let p0 = model.momentum(t0, &q0, &qdot0);
-        let gradient = model.lagrangian_gradient(t0, &q0, &qdot0);
-        let forces = model.nonconservative_forces(t0, &q0, &qdot0);
-        let (Some(p0), Some(_), Some(_)) = (p0, gradient, forces) else {
-            let needs = match (p0, gradient) {
-                (None, _) => "momentum",
-                (_, None) => "lagrangian_gradient",
-                _ => "nonconservative_forces",
-            };
-            return Err(lacks(needs).into());
-        };
-        rec.stats.rhs_evals += 1;
-        if !all_finite(&p0) {
-            let value = NonFiniteValue::Momentum;
-            let (q, qdot) = (q0, qdot0);
-            return Err(IntegrationError::NonFiniteState {
-                t: t0,
-                q,
-                qdot,
-                value,
-            });
-        }
-
-        // The steps never solve with M, so a kinetic energy that is negative
-        // for some velocities would otherwise go unnoticed until the first
-        // sample: report the modelling error at the first state, as the
-        // other methods do from their first evaluation. (A singular M, a
-        // chart's pole, is integrated through.)
-        let m0 = model.mass_matrix(t0, &q0);
-        if m0.iter().all(|m| m.is_finite()) && !positive_semidefinite(&m0) {
-            let (q, qdot) = (q0, qdot0);
-            return Err(IntegrationError::IndefiniteMassMatrix { t: t0, q, qdot });
-        }
-
-        let (mut t, mut q, mut p) = (t0, q0, p0);
-        let mut velocities = VelocityHistory::new(t0, qdot0);
-        // q̇ at the current step's start, kept only while events are watched.
-        let mut qdot_now = qdot0;
-        // A constrained model takes the RATTLE step (`constrained.rs`),
-        // which carries the constraint force `Gᵀ λ` from step to step as
-        // the next one's guess, starting from the continuous one.
-        let constrained = is_constrained(model);
-        let start = StartForce {
-            t: t0,
-            q: &q0,
-            qdot: &qdot0,
-        };
-        let mut force = match model.visit_constraints(start) {
-            None => SVector::zeros(),
-            Some(result) => result?,
-        };
-        while let Some(target) = rec.pending() {
-            let interval = Interval::new(t, target, h);
-            if interval.underflows() {
-                let underflow = |qdot| IntegrationError::StepSizeUnderflow {
-                    t,
-                    h: interval.step,
-                    q,
-                    qdot,
-                };
-                let state = (t, q, p);
-                return Err(with_velocity(rec, model, state, &velocities, underflow));
-            }
-            let max_steps = self.max_steps;
-            let Some(steps) = interval.steps(max_steps) else {
-                let state = (t, q, p);
-                return Err(out_of_budget(rec, model, state, &velocities, max_steps));
-            };
-            for k in 1..=steps {
-                if rec.stats.steps_accepted >= max_steps {
-                    let state = (t, q, p);
-                    return Err(out_of_budget(rec, model, state, &velocities, max_steps));
-                }
-                let t_next = interval.time(k, steps);
-                let dt = t_next - t;
-                let del = DiscreteEulerLagrange {
-                    model,
-                    t_mid: t + dt / nalgebra::convert(2.0),
-                    q,
-                    p,
-                    half_h: dt / nalgebra::convert(2.0),
-                };
-                let guess = velocities.predict(del.t_mid);
-                let solved = if constrained {
-                    let near = velocities.latest();
-                    self.rattle(rec, &del, guess, force, (t, t_next), &near)
-                } else {
-                    let solved = self.solve(&mut rec.stats, &del, guess);
-                    solved.map(|(v, rate)| (v, rate, force))
-                };
-                let (v, impulse_rate, step_force) = match solved {
-                    Ok(solution) => solution,
-                    Err(StepFailure::Error(error)) => return Err(error),
-                    Err(StepFailure::Diverged { iterations }) => {
-                        let diverged = |qdot| IntegrationError::NewtonDivergence {
-                            t,
-                            h: dt,
-                            iterations,
-                            q,
-                            qdot,
-                        };
-                        let state = (t, q, p);
-                        return Err(with_velocity(rec, model, state, &velocities, diverged));
-                    }
-                };
-                let before = (t, (q, qdot_now));
-                q += v * dt;
-                p += impulse_rate * dt;
-                velocities.push(del.t_mid, v);
-                t = t_next;
-                rec.stats.steps_accepted += 1;
-                if constrained {
-                    force = step_force;
-                    p -= force * dt;
-                    p = Self::rattle_momenta(rec, model, (t, &q, &p), &velocities)?;
-                }
-                if rec.watching() {
-                    qdot_now = velocity(&mut rec.stats, model, t, &q, &p, &velocities)?;
-                    let (t_before, start) = before;
-                    let end = (q, qdot_now);
-                    if let Some(end) = rec.watch_hermite(model, (t_before, &start), (t, &end))? {
-                        return Ok(end);
-                    }
-                }
-            }
-            let qdot = velocity(&mut rec.stats, model, t, &q, &p, &velocities)?;
-            while rec.pending() == Some(target) {
-                rec.record(target, q, qdot);
-            }
-        }
-        Ok(Segment::Done)
+        Ok(VariationalWalk::new(*self))
     }
 }
 

@@ -2,7 +2,7 @@
 //! method's order, and its multiplier is the rod's tension.
 
 use super::{angle_error, angle_reference, every, pendulum, start};
-use lagrange::models::Method;
+use lagrange::Method;
 use lagrange_runtime::constraints::annotate;
 use lagrange_runtime::prelude::*;
 
@@ -20,7 +20,7 @@ fn every_method_follows_the_pendulum_angle_at_its_order() {
     let (q0, qdot0) = start();
     let times = every(0.25, 2.0);
     let reference = angle_reference(&times);
-    let error = |integrator: lagrange::models::AnyIntegrator<f64>| {
+    let error = |integrator: lagrange::AnyIntegrator<f64>| {
         let run = integrator.integrate(&pendulum(), 0.0, q0, qdot0, &times);
         angle_error(&run.unwrap(), &reference)
     };

@@ -3,7 +3,7 @@
 
 use super::{angle_reference, every, pendulum, start, THETA0};
 use crate::models::CartesianPendulum;
-use lagrange::models::Method;
+use lagrange::Method;
 use lagrange_runtime::constraints::{annotate, Drift};
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;

@@ -3,7 +3,7 @@
 //! never a NaN.
 
 use crate::models::{ParallelAtOne, VanishingGradient};
-use lagrange::models::Method;
+use lagrange::Method;
 use lagrange_runtime::nalgebra::{Vector2, Vector3};
 use lagrange_runtime::prelude::*;
 

@@ -3,7 +3,8 @@
 
 use std::f64::consts::PI;
 
-use lagrange::models::{CartesianPendulum, Method, Oscillator, Pendulum};
+use lagrange::models::{CartesianPendulum, Oscillator, Pendulum};
+use lagrange::Method;
 use lagrange_runtime::nalgebra::{Vector1, Vector2};
 use lagrange_runtime::prelude::*;
 
@@ -28,7 +29,7 @@ fn every_tenth_to(end: f64) -> Vec<f64> {
 
 /// The methods at their everyday settings: fixed steps of 0.01, adaptive
 /// at 1e-10.
-fn method(method: Method) -> lagrange::models::AnyIntegrator<f64> {
+fn method(method: Method) -> lagrange::AnyIntegrator<f64> {
     method.integrator(0.01, 1e-10)
 }
 

@@ -1,7 +1,8 @@
 //! Typed errors of events: bad settings before any work, non-finite
 //! values naming the event.
 
-use lagrange::models::{Method, Oscillator};
+use lagrange::models::Oscillator;
+use lagrange::Method;
 use lagrange_runtime::nalgebra::Vector1;
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::{InvalidInput, NonFiniteValue};

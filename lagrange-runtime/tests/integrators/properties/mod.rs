@@ -14,7 +14,7 @@
 
 use std::collections::BTreeMap;
 
-use lagrange::models::Method;
+use lagrange::Method;
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::IntegrationResult;
 use proptest::prelude::*;

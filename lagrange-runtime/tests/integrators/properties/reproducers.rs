@@ -1,6 +1,6 @@
 //! Reproducers: each failed before its fix.
 
-use lagrange::models::Method;
+use lagrange::Method;
 use lagrange_runtime::nalgebra::{Matrix2, Vector1, Vector2};
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::{InvalidInput, NonFiniteValue};

@@ -1,0 +1,374 @@
+//! The embedded-pair kind ([`Dopri5`] and [`Dop853`]): Hairer's step loop
+//! with its stabilized step-size control, the step budget, the underflow
+//! check, and samples from the continuous extension, resumable, so that the
+//! methods only supply their stages, error estimate and dense output.
+//!
+//! [`Dopri5`]: crate::integrators::Dopri5
+//! [`Dop853`]: crate::integrators::Dop853
+
+use nalgebra::{RealField, SVector};
+
+use super::growth::GrowthGuard;
+use super::record::Recorder;
+use super::run::{Advanced, Flow, Fresh, Run, Walk};
+use super::step_control::{advances, initial_step};
+use crate::error::IntegrationError;
+use crate::model::Lagrangian;
+use crate::trajectory::State;
+
+/// A step-size controller's constants, as Hairer's codes set them:
+/// `h_new = h · safety · err^(−α) · err_old^β`, the ratio `h_new / h` kept
+/// within `[fac_min, fac_max]`, with `α = exponent − β · beta_weight`.
+pub struct Controller {
+    pub(crate) safety: f64,
+    /// Smallest step-size ratio `h_new / h`.
+    pub(crate) fac_min: f64,
+    /// Largest step-size ratio `h_new / h`.
+    pub(crate) fac_max: f64,
+    /// Lund stabilization (the "I" weight on the previous error).
+    pub(crate) beta: f64,
+    /// `1 / (q + 1)` for an error estimate of order `q`.
+    pub(crate) exponent: f64,
+    /// How much of `β` is taken off the exponent.
+    pub(crate) beta_weight: f64,
+    /// The order the initial step guess assumes.
+    pub(crate) order: u8,
+    /// How much longer than `h` a last step may be stretched to land on the
+    /// end, so that it is not a sliver (Hairer's 1.01).
+    pub(crate) stretch: f64,
+}
+
+impl Controller {
+    /// The constants in the scalar `S`, for one run (or one stepper).
+    pub(crate) fn gains<S: RealField + Copy>(&self) -> Gains<S> {
+        let c = |x: f64| -> S { nalgebra::convert(x) };
+        let beta = c(self.beta);
+        Gains {
+            safety: c(self.safety),
+            fac_min: c(self.fac_min),
+            fac_max: c(self.fac_max),
+            alpha: c(self.exponent) - beta * c(self.beta_weight),
+            beta,
+        }
+    }
+}
+
+/// A [`Controller`] in the scalar of a run: the step-size rule the
+/// adaptive driver and a [`Stepper`](crate::stepper::Stepper) share.
+pub struct Gains<S> {
+    safety: S,
+    /// Smallest step-size ratio, also the cut after a failed evaluation.
+    pub(crate) fac_min: S,
+    fac_max: S,
+    alpha: S,
+    beta: S,
+}
+
+impl<S: RealField + Copy> Gains<S> {
+    /// The step after `h` was rejected with error `err` (above 1).
+    pub(crate) fn after_rejection(&self, h: S, err: S) -> S {
+        h / (err.powf(self.alpha) / self.safety).min(S::one() / self.fac_min)
+    }
+
+    /// The step after `h` was accepted with error `err`, the previous
+    /// accepted step's being `err_old`:
+    /// `h · safety · err^(−α) · err_old^β`, its ratio to `h` bounded.
+    pub(crate) fn after_acceptance(&self, h: S, err: S, err_old: S) -> S {
+        // Without stabilization (`β = 0`, DOP853) the old error's factor is
+        // exactly 1: the library call that would compute it is skipped.
+        let stabilization = if self.beta == S::zero() {
+            S::one()
+        } else {
+            err_old.powf(self.beta)
+        };
+        let shrink = err.powf(self.alpha) / stabilization / self.safety;
+        let fac = shrink
+            .min(S::one() / self.fac_min)
+            .max(S::one() / self.fac_max);
+        h / fac
+    }
+}
+
+/// The settings every adaptive method has.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tolerances<S> {
+    pub(crate) rtol: S,
+    pub(crate) atol: S,
+    pub(crate) max_steps: usize,
+}
+
+/// How an attempted step ended, short of a model failure.
+pub enum Outcome<S, Step> {
+    /// The error estimate `err` exceeds the tolerance.
+    Rejected { err: S },
+    /// The step passed the error test with estimate `err`.
+    Accepted { step: Step, err: S },
+}
+
+/// What an explicit embedded Runge–Kutta pair supplies to [`adaptive`]: one
+/// value per integration, holding the tableau and the slopes it carries
+/// from step to step (first same as last).
+pub trait EmbeddedPair<S: RealField + Copy, const N: usize> {
+    /// An accepted step: the new state and what the dense output needs.
+    type Step;
+    /// The continuous extension on one accepted step.
+    type Dense;
+
+    /// Attempts a step of size `h` from `(t, q, q̇)` to `t_new`. A failing
+    /// evaluation, or an overflow in the error estimate, is an error, which
+    /// rejects the step. `rec` tells whether a sample lies inside the step.
+    fn attempt<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        rec: &mut Recorder<'_, S, N>,
+        model: &L,
+        times: (S, S, S),
+        state: (&SVector<S, N>, &SVector<S, N>),
+    ) -> Result<Outcome<S, Self::Step>, IntegrationError<S, N>>;
+
+    /// The state at the end of an accepted step.
+    fn end(step: &Self::Step) -> State<S, N>;
+
+    /// The continuous extension of an accepted step of size `h` from
+    /// `(q, q̇)`; built only when a sample lies strictly inside it.
+    fn dense(
+        &self,
+        h: S,
+        state: (&SVector<S, N>, &SVector<S, N>),
+        step: &Self::Step,
+    ) -> Self::Dense;
+
+    /// The continuous extension at `t + θ h`.
+    fn dense_at(dense: &Self::Dense, theta: S) -> State<S, N>;
+
+    /// Moves on to the end of an accepted step: its last slope is the next
+    /// step's first.
+    fn advance(&mut self, step: &Self::Step);
+}
+
+/// An embedded pair by its settings: what [`PairWalk`] builds a pair from.
+pub trait Embedded<S: RealField + Copy, const N: usize> {
+    /// The pair, holding the tableau and the slopes carried between steps.
+    type Pair: EmbeddedPair<S, N>;
+    /// The step-size controller's constants.
+    const CONTROL: Controller;
+    /// The tolerances and the step budget.
+    fn tolerances(&self) -> Tolerances<S>;
+    /// The pair from `(q̇, q̈)` at a start.
+    fn pair(&self, qdot: &SVector<S, N>, qddot: &SVector<S, N>) -> Self::Pair;
+}
+
+/// The embedded pairs' loop, resumable, around a method `M`'s pair.
+///
+/// At a segment's start (the run's, or after a reset by an event): the
+/// first slope, Hairer's initial step guess from it (bounded by the
+/// target and the events' `max_step`), a growth guard. Then attempts until
+/// the target: a step that would stop just short of it is stretched to land
+/// on it (Hairer's 1 %), samples in between come from the continuous
+/// extension, so sampling never changes the steps. A stage where the model
+/// cannot be evaluated rejects the step and retries with `fac_min` of it,
+/// so a model that breaks down at `t*` is integrated up to `t*`; if `h`
+/// then underflows, that failure is the error reported.
+///
+/// Accepted steps are watched by the growth guard: at everyday tolerances
+/// the error control keeps an explicit step within its stability region
+/// and the guard never fires, but a tolerance loose enough (`rtol` near 1
+/// or above, or `atol` above the solution's size) accepts steps that blow
+/// the solution up, which would otherwise end in a misleading underflow or
+/// overflow; it ends in [`Unstable`](IntegrationError::Unstable), as for a
+/// fixed step beyond its limit.
+///
+/// Between calls (a stepper's frames) the step size, the error history
+/// and the pair's carried slope are kept. A step shortened to land on a
+/// frame's end says little about the step the solution allows: the next
+/// one is not shorter than the control had chosen before it.
+pub struct PairWalk<S, M: Embedded<S, N>, const N: usize>
+where
+    S: RealField + Copy,
+{
+    method: M,
+    gains: Gains<S>,
+    settings: Tolerances<S>,
+    pair: Option<M::Pair>,
+    /// The step size the control chose; `None` before the first guess.
+    h: Option<S>,
+    err_old: S,
+    rejected_last: bool,
+    growth: Option<GrowthGuard<S>>,
+}
+
+impl<S: RealField + Copy, M: Embedded<S, N>, const N: usize> PairWalk<S, M, N> {
+    pub(crate) fn new(method: M) -> Self {
+        Self {
+            gains: M::CONTROL.gains(),
+            settings: method.tolerances(),
+            method,
+            pair: None,
+            h: None,
+            err_old: nalgebra::convert(1e-4),
+            rejected_last: false,
+            growth: None,
+        }
+    }
+}
+
+impl<S, M, const N: usize> Walk<S, N> for PairWalk<S, M, N>
+where
+    S: RealField + Copy,
+    M: Embedded<S, N>,
+{
+    fn advance<L: Lagrangian<N, Scalar = S>>(
+        &mut self,
+        run: &mut Run<'_, S, N>,
+        model: &L,
+        target: S,
+    ) -> Result<Advanced, IntegrationError<S, N>> {
+        let c = |x: f64| -> S { nalgebra::convert(x) };
+        let Tolerances {
+            rtol,
+            atol,
+            max_steps,
+        } = self.settings;
+        let control = &M::CONTROL;
+        let gains = &self.gains;
+        let attempts_before = run.rec.stats.steps_accepted + run.rec.stats.steps_rejected;
+        // The evaluation failure that made us shrink h, reported if h
+        // underflows before we get past it.
+        let mut stage_failure = None;
+        loop {
+            if run.t >= target {
+                return Ok(Advanced::Reached);
+            }
+            if run.fresh != Fresh::No {
+                run.arm()?;
+                let (t, (q, qdot)) = (run.t, run.state());
+                let qddot = run.rec.rhs(model, t, &q, &qdot)?;
+                if run.fresh == Fresh::Segment || self.h.is_none() {
+                    let start = (t, &q, &qdot, &qddot);
+                    let h_max = run.rec.bound_step(target - t);
+                    self.h = Some(initial_step(
+                        &mut run.rec,
+                        model,
+                        start,
+                        h_max,
+                        rtol,
+                        atol,
+                        control.order,
+                    ));
+                }
+                if run.fresh == Fresh::Segment || self.growth.is_none() {
+                    self.growth = Some(GrowthGuard::new(&q, &qdot));
+                    self.err_old = c(1e-4);
+                    self.rejected_last = false;
+                }
+                self.pair = Some(self.method.pair(&qdot, &qddot));
+                run.fresh = Fresh::No;
+            }
+            let (Some(pair), Some(h), Some(growth)) = (&mut self.pair, self.h, &mut self.growth)
+            else {
+                unreachable!("built above");
+            };
+            let h = run.rec.bound_step(h);
+            let (t, (q, qdot)) = (run.t, run.state());
+            let attempts = run.rec.stats.steps_accepted + run.rec.stats.steps_rejected;
+            if attempts - attempts_before >= max_steps {
+                return Err(IntegrationError::TooManySteps {
+                    t,
+                    max_steps,
+                    q,
+                    qdot,
+                });
+            }
+            if !advances(t, h) {
+                return Err(stage_failure
+                    .take()
+                    .unwrap_or(IntegrationError::StepSizeUnderflow { t, h, q, qdot }));
+            }
+            // Land on the target rather than leave a sliver before it.
+            let last = t + h * c(control.stretch) >= target;
+            let t_new = if last { target } else { t + h };
+            // The state advances by exactly the time the clock does: `t + h`
+            // rounds, so the step taken is the representable `fl(t + h) − t`
+            // (else the clock drifts from the state by up to half an ulp of
+            // `t` per step, 1e-10 s after 5e5 steps at t ≈ 70).
+            let h_try = t_new - t;
+
+            let (step, err) =
+                match pair.attempt(&mut run.rec, model, (t, t_new, h_try), (&q, &qdot)) {
+                    Ok(Outcome::Accepted { step, err }) => (step, err),
+                    Ok(Outcome::Rejected { err }) => {
+                        run.rec.stats.steps_rejected += 1;
+                        self.rejected_last = true;
+                        self.h = Some(gains.after_rejection(h_try, err));
+                        continue;
+                    }
+                    Err(error) => {
+                        stage_failure = Some(error);
+                        run.rec.stats.steps_rejected += 1;
+                        self.rejected_last = true;
+                        self.h = Some(h_try * gains.fac_min);
+                        continue;
+                    }
+                };
+            let mut h_new = gains.after_acceptance(h_try, err, self.err_old);
+            if self.rejected_last {
+                h_new = h_new.min(h_try);
+            }
+            if last && h_try < h {
+                h_new = h_new.max(h);
+            }
+            self.err_old = err.max(c(1e-4));
+            self.rejected_last = false;
+            stage_failure = None;
+            run.rec.stats.steps_accepted += 1;
+
+            // A constrained model's end state is projected; the pair keeps
+            // its last slope, evaluated before that (see `constraints`).
+            let (q_end, qdot_end) = M::Pair::end(&step);
+            let (q_new, qdot_new) = run.rec.control_drift(model, t_new, q_end, qdot_end)?;
+            if let Some(steps) = growth.unstable((q, qdot), (&q_new, &qdot_new), h_try) {
+                return Err(IntegrationError::Unstable {
+                    t: t_new,
+                    h: h_try,
+                    steps,
+                    q: q_new,
+                    qdot: qdot_new,
+                });
+            }
+            self.h = Some(h_new);
+            // The dense output is built from the step's slopes before the
+            // pair moves on (its last slope becomes the next step's first),
+            // only when a sample or an event needs it.
+            let mut dense = None;
+            let crossed = if run.rec.watching() {
+                let dense = &*dense.get_or_insert_with(|| pair.dense(h_try, (&q, &qdot), &step));
+                let interpolant = |ts: S| M::Pair::dense_at(dense, (ts - t) / h_try);
+                let end = (q_new, qdot_new);
+                run.rec.watch_dense(model, (t, t_new), &end, interpolant)?
+            } else {
+                None
+            };
+            if crossed.is_none() {
+                while let Some(ts) = run.rec.pending().filter(|&ts| ts <= t_new) {
+                    if ts < t_new {
+                        let dense =
+                            dense.get_or_insert_with(|| pair.dense(h_try, (&q, &qdot), &step));
+                        let (qs, qdots) = M::Pair::dense_at(dense, (ts - t) / h_try);
+                        run.rec.record_dense(model, ts, qs, qdots)?;
+                    } else {
+                        run.rec.record(ts, q_new, qdot_new);
+                    }
+                }
+            }
+            pair.advance(&step);
+            match run.take((t_new, q_new, qdot_new), crossed, target) {
+                Flow::Go => {}
+                Flow::Stopped => return Ok(Advanced::Stopped),
+                Flow::Restarted(true) => {
+                    run.t = target;
+                    return Ok(Advanced::Reached);
+                }
+                Flow::Restarted(false) => {}
+            }
+        }
+    }
+}
