@@ -1,11 +1,19 @@
 //! The slopes of an explicit Runge–Kutta step, kept from step to step, and
 //! the sums over them that a tableau's rows weigh: shared by [`Dopri5`]
-//! (7 stages) and [`Dop853`] (16).
+//! (7 stages) and [`Dop853`] (16). And what the first-same-as-last pairs
+//! with one error estimate share: their stage loop over a tableau's
+//! constant rows ([`fsal_step`]), the step it makes ([`Step`]) and the
+//! test of its error ([`Step::judge`]).
 //!
 //! [`Dopri5`]: crate::integrators::Dopri5
 //! [`Dop853`]: crate::integrators::Dop853
 
 use nalgebra::{RealField, SVector};
+
+use crate::driver::pair::Outcome;
+use crate::driver::Recorder;
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::model::Lagrangian;
 
 /// The slopes of the `K` stages of a step, split as the state is: stage
 /// `j`'s slope is `(k_q[j], k_q̇[j]) = (q̇_j, q̈_j)`.
@@ -53,4 +61,109 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Stages<S, N, K> {
         self.q[0] = self.q[last];
         self.qdot[0] = self.qdot[last];
     }
+}
+
+/// One attempted step of a pair with one error estimate: the higher-order
+/// solution and the estimate. Its stages stay in the [`Stages`] it was
+/// computed in, so that an attempt moves a few vectors, not all the slopes
+/// (a copy through `memcpy` on every step: with it, and with the weights
+/// read from a table built per run, Dopri5 took 45.6 ns per evaluation on
+/// the double pendulum instead of 41.0, `cargo bench --bench
+/// rhs_overhead`, BENCHMARKS.md, "Constant weights, no copies").
+pub struct Step<S, const N: usize> {
+    pub(crate) q: SVector<S, N>,
+    pub(crate) qdot: SVector<S, N>,
+    pub(crate) err_q: SVector<S, N>,
+    pub(crate) err_qdot: SVector<S, N>,
+}
+
+impl<S: RealField + Copy, const N: usize> Step<S, N> {
+    /// Hairer's error norm: the RMS over `q` and `q̇` of the embedded error
+    /// relative to `atol + rtol max(|y_old|, |y_new|)`.
+    fn error(&self, (rtol, atol): (S, S), q: &SVector<S, N>, qdot: &SVector<S, N>) -> S {
+        let mut sum = S::zero();
+        let parts = [
+            (q, &self.q, &self.err_q),
+            (qdot, &self.qdot, &self.err_qdot),
+        ];
+        for (y0, y1, e) in parts {
+            for i in 0..N {
+                let sk = atol + rtol * y0[i].abs().max(y1[i].abs());
+                sum += (e[i] / sk).powi(2);
+            }
+        }
+        let n: S = nalgebra::convert((2 * N).max(1) as f64);
+        (sum / n).sqrt()
+    }
+
+    /// The step from `(q, q̇)` judged: accepted when its error is within
+    /// the tolerances, rejected with the error otherwise. Finite stages
+    /// with a non-finite error are an overflow in the sums: an error at
+    /// `t_new`, which rejects the step as a failing stage does.
+    pub(crate) fn judge(
+        self,
+        tolerances: (S, S),
+        (q, qdot): (&SVector<S, N>, &SVector<S, N>),
+        t_new: S,
+    ) -> Result<Outcome<S, Self>, IntegrationError<S, N>> {
+        let err = self.error(tolerances, q, qdot);
+        if !err.is_finite() {
+            let (q, qdot, value) = (self.q, self.qdot, NonFiniteValue::State);
+            return Err(IntegrationError::NonFiniteState {
+                t: t_new,
+                q,
+                qdot,
+                value,
+            });
+        }
+        Ok(if err <= S::one() {
+            Outcome::Accepted { step: self, err }
+        } else {
+            Outcome::Rejected { err }
+        })
+    }
+}
+
+/// One step of size `h` of a first-same-as-last explicit tableau of `K`
+/// stages from `(t, q, q̇)`, `q̈` there in the first stage of `k`: stage
+/// `i` at `t + c_i h` from row `i` of `a`, whose last row is the weights
+/// `b`, so the last stage is the new state (and the next step's first);
+/// `e = b − b̂` the error estimate's weights. The stages are left in `k`.
+/// Inlined, the rows are constants at each call: unrolled sums with the
+/// zeros dropped and the weights immediates ([`Stages::sum`]).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fsal_step<L, S, const N: usize, const K: usize>(
+    rec: &mut Recorder<'_, S, N>,
+    model: &L,
+    (t, t_new, h): (S, S, S),
+    (q, qdot): (&SVector<S, N>, &SVector<S, N>),
+    k: &mut Stages<S, N, K>,
+    a: &[&'static [f64]; K],
+    c: &[S; K],
+    e: &'static [f64],
+) -> Result<Step<S, N>, IntegrationError<S, N>>
+where
+    S: RealField + Copy,
+    L: Lagrangian<N, Scalar = S>,
+{
+    k.q[0] = *qdot;
+    let mut q_new = *q;
+    for (i, (&row, &c)) in a.iter().zip(c).enumerate().skip(1) {
+        let (dq, dqdot) = k.sum(row);
+        let (qi, qdoti) = (q + dq * h, qdot + dqdot * h);
+        // The last row holds the weights b, so the last stage is the new
+        // state, at exactly the time the clock moves to.
+        let ti = if i == K - 1 { t_new } else { t + c * h };
+        k.qdot[i] = rec.rhs(model, ti, &qi, &qdoti)?;
+        k.q[i] = qdoti;
+        q_new = qi;
+    }
+    let (err_q, err_qdot) = k.sum(e);
+    Ok(Step {
+        q: q_new,
+        qdot: k.q[K - 1],
+        err_q: err_q * h,
+        err_qdot: err_qdot * h,
+    })
 }

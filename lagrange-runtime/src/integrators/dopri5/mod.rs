@@ -11,10 +11,11 @@ use super::StepMethod;
 use crate::driver::{check_tolerances, default_tolerance};
 use crate::driver::pair::{Controller, Embedded, EmbeddedPair, Outcome, PairWalk, Tolerances};
 use crate::driver::Recorder;
-use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
+use crate::error::{IntegrationError, InvalidInput};
 use crate::model::Lagrangian;
 use crate::trajectory::State;
-use tableau::{Dense, Stages, Step, Tableau};
+use crate::integrators::stages::Step;
+use tableau::{Dense, Stages, Tableau};
 
 mod tableau;
 
@@ -158,23 +159,8 @@ impl<S: RealField + Copy, const N: usize> EmbeddedPair<S, N> for Pair<S, N> {
     ) -> Result<Outcome<S, Step<S, N>>, IntegrationError<S, N>> {
         let step = self
             .tab
-            .step(rec, model, t, t_new, h, q, qdot, &mut self.k)?;
-        let err = self.error_norm(q, qdot, &step);
-        if !err.is_finite() {
-            // Finite stages, infinite error: an overflow in the sums.
-            let (q, qdot, value) = (step.q, step.qdot, NonFiniteValue::State);
-            return Err(IntegrationError::NonFiniteState {
-                t: t_new,
-                q,
-                qdot,
-                value,
-            });
-        }
-        Ok(if err <= S::one() {
-            Outcome::Accepted { step, err }
-        } else {
-            Outcome::Rejected { err }
-        })
+            .step(rec, model, (t, t_new, h), (q, qdot), &mut self.k)?;
+        step.judge((self.rtol, self.atol), (q, qdot), t_new)
     }
 
     fn end(step: &Step<S, N>) -> State<S, N> {
@@ -199,22 +185,3 @@ impl<S: RealField + Copy, const N: usize> EmbeddedPair<S, N> for Pair<S, N> {
     }
 }
 
-impl<S: RealField + Copy, const N: usize> Pair<S, N> {
-    /// RMS over `q` and `q̇` of the embedded error relative to
-    /// `atol + rtol max(|y_old|, |y_new|)`.
-    fn error_norm(&self, q: &SVector<S, N>, qdot: &SVector<S, N>, step: &Step<S, N>) -> S {
-        let mut sum = S::zero();
-        let parts = [
-            (q, &step.q, &step.err_q),
-            (qdot, &step.qdot, &step.err_qdot),
-        ];
-        for (y0, y1, e) in parts {
-            for i in 0..N {
-                let sk = self.atol + self.rtol * y0[i].abs().max(y1[i].abs());
-                sum += (e[i] / sk).powi(2);
-            }
-        }
-        let n: S = nalgebra::convert((2 * N).max(1) as f64);
-        (sum / n).sqrt()
-    }
-}

@@ -5,21 +5,8 @@ use nalgebra::{RealField, SVector};
 
 use crate::driver::Recorder;
 use crate::error::IntegrationError;
+use crate::integrators::stages::{fsal_step, Step};
 use crate::model::Lagrangian;
-
-/// One attempted step: the fifth-order solution and the embedded error
-/// estimate. Its stages stay in the [`Stages`] it was computed in, so that
-/// an attempt moves a few vectors, not all seven slopes (a copy through
-/// `memcpy` on every step: with it, and with the weights read from a
-/// table built per run, Dopri5 took 45.6 ns per evaluation on the double
-/// pendulum instead of 41.0, `cargo bench --bench rhs_overhead`,
-/// BENCHMARKS.md, "Constant weights, no copies").
-pub struct Step<S, const N: usize> {
-    pub(super) q: SVector<S, N>,
-    pub(super) qdot: SVector<S, N>,
-    pub(super) err_q: SVector<S, N>,
-    pub(super) err_qdot: SVector<S, N>,
-}
 
 /// The slopes of the seven stages of a step; the seventh is at the new
 /// state and starts the next step (FSAL).
@@ -94,36 +81,16 @@ impl<S: RealField + Copy> Tableau<S> {
 
     /// Attempts one step of size `h` from `(t, q, q̇)`, with `q̈` there in
     /// the first stage of `k`; the stages are left in `k`.
-    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     pub(super) fn step<L: Lagrangian<N, Scalar = S>, const N: usize>(
         &self,
         rec: &mut Recorder<'_, S, N>,
         model: &L,
-        t: S,
-        t_new: S,
-        h: S,
-        q: &SVector<S, N>,
-        qdot: &SVector<S, N>,
+        times: (S, S, S),
+        state: (&SVector<S, N>, &SVector<S, N>),
         k: &mut Stages<S, N>,
     ) -> Result<Step<S, N>, IntegrationError<S, N>> {
-        k.q[0] = *qdot;
-        let mut q_new = *q;
-        for (i, (&row, &c)) in A.iter().zip(&self.c).enumerate().skip(1) {
-            let (dq, dqdot) = k.sum(row);
-            let (qi, qdoti) = (q + dq * h, qdot + dqdot * h);
-            // Row 7 of `A` holds the weights b, so stage 7 is the new state.
-            let ti = if i == 6 { t_new } else { t + c * h };
-            k.qdot[i] = rec.rhs(model, ti, &qi, &qdoti)?;
-            k.q[i] = qdoti;
-            q_new = qi;
-        }
-        let (err_q, err_qdot) = k.sum(&E);
-        Ok(Step {
-            q: q_new,
-            qdot: k.q[6],
-            err_q: err_q * h,
-            err_qdot: err_qdot * h,
-        })
+        fsal_step(rec, model, times, state, k, &A, &self.c, &E)
     }
 }
 
