@@ -115,7 +115,8 @@ fn evaluation_nodes(method: Method) -> Vec<f64> {
         Method::GaussLegendre2 => vec![0.0, 0.5 - r3, 0.5 + r3],
         Method::GaussLegendre3 => vec![0.0, 0.5 - r15, 0.5, 0.5 + r15],
         Method::Variational => vec![0.5],
-        Method::Dopri5 | Method::Dop853 | Method::Radau5 => unreachable!("{method:?} is adaptive"),
+        m if m.is_adaptive() => unreachable!("{m:?} is adaptive"),
+        m => panic!("{m:?}: where does a step evaluate the model?"),
     }
 }
 

@@ -105,6 +105,7 @@ macro_rules! registry {
         /// # Ok::<(), Box<dyn std::error::Error>>(())
         /// ```
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        #[non_exhaustive]
         pub enum Method {
             $($(
                 #[doc = concat!("[`", stringify!($ty), "`]: ", $row)]
@@ -166,6 +167,7 @@ macro_rules! registry {
         /// method a [`Stepper`](crate::stepper::Stepper) steps.
         #[derive(Clone, Copy, Debug, PartialEq)]
         #[allow(missing_docs)]
+        #[non_exhaustive]
         pub enum AnyIntegrator<S: RealField + Copy> {
             $($( $variant($ty<S>), )+)+
         }
