@@ -91,6 +91,10 @@ registry! {
         Dopri5 = "dopri5", order 5, adaptive, jacobians false, |h| Dopri5::new(),
         "adaptive (estimate of order 4), dense output of order 4 | 6 | The default ([`integrate`]): smooth problems at everyday tolerances, `1e-3` to `1e-9`.";
     }
+    tsit5::Tsit5 {
+        Tsit5 = "tsit5", order 5, adaptive, jacobians false, |h| Tsit5::new(),
+        "adaptive (estimate of order 4), dense output of order 4 from its own stages | 6 | DifferentialEquations.jl's non-stiff default: Dopri5's cost with smaller error coefficients.";
+    }
     dop853::Dop853 {
         Dop853 = "dop853", order 8, adaptive, jacobians false, |h| Dop853::new(),
         "adaptive (estimates 5 and 3), dense output of order 7 | 12, +3 on steps with samples inside | Tight tolerances, below about `1e-9`: 2–6× fewer evaluations than Dopri5 at `1e-12`.";
