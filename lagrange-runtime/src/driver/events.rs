@@ -8,7 +8,7 @@
 
 use nalgebra::RealField;
 
-use super::record::{finite_state, Recorder};
+use super::record::{finite_state, Project, Recorder};
 use super::run::Segment;
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::events::{evaluate_into, first_crossing, Events, Hermite, Watch};
@@ -88,16 +88,20 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     /// After an accepted step from `t` to `t_new` ending in `end`, with the
     /// method's dense output `interpolant`: `Some` when an event ended the
     /// segment (the samples up to it recorded from `interpolant`).
-    pub(crate) fn watch_dense<L: Lagrangian<N, Scalar = S>>(
+    ///
+    /// The model and the interpolant are taken behind `dyn`: this code, and
+    /// the location under it, is compiled once per scalar and size, not once
+    /// per model, method and interpolant (it was a fifth of the LLVM IR of
+    /// the runtime's test binary).
+    pub(crate) fn watch_dense(
         &mut self,
-        model: &L,
+        model: &dyn Project<S, N>,
         (t, t_new): (S, S),
         end: &State<S, N>,
-        interpolant: impl FnMut(S) -> State<S, N>,
+        interpolant: &mut dyn FnMut(S) -> State<S, N>,
     ) -> Result<Option<Segment<S, N>>, IntegrationError<S, N>> {
-        let mut interpolant = interpolant;
         if let Some(g_end) = self.crossed_at_end(t_new, end)? {
-            if let Some(ended) = self.act(model, (t, t_new), end, g_end, &mut interpolant)? {
+            if let Some(ended) = self.act(model, (t, t_new), end, g_end, interpolant)? {
                 return Ok(Some(ended));
             }
         }
@@ -127,24 +131,25 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
                 watch.slope = Some((t_new, *end, qddot1));
             }
             let hermite = Hermite::new((t, *start, qddot0), (t_new, *end, qddot1));
-            if let Some(ended) = self.act(model, (t, t_new), end, g_end, |s| hermite.at(s))? {
+            let mut interpolant = |s| hermite.at(s);
+            if let Some(ended) = self.act(model, (t, t_new), end, g_end, &mut interpolant)? {
                 return Ok(Some(ended));
             }
         }
         // A fixed step ends on every sample time: no sample lies strictly
         // inside it for the observer's stop to interpolate.
-        self.observe(model, t_new, end, |_| *end)
+        self.observe(model, t_new, end, &mut |_| *end)
     }
 
     /// The observer, if any, at an accepted step's end `(t_new, end)`: when
     /// it asks to stop, the samples up to `t_new` are recorded (from
     /// `interpolant` inside the step) and the run ends there.
-    fn observe<L: Lagrangian<N, Scalar = S>>(
+    fn observe(
         &mut self,
-        model: &L,
+        model: &dyn Project<S, N>,
         t_new: S,
         end: &State<S, N>,
-        mut interpolant: impl FnMut(S) -> State<S, N>,
+        interpolant: &mut dyn FnMut(S) -> State<S, N>,
     ) -> Result<Option<Segment<S, N>>, IntegrationError<S, N>> {
         let Some(watch) = &self.watch else {
             return Ok(None);
@@ -200,13 +205,13 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
         Ok(Some(g))
     }
 
-    fn act<L: Lagrangian<N, Scalar = S>>(
+    fn act(
         &mut self,
-        model: &L,
+        model: &dyn Project<S, N>,
         step: (S, S),
         end: &State<S, N>,
         g_end: Vec<S>,
-        interpolant: impl FnMut(S) -> State<S, N>,
+        interpolant: &mut dyn FnMut(S) -> State<S, N>,
     ) -> Result<Option<Segment<S, N>>, IntegrationError<S, N>> {
         let Some(mut watch) = self.watch.take() else {
             return Ok(None);
@@ -218,14 +223,14 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
 
     /// Every crossing on the step in turn: recorded ones in passing, until
     /// one that stops or resets ends the segment.
-    fn act_on<L: Lagrangian<N, Scalar = S>>(
+    fn act_on(
         &mut self,
         watch: &mut Watch<'a, S, N>,
-        model: &L,
+        model: &dyn Project<S, N>,
         (t, t_new): (S, S),
         end: &State<S, N>,
         g_end: Vec<S>,
-        mut interpolant: impl FnMut(S) -> State<S, N>,
+        interpolant: &mut dyn FnMut(S) -> State<S, N>,
     ) -> Result<Option<Segment<S, N>>, IntegrationError<S, N>> {
         let events = watch.events;
         let list = events.list();

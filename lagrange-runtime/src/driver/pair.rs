@@ -341,9 +341,10 @@ where
             let mut dense = None;
             let crossed = if run.rec.watching() {
                 let dense = &*dense.get_or_insert_with(|| pair.dense(h_try, (&q, &qdot), &step));
-                let interpolant = |ts: S| M::Pair::dense_at(dense, (ts - t) / h_try);
+                let mut interpolant = |ts: S| M::Pair::dense_at(dense, (ts - t) / h_try);
                 let end = (q_new, qdot_new);
-                run.rec.watch_dense(model, (t, t_new), &end, interpolant)?
+                run.rec
+                    .watch_dense(model, (t, t_new), &end, &mut interpolant)?
             } else {
                 None
             };

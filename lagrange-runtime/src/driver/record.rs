@@ -135,9 +135,9 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
 
     /// Records a sample from dense output, projected onto the constraints
     /// if the model's drift control projects.
-    pub(crate) fn record_dense<L: Lagrangian<N, Scalar = S>>(
+    pub(crate) fn record_dense(
         &mut self,
-        model: &L,
+        model: &dyn Project<S, N>,
         t: S,
         q: SVector<S, N>,
         qdot: SVector<S, N>,
@@ -151,9 +151,9 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     /// sample is ([`record_dense`](Self::record_dense)), not recorded.
     /// A non-finite one (the interpolant overflowed between two finite
     /// states) is an error, never a sample.
-    pub(crate) fn project_sample<L: Lagrangian<N, Scalar = S>>(
+    pub(crate) fn project_sample(
         &mut self,
-        model: &L,
+        model: &dyn Project<S, N>,
         t: S,
         q: SVector<S, N>,
         qdot: SVector<S, N>,
@@ -166,9 +166,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
                 value: NonFiniteValue::DenseOutput,
             });
         }
-        let stats = &mut self.stats;
-        let sample = ProjectSample { t, q, qdot, stats };
-        model.visit_constraints(sample).unwrap_or(Ok((q, qdot)))
+        model.project(&mut self.stats, t, q, qdot)
     }
 
     pub(crate) fn finish(mut self) -> Trajectory<S, N> {
@@ -187,4 +185,32 @@ pub(crate) fn finite_state<S: RealField + Copy, const N: usize>(
     qdot: &SVector<S, N>,
 ) -> bool {
     q.iter().chain(qdot.iter()).all(|x| x.is_finite())
+}
+
+/// A state from an interpolant brought onto a model's constraints, as the
+/// model's drift control says (unchanged in minimal coordinates): what
+/// sampling and event location need of a model, behind a `dyn` so that
+/// their code is compiled once per scalar and size, not once per model
+/// and method.
+pub(crate) trait Project<S: RealField + Copy, const N: usize> {
+    fn project(
+        &self,
+        stats: &mut Stats,
+        t: S,
+        q: SVector<S, N>,
+        qdot: SVector<S, N>,
+    ) -> Result<State<S, N>, IntegrationError<S, N>>;
+}
+
+impl<S: RealField + Copy, L: Lagrangian<N, Scalar = S>, const N: usize> Project<S, N> for L {
+    fn project(
+        &self,
+        stats: &mut Stats,
+        t: S,
+        q: SVector<S, N>,
+        qdot: SVector<S, N>,
+    ) -> Result<State<S, N>, IntegrationError<S, N>> {
+        let sample = ProjectSample { t, q, qdot, stats };
+        self.visit_constraints(sample).unwrap_or(Ok((q, qdot)))
+    }
 }

@@ -55,7 +55,7 @@ pub(crate) fn first_crossing<S: RealField + Copy, const N: usize>(
     (t0, g0): (S, &[S]),
     (t1, g1): (S, &[S]),
     tolerance: S,
-    mut state_at: impl FnMut(S) -> State<S, N>,
+    state_at: &mut dyn FnMut(S) -> State<S, N>,
     evaluations: &mut usize,
 ) -> Result<Option<Crossing<S, N>>, IntegrationError<S, N>> {
     let list = events.list();
@@ -85,7 +85,7 @@ pub(crate) fn first_crossing<S: RealField + Copy, const N: usize>(
             continue;
         }
         let crossed = |value: S| event.crosses(from, value);
-        let t = illinois(&mut g, crossed, a, b, tolerance)?;
+        let t = illinois(&mut g, &crossed, a, b, tolerance)?;
         if first.is_none_or(|(earliest, _)| t < earliest) {
             first = Some((t, i));
         }
@@ -123,7 +123,7 @@ pub(crate) fn first_crossing<S: RealField + Copy, const N: usize>(
 /// one extremum in the step; two or more within one step (an oscillation
 /// of `g` faster than the step) can hide one.
 fn hidden_extremum<S: RealField + Copy, E>(
-    g: &mut impl FnMut(S) -> Result<S, E>,
+    g: &mut dyn FnMut(S) -> Result<S, E>,
     (t0, g0): (S, S),
     (t1, g1): (S, S),
     tolerance: S,
@@ -258,8 +258,8 @@ fn finite<S: RealField + Copy, const N: usize>(
 /// bisection when the new point is not strictly inside, and whenever three
 /// iterations have not halved the bracket.
 fn illinois<S: RealField + Copy, E>(
-    g: &mut impl FnMut(S) -> Result<S, E>,
-    crossed: impl Fn(S) -> bool,
+    g: &mut dyn FnMut(S) -> Result<S, E>,
+    crossed: &dyn Fn(S) -> bool,
     (mut a, mut fa): (S, S),
     (mut b, mut fb): (S, S),
     tolerance: S,
@@ -319,7 +319,7 @@ mod tests {
         let mut n = 0;
         let g0 = evaluate(events, t0, &cosine(t0), &mut n).unwrap();
         let g1 = evaluate(events, t1, &cosine(t1), &mut n).unwrap();
-        first_crossing(events, (t0, &g0), (t1, &g1), tolerance, cosine, &mut n).unwrap()
+        first_crossing(events, (t0, &g0), (t1, &g1), tolerance, &mut cosine, &mut n).unwrap()
     }
 
     #[test]
@@ -363,7 +363,7 @@ mod tests {
         let events = Events::new().with(Event::new("broken", nan));
         let mut n = 0;
         let (start, end) = ((0.5, &[0.5][..]), (2.0, &[-1.0][..]));
-        let error = first_crossing(&events, start, end, 1e-12, cosine, &mut n);
+        let error = first_crossing(&events, start, end, 1e-12, &mut cosine, &mut n);
         assert!(matches!(
             error,
             Err(IntegrationError::NonFiniteEvent {

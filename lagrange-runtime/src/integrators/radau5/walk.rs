@@ -270,8 +270,8 @@ impl<S: RealField + Copy, const N: usize> Walk<S, N> for Radau5Walk<S, N> {
             let end = split(&self.work.y);
             let crossed = if run.rec.watching() {
                 let work = &self.work;
-                let interpolant = |ts: S| work.dense((ts - t_new) / h);
-                run.rec.watch_dense(model, (t, t_new), &end, interpolant)?
+                let mut interpolant = |ts: S| work.dense((ts - t_new) / h);
+                run.rec.watch_dense(model, (t, t_new), &end, &mut interpolant)?
             } else {
                 None
             };
