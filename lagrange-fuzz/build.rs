@@ -1,5 +1,5 @@
 //! The seed corpus: every `lagrangian! { .. }` written in the repository (the
-//! examples, the integration and UI tests, the engine's tests), extracted at
+//! examples and benchmarks, the integration and UI tests, the engine's tests), extracted at
 //! build time so that the mutator starts from real models and follows them as
 //! they change.
 
@@ -8,9 +8,9 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 const DIRS: [&str; 6] = [
-    "examples",
+    "lagrange-studies",
     "tests",
-    "benches",
+    "lagrange-macros/tests",
     "src",
     "lagrange-engine/src",
     "lagrange-engine/tests",

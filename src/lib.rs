@@ -79,7 +79,7 @@
 //! |---|---|
 //! | `serde` | `Serialize`/`Deserialize` for trajectories, statistics, errors and failures; `#[lagrange(serde)]` models through `lagrange::serde` |
 //! | `csv` | `export::write_csv`: a trajectory with the model's names as the header, energy, multipliers, events |
-//! | `ode_solvers` | `interop::ode_solvers::FirstOrder`: a model as that crate's `System` |
+//! | `ode_solvers` | `interop::ode_solvers::FirstOrder`: a model as that crate's `System`; `lagrange::ode_solvers` is the crate |
 //! | `diffsol` | `interop::diffsol::problem`: a model as a diffsol `OdeSolverProblem`; `lagrange::diffsol` is the crate |
 //!
 //! ## Mistakes are compile errors that speak physics

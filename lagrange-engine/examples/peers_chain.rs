@@ -1,5 +1,5 @@
 //! Prints the code `lagrangian!` generates for the N-link chain of
-//! `benches/peers/chain_codegen_c.py`, for that script to count its
+//! `lagrange-studies/benches/peers/chain_codegen_c.py`, for that script to count its
 //! operations: the items pretty-printed, then the engine's own operation
 //! counts and its derive + emit time.
 //!
@@ -14,7 +14,7 @@ fn main() {
         .nth(1)
         .and_then(|a| a.parse().ok())
         .expect("usage: peers_chain N");
-    // The model of examples/scaling (indexed form) and of the script.
+    // The model of lagrange-studies/examples/scaling (indexed form) and of the script.
     let source = format!(
         "pub struct Chain {{
     const N = {n};

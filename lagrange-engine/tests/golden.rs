@@ -98,7 +98,13 @@ fn key(body: &TokenStream) -> String {
 fn expansions() -> BTreeMap<String, String> {
     let root = repo_root();
     let mut files = Vec::new();
-    for dir in ["src", "tests", "examples", "benches", "lagrange-runtime"] {
+    for dir in [
+        "src",
+        "tests",
+        "lagrange-studies",
+        "lagrange-macros/tests",
+        "lagrange-runtime",
+    ] {
         rust_files(&root.join(dir), &mut files);
     }
     let mut out = BTreeMap::new();

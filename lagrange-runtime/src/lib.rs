@@ -218,49 +218,58 @@
 //!
 //! # Map of the crate
 //!
-//! - [`model`]: the contract a model fulfils, [`Lagrangian`], the one list
-//!   of its capabilities, and [`Layered`](model::Layered) models.
-//! - [`constraints`]: models with holonomic constraints, [`Holonomic`]:
-//!   the saddle-point accelerations, drift control (projection by
-//!   default, Baumgarte, none), consistent initial conditions, the
-//!   multipliers; every method runs them, [`Variational`] by its own
-//!   constrained (RATTLE) step.
-//! - [`integrators`]: the [`Integrator`] trait, [`integrate`], and one file
-//!   or folder per method: [`ExplicitEuler`], [`SymplecticEuler`] and
-//!   [`Rk4`] (fixed step), [`Dopri5`] (adaptive, the default) and [`Dop853`]
-//!   (adaptive, high order), [`ImplicitMidpoint`] and [`GaussLegendre`]
-//!   (implicit, fixed step, sharing `implicit_rk.rs`), [`Variational`]
-//!   (fixed step, structure preserving), [`Radau5`] (adaptive, implicit,
-//!   L-stable, for stiff models). A method's tableau is a child of it
-//!   (`dop853/tableau.rs`, `radau5/coefficients.rs`).
-//! - `driver/` (private): what the methods share, apart from them: sample
-//!   recording, input validation, the fixed-step loop and its growth guard,
-//!   the explicit adaptive loop, step-size control, Newton's noise floor.
-//! - [`dynamics`]: `q̈` (and `λ`) of a model at a state,
-//!   [`acceleration`](dynamics::acceleration), constrained or not, every
-//!   method's right-hand side; `∂q̈/∂q` and `∂q̈/∂q̇`
-//!   ([`acceleration_jacobians`](dynamics::acceleration_jacobians)); whom
-//!   to blame for a non-finite value.
+//! From the bottom up; a module imports only from the ones above it
+//! (`src/layers.rs` checks it), ARCHITECTURE.md draws the whole.
+//!
 //! - [`linalg`]: the linear algebra, knowing no models:
 //!   [`solve_mass_matrix`](linalg::solve::solve_mass_matrix) (an inlined
 //!   `L D Lᵀ`), singular cases caught; the saddle-point system, the heap
 //!   LU and the block solve of the implicit Runge–Kutta methods.
 //! - [`trig`]: the sine and cosine the generated code calls, an inline
 //!   `f64` kernel within one ulp that runs several angles side by side.
-//! - [`analysis`]: small motions, [`linearize`](analysis::linearize) at
-//!   any state (`A`, and `B` for models with inputs), equilibria by
-//!   Newton's method, normal modes about them; exact with a model's
-//!   residual Jacobians, else by central differences.
+//! - [`model`]: the contract a model fulfils, [`Lagrangian`], and the one
+//!   list of its optional capabilities (constraints, inputs, named `let`s,
+//!   residual Jacobians); [`Layered`](model::Layered) models, the one way a
+//!   setting (constraint handling, a controller, finite differences) wraps
+//!   a model while passing every other capability through.
+//! - [`dynamics`]: `q̈` (and `λ`) of a model at a state,
+//!   [`acceleration`](dynamics::acceleration), constrained or not, every
+//!   method's right-hand side; `∂q̈/∂q` and `∂q̈/∂q̇`
+//!   ([`acceleration_jacobians`](dynamics::acceleration_jacobians)); whom
+//!   to blame for a non-finite value; projection onto the constraints.
+//! - [`constraints`] and [`inputs`]: the user's doors to those
+//!   capabilities: [`Holonomic`] and its drift control (projection by
+//!   default, Baumgarte, none), consistent initial conditions, the
+//!   multipliers; [`Actuated`] models and the
+//!   [`Controlled`](inputs::Controlled) model a controller drives.
+//! - `driver/` (private): the one run loop ([`integrate`] and the
+//!   [`Stepper`] both drive it, `run.rs`) over a walker per kind of method
+//!   (`fixed.rs`, `pair.rs` for the embedded pairs), sample recording,
+//!   event location and actions (`events.rs`), input validation, the
+//!   growth guard, step-size control, Newton's noise floor.
+//! - [`integrators`]: the [`Integrator`] trait and one file or folder per
+//!   method, each one entry of the registry (`integrators/mod.rs`) that
+//!   generates [`Method`], [`AnyIntegrator`] and the lists: [`ExplicitEuler`],
+//!   [`SymplecticEuler`] and [`Rk4`] (fixed step), [`Dopri5`] (adaptive, the
+//!   default), [`Tsit5`] and [`Dop853`] (adaptive), [`ImplicitMidpoint`] and
+//!   [`GaussLegendre`] (implicit, fixed step, sharing `implicit_rk.rs`),
+//!   [`Variational`] (fixed step, structure preserving), [`Radau5`]
+//!   (adaptive, implicit, L-stable, for stiff models). [`Method`]'s table
+//!   says which to choose.
 //! - [`events`]: functions of the state whose crossings are located on
 //!   each step's interpolant and recorded, or stop the run, or reset the
 //!   state (impacts) and restart it: [`Event`], [`Events`], through
 //!   [`Integrator::integrate_with_events`]; with the Zeno guard.
+//! - [`stepper`]: the [`Stepper`], one frame at a time for a real-time
+//!   loop, any method, no allocation per frame.
+//! - [`analysis`]: small motions, [`linearize`](analysis::linearize) at
+//!   any state (`A`, and `B` for models with inputs), equilibria by
+//!   Newton's method (with the neutral directions of a family), normal
+//!   modes about them; exact with a model's residual Jacobians, else by
+//!   central differences.
 //! - [`Trajectory`] (`trajectory.rs`): the samples, the events that
 //!   happened and the [`Stats`] of the work done.
 //! - [`error`]: [`IntegrationError`], [`InvalidInput`], [`Failure`].
-//! - [`inputs`]: control inputs, the [`Actuated`] trait of models with an
-//!   `inputs:` section and the [`Controlled`](inputs::Controlled) model a
-//!   controller drives; inputs never set are refused before the first step.
 //!
 //! Everything is generic over the model's scalar: `f64` and `f32` both work.
 
@@ -301,6 +310,10 @@ pub use integrators::StepMethod;
 pub use integrators::{integrate, AnyIntegrator, Integrator, Method};
 pub use model::{lets, Lagrangian};
 pub use nalgebra;
+/// The ode_solvers crate (feature `ode_solvers`), for its solvers beside
+/// [`interop::ode_solvers`].
+#[cfg(feature = "ode_solvers")]
+pub use ode_solvers;
 pub use stepper::Stepper;
 pub use trajectory::{EventRecord, Sample, Samples, Stats, Trajectory};
 

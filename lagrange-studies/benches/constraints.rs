@@ -3,7 +3,7 @@
 //! minimal coordinates (`M`, `f` and the `N × N` solve), and the operation
 //! counts of the generated `G` and `γ` beside those of `M` and `f`.
 //!
-//! `cargo bench --bench constraints`
+//! `cargo bench -p lagrange-studies --bench constraints`
 
 use criterion::{criterion_group, Criterion};
 use lagrange::dynamics::acceleration;
@@ -71,10 +71,10 @@ mod op_counts {
     use lagrange_engine::expr::cse;
 
     const SOURCES: [&str; 4] = [
-        include_str!("../src/models/cartesian_pendulum.rs"),
-        include_str!("../src/models/pendulum.rs"),
-        include_str!("../src/models/slider_crank.rs"),
-        include_str!("../src/models/four_bar.rs"),
+        include_str!("../../src/models/cartesian_pendulum.rs"),
+        include_str!("../../src/models/pendulum.rs"),
+        include_str!("../../src/models/slider_crank.rs"),
+        include_str!("../../src/models/four_bar.rs"),
     ];
 
     pub fn print() {

@@ -1,7 +1,7 @@
 //! The generated double pendulum `M + f` against a hand-written,
 //! hand-optimised version of the same equations.
 //!
-//! `cargo bench --bench double_pendulum`
+//! `cargo bench -p lagrange-studies --bench double_pendulum`
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use lagrange::models::DoublePendulum;

@@ -6,7 +6,7 @@
 //! default tolerance. Prints a table (best-of-five mean over 600 frames,
 //! right-hand sides per frame), then criterion's measurements.
 //!
-//! `cargo bench --bench frame`
+//! `cargo bench -p lagrange-studies --bench frame`
 
 use std::hint::black_box;
 use std::time::Instant;

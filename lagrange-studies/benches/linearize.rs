@@ -8,7 +8,7 @@
 //! the exact blocks relative to their largest entry), then criterion's
 //! measurements.
 //!
-//! `cargo bench --bench linearize`
+//! `cargo bench -p lagrange-studies --bench linearize`
 
 use std::hint::black_box;
 use std::time::Instant;

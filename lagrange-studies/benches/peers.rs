@@ -5,15 +5,15 @@
 //! built with cargo's release defaults and for the native CPU, timed the same
 //! way, and both texts' operations counted by one counter.
 //!
-//! The work is `benches/peers/chain_codegen_c.py` (its docstring says what it
+//! The work is `lagrange-studies/benches/peers/chain_codegen_c.py` (its docstring says what it
 //! measures and how); this bench finds what it needs and runs it. It needs a
 //! Python with sympy (`LAGRANGE_PEERS_PYTHON`, else `python3`) and gcc, and
 //! says so and skips when either is missing:
 //!
 //! ```sh
 //! python3 -m venv ../peers-venv && ../peers-venv/bin/pip install sympy numpy
-//! LAGRANGE_PEERS_PYTHON=../peers-venv/bin/python cargo bench --bench peers
-//! LAGRANGE_PEERS_PYTHON=... cargo bench --bench peers -- --ns 2,5,10   # quicker
+//! LAGRANGE_PEERS_PYTHON=../peers-venv/bin/python cargo bench -p lagrange-studies --bench peers
+//! LAGRANGE_PEERS_PYTHON=... cargo bench -p lagrange-studies --bench peers -- --ns 2,5,10   # quicker
 //! ```
 //!
 //! Results in `target/peers/chain_codegen_c.txt` (and `.json`); about 11
@@ -28,11 +28,16 @@ fn main() -> ExitCode {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
     let benching = args.iter().any(|a| a == "--bench");
     args.retain(|a| a != "--bench");
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let script = root.join("benches/peers/chain_codegen_c.py");
+    let studies = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let script = studies.join("lagrange-studies/benches/peers/chain_codegen_c.py");
+    // The repository's root, one above this crate: the script builds the
+    // `lagrange` there into scratch crates.
+    let root = studies
+        .parent()
+        .expect("lagrange-studies sits in the repository");
     if !benching {
         println!(
-            "peers: run with `cargo bench --bench peers` ({})",
+            "peers: run with `cargo bench -p lagrange-studies --bench peers` ({})",
             script.display()
         );
         return ExitCode::SUCCESS;

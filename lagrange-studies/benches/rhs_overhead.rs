@@ -18,7 +18,7 @@
 //! so compare the integrators' own times across builds, and ratios only
 //! within one (BENCHMARKS.md, "What an adaptive step adds").
 //!
-//! `cargo bench --bench rhs_overhead` (under `cargo test` it only says so).
+//! `cargo bench -p lagrange-studies --bench rhs_overhead` (under `cargo test` it only says so).
 //! Each timing's best of 15, taken in interleaved rounds in one process (a
 //! slow spell of a shared machine then slows every measure, not one); a
 //! quick table, not criterion's statistics.
@@ -226,7 +226,7 @@ fn per_evaluation<'a, M: Integrator<f64>, L: Lagrangian<N, Scalar = f64>, const 
 
 fn main() {
     if !std::env::args().any(|a| a == "--bench") {
-        println!("rhs_overhead: run with `cargo bench --bench rhs_overhead`");
+        println!("rhs_overhead: run with `cargo bench -p lagrange-studies --bench rhs_overhead`");
         return;
     }
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();

@@ -2,7 +2,7 @@
 //! `K` angles are computed together, as the generated code does with
 //! `sin_cos_array` for a model with `K` angles.
 //!
-//! `cargo bench --bench trig` (under `cargo test` it only says so). Best of
+//! `cargo bench -p lagrange-studies --bench trig` (under `cargo test` it only says so). Best of
 //! five repetitions of 200,000 calls on 64 varying states, one process; a
 //! quick table, not criterion's statistics.
 
@@ -53,7 +53,7 @@ fn row<const K: usize>() {
 
 fn main() {
     if !std::env::args().any(|a| a == "--bench") {
-        println!("trig: run with `cargo bench --bench trig`");
+        println!("trig: run with `cargo bench -p lagrange-studies --bench trig`");
         return;
     }
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();

@@ -4,11 +4,11 @@
 //! pendulum from rest at (2, 2.5), to t = 2, against the 25-digit reference)
 //! and the same tolerances: the error reached, the evaluations and the time.
 //!
-//! `cargo bench --bench vs_ode_solvers`
+//! `cargo bench -p lagrange-studies --bench vs_ode_solvers`
 
 /// The tests' reader of `tests/data/*.json`; the benchmark needs part of it.
 #[allow(dead_code)]
-#[path = "../tests/support/reference.rs"]
+#[path = "../../tests/support/reference.rs"]
 mod reference;
 
 use criterion::{criterion_group, criterion_main, Criterion};

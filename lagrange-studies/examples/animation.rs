@@ -3,7 +3,7 @@
 //! GIF, the joint positions read from `lets(t, q, q̇)` (the `x1, y1, x2, y2`
 //! and `xa, ya, x2, y2` the models wrote), not derived again here.
 //!
-//! `cargo run --release --example animation`
+//! `cargo run --release -p lagrange-studies --example animation`
 //!
 //! Writes `docs/animation/double_pendulum.gif` and
 //! `docs/animation/four_bar.gif`.
@@ -112,8 +112,9 @@ fn four_bar(path: &str) -> Result<(), Box<dyn Error>> {
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
-    std::fs::create_dir_all("docs/animation")?;
-    double_pendulum("docs/animation/double_pendulum.gif")?;
-    four_bar("docs/animation/four_bar.gif")?;
+    const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/animation");
+    std::fs::create_dir_all(DIR)?;
+    double_pendulum(&format!("{DIR}/double_pendulum.gif"))?;
+    four_bar(&format!("{DIR}/four_bar.gif"))?;
     Ok(())
 }

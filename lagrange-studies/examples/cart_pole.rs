@@ -7,7 +7,7 @@
 //! work the forces did, `∫ (F ẋ − c |v_bob|²) dt`, integrated here along the
 //! trajectory with Simpson's rule on a dense sample grid.
 //!
-//! `cargo run --release --example cart_pole`
+//! `cargo run --release -p lagrange-studies --example cart_pole`
 
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;

@@ -7,7 +7,7 @@
 //! the last mass and a damper on the first joint, the energy gained must
 //! equal the work those forces did. Also times one evaluation of `M` and `f`.
 //!
-//! `cargo run --release --example chain`
+//! `cargo run --release -p lagrange-studies --example chain`
 
 use lagrange::nalgebra::SVector;
 use lagrange::prelude::*;

@@ -1,9 +1,9 @@
 //! The textbook double pendulum: derive, print the equations, simulate the
 //! chaotic case, and report how well each integrator keeps the energy. The
 //! model is `lagrange::models::DoublePendulum` (`src/models/double_pendulum.rs`,
-//! written as in the README); `examples/chain.rs` shows a model written out.
+//! written as in the README); `lagrange-studies/examples/chain.rs` shows a model written out.
 //!
-//! `cargo run --release --example double_pendulum`
+//! `cargo run --release -p lagrange-studies --example double_pendulum`
 //!
 //! With `--features csv`, `-- --csv FILE` also writes the Dormand–Prince run
 //! as CSV (`t, theta1, theta2, theta1_dot, theta2_dot, energy`).

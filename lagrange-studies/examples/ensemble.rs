@@ -6,7 +6,7 @@
 //! `rayon` `par_iter`; it is run on one thread and on every core, and the
 //! speed-up printed.
 //!
-//! `cargo run --release --example ensemble`
+//! `cargo run --release -p lagrange-studies --example ensemble`
 //!
 //! Writes `docs/ensemble/first_flip.png`: each pixel a pair of initial
 //! angles (θ1 across, θ2 up, both from −3 to 3 rad), its colour the time to
@@ -99,7 +99,10 @@ fn main() -> Result<(), Box<dyn Error + Send + Sync>> {
         t_one / t_all
     );
 
-    let path = std::path::Path::new("docs/ensemble/first_flip.png");
+    let path = std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../docs/ensemble/first_flip.png"
+    ));
     draw(&parallel, path)?;
     println!("Wrote {}", path.display());
     Ok(())

@@ -3,7 +3,7 @@
 //! 100 s with every method, measure what each drift control does, and draw
 //! it.
 //!
-//! `cargo run --release --example four_bar`
+//! `cargo run --release -p lagrange-studies --example four_bar`
 //!
 //! Writes `docs/four_bar/four_bar.svg`: the linkage through one crank turn
 //! with the path of its coupler's midpoint, and the closure residual
@@ -155,7 +155,8 @@ fn main() -> Result<(), Box<dyn Error>> {
         run.times()[turn.len() - 1]
     );
 
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/four_bar/four_bar.svg");
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/four_bar/four_bar.svg");
     std::fs::create_dir_all(path.parent().unwrap())?;
     draw(&path, &model, &turn, &curves)?;
     println!("Wrote {}", path.display());

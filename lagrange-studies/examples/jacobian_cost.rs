@@ -4,7 +4,7 @@
 //! median time of `expand` and the size of the emitted code. Why the
 //! Jacobians are opt-in rather than generated for every model.
 //!
-//! `cargo run --release --example jacobian_cost`
+//! `cargo run --release -p lagrange-studies --example jacobian_cost`
 
 #[allow(dead_code)]
 #[path = "scaling/chain.rs"]
@@ -14,7 +14,7 @@ use chain::Form;
 use proc_macro2::TokenStream;
 use std::time::{Duration, Instant};
 
-/// The `n`-link chain of `examples/scaling`, with or without the attribute.
+/// The `n`-link chain of `lagrange-studies/examples/scaling`, with or without the attribute.
 fn chain(n: usize, jacobians: bool) -> TokenStream {
     let attribute = if jacobians {
         "#[lagrange(jacobians)]"

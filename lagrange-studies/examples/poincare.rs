@@ -2,7 +2,7 @@
 //! pass of the upper rod through the vertical, `θ₁ = 0` rising, located by
 //! an event that only records, for a dozen orbits of one energy.
 //!
-//! `cargo run --release --example poincare`
+//! `cargo run --release -p lagrange-studies --example poincare`
 //!
 //! Writes `docs/poincare/poincare.svg`: `(θ₂, θ̇₂)` at every crossing.
 //! Regular orbits draw closed curves (their invariant tori cut by the
@@ -58,7 +58,8 @@ fn main() -> Result<(), Box<dyn Error>> {
         );
         orbits.push(points);
     }
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/poincare/poincare.svg");
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/poincare/poincare.svg");
     std::fs::create_dir_all(path.parent().unwrap())?;
     draw(&path, &orbits)?;
     println!("\nWrote {}", path.display());

@@ -8,10 +8,10 @@
 //! Prints the tip error of each game-rate run against its reference and what
 //! each run cost, and draws `docs/scene/scene.svg`: snapshots of the chains,
 //! the tip paths, and the tip error over time. What a frame costs, against
-//! one `integrate` call per frame, is measured by `cargo bench --bench
+//! one `integrate` call per frame, is measured by `cargo bench -p lagrange-studies --bench
 //! frame`.
 //!
-//! `cargo run --release --example scene`
+//! `cargo run --release -p lagrange-studies --example scene`
 
 use lagrange::models::{Chain, DoublePendulum};
 use lagrange::nalgebra::SVector;
@@ -230,7 +230,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         );
     }
 
-    let dir = std::path::Path::new("docs/scene");
+    let dir = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/scene"));
     std::fs::create_dir_all(dir)?;
     let path = dir.join("scene.svg");
     let (gray, wide) = REFERENCE;

@@ -5,7 +5,7 @@
 //! The model is `lagrange::models::RayleighTwoMassChain`
 //! (`src/models/two_mass_chain.rs`).
 //!
-//! `cargo run --release --example two_mass_spring`
+//! `cargo run --release -p lagrange-studies --example two_mass_spring`
 
 use lagrange::models::RayleighTwoMassChain;
 use lagrange::nalgebra::Vector2;

@@ -1,6 +1,6 @@
 //! The pendulum chain in the indexed language: `N` links written once. The
 //! closed form of its `M` and `f` is in `tests/models/indexed_models.rs`;
-//! `examples/chain.rs` writes an 8-link one with wind and a damper.
+//! `lagrange-studies/examples/chain.rs` writes an 8-link one with wind and a damper.
 
 use crate::lagrangian;
 

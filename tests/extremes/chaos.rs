@@ -7,7 +7,7 @@
 //! quantities are left to check. In between, how long a run stays within a
 //! given distance of the truth (its agreement horizon) grows only
 //! logarithmically with the tolerance: `ln(100)/λ` per 100× tighter.
-//! Figures: `cargo test --release --test extremes -- chaos:: --nocapture`.
+//! Figures: `cargo test --release --test suite -- extremes::chaos:: --nocapture`.
 
 use crate::support::fit::slope;
 use crate::support::reference::Reference;

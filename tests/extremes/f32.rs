@@ -14,7 +14,7 @@
 //! under Radau5.
 //!
 //! Every test prints the figures quoted in STABILITY.md; run with
-//! `cargo test --release --test extremes -- f32:: --nocapture`.
+//! `cargo test --release --test suite -- extremes::f32:: --nocapture`.
 
 use crate::support::reference::Reference;
 use lagrange::models::{DoublePendulum, Kepler, StiffChain};

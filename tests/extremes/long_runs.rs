@@ -8,10 +8,10 @@
 //! printed inside a measured call.
 //!
 //! The figures (for STABILITY.md):
-//! `cargo test --release --test extremes -- long_runs:: --nocapture` (a few
+//! `cargo test --release --test suite -- extremes::long_runs:: --nocapture` (a few
 //! seconds). Every integrator at 10⁶ steps (about twenty seconds) is
 //! ignored in CI:
-//! `cargo test --release --test extremes -- long_runs:: --ignored --nocapture`.
+//! `cargo test --release --test suite -- extremes::long_runs:: --ignored --nocapture`.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;

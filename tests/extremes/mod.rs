@@ -3,13 +3,10 @@
 //! and why; the figures STABILITY.md quotes are what they print:
 //!
 //! ```sh
-//! cargo test --release --test extremes -- --nocapture            # every group
-//! cargo test --release --test extremes -- kepler:: --nocapture   # one group
-//! cargo test --release --test extremes -- --ignored --nocapture  # the long runs
+//! cargo test --release --test suite -- extremes:: --nocapture            # every group
+//! cargo test --release --test suite -- extremes::kepler:: --nocapture   # one group
+//! cargo test --release --test suite -- extremes:: --ignored --nocapture  # the long runs
 //! ```
-
-#[path = "../support/mod.rs"]
-mod support;
 
 mod chaos;
 mod f32;

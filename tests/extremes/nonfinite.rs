@@ -7,8 +7,8 @@
 //! method can resolve) and in which state, and keeps every sample before.
 //! For every integrator.
 //!
-//! Every test prints its figures; `cargo test --release --test extremes --
-//! nonfinite:: --nocapture --test-threads=1` shows them in order.
+//! Every test prints its figures; `cargo test --release --test suite --
+//! extremes::nonfinite:: --nocapture --test-threads=1` shows them in order.
 
 use lagrange::nalgebra::Vector1;
 use lagrange::prelude::*;

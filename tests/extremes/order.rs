@@ -6,7 +6,7 @@
 //! from the exact state, where nothing but the interpolant is measured, then
 //! across whole adaptive runs, where it is what a user sampling densely
 //! gets. Each test prints its figures:
-//! `cargo test --release --test extremes -- order:: --nocapture`.
+//! `cargo test --release --test suite -- extremes::order:: --nocapture`.
 
 use crate::support::fit::{log_slope, sci};
 use lagrange::models::Oscillator;

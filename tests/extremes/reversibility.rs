@@ -8,7 +8,7 @@
 //! is `Φ₋ₕᴺ ∘ Φₕᴺ`: the identity exactly when the method is symmetric
 //! (`Φ₋ₕ = Φₕ⁻¹`: implicit midpoint, Gauss–Legendre, and the variational
 //! midpoint rule in `(q, p)`), and off by its truncation error otherwise.
-//! Figures: `cargo test --release --test extremes -- reversibility:: --nocapture`.
+//! Figures: `cargo test --release --test suite -- extremes::reversibility:: --nocapture`.
 
 use crate::support::fit::{log_slope, sci};
 use lagrange::models::DoublePendulum;

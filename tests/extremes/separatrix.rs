@@ -20,7 +20,7 @@
 //! not stall in the slow creep either.
 //!
 //! Every test prints the figures quoted in STABILITY.md; run with
-//! `cargo test --release --test extremes -- separatrix:: --nocapture`.
+//! `cargo test --release --test suite -- extremes::separatrix:: --nocapture`.
 
 use crate::support::elliptic::{complete_k, jacobi, Swing};
 use lagrange::models::Pendulum;

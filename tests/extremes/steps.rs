@@ -5,8 +5,8 @@
 //! end in its typed error, quickly, with the samples computed before it,
 //! never in a hang, an infinity or a silently wrong trajectory.
 //!
-//! Every test prints its figures; `cargo test --release --test extremes --
-//! steps:: --nocapture --test-threads=1` shows them in order.
+//! Every test prints its figures; `cargo test --release --test suite --
+//! extremes::steps:: --nocapture --test-threads=1` shows them in order.
 
 use lagrange::models::Oscillator;
 use lagrange::nalgebra::{SVector, Vector1, Vector2};

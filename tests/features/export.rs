@@ -124,7 +124,6 @@ fn events_are_rows_of_the_csv() {
 
 /// Serde (feature `serde`): a failed run, its error and the samples before
 /// it, through JSON and back, equal; an error naming a constraint too.
-#[cfg(feature = "serde")]
 #[test]
 fn failures_and_trajectories_round_trip_through_serde() {
     use lagrange::{Failure, IntegrationError, InvalidInput};
@@ -165,7 +164,6 @@ fn failures_and_trajectories_round_trip_through_serde() {
     ));
 }
 
-#[cfg(feature = "serde")]
 lagrange::lagrangian! {
     /// A scene's model whose parameters load from a file: a chain with a
     /// motor torque at its pivot as an input.
@@ -186,7 +184,6 @@ lagrange::lagrangian! {
 /// `#[lagrange(serde)]`: a model's parameters written to and read from
 /// JSON (a scene file); its control inputs are not stored and come back
 /// unset, which the integrators refuse until they are set.
-#[cfg(feature = "serde")]
 #[test]
 fn a_models_parameters_load_from_a_file() {
     let json = r#"{ "m": [1.0, 0.5, 0.25], "l": [0.4, 0.3, 0.2], "g": 9.81 }"#;

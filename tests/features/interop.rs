@@ -6,11 +6,10 @@
 use crate::support::reference::Reference;
 use lagrange::prelude::*;
 
-#[cfg(feature = "ode_solvers")]
 #[test]
 fn the_double_pendulum_through_ode_solvers_matches_ours_and_the_reference() {
     use lagrange::interop::ode_solvers::FirstOrder;
-    use ode_solvers::dop_shared::OutputType;
+    use lagrange::ode_solvers::dop_shared::OutputType;
     let r = Reference::double_pendulum();
     let model = r.double_pendulum_model::<f64>();
     // The reference sample at t = 2 (perturbation growth there ~1e2).
@@ -20,10 +19,10 @@ fn the_double_pendulum_through_ode_solvers_matches_ours_and_the_reference() {
         .find(|s| s.t == 2.0)
         .expect("a sample at t = 2");
     let tol = 1e-12;
-    let y0 = ode_solvers::Vector4::new(r.q0[0], r.q0[1], r.qdot0[0], r.qdot0[1]);
+    let y0 = lagrange::ode_solvers::Vector4::new(r.q0[0], r.q0[1], r.qdot0[0], r.qdot0[1]);
     // Hairer's DOP853 defaults, sparse output (the state at each accepted
     // step, the last at t = 2).
-    let mut theirs = ode_solvers::Dop853::from_param(
+    let mut theirs = lagrange::ode_solvers::Dop853::from_param(
         FirstOrder::new(&model),
         0.0,
         2.0,
@@ -76,7 +75,6 @@ fn the_double_pendulum_through_ode_solvers_matches_ours_and_the_reference() {
 /// The double pendulum as a diffsol problem (feature `diffsol`): its
 /// Tsit45 (explicit) and BDF (implicit, the Jacobian from the generated
 /// residual Jacobians) against the 25-digit reference at t = 2, beside ours.
-#[cfg(feature = "diffsol")]
 #[test]
 fn the_double_pendulum_through_diffsol_matches_the_reference() {
     use lagrange::diffsol::{MatrixCommon, NalgebraLU, OdeSolverMethod};

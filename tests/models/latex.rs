@@ -1,6 +1,6 @@
 //! `LATEX`, the derived equations typeset, shown in `docs/equations.md`
 //! for the two textbook models; this keeps the page true.
-//! `UPDATE_DOCS=1 cargo test --test models -- latex::` rewrites it.
+//! `UPDATE_DOCS=1 cargo test --test suite -- models::latex::` rewrites it.
 
 use lagrange::models::{DoublePendulum, TwoMassChain};
 
@@ -30,7 +30,7 @@ fn the_typeset_equations_page_is_current() {
     let have = std::fs::read_to_string(path).unwrap_or_default();
     assert!(
         have == want,
-        "docs/equations.md is stale: run UPDATE_DOCS=1 cargo test --test models -- latex::"
+        "docs/equations.md is stale: run UPDATE_DOCS=1 cargo test --test suite -- models::latex::"
     );
     // The blocks are LaTeX, not the text form.
     assert!(want.contains("\\begin{aligned}") && want.contains("\\dot{"));

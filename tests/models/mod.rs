@@ -1,12 +1,8 @@
 //! What `lagrangian!` generates: the derived equations of textbook models
 //! against closed forms, the indexed language, the derivatives beyond `M`
-//! and `f`, the README's generated code, and the compile errors of
-//! `tests/ui` (one per mistake).
+//! and `f`, the README's generated code. (The compile errors are the
+//! macro crate's UI tests, `lagrange-macros/tests/ui.rs`.)
 
-#[path = "../support/mod.rs"]
-mod support;
-
-mod compile_errors;
 mod constrained_models;
 mod generated_derivatives;
 mod indexed_models;

@@ -1,5 +1,5 @@
 //! The README shows a model and the code `lagrangian!` generates for it; this
-//! keeps the two true. `UPDATE_README=1 cargo test --test models -- readme::` rewrites
+//! keeps the two true. `UPDATE_README=1 cargo test --test suite -- models::readme::` rewrites
 //! the generated block after an intended change to the emitted code.
 
 use std::path::Path;
@@ -62,6 +62,6 @@ fn readme_shows_the_code_generated_for_its_model() {
     }
     assert_eq!(
         shown, expected,
-        "README's generated code is stale: run `UPDATE_README=1 cargo test --test models -- readme::`"
+        "README's generated code is stale: run `UPDATE_README=1 cargo test --test suite -- models::readme::`"
     );
 }

@@ -1,4 +1,4 @@
-//! What the test binaries share besides the problems of `lagrange::models`
+//! What the test groups share besides the problems of `lagrange::models`
 //! and its list of methods: the references of `tests/data/`, closed forms
 //! and seeded random states, Jacobi elliptic functions, fits.
 #![allow(dead_code)]

@@ -43,9 +43,16 @@ fn vector(v: &Value) -> Vector2<f64> {
 }
 
 impl Reference {
-    /// `tests/data/{name}.json`.
+    /// `tests/data/{name}.json`, from the facade's tests (built in the
+    /// repository's root) or the studies (`lagrange-studies/`, one below).
     pub fn read(name: &str) -> Self {
-        let path = format!("{}/tests/data/{name}.json", env!("CARGO_MANIFEST_DIR"));
+        let here = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let root = if here.join("tests/data").is_dir() {
+            here
+        } else {
+            here.parent().expect("the repository's root")
+        };
+        let path = root.join(format!("tests/data/{name}.json"));
         let json: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
         let growth = &json["float64_check"]["perturbation_growth"];
         let samples = json["samples"]

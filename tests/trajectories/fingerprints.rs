@@ -3,7 +3,7 @@
 //!
 //! A restructuring must keep every method's samples, events and statistics
 //! bit-identical; a fix that moves them re-blesses the file
-//! (`LAGRANGE_BLESS=1 cargo test --test trajectories fingerprints`) and says in its
+//! (`LAGRANGE_BLESS=1 cargo test --test suite trajectories::fingerprints`) and says in its
 //! commit which lines moved and by how much (`FINGERPRINT_DUMP=FILE` writes
 //! every sample in full, to compare two builds).
 //!

@@ -119,7 +119,7 @@ fn takes(x: f64, r: f64) -> bool {
 
 /// The most lanes the kernel takes in one pass. Beyond, the compiler stops
 /// unrolling the lanes and passes of [`PASS`] lanes are faster per angle
-/// (the rows for 20, 21 and 30 angles of `cargo bench --bench trig`).
+/// (the rows for 20, 21 and 30 angles of `cargo bench -p lagrange-studies --bench trig`).
 const ONE_PASS: usize = 20;
 /// The lanes of each pass beyond [`ONE_PASS`].
 const PASS: usize = 8;

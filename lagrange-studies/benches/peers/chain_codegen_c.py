@@ -2,7 +2,7 @@
 """Peer baseline: SymPy -> cse -> C (gcc) against lagrange's generated code,
 on the same N-link pendulum chain.
 
-Model (identical to the project's examples/scaling/chain.rs, indexed form):
+Model (identical to the project's lagrange-studies/examples/scaling/chain.rs, indexed form):
 N point masses on massless rods, absolute angles theta_i from the downward
 vertical, runtime parameters m[i], l[i] (symbols on both sides), g = 9.81 a
 compile-time constant:
@@ -34,7 +34,7 @@ through an #[inline(never)] wrapper so that both sides pay one call.
 
 Timing loop, identical in C and Rust: K = 64 precomputed states
     q_i = 0.3 + 0.9 sin(1.7 i + k),  qdot_i = 0.5 cos(1.3 i - 0.7 k),
-    m_i = 1 + 0.1 i,  l_i = 1 - 0.5 i / N   (as examples/scaling/template)
+    m_i = 1 + 0.1 i,  l_i = 1 - 0.5 i / N   (as lagrange-studies/examples/scaling/template)
 call k = it mod 64, acc += M[it mod N^2] + f[it mod N]; ITERS calls per
 repetition (>= 1e6), best of 5 repetitions per process, processes
 alternated between the implementations (ROUNDS rounds), best overall.
@@ -62,8 +62,8 @@ Usage (a Python with sympy, and gcc; from the project's root, or pass --lagrange
     python chain_codegen_c.py [--ns 2,5,10,20] [--lagrange PATH] [--out DIR] [--work DIR]
 Writes DIR/chain_codegen_c.txt and .json (default: target/peers in the
 checkout); scratch in --work (default: lgbench/ in the system's temporary
-directory, or $LAGRANGE_PEERS_WORK). `cargo bench --bench peers` runs it
-(benches/peers.rs); the generated code is printed by the engine's example
+directory, or $LAGRANGE_PEERS_WORK). `cargo bench -p lagrange-studies --bench peers` runs it
+(lagrange-studies/benches/peers.rs); the generated code is printed by the engine's example
 `peers_chain` (lagrange-engine/examples/peers_chain.rs), built here.
 """
 import argparse

@@ -2,7 +2,7 @@
 //! equilibrium, an LQR gain from the Riccati equation, and the nonlinear
 //! closed loop simulated from a 20° tilt with the controller as a closure.
 //!
-//! `cargo run --release --example cart_pole_lqr`
+//! `cargo run --release -p lagrange-studies --example cart_pole_lqr`
 //!
 //! Writes `docs/cart_pole_lqr/cart_pole_lqr.svg`: the pole angle and the
 //! force on the cart over time.
@@ -95,7 +95,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     );
 
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("docs/cart_pole_lqr/cart_pole_lqr.svg");
+        .join("../docs/cart_pole_lqr/cart_pole_lqr.svg");
     std::fs::create_dir_all(path.parent().unwrap())?;
     draw(&path, &angle, &force)?;
     println!("Wrote {}", path.display());

@@ -1,7 +1,7 @@
 //! How `lagrangian!` scales: the N-link pendulum chain for N = 1..=20 (25
 //! and 30 with `--max 30`), measured on both sides of the macro.
 //!
-//! `cargo run --release --example scaling`
+//! `cargo run --release -p lagrange-studies --example scaling`
 //!
 //! For each N: the engine's expansion time and operation counts (in this
 //! process), then a generated crate holding only the model, its
@@ -76,7 +76,7 @@ impl Options {
                 "--no-write" => o.write = false,
                 "--optimised-macro" => o.optimised_macro = true,
                 "--help" | "-h" => return Err(
-                    "usage: cargo run --release --example scaling -- [--max N | --only N,N,..] \
+                    "usage: cargo run --release -p lagrange-studies --example scaling -- [--max N | --only N,N,..] \
                          [--scalar] [--engine-only] [--no-ad] [--no-write] [--optimised-macro] \
                          [--timeout S]"
                         .into(),
@@ -142,7 +142,8 @@ fn main() {
 }
 
 fn run(options: &Options) -> Result<(), String> {
-    let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
+    // The repository's root, one above this crate.
+    let repo = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
     let started = Instant::now();
     let date = machine::now_utc();
     let load_start = machine::load_average();
@@ -255,7 +256,7 @@ fn run(options: &Options) -> Result<(), String> {
     writeln!(section, "## Scaling: the N-link pendulum chain\n").unwrap();
     writeln!(
         section,
-        "Written by `cargo run --release --example scaling{}` on {date}, in {minutes:.1} min.\n",
+        "Written by `cargo run --release -p lagrange-studies --example scaling{}` on {date}, in {minutes:.1} min.\n",
         options.describe()
     )
     .unwrap();

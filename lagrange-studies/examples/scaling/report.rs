@@ -334,7 +334,7 @@ pub fn targets_table(rows: &[Row]) -> String {
 }
 
 pub const START: &str =
-    "<!-- scaling:start (written by `cargo run --release --example scaling`) -->";
+    "<!-- scaling:start (written by `cargo run --release -p lagrange-studies --example scaling`) -->";
 pub const END: &str = "<!-- scaling:end -->";
 
 /// Replaces the marked section of `text` (or appends one) with `section`.

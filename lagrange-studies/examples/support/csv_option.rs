@@ -31,7 +31,7 @@ pub fn write<L: Lagrangian<N, Scalar = f64>, const N: usize>(
 ) -> Result<(), Box<dyn Error>> {
     match path() {
         Some(_) => Err("--csv needs the csv feature: \
-                        cargo run --release --features csv --example NAME -- --csv FILE"
+                        cargo run --release -p lagrange-studies --features csv --example NAME -- --csv FILE"
             .into()),
         None => Ok(()),
     }

@@ -3,7 +3,7 @@
 //! recording the error reached, the worst energy error, right-hand-side
 //! evaluations and wall time (median of several runs).
 //!
-//! `cargo run --release --example work_precision`
+//! `cargo run --release -p lagrange-studies --example work_precision`
 //!
 //! Two of the five problems are constrained models (a Cartesian pendulum on
 //! its rod, a slider-crank closed by two loop constraints), run with the
@@ -16,12 +16,12 @@
 
 /// The exact pendulum, for the constrained Cartesian one.
 #[allow(dead_code)]
-#[path = "../../tests/support/elliptic.rs"]
+#[path = "../../../tests/support/elliptic.rs"]
 mod elliptic;
 mod plot;
 /// The tests' reader of `tests/data/*.json`; the study needs part of it.
 #[allow(dead_code)]
-#[path = "../../tests/support/reference.rs"]
+#[path = "../../../tests/support/reference.rs"]
 mod reference;
 mod systems;
 
@@ -247,7 +247,7 @@ fn long_run(dir: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/work_precision");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/work_precision");
     std::fs::create_dir_all(&dir)?;
     let mut runs = Vec::new();
     study(&systems::double_pendulum(), &mut runs);

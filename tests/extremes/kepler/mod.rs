@@ -23,10 +23,10 @@
 //! orbit in polar coordinates, far below its `O(h²)` energy error.
 //!
 //! The figures (for STABILITY.md):
-//! `cargo test --release --test extremes -- kepler:: --nocapture` (a few
+//! `cargo test --release --test suite -- extremes::kepler:: --nocapture` (a few
 //! seconds). The full 10⁴-period runs are ignored in CI (about two minutes
 //! on two cores):
-//! `cargo test --release --test extremes -- kepler:: --ignored --nocapture`.
+//! `cargo test --release --test suite -- extremes::kepler:: --ignored --nocapture`.
 //!
 //! The measurement is in `flight.rs`, what each kind of method must show
 //! in `bounds.rs`; the orbits in `e06.rs` and `e09.rs`.

@@ -22,7 +22,7 @@
 //!   the model is **stiff**: explicit methods must resolve `ω_k`.
 //!
 //! Every test prints the figures quoted in STABILITY.md; run with
-//! `cargo test --release --test extremes -- mass_ratio:: --nocapture`.
+//! `cargo test --release --test suite -- extremes::mass_ratio:: --nocapture`.
 //!
 //! The solve at this conditioning is checked in `conditioning.rs`, the two
 //! physical limits in `limits.rs`, the integrators against them in

@@ -24,7 +24,7 @@
 //! `SingularMassMatrix` error is the answer.
 //!
 //! Every test prints the figures quoted in STABILITY.md; run with
-//! `cargo test --release --test extremes -- singularity:: --nocapture`.
+//! `cargo test --release --test suite -- extremes::singularity:: --nocapture`.
 //!
 //! The methods are in `methods.rs`; the swings at or through the pole in
 //! `pole.rs`, those its momentum keeps off it in `conservation.rs`.

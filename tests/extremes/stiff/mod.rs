@@ -14,8 +14,8 @@
 //! chain shows all there is, and the exact solution is the modal one, in
 //! closed form.
 //!
-//! Every test prints its figures; `cargo test --release --test extremes --
-//! stiff:: --nocapture --test-threads=1` shows them in order.
+//! Every test prints its figures; `cargo test --release --test suite --
+//! extremes::stiff:: --nocapture --test-threads=1` shows them in order.
 //!
 //! The exact solution is in `modes.rs`; the scenarios by kind of method:
 //! `explicit.rs`, `radau5.rs`, `symmetric.rs`.

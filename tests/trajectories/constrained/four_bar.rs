@@ -74,7 +74,7 @@ fn four_bar_stays_closed_for_100_s_with_every_method() {
 /// beside the motion's ~2 Hz) holds it near the error per step instead.
 /// The bounds are loose on purpose: the test states the ordering
 /// none > Baumgarte > projection and that the drift grows, the figures are
-/// printed (and in the README, from `examples/four_bar`).
+/// printed (and in the README, from `lagrange-studies/examples/four_bar`).
 #[test]
 fn four_bar_drifts_open_without_projection_and_baumgarte_holds_it() {
     use lagrange::constraints::Drift;

@@ -1,0 +1,12 @@
+//! The facade's tests, one binary (one link, and the models and methods
+//! they share compiled once): `extremes` (numerical stability at the
+//! extremes, STABILITY.md's scenarios), `models` (what `lagrangian!`
+//! generates), `trajectories` (every integrator on derived models, the
+//! 25-digit references, the fingerprints). `cargo test --test suite --
+//! extremes::kepler::` runs one group.
+
+mod support;
+
+mod extremes;
+mod models;
+mod trajectories;
