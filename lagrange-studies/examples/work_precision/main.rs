@@ -175,6 +175,53 @@ fn study<L: Lagrangian<N, Scalar = f64>, const N: usize>(p: &Problem<L, N>, runs
     bar.finish_and_clear();
 }
 
+/// The right-hand sides each fifth- or eighth-order pair needs to reach an
+/// error: between the two runs of the sweep whose errors bracket it, the
+/// evaluations interpolated linearly in log(error)–log(evaluations) (the
+/// README's table of Tsit5 beside Dopri5 and Dop853).
+fn pairs_at_equal_error(runs: &[Run]) {
+    let cases = [
+        ("double_pendulum", 1e-4),
+        ("double_pendulum", 1e-8),
+        ("kepler_e0.9", 1e-4),
+        ("stiff_chain_1e6", 1e-4),
+        ("cartesian_pendulum", 1e-8),
+        ("slider_crank", 1e-8),
+    ];
+    println!("\nEvaluations to reach an error (log-log interpolation):");
+    println!(
+        "{:<20} {:>7} {:>9} {:>9} {:>9}",
+        "system", "error", "dopri5", "tsit5", "dop853"
+    );
+    for (system, target) in cases {
+        let cell = |method: &str| -> String {
+            let mut points: Vec<(f64, f64)> = runs
+                .iter()
+                .filter(|r| r.system == system && r.method == method && r.error > 0.0)
+                .map(|r| (r.error, r.rhs_evals as f64))
+                .collect();
+            points.sort_by(|a, b| b.0.total_cmp(&a.0));
+            points
+                .windows(2)
+                .find(|w| w[0].0 >= target && target >= w[1].0)
+                .map(|w| {
+                    let a = (target.ln() - w[0].0.ln()) / (w[1].0.ln() - w[0].0.ln());
+                    format!(
+                        "{:.0}",
+                        (w[0].1.ln() + a * (w[1].1.ln() - w[0].1.ln())).exp()
+                    )
+                })
+                .unwrap_or_else(|| "-".into())
+        };
+        println!(
+            "{system:<20} {target:>7.0e} {:>9} {:>9} {:>9}",
+            cell("dopri5"),
+            cell("tsit5"),
+            cell("dop853")
+        );
+    }
+}
+
 fn write_csv(path: &std::path::Path, runs: &[Run]) -> std::io::Result<()> {
     let mut out = String::from("system,method,setting,error,energy_error,rhs_evals,wall_seconds\n");
     for r in runs {
@@ -256,6 +303,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     study(&systems::cartesian_pendulum(), &mut runs);
     study(&systems::slider_crank(), &mut runs);
     write_csv(&dir.join("work_precision.csv"), &runs)?;
+    pairs_at_equal_error(&runs);
     for system in [
         "double_pendulum",
         "kepler_e0.9",
