@@ -224,7 +224,7 @@ pub trait StepMethod<S: RealField + Copy> {
 /// ```
 ///
 /// Every method of this crate is an `Integrator` through its
-/// [`StepMethod`] (the registry writes the implementation); another crate
+/// [`StepMethod`] (one implementation for all of them, below); another crate
 /// may implement the trait for a method of its own by
 /// `integrate_with_events`.
 pub trait Integrator<S: RealField + Copy> {
@@ -260,6 +260,27 @@ pub trait Integrator<S: RealField + Copy> {
     ) -> IntegrationResult<S, N>
     where
         L: Lagrangian<N, Scalar = S>;
+}
+
+/// Every method with a walker integrates by driving it: the one run loop
+/// of its kind (`driver::run::integrate`), the same for each method and for
+/// [`AnyIntegrator`].
+impl<S: RealField + Copy, M: StepMethod<S>> Integrator<S> for M {
+    fn integrate_with_events<L, const N: usize>(
+        &self,
+        model: &L,
+        t0: S,
+        q0: SVector<S, N>,
+        qdot0: SVector<S, N>,
+        times: &[S],
+        events: &Events<'_, S, N>,
+    ) -> IntegrationResult<S, N>
+    where
+        L: Lagrangian<N, Scalar = S>,
+    {
+        let walker = self.walker::<N>().map_err(invalid)?;
+        drive(walker, model, t0, q0, qdot0, times, events)
+    }
 }
 
 /// The one call: integrates `model` with [`Dopri5`] at its default

@@ -1,9 +1,9 @@
 //! The registry's machinery: from one line per integrator (in
-//! `integrators/mod.rs`), its module, its [`Integrator`] implementation,
-//! [`Method`] with [`Method::ALL`] and the table of methods in its docs,
+//! `integrators/mod.rs`), its module, [`Method`] with [`Method::ALL`] and the table of methods in its docs,
 //! [`AnyIntegrator`] (every method with its settings, itself a method a
 //! [`Stepper`](crate::stepper::Stepper) can drive) and the names the
-//! prelude exports.
+//! prelude exports. (Each is an [`Integrator`] through one blanket
+//! implementation over [`StepMethod`](super::StepMethod).)
 //!
 //! [`Integrator`]: super::Integrator
 //! [`Method`]: super::Method
@@ -49,24 +49,6 @@ macro_rules! registry {
         $(
             mod $module;
             pub use $module::$ty;
-
-            impl<S: RealField + Copy> Integrator<S> for $ty<S> {
-                fn integrate_with_events<L, const N: usize>(
-                    &self,
-                    model: &L,
-                    t0: S,
-                    q0: SVector<S, N>,
-                    qdot0: SVector<S, N>,
-                    times: &[S],
-                    events: &Events<'_, S, N>,
-                ) -> IntegrationResult<S, N>
-                where
-                    L: Lagrangian<N, Scalar = S>,
-                {
-                    let walker = self.walker::<N>().map_err(invalid)?;
-                    drive(walker, model, t0, q0, qdot0, times, events)
-                }
-            }
         )+
 
         /// Every integrator of the runtime by name, without its settings:
@@ -203,24 +185,6 @@ macro_rules! registry {
                 Ok(match self {
                     $($(Self::$variant(m) => AnyWalker::$variant(m.walker::<N>()?),)+)+
                 })
-            }
-        }
-
-        impl<S: RealField + Copy> Integrator<S> for AnyIntegrator<S> {
-            fn integrate_with_events<L, const N: usize>(
-                &self,
-                model: &L,
-                t0: S,
-                q0: SVector<S, N>,
-                qdot0: SVector<S, N>,
-                times: &[S],
-                events: &Events<'_, S, N>,
-            ) -> IntegrationResult<S, N>
-            where
-                L: Lagrangian<N, Scalar = S>,
-            {
-                let walker = self.walker::<N>().map_err(invalid)?;
-                drive(walker, model, t0, q0, qdot0, times, events)
             }
         }
 

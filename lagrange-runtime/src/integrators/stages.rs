@@ -3,7 +3,8 @@
 //! (7 stages) and [`Dop853`] (16). And what the first-same-as-last pairs
 //! with one error estimate share: their stage loop over a tableau's
 //! constant rows ([`fsal_step`]), the step it makes ([`Step`]) and the
-//! test of its error ([`Step::judge`]).
+//! test of its error ([`Step::judge`]), and their settings' builders
+//! (`pair_settings!`).
 //!
 //! [`Dopri5`]: crate::integrators::Dopri5
 //! [`Dop853`]: crate::integrators::Dop853
@@ -167,3 +168,59 @@ where
         err_qdot: err_qdot * h,
     })
 }
+
+/// The settings of an explicit embedded pair `$ty<S>` (a struct with one
+/// field, `settings: Tolerances<S>`): `new` with the shared defaults
+/// (`rtol = atol = 1e-8`, raised to `100 ε` for scalar types with fewer
+/// digits; a budget of 100 000 steps), the three builders and `Default`.
+/// `$new` is the pair's own line on its defaults.
+macro_rules! pair_settings {
+    ($ty:ident, $new:literal) => {
+        impl<S: RealField + Copy> $ty<S> {
+            #[doc = $new]
+            pub fn new() -> Self {
+                let tol = $crate::driver::default_tolerance::<S>();
+                Self {
+                    settings: $crate::driver::pair::Tolerances {
+                        rtol: tol,
+                        atol: tol,
+                        max_steps: 100_000,
+                    },
+                }
+            }
+
+            /// Relative tolerance; must be at least `10 ε`, and has no
+            /// upper bound. A loose one is honoured as asked; from about
+            /// `0.1` up the error control no longer holds an explicit step
+            /// within its stability region, and a run that then blows up
+            /// stops with [`Unstable`]($crate::error::IntegrationError::Unstable),
+            /// as a fixed step beyond its limit does (use
+            /// [`Radau5`]($crate::integrators::Radau5) for such tolerances).
+            pub fn rtol(mut self, rtol: S) -> Self {
+                self.settings.rtol = rtol;
+                self
+            }
+
+            /// Absolute tolerance, the error scale for components near
+            /// zero; must be positive.
+            pub fn atol(mut self, atol: S) -> Self {
+                self.settings.atol = atol;
+                self
+            }
+
+            /// The step budget, counting rejected steps too, so that every
+            /// call ends.
+            pub fn max_steps(mut self, max_steps: usize) -> Self {
+                self.settings.max_steps = max_steps;
+                self
+            }
+        }
+
+        impl<S: RealField + Copy> Default for $ty<S> {
+            fn default() -> Self {
+                Self::new()
+            }
+        }
+    };
+}
+pub(crate) use pair_settings;

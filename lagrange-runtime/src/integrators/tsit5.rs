@@ -13,10 +13,10 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::stages::{fsal_step, Stages as Slopes, Step};
+use super::stages::{fsal_step, pair_settings, Stages as Slopes, Step};
 use super::StepMethod;
 use crate::driver::pair::{Controller, Embedded, EmbeddedPair, Outcome, PairWalk, Tolerances};
-use crate::driver::{check_tolerances, default_tolerance, Recorder};
+use crate::driver::{check_tolerances, Recorder};
 use crate::error::{IntegrationError, InvalidInput};
 use crate::model::Lagrangian;
 use crate::trajectory::State;
@@ -44,45 +44,10 @@ pub struct Tsit5<S> {
     settings: Tolerances<S>,
 }
 
-impl<S: RealField + Copy> Tsit5<S> {
-    /// Defaults: `rtol = atol = 1e-8`, raised to `100 ε` for scalar types
-    /// with fewer digits, and a budget of 100 000 steps.
-    pub fn new() -> Self {
-        let tol = default_tolerance::<S>();
-        Self {
-            settings: Tolerances {
-                rtol: tol,
-                atol: tol,
-                max_steps: 100_000,
-            },
-        }
-    }
-
-    /// Relative tolerance; must be at least `10 ε`.
-    pub fn rtol(mut self, rtol: S) -> Self {
-        self.settings.rtol = rtol;
-        self
-    }
-
-    /// Absolute tolerance, the error scale for components near zero; must be
-    /// positive.
-    pub fn atol(mut self, atol: S) -> Self {
-        self.settings.atol = atol;
-        self
-    }
-
-    /// The step budget, counting rejected steps too, so that every call ends.
-    pub fn max_steps(mut self, max_steps: usize) -> Self {
-        self.settings.max_steps = max_steps;
-        self
-    }
-}
-
-impl<S: RealField + Copy> Default for Tsit5<S> {
-    fn default() -> Self {
-        Self::new()
-    }
-}
+pair_settings!(
+    Tsit5,
+    "Defaults: `rtol = atol = 1e-8`, raised to `100 ε` for scalar types with fewer digits, and a budget of 100 000 steps."
+);
 
 impl<S: RealField + Copy> StepMethod<S> for Tsit5<S> {
     type Walker<const N: usize> = PairWalk<S, Self, N>;

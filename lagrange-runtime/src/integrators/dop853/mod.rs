@@ -12,8 +12,9 @@
 
 use nalgebra::{RealField, SVector};
 
+use super::stages::pair_settings;
 use super::StepMethod;
-use crate::driver::{check_tolerances, default_tolerance};
+use crate::driver::check_tolerances;
 use crate::driver::pair::{Controller, Embedded, EmbeddedPair, Outcome, PairWalk, Tolerances};
 use crate::driver::Recorder;
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
@@ -70,52 +71,10 @@ pub struct Dop853<S> {
     settings: Tolerances<S>,
 }
 
-impl<S: RealField + Copy> Dop853<S> {
-    /// The same defaults as [`Dopri5`](crate::integrators::Dopri5), so that swapping the
-    /// method keeps the accuracy: `rtol = atol = 1e-8`, raised to `100 ε`
-    /// for scalar types with fewer digits (`1.2e-5` for `f32`), and a budget
-    /// of 100 000 steps (DOP853's `NMAX`).
-    pub fn new() -> Self {
-        let tol = default_tolerance::<S>();
-        Self {
-            settings: Tolerances {
-                rtol: tol,
-                atol: tol,
-                max_steps: 100_000,
-            },
-        }
-    }
-
-    /// Relative tolerance; must be at least `10 ε`, and has no upper bound.
-    /// A loose one is honoured as asked; from about `0.1` up the error
-    /// control no longer holds an explicit step within its stability region,
-    /// and a run that then blows up stops with
-    /// [`Unstable`](IntegrationError::Unstable), as a fixed step beyond its
-    /// limit does (use [`Radau5`](crate::integrators::Radau5) for such tolerances).
-    pub fn rtol(mut self, rtol: S) -> Self {
-        self.settings.rtol = rtol;
-        self
-    }
-
-    /// Absolute tolerance, the error scale for components near zero; must be
-    /// positive.
-    pub fn atol(mut self, atol: S) -> Self {
-        self.settings.atol = atol;
-        self
-    }
-
-    /// The step budget, counting rejected steps too, so that every call ends.
-    pub fn max_steps(mut self, max_steps: usize) -> Self {
-        self.settings.max_steps = max_steps;
-        self
-    }
-}
-
-impl<S: RealField + Copy> Default for Dop853<S> {
-    fn default() -> Self {
-        Self::new()
-    }
-}
+pair_settings!(
+    Dop853,
+    "The same defaults as [`Dopri5`](crate::integrators::Dopri5), so that swapping the method keeps the accuracy: `rtol = atol = 1e-8`, raised to `100 ε` for scalar types with fewer digits (`1.2e-5` for `f32`), and a budget of 100 000 steps (DOP853's `NMAX`)."
+);
 
 /// DOP853's step-size controller defaults (`WORK(2)`–`WORK(5)` of
 /// `dop853.f`): `fac_min` is Hairer's 0.333, and there is no Lund

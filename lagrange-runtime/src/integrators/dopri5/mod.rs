@@ -8,13 +8,13 @@
 use nalgebra::{RealField, SVector};
 
 use super::StepMethod;
-use crate::driver::{check_tolerances, default_tolerance};
+use crate::driver::check_tolerances;
 use crate::driver::pair::{Controller, Embedded, EmbeddedPair, Outcome, PairWalk, Tolerances};
 use crate::driver::Recorder;
 use crate::error::{IntegrationError, InvalidInput};
 use crate::model::Lagrangian;
 use crate::trajectory::State;
-use crate::integrators::stages::Step;
+use crate::integrators::stages::{pair_settings, Step};
 use tableau::{Dense, Stages, Tableau};
 
 mod tableau;
@@ -46,51 +46,10 @@ pub struct Dopri5<S> {
     settings: Tolerances<S>,
 }
 
-impl<S: RealField + Copy> Dopri5<S> {
-    /// Defaults: `rtol = atol = 1e-8`, raised to `100 ε` for scalar types
-    /// with fewer digits (`1.2e-5` for `f32`), and a budget of 100 000 steps
-    /// (DOPRI5's `NMAX`).
-    pub fn new() -> Self {
-        let tol = default_tolerance::<S>();
-        Self {
-            settings: Tolerances {
-                rtol: tol,
-                atol: tol,
-                max_steps: 100_000,
-            },
-        }
-    }
-
-    /// Relative tolerance; must be at least `10 ε`, and has no upper bound.
-    /// A loose one is honoured as asked; from about `0.1` up the error
-    /// control no longer holds an explicit step within its stability region,
-    /// and a run that then blows up stops with
-    /// [`Unstable`](IntegrationError::Unstable), as a fixed step beyond its
-    /// limit does (use [`Radau5`](crate::integrators::Radau5) for such tolerances).
-    pub fn rtol(mut self, rtol: S) -> Self {
-        self.settings.rtol = rtol;
-        self
-    }
-
-    /// Absolute tolerance, the error scale for components near zero; must be
-    /// positive.
-    pub fn atol(mut self, atol: S) -> Self {
-        self.settings.atol = atol;
-        self
-    }
-
-    /// The step budget, counting rejected steps too, so that every call ends.
-    pub fn max_steps(mut self, max_steps: usize) -> Self {
-        self.settings.max_steps = max_steps;
-        self
-    }
-}
-
-impl<S: RealField + Copy> Default for Dopri5<S> {
-    fn default() -> Self {
-        Self::new()
-    }
-}
+pair_settings!(
+    Dopri5,
+    "Defaults: `rtol = atol = 1e-8`, raised to `100 ε` for scalar types with fewer digits (`1.2e-5` for `f32`), and a budget of 100 000 steps (DOPRI5's `NMAX`)."
+);
 
 /// DOPRI5's step-size controller: its defaults, with Lund stabilization
 /// (`β = 0.04`).
