@@ -7,7 +7,9 @@
 //! minimal-coordinate twin) and [`FourBar`]. One has a control input:
 //! [`CartPole`], pushed by a motor force. Two have impacts, as
 //! [events](lagrange_runtime::events): [`BouncingBall`] and
-//! [`PendulumWall`].
+//! [`PendulumWall`]. One is a rigid body in 3D, its orientation a unit
+//! quaternion whose constraint makes its singular mass matrix regular:
+//! [`FreeBody`].
 
 mod bouncing_ball;
 mod cart_pole;
@@ -15,6 +17,7 @@ mod cartesian_pendulum;
 mod chain;
 mod double_pendulum;
 mod four_bar;
+mod free_body;
 mod kepler;
 mod oscillator;
 mod pendulum;
@@ -29,6 +32,7 @@ pub use cartesian_pendulum::CartesianPendulum;
 pub use chain::Chain;
 pub use double_pendulum::DoublePendulum;
 pub use four_bar::FourBar;
+pub use free_body::FreeBody;
 pub use kepler::{Kepler, PolarKepler};
 pub use oscillator::Oscillator;
 pub use pendulum::Pendulum;

@@ -52,8 +52,15 @@ pub fn potential_has_no_velocity(model: &mut Model) -> syn::Result<()> {
     )))
 }
 
-/// M must not depend on velocities, and must not be singular.
-pub fn mass_matrix_is_regular(model: &mut Model, eq: &Equations) -> syn::Result<()> {
+/// M must not depend on velocities, and must not be singular, except where
+/// the constraints make up for it: a singular `M` that is regular on the
+/// velocities the constraints allow (the null space of `G`), as a unit
+/// quaternion's four rates are under `|q| = 1`, is accepted and marked
+/// ([`ConstraintEquations::mass_regular_on_constraints_only`]), since the
+/// saddle-point system `M q̈ + Gᵀλ = f`, `G q̈ = −γ` is regular there.
+///
+/// [`ConstraintEquations::mass_regular_on_constraints_only`]: crate::derive::ConstraintEquations::mass_regular_on_constraints_only
+pub fn mass_matrix_is_regular(model: &mut Model, eq: &mut Equations) -> syn::Result<()> {
     let n = model.dof();
     let s = model.symbols.clone();
     for i in 0..n {
@@ -87,7 +94,10 @@ pub fn mass_matrix_is_regular(model: &mut Model, eq: &Equations) -> syn::Result<
             }
         }
     }
-    for i in 0..n {
+    // A coordinate without kinetic energy may still be fixed by the
+    // constraints (the numeric check below decides): only an unconstrained
+    // model is refused on sight.
+    for i in (0..n).filter(|_| eq.constraints.is_none()) {
         if eq.mass[i].iter().all(|&m| m == Pool::ZERO) {
             let c = &model.coordinates[i];
             return Err(syn::Error::new(
@@ -114,18 +124,55 @@ pub fn mass_matrix_is_regular(model: &mut Model, eq: &Equations) -> syn::Result<
     let mut singular_everywhere = true;
     let mut rank = n;
     for seed in [1u64, 2] {
-        match numeric_rank(model, eq, seed) {
+        match numeric_rank(model, eq, seed, None) {
             Some(r) if r < n => rank = r,
             _ => singular_everywhere = false,
         }
     }
-    if singular_everywhere {
+    if !singular_everywhere {
+        return Ok(());
+    }
+    let Some(constraints) = &eq.constraints else {
         return Err(model.kinetic.keyword_and_value().error(format!(
             "the mass matrix ∂²T/∂q̇² is singular at every state (rank {rank} of {n}): the kinetic energy \
              sees fewer independent velocity combinations than there are coordinates"
         )));
+    };
+    // Regular on the null space of G if and only if `M + GᵀG` is regular
+    // (M being semi-definite): the same rank test on that sum, charged as
+    // much again plus `GᵀG`.
+    let c = constraints.values.len() as u64;
+    let n64 = n as u64;
+    model.pool.charge(
+        n64.saturating_mul(n64)
+            .saturating_mul(n64 / 24 + c + 4)
+            .saturating_mul(2),
+    );
+    if model.pool.exhausted() {
+        return Ok(());
     }
-    Ok(())
+    let g = constraints.jacobian.clone();
+    let mut augmented_rank = n;
+    let mut regular = false;
+    for seed in [1u64, 2] {
+        match numeric_rank(model, eq, seed, Some(&g)) {
+            Some(r) if r < n => augmented_rank = r,
+            _ => regular = true,
+        }
+    }
+    if regular {
+        if let Some(constraints) = &mut eq.constraints {
+            constraints.mass_regular_on_constraints_only = true;
+        }
+        return Ok(());
+    }
+    let free = n - g.len();
+    let seen = augmented_rank.saturating_sub(g.len());
+    Err(model.kinetic.keyword_and_value().error(format!(
+        "the mass matrix ∂²T/∂q̇² is singular at every state (rank {rank} of {n}), and the constraints do not \
+         make up for it: of the {free} velocity combinations they allow, the kinetic energy sees only {seen} \
+         (M + GᵀG has rank {augmented_rank} of {n}), so the accelerations are not determined"
+    )))
 }
 
 /// A reproducible pseudo-random generic value in `[lo, hi)`.
@@ -150,8 +197,14 @@ fn generic_state(model: &Model, seed: u64) -> Vec<f64> {
         .collect()
 }
 
-/// The numerical rank of M at a generic state, `None` if M is not finite there.
-fn numeric_rank(model: &Model, eq: &Equations, seed: u64) -> Option<usize> {
+/// The numerical rank of `M`, or of `M + GᵀG` with `g` (`C × N`, row-major),
+/// at a generic state; `None` if it is not finite there.
+fn numeric_rank(
+    model: &Model,
+    eq: &Equations,
+    seed: u64,
+    g: Option<&[Vec<ExprId>]>,
+) -> Option<usize> {
     let n = model.dof();
     let values = generic_state(model, seed);
     let mut memo = std::collections::HashMap::new();
@@ -162,6 +215,32 @@ fn numeric_rank(model: &Model, eq: &Equations, seed: u64) -> Option<usize> {
                 .collect()
         })
         .collect();
+    if let Some(g) = g {
+        let g: Vec<Vec<f64>> = g
+            .iter()
+            .map(|row| {
+                row.iter()
+                    .map(|&x| model.pool.eval_memo(x, &values, &mut memo))
+                    .collect()
+            })
+            .collect();
+        // Each row of G scaled to the size of M, so that neither swamps the
+        // other in the rank's relative tolerance.
+        let m_scale = a.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        let m_scale = if m_scale > 0.0 { m_scale } else { 1.0 };
+        for row in &g {
+            let norm2: f64 = row.iter().map(|x| x * x).sum();
+            if !(norm2 > 0.0 && norm2.is_finite()) {
+                continue;
+            }
+            let k = m_scale / norm2;
+            for i in 0..n {
+                for j in 0..n {
+                    a[i][j] += k * row[i] * row[j];
+                }
+            }
+        }
+    }
     if a.iter().flatten().any(|x| !x.is_finite()) {
         return None;
     }

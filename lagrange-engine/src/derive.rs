@@ -77,6 +77,11 @@ pub struct ConstraintEquations {
     pub velocities: Vec<ExprId>,
     /// `γ`, with `φ̈ = G q̈ + γ`.
     pub bias: Vec<ExprId>,
+    /// `M` is singular by itself and regular on the velocities the
+    /// constraints allow (a unit quaternion's rates): set by
+    /// [`mass_matrix_is_regular`](crate::check::mass_matrix_is_regular),
+    /// and the runtime then solves with `M + k GᵀG`.
+    pub mass_regular_on_constraints_only: bool,
 }
 
 /// Derives the equations of motion of a lowered model (adding their nodes
@@ -251,6 +256,7 @@ fn holonomic(pool: &mut Pool, s: &Symbols, phi: Vec<ExprId>) -> Option<Constrain
         velocities: Vec::with_capacity(phi.len()),
         bias: Vec::with_capacity(phi.len()),
         values: phi,
+        mass_regular_on_constraints_only: false,
     };
     for &p in &out.values {
         if pool.exhausted() {

@@ -291,11 +291,11 @@ fn derive_model(def: ast::ModelDef, budget: u64) -> syn::Result<Derived> {
     within_budget(&model, r)?;
     let r = check::inputs::constraints_hold_no_input(&mut model);
     within_budget(&model, r)?;
-    let equations = derive::euler_lagrange(&mut model);
+    let mut equations = derive::euler_lagrange(&mut model);
     within_budget(&model, Ok(()))?;
     let r = check::inputs::momenta_hold_no_input(&mut model, &equations);
     within_budget(&model, r)?;
-    let r = check::mass_matrix_is_regular(&mut model, &equations);
+    let r = check::mass_matrix_is_regular(&mut model, &mut equations);
     within_budget(&model, r)?;
     let r = check::constraints::constraints_are_independent(&mut model, &equations);
     within_budget(&model, r)?;

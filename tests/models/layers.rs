@@ -246,3 +246,58 @@ fn every_capability_survives_every_pair_of_layers_in_either_order() {
     check("borrow, fd", &(&bob).without_jacobians(), fd);
     check("fd, borrow", &&bob.without_jacobians(), fd);
 }
+
+/// Whether the model reached through `visit_constraints` says its `M` is
+/// regular only on its constraints.
+struct SingularMass;
+impl<const N: usize> ConstraintVisitor<f64, N> for SingularMass {
+    type Output = bool;
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<f64>) -> bool
+    where
+        H: Holonomic<N, C, Scalar = f64> + ?Sized,
+    {
+        model.mass_regular_on_constraints_only()
+    }
+}
+
+fn singular_mass<L: Lagrangian<N, Scalar = f64>, const N: usize>(model: &L) -> Option<bool> {
+    model.visit_constraints(SingularMass)
+}
+
+/// A mass matrix regular only on the constraints (a body in quaternions)
+/// is known as such through every layer and pair of layers the model takes
+/// (it has no inputs, so no controller: that layer passes `Holonomic` on
+/// through the same implementation as the others), and a regular one is
+/// not: the runtime would otherwise factor a singular `M`, or regularize
+/// one that needs none and move its results.
+#[test]
+fn a_mass_matrix_regular_only_on_the_constraints_survives_every_layer() {
+    let body = lagrange::models::FreeBody::new(1.0, 2.0, 3.0);
+    assert_eq!(singular_mass(&body), Some(true), "the model");
+    assert_eq!(singular_mass(&&body), Some(true), "a borrow");
+    let drift = body.with_drift(Drift::None);
+    let fd = body.without_jacobians();
+    assert_eq!(singular_mass(&drift), Some(true), "with_drift");
+    assert_eq!(singular_mass(&fd), Some(true), "without_jacobians");
+    assert_eq!(
+        singular_mass(&drift.without_jacobians()),
+        Some(true),
+        "with_drift, then without_jacobians"
+    );
+    assert_eq!(
+        singular_mass(&fd.with_drift(Drift::None)),
+        Some(true),
+        "without_jacobians, then with_drift"
+    );
+    assert_eq!(
+        singular_mass(&(&body).with_drift(Drift::None)),
+        Some(true),
+        "a borrow with_drift"
+    );
+    let bob = Bob::new(0.8, 0.6, 9.81);
+    assert_eq!(singular_mass(&bob), Some(false), "a regular M");
+    assert_eq!(
+        singular_mass(&bob.with_controller(push).with_drift(Drift::None)),
+        Some(false)
+    );
+}

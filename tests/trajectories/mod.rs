@@ -7,3 +7,4 @@ mod events;
 mod fingerprints;
 mod integrator_suite;
 mod reference_trajectories;
+mod rigid_body;

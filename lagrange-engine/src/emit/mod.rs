@@ -60,7 +60,11 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
     let item = cx.outline.struct_item();
     let inherent = inherent_impl(&cx, texts);
     let lagrangian = lagrangian_impl(&cx);
-    let holonomic = holonomic_impl(&cx);
+    let singular_mass = eq
+        .constraints
+        .as_ref()
+        .is_some_and(|c| c.mass_regular_on_constraints_only);
+    let holonomic = holonomic_impl(&cx, singular_mass);
     let actuated = actuated_impl(&cx);
     let lets = lets_impl(cx.outline.name, &cx.types);
     quote! {
@@ -255,8 +259,9 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
 }
 
 /// `impl Holonomic<N, C> for Name<S>`, for a constrained model only: each
-/// method calls the inherent one.
-fn holonomic_impl(cx: &Context) -> TokenStream {
+/// method calls the inherent one. `singular_mass`: `M` is regular only on
+/// the velocities the constraints allow, which the impl says.
+fn holonomic_impl(cx: &Context, singular_mass: bool) -> TokenStream {
     if cx.types.constraints == 0 {
         return TokenStream::new();
     }
@@ -278,10 +283,19 @@ fn holonomic_impl(cx: &Context) -> TokenStream {
                 }
             }
         });
+    let regular_on_constraints = singular_mass.then(|| {
+        quote! {
+            #[inline]
+            fn mass_regular_on_constraints_only(&self) -> bool {
+                true
+            }
+        }
+    });
     quote! {
         impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::Holonomic<#n, #c> for #name<S> {
             const CONSTRAINTS: [&'static str; #c] = Self::CONSTRAINTS;
             #(#methods)*
+            #regular_on_constraints
         }
     }
 }

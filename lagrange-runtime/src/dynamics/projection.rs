@@ -8,8 +8,8 @@ use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use crate::dynamics::mass_error;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::schur::Schur;
-use crate::linalg::solve::factor_mass_matrix;
+use crate::linalg::schur::{regularized, Schur};
+use crate::linalg::solve::{factor_mass_matrix, MassFactor};
 use crate::model::constraints::{Holonomic, Visitor};
 use crate::trajectory::Stats;
 
@@ -90,8 +90,7 @@ pub(crate) fn project_position<H, const N: usize, const C: usize>(
 where
     H: Holonomic<N, C> + ?Sized,
 {
-    let mass =
-        factor_mass_matrix(&model.mass_matrix(t, q)).map_err(|e| mass_error(e, t, q, qdot))?;
+    let (mass, _) = projection_metric(model, t, q, qdot)?;
     let mut q = *q;
     let mut iterations = 0;
     loop {
@@ -146,8 +145,7 @@ pub(crate) fn project_velocity<H, const N: usize, const C: usize>(
 where
     H: Holonomic<N, C> + ?Sized,
 {
-    let mass =
-        factor_mass_matrix(&model.mass_matrix(t, q)).map_err(|e| mass_error(e, t, q, qdot))?;
+    let (mass, k) = projection_metric(model, t, q, qdot)?;
     let g = model.constraint_jacobian(t, q);
     let phidot = model.constraint_velocities(t, q, qdot);
     if !finite(g.iter().chain(phidot.iter())) {
@@ -158,7 +156,42 @@ where
     let (delta, mu) = schur
         .correction(&phidot)
         .map_err(|e| saddle_error(e, t, q, qdot))?;
+    // In the metric `M + k GᵀG` the change of momentum `M Δq̇` is
+    // `−Gᵀ (μ + k G Δq̇) = −Gᵀ (μ − k φ̇)`: the impulse of the constraints.
+    let mu = match k {
+        Some(k) => mu - phidot * k,
+        None => mu,
+    };
     Ok((qdot + delta, mu))
+}
+
+/// The metric of the projections at `(t, q)`, factored: `M`, or `M + k GᵀG`
+/// and `k` for a model whose `M` is regular only on the constraints
+/// ([`Holonomic::mass_regular_on_constraints_only`]); on the velocities the
+/// constraints allow the two agree.
+#[allow(clippy::type_complexity)]
+fn projection_metric<H, const N: usize, const C: usize>(
+    model: &H,
+    t: H::Scalar,
+    q: &SVector<H::Scalar, N>,
+    qdot: &SVector<H::Scalar, N>,
+) -> Result<(MassFactor<H::Scalar, N>, Option<H::Scalar>), IntegrationError<H::Scalar, N>>
+where
+    H: Holonomic<N, C> + ?Sized,
+{
+    let m = model.mass_matrix(t, q);
+    if !model.mass_regular_on_constraints_only() {
+        let mass = factor_mass_matrix(&m).map_err(|e| mass_error(e, t, q, qdot))?;
+        return Ok((mass, None));
+    }
+    let g = model.constraint_jacobian(t, q);
+    if !finite(g.iter()) {
+        let (q, qdot, value) = (*q, *qdot, NonFiniteValue::Constraints);
+        return Err(IntegrationError::NonFiniteState { t, q, qdot, value });
+    }
+    let (m, k) = regularized(&m, &g);
+    let mass = factor_mass_matrix(&m).map_err(|e| mass_error(e, t, q, qdot))?;
+    Ok((mass, Some(k)))
 }
 
 /// `q` then `q̇` projected.

@@ -2,12 +2,12 @@
 //! `linalg/schur.rs` on the model's `M`, `f`, `G` and `γ`, with the
 //! run's Baumgarte terms, errors at `(t, q, q̇)`.
 
-use nalgebra::{ComplexField, RealField, SVector};
+use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use super::mass_error;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::schur::{solve_saddle, SaddleError};
-use crate::linalg::solve::factor_mass_matrix;
+use crate::linalg::schur::{regularized, solve_saddle, SaddleError};
+use crate::linalg::solve::{factor_mass_matrix, SolveError};
 use crate::model::constraints::{Holonomic, Visitor};
 use crate::model::settings::ConstraintSettings;
 
@@ -58,6 +58,9 @@ where
         let phidot = model.constraint_velocities(t, q, qdot);
         gamma += phidot * two_alpha + phi * beta2;
     }
+    if model.mass_regular_on_constraints_only() {
+        return regularized_accelerations((m, f, g, gamma), t, q, qdot);
+    }
     let mass = factor_mass_matrix(&m).map_err(|e| mass_error(e, t, q, qdot))?;
     if !f.iter().all(|x| x.is_finite()) {
         return Err(non_finite(NonFiniteValue::Forcing));
@@ -65,6 +68,45 @@ where
     if !g.iter().chain(gamma.iter()).all(|x| x.is_finite()) {
         return Err(non_finite(NonFiniteValue::Constraints));
     }
+    solve_saddle(&mass, &f, &g, &gamma).map_err(|e| saddle_error(e, t, q, qdot))
+}
+
+/// The saddle-point solve of a model whose `M` is regular only on the
+/// constraints ([`Holonomic::mass_regular_on_constraints_only`]): with
+/// `M + k GᵀG` and `f − k Gᵀγ`, the same `(q̈, λ)`. Each input is checked
+/// before they are mixed, so that a non-finite value is still blamed on
+/// what produced it; a configuration where even `M + k GᵀG` is singular
+/// is [`SingularMassMatrix`](IntegrationError::SingularMassMatrix) there.
+#[allow(clippy::type_complexity)]
+fn regularized_accelerations<S: RealField + Copy, const N: usize, const C: usize>(
+    (m, f, g, gamma): (
+        SMatrix<S, N, N>,
+        SVector<S, N>,
+        SMatrix<S, C, N>,
+        SVector<S, C>,
+    ),
+    t: S,
+    q: &SVector<S, N>,
+    qdot: &SVector<S, N>,
+) -> Result<(SVector<S, N>, SVector<S, C>), IntegrationError<S, N>> {
+    let non_finite = |value| IntegrationError::NonFiniteState {
+        t,
+        q: *q,
+        qdot: *qdot,
+        value,
+    };
+    if !m.iter().all(|x| x.is_finite()) {
+        return Err(mass_error(SolveError::NonFiniteMassMatrix, t, q, qdot));
+    }
+    if !f.iter().all(|x| x.is_finite()) {
+        return Err(non_finite(NonFiniteValue::Forcing));
+    }
+    if !g.iter().chain(gamma.iter()).all(|x| x.is_finite()) {
+        return Err(non_finite(NonFiniteValue::Constraints));
+    }
+    let (m, k) = regularized(&m, &g);
+    let f = f - g.transpose() * (gamma * k);
+    let mass = factor_mass_matrix(&m).map_err(|e| mass_error(e, t, q, qdot))?;
     solve_saddle(&mass, &f, &g, &gamma).map_err(|e| saddle_error(e, t, q, qdot))
 }
 

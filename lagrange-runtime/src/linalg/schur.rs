@@ -110,6 +110,25 @@ impl<S: RealField + Copy, const N: usize, const C: usize> Schur<S, N, C> {
     }
 }
 
+/// `M + k GᵀG` and `k`, with `k` the ratio of the largest entries of `M`
+/// and `GᵀG` (one where either is zero): a mass matrix singular by itself
+/// but regular on the null space of `G` made positive definite. The
+/// saddle-point system with it and `f − k Gᵀγ` has the same `(q̈, λ)`:
+/// `k GᵀG q̈ = −k Gᵀγ` wherever `G q̈ = −γ`.
+pub(crate) fn regularized<S: RealField + Copy, const N: usize, const C: usize>(
+    m: &SMatrix<S, N, N>,
+    g: &SMatrix<S, C, N>,
+) -> (SMatrix<S, N, N>, S) {
+    let gtg = g.transpose() * g;
+    let (ms, gs) = (m.amax(), gtg.amax());
+    let k = if ms > S::zero() && gs > S::zero() {
+        ms / gs
+    } else {
+        S::one()
+    };
+    (m + gtg * k, k)
+}
+
 /// `(q̈, λ)` of the saddle-point system with bias `gamma`.
 pub(crate) fn solve_saddle<S: RealField + Copy, const N: usize, const C: usize>(
     mass: &MassFactor<S, N>,

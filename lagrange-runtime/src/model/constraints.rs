@@ -76,6 +76,23 @@ pub trait Holonomic<const N: usize, const C: usize>: Lagrangian<N> {
         )
     }
 
+    /// Whether `M` is singular by itself and regular only on the velocities
+    /// the constraints allow, the null space of `G`: a rigid body's four
+    /// quaternion rates under `|q| = 1`, whose kinetic energy sees three.
+    /// The saddle-point system is regular all the same, and the runtime
+    /// solves it with `M + k GᵀG` in place of `M` and `f − k Gᵀγ` in place
+    /// of `f`, which has the same `q̈` and `λ` wherever `G q̈ = −γ`
+    /// (`k` scales `GᵀG` to `M`). The variational methods need `M` itself
+    /// regular (they solve `p = M q̇` for `q̇`) and refuse such a model
+    /// ([`InvalidInput::MassRegularOnConstraintsOnly`](crate::error::InvalidInput::MassRegularOnConstraintsOnly)).
+    ///
+    /// `lagrangian!` answers it from its compile-time rank check; a
+    /// hand-written model whose `M` is regular keeps the default, `false`.
+    #[inline]
+    fn mass_regular_on_constraints_only(&self) -> bool {
+        false
+    }
+
     /// This model with another drift control, for its runs:
     /// `method.integrate(&model.with_drift(Drift::None), ..)`. The model
     /// is taken by value (a model from `lagrangian!` is `Copy`; borrow one
@@ -108,6 +125,24 @@ pub(crate) fn is_constrained<L: Lagrangian<N>, const N: usize>(model: &L) -> boo
         }
     }
     model.visit_constraints(Probe).is_some()
+}
+
+/// Whether `model` has constraints and a mass matrix regular only on them
+/// ([`Holonomic::mass_regular_on_constraints_only`]).
+pub(crate) fn mass_regular_on_constraints_only<L: Lagrangian<N>, const N: usize>(
+    model: &L,
+) -> bool {
+    struct Probe;
+    impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Probe {
+        type Output = bool;
+        fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> bool
+        where
+            H: Holonomic<N, C, Scalar = S> + ?Sized,
+        {
+            model.mass_regular_on_constraints_only()
+        }
+    }
+    model.visit_constraints(Probe).unwrap_or(false)
 }
 
 /// What the integrators do with a constrained model, written once for

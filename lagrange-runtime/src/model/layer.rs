@@ -399,6 +399,11 @@ where
     ) -> SVector<M::Scalar, C> {
         self.model.constraint_bias(t, q, qdot)
     }
+
+    #[inline]
+    fn mass_regular_on_constraints_only(&self) -> bool {
+        self.model.mass_regular_on_constraints_only()
+    }
 }
 
 /// The visitor that meets the constraints inside a layered model and hands
@@ -600,5 +605,9 @@ where
         qdot: &SVector<L::Scalar, N>,
     ) -> SVector<L::Scalar, C> {
         self.constraints.constraint_bias(t, q, qdot)
+    }
+    #[inline]
+    fn mass_regular_on_constraints_only(&self) -> bool {
+        self.constraints.mass_regular_on_constraints_only()
     }
 }

@@ -161,6 +161,10 @@ impl<H: Holonomic<N, C> + ?Sized, const N: usize, const C: usize> Holonomic<N, C
         (**self).constraint_bias(t, q, qdot)
     }
     #[inline]
+    fn mass_regular_on_constraints_only(&self) -> bool {
+        (**self).mass_regular_on_constraints_only()
+    }
+    #[inline]
     #[allow(clippy::type_complexity)]
     fn constrained_system(
         &self,

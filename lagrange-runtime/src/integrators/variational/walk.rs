@@ -10,9 +10,9 @@ use super::velocity::{velocity, with_velocity, VelocityHistory};
 use super::{all_finite, lacks, out_of_budget, Variational};
 use crate::driver::run::{Advanced, Flow, Fresh, Run, Walk};
 use crate::driver::Interval;
-use crate::error::{IntegrationError, NonFiniteValue};
+use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::linalg::solve::positive_semidefinite;
-use crate::model::constraints::is_constrained;
+use crate::model::constraints::{is_constrained, mass_regular_on_constraints_only};
 use crate::model::Lagrangian;
 
 /// The variational method's work between steps: the state in `(q, p)`, the
@@ -76,6 +76,10 @@ impl<S: RealField + Copy, const N: usize> VariationalWalk<S, N> {
             };
             return Err(lacks(needs).into());
         };
+        if mass_regular_on_constraints_only(model) {
+            let method = "Variational";
+            return Err(InvalidInput::MassRegularOnConstraintsOnly { method }.into());
+        }
         run.rec.stats.rhs_evals += 1;
         if !all_finite(&p0) {
             let value = NonFiniteValue::Momentum;

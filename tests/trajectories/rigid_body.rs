@@ -1,0 +1,236 @@
+//! A rigid body in unit quaternions (`lagrange::models::FreeBody`), whose
+//! mass matrix is singular by itself and regular on the rates `|q| = 1`
+//! allows: the Dzhanibekov effect against Euler's closed form.
+//!
+//! Torque-free, principal moments `I1 < I2 < I3`, energy `E` and angular
+//! momentum `M` with `M² > 2 E I2`: the body rates are (Landau–Lifshitz,
+//! Mechanics, §37)
+//!
+//! ```text
+//! Ω1 = A1 cn τ,  Ω2 = A2 sn τ,  Ω3 = A3 dn τ,   τ = λ t,
+//! A1² = (2E I3 − M²) / (I1 (I3 − I1)),  A2² = (2E I3 − M²) / (I2 (I3 − I2)),
+//! A3² = (M² − 2E I1) / (I3 (I3 − I1)),  λ² = (I3 − I2)(M² − 2E I1) / (I1 I2 I3),
+//! k² = (I2 − I1)(2E I3 − M²) / ((I3 − I2)(M² − 2E I1)),
+//! ```
+//!
+//! for a start at `τ = 0`: `Ω2 = 0` and `Ω1, Ω3 > 0` (so that `Ω̇2 > 0`).
+//! The rates come back after `4K(k)/λ`, and `Ω2`, the spin about the
+//! intermediate axis, reverses (the body flips) every `2K(k)/λ`.
+
+use crate::support::elliptic::jacobi;
+use lagrange::models::FreeBody;
+use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3};
+use lagrange::prelude::*;
+use lagrange::{InvalidInput, Method};
+
+/// Principal moments, and the start: rates `(1.7, 0, 1)`, so that
+/// `M² − 2 E I2 = 0.11`, near the separatrix of the intermediate axis
+/// (`k = 0.98`): the body spins about its middle axis for most of each
+/// half-period and flips in about one second.
+const INERTIA: [f64; 3] = [1.0, 2.0, 3.0];
+const OMEGA0: [f64; 3] = [1.7, 0.0, 1.0];
+
+struct ClosedForm {
+    amplitudes: [f64; 3],
+    lambda: f64,
+    k: f64,
+    kp: f64,
+}
+
+impl ClosedForm {
+    fn new() -> Self {
+        let [i1, i2, i3] = INERTIA;
+        let [w1, w2, w3] = OMEGA0;
+        let two_e = i1 * w1 * w1 + i2 * w2 * w2 + i3 * w3 * w3;
+        let m2 = (i1 * w1).powi(2) + (i2 * w2).powi(2) + (i3 * w3).powi(2);
+        let (upper, lower) = (two_e * i3 - m2, m2 - two_e * i1);
+        let k2 = (i2 - i1) * upper / ((i3 - i2) * lower);
+        Self {
+            amplitudes: [
+                (upper / (i1 * (i3 - i1))).sqrt(),
+                (upper / (i2 * (i3 - i2))).sqrt(),
+                (lower / (i3 * (i3 - i1))).sqrt(),
+            ],
+            lambda: ((i3 - i2) * lower / (i1 * i2 * i3)).sqrt(),
+            k: k2.sqrt(),
+            kp: (1.0 - k2).sqrt(),
+        }
+    }
+
+    fn rates(&self, t: f64) -> Vector3<f64> {
+        let j = jacobi(self.lambda * t, self.k, self.kp);
+        let [a1, a2, a3] = self.amplitudes;
+        Vector3::new(a1 * j.cn, a2 * j.sn, a3 * j.dn)
+    }
+
+    /// `2K(k)/λ`: the time between flips.
+    fn half_period(&self) -> f64 {
+        2.0 * jacobi(0.0, self.k, self.kp).k_complete / self.lambda
+    }
+}
+
+fn body() -> FreeBody {
+    FreeBody::new(INERTIA[0], INERTIA[1], INERTIA[2])
+}
+
+/// A generic starting orientation: the closed form is about the body's
+/// rates, which do not depend on it.
+fn start() -> (SVector<f64, 4>, SVector<f64, 4>) {
+    let rotation = UnitQuaternion::from_euler_angles(0.3, -0.7, 1.1);
+    FreeBody::state(&rotation, &Vector3::from(OMEGA0))
+}
+
+/// Dop853 at rtol = atol = 1e-14 over ten flips (≈ 62 s), with the
+/// default drift control (the state projected onto `|q| = 1` and its
+/// tangent after every step).
+fn run(times: &[f64], events: &Events<f64, 4>) -> Trajectory<f64, 4> {
+    let (q0, v0) = start();
+    Dop853::new()
+        .rtol(1e-14)
+        .atol(1e-14)
+        .integrate_with_events(&body(), 0.0, q0, v0, times, events)
+        .unwrap()
+}
+
+/// The rates against the closed form to 1e-9 relative (of `|Ω|`), every
+/// 0.05 s over ten flips; `|q| = 1` to rounding, and the angular momentum
+/// in space (a rotation applied to `I Ω`, so the same for `q` and `−q`)
+/// constant to 1e-9 relative.
+///
+/// Bounds: the error is a phase error, growing linearly: a perturbation of
+/// the rates near the separatrix grows during each flip and shrinks back,
+/// staying within about `1/k'² ≈ 27` of its size, and Dop853 at 1e-14
+/// adds about the tolerance per unit time, so the global error is about
+/// `1e-14 · 27 · 61 ≈ 2e-11` at the end (3e-11 measured); 1e-9 leaves a
+/// margin of 30. The momentum errs by the same local errors without the
+/// phase's growth (5e-13 measured). `|q| − 1` is what the projection
+/// leaves: a few rounding errors of the four squares, 4 ε ≈ 1e-15.
+#[test]
+fn an_asymmetric_body_near_its_intermediate_axis_flips_as_euler_says() {
+    let exact = ClosedForm::new();
+    let end = 10.0 * exact.half_period();
+    let times: Vec<f64> = (1..)
+        .map(|k| 0.05 * k as f64)
+        .take_while(|&t| t <= end)
+        .collect();
+    let trajectory = run(&times, &Events::new());
+    let body = body();
+    let (q0, v0) = start();
+    let momentum0 = body.angular_momentum(&q0, &v0);
+    let scale = Vector3::from(OMEGA0).norm();
+    let (mut worst_rate, mut worst_norm, mut worst_momentum) = (0.0f64, 0.0f64, 0.0f64);
+    for s in &trajectory {
+        let rates = FreeBody::body_rates(&s.q, &s.qdot);
+        worst_rate = worst_rate.max((rates - exact.rates(s.t)).norm() / scale);
+        worst_norm = worst_norm.max((s.q.norm() - 1.0).abs());
+        let momentum = body.angular_momentum(&s.q, &s.qdot);
+        worst_momentum = worst_momentum.max((momentum - momentum0).norm() / momentum0.norm());
+    }
+    assert_eq!(trajectory.len(), times.len());
+    assert!(
+        worst_rate < 1e-9,
+        "body rates off the closed form by {worst_rate:e}"
+    );
+    assert!(worst_norm < 4.0 * f64::EPSILON, "|q| − 1 = {worst_norm:e}");
+    assert!(
+        worst_momentum < 1e-9,
+        "angular momentum drifted by {worst_momentum:e}"
+    );
+}
+
+/// Each reversal of `Ω2` located as an event, at `n · 2K/λ` to 1e-9
+/// relative, and the rates back at their start after each `4K/λ`.
+///
+/// The event time errs by the state's error over `|Ω̇2|` there, which is
+/// largest mid-flip (about `A2 λ` ≈ 1.7 /s²): ~2e-11 s at the end (see the
+/// test above), plus the location tolerance (a few ulps of `t`), so 1e-9
+/// relative holds with a wide margin (6e-13 measured).
+#[test]
+fn the_body_flips_every_2k_over_lambda_and_its_rates_return_every_4k() {
+    let exact = ClosedForm::new();
+    let half = exact.half_period();
+    let flips = 10;
+    let end = (flips as f64 + 0.5) * half;
+    let omega2 = Event::new("flip", |_t, q: &SVector<f64, 4>, qdot: &SVector<f64, 4>| {
+        FreeBody::body_rates(q, qdot)[1]
+    });
+    let trajectory = run(&[end], &Events::new().with(omega2));
+    let crossings: Vec<_> = trajectory.events().iter().collect();
+    assert_eq!(crossings.len(), flips, "one reversal of Ω2 per half-period");
+    for (n, e) in crossings.iter().enumerate() {
+        let expected = (n + 1) as f64 * half;
+        assert!(
+            (e.t - expected).abs() < 1e-9 * expected,
+            "flip {n}: t = {}, closed form {expected} (off by {:e})",
+            e.t,
+            e.t - expected
+        );
+        if n % 2 == 1 {
+            // After a whole period 4K/λ: the rates of the start.
+            let rates = FreeBody::body_rates(&e.q, &e.qdot);
+            let off = (rates - Vector3::from(OMEGA0)).norm() / Vector3::from(OMEGA0).norm();
+            assert!(
+                off < 1e-9,
+                "rates after period {}: off by {off:e}",
+                n / 2 + 1
+            );
+        }
+    }
+}
+
+/// Every method that integrates `q̈` from the saddle-point system takes a
+/// model whose `M` is regular only on its constraints; the variational
+/// integrator, which solves `p = M q̇` with `M` alone, refuses it with a
+/// typed error before any work. Over one second from the start above,
+/// each keeps the angular momentum in space to its own accuracy: a
+/// fixed-step method of order `p` at `h = 1e-3` errs by about `h^p` over a
+/// unit time with the rates of size one (symplectic Euler 1.05e-3,
+/// implicit midpoint 1.3e-7 measured), bounded by `10 h^p`, or 1e-12
+/// where that is below what rounding leaves over a thousand steps (RK4,
+/// Gauss–Legendre: 1e-14 measured); an adaptive one at rtol = atol = 1e-8
+/// errs by at most a few times the tolerance per unit time (Radau5 1.7e-8
+/// measured), bounded by `100 tol`.
+#[test]
+fn every_saddle_point_method_takes_the_quaternion_body_and_the_variational_one_refuses_it() {
+    let body = body();
+    let (q0, v0) = start();
+    let momentum0 = body.angular_momentum(&q0, &v0);
+    for method in Method::ALL {
+        let run = method
+            .integrator(1e-3, 1e-8)
+            .integrate(&body, 0.0, q0, v0, &[1.0]);
+        if method == Method::Variational {
+            let error = run.unwrap_err();
+            assert!(
+                matches!(
+                    error.error,
+                    IntegrationError::InvalidInput(
+                        InvalidInput::MassRegularOnConstraintsOnly { .. }
+                    )
+                ),
+                "{method:?}: {}",
+                error.error
+            );
+            continue;
+        }
+        let run = run.unwrap_or_else(|e| panic!("{method:?}: {}", e.error));
+        let end = run.last().unwrap();
+        let drift =
+            (body.angular_momentum(&end.q, &end.qdot) - momentum0).norm() / momentum0.norm();
+        let bound = if method.is_adaptive() {
+            100.0 * 1e-8
+        } else {
+            10.0 * 1e-3f64.powi(method.order() as i32)
+        }
+        .max(1e-12);
+        assert!(
+            drift < bound,
+            "{method:?}: angular momentum off by {drift:e}, bound {bound:e}"
+        );
+        assert!(
+            (end.q.norm() - 1.0).abs() < 1e-14,
+            "{method:?}: |q| = {}",
+            end.q.norm()
+        );
+    }
+}
