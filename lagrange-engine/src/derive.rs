@@ -64,17 +64,23 @@ pub struct Equations {
     pub input_jacobian: Option<ExprMatrix>,
 }
 
-/// What holonomic constraints `φ(t, q) = 0` contribute, each vector in the
-/// order of `φ`.
+/// What the constraints contribute, each vector in the order of `φ`:
+/// holonomic ones `φ(t, q) = 0` and velocity constraints
+/// `A(t, q) q̇ + b(t, q) = 0` (Lagrange–d'Alembert), whose rows are
+/// marked in `velocity_rows`.
 pub struct ConstraintEquations {
-    /// `φ`.
+    /// `φ`; zero for a velocity constraint, which has no position level.
     pub values: Vec<ExprId>,
-    /// `G = ∂φ/∂q`, `C × N`, row-major.
+    /// `G = ∂φ/∂q`, `C × N`, row-major; `A = ∂φ/∂q̇` for a velocity
+    /// constraint.
     pub jacobian: ExprMatrix,
     /// `∂φ/∂t` (zero for scleronomic constraints).
     pub time: Vec<ExprId>,
-    /// `φ̇ = G q̇ + ∂φ/∂t`.
+    /// `φ̇ = G q̇ + ∂φ/∂t`; for a velocity constraint its residual
+    /// `A q̇ + b` itself.
     pub velocities: Vec<ExprId>,
+    /// Which rows are velocity constraints.
+    pub velocity_rows: Vec<bool>,
     /// `γ`, with `φ̈ = G q̈ + γ`.
     pub bias: Vec<ExprId>,
     /// `M` is singular by itself and regular on the velocities the
@@ -255,15 +261,26 @@ fn holonomic(pool: &mut Pool, s: &Symbols, phi: Vec<ExprId>) -> Option<Constrain
         time: Vec::with_capacity(phi.len()),
         velocities: Vec::with_capacity(phi.len()),
         bias: Vec::with_capacity(phi.len()),
+        velocity_rows: Vec::with_capacity(phi.len()),
         values: phi,
         mass_regular_on_constraints_only: false,
     };
-    for &p in &out.values {
+    for k in 0..out.values.len() {
         if pool.exhausted() {
             return None;
         }
-        let row = s
-            .coordinates
+        let p = out.values[k];
+        // A velocity constraint `A(t, q) q̇ + b(t, q)` (linear, as checked):
+        // its row of G is `A = ∂φ/∂q̇`, its velocity residual φ itself, and
+        // `γ = ∂φ/∂q q̇ + ∂φ/∂t` (the q̇ in φ held, as Ȧ q̇ + ḃ). It has no
+        // position-level value: zero, which no projection moves.
+        let velocity_constraint = s.velocities.iter().any(|&v| pool.depends_on(p, v));
+        let with_respect_to = if velocity_constraint {
+            &s.velocities
+        } else {
+            &s.coordinates
+        };
+        let row = with_respect_to
             .iter()
             .map(|&q| {
                 let d = pool.diff(p, q);
@@ -272,10 +289,18 @@ fn holonomic(pool: &mut Pool, s: &Symbols, phi: Vec<ExprId>) -> Option<Constrain
             .collect();
         out.jacobian.push(row);
         out.time.push(pool.diff(p, s.time));
-        let velocity = pool.total_time_derivative(p, &s.coordinates, &s.velocities, s.time);
+        let velocity = if velocity_constraint {
+            p
+        } else {
+            pool.total_time_derivative(p, &s.coordinates, &s.velocities, s.time)
+        };
         let bias = pool.total_time_derivative(velocity, &s.coordinates, &s.velocities, s.time);
         out.velocities.push(pool.factored(velocity));
         out.bias.push(pool.factored(bias));
+        out.velocity_rows.push(velocity_constraint);
+        if velocity_constraint {
+            out.values[k] = Pool::ZERO;
+        }
     }
     (!pool.exhausted()).then_some(out)
 }

@@ -287,7 +287,7 @@ fn derive_model(def: ast::ModelDef, budget: u64) -> syn::Result<Derived> {
     within_budget(&model, r)?;
     let r = check::potential_has_no_velocity(&mut model);
     within_budget(&model, r)?;
-    let r = check::constraints::constraints_are_holonomic(&mut model);
+    let r = check::constraints::constraints_are_admissible(&mut model);
     within_budget(&model, r)?;
     let r = check::inputs::constraints_hold_no_input(&mut model);
     within_budget(&model, r)?;

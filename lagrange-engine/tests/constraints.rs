@@ -195,7 +195,7 @@ fn constraint_mistakes_are_errors_in_physics_terms() {
         )
     };
     for (constraints, expected) in [
-        ("a: dot(x) - y", "non-holonomic (velocity) constraint"),
+        ("a: dot(x)*dot(y) - y", "constraint `a` is not linear in the velocities: ∂φ/∂dot(x) depends on `dot(y)`"),
         ("a: l - 1", "names no coordinate: it constrains nothing"),
         ("a: x, b: y, c: z", "3 constraints on 3 coordinates leave no motion (`c` removes"),
         ("a: x - y, b: 2*x = 2*y", "constraint `b` is redundant"),
@@ -215,19 +215,63 @@ fn constraint_mistakes_are_errors_in_physics_terms() {
         assert!(e.contains(expected), "`{constraints}`: {e}");
     }
     // Under an index, the error still names the element.
-    let e = error(&model("a[i in 1..2]: x + i*dot(y)"));
+    let e = error(&model("a[i in 1..2]: x + i*dot(y)^2"));
     assert!(
-        e.contains("constraint `a[1]` depends on the velocity `dot(y)`"),
+        e.contains(
+            "constraint `a[1]` is not linear in the velocities: ∂φ/∂dot(y) depends on `dot(y)`"
+        ),
         "{e}"
     );
 }
 
 #[test]
 fn a_model_with_a_constraint_error_stubs_the_constraint_items() {
-    let src = CARTESIAN_PENDULUM.replace("x^2 + y^2 = l^2", "dot(x)");
+    let src = CARTESIAN_PENDULUM.replace("x^2 + y^2 = l^2", "dot(x)^2");
     let tokens = lagrange_engine::expand(src.parse().unwrap()).to_string();
     assert_eq!(tokens.matches("compile_error").count(), 1, "{tokens}");
     assert!(tokens.contains(":: lagrange :: Holonomic < 2 , 1 >"));
     assert!(tokens.contains("pub fn constraint_jacobian"));
     syn::parse_file(&tokens).expect("the stub parses as Rust");
+}
+
+/// A velocity constraint `A(t, q) q̇ + b(t, q) = 0`: its row of G is
+/// `A = ∂φ/∂q̇`, its velocity residual φ itself, its bias
+/// `γ = ∂φ/∂q q̇ + ∂φ/∂t`, and it has no position level (zero). The knife
+/// edge `cos θ ẏ − sin θ ẋ − a θ̇ = 0`: `A = (−sin θ, cos θ, −a)`,
+/// `γ = −(cos θ ẋ + sin θ ẏ) θ̇`.
+#[test]
+fn a_velocity_constraint_has_g_a_and_the_bias_of_its_rate() {
+    let d = derive(
+        "pub struct Sleigh {
+            coordinates: x, y, theta;
+            parameters: m, i, a;
+            kinetic: m/2*(dot(x)^2 + dot(y)^2) + i/2*dot(theta)^2;
+            potential: 0;
+            constraints: edge: cos(theta)*dot(y) - sin(theta)*dot(x) = a*dot(theta);
+        }",
+    );
+    let c = constraints(&d);
+    assert_eq!(c.velocity_rows, [true]);
+    let (m, i, a) = (2.0, 0.3, 0.4);
+    for (t, q, v) in [
+        (0.0, [0.1, -0.2, 0.7], [0.5, 0.3, 1.5]),
+        (2.0, [1.0, 0.4, -2.1], [-0.2, 1.1, 0.3]),
+    ] {
+        let at = |ids: &[_]| d.eval(ids, t, &q, &v, &[m, i, a]);
+        let (s, co) = q[2].sin_cos();
+        assert_eq!(at(&c.values)[0], 0.0);
+        let g = at(&c.jacobian[0]);
+        for (got, want) in g.iter().zip([-s, co, -a]) {
+            assert!((got - want).abs() < 1e-15, "G: {g:?}");
+        }
+        let residual = co * v[1] - s * v[0] - a * v[2];
+        assert!((at(&c.velocities)[0] - residual).abs() < 1e-15);
+        let gamma = -(co * v[0] + s * v[1]) * v[2];
+        assert!((at(&c.bias)[0] - gamma).abs() < 1e-15);
+    }
+    let tokens = d.tokens().to_string();
+    assert!(
+        tokens.contains("fn has_velocity_constraints"),
+        "the impl says so"
+    );
 }

@@ -5,6 +5,8 @@ mod constrained;
 mod ensemble;
 mod events;
 mod fingerprints;
+mod heavy_top;
 mod integrator_suite;
 mod reference_trajectories;
 mod rigid_body;
+mod rolling;

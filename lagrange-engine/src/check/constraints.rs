@@ -1,7 +1,8 @@
 //! The checks of `constraints:`: each constraint holonomic (a function of
-//! `t` and `q`, no velocity), each constraining some coordinate, fewer
-//! constraints than coordinates, and none redundant, i.e. the rows of
-//! `G = ∂φ/∂q` independent. Redundant constraints make the runtime's
+//! `t` and `q`) or linear in the velocities (`A(t, q) q̇ + b(t, q)`), each
+//! constraining some coordinate, fewer constraints than coordinates, and
+//! none redundant, i.e. the rows of `G` (`∂φ/∂q`, or `A` for a velocity
+//! constraint) independent. Redundant constraints make the runtime's
 //! saddle-point system singular at every state, the constrained analogue of
 //! a singular mass matrix, so they are a compile error like it.
 
@@ -46,31 +47,48 @@ pub fn constants_are_finite(model: &mut Model) -> syn::Result<()> {
     ))
 }
 
-/// Each constraint is `φ(t, q) = 0`: no velocity, some coordinate; and
-/// there are fewer of them than coordinates.
-pub fn constraints_are_holonomic(model: &mut Model) -> syn::Result<()> {
+/// Each constraint is holonomic, `φ(t, q) = 0`, or a velocity constraint
+/// linear in the velocities, `A(t, q) q̇ + b(t, q) = 0`; each names some
+/// coordinate or velocity; and there are fewer of them than coordinates.
+pub fn constraints_are_admissible(model: &mut Model) -> syn::Result<()> {
     let velocities = model.symbols.velocities.clone();
     let coordinates = model.symbols.coordinates.clone();
     for k in 0..model.constraints.len() {
         let c: &Constraint = &model.constraints[k];
         let (label, value) = (c.label.clone(), c.value);
-        if let Some(i) = velocities
-            .iter()
-            .position(|&v| model.pool.depends_on(value, v))
-        {
-            let v = velocities[i];
-            let range = locate_side(model, k, &|pool: &mut Pool, id| pool.depends_on(id, v));
+        // Linear in the velocities: no ∂φ/∂q̇_i holds a velocity.
+        for (i, &vi) in velocities.iter().enumerate() {
+            if !model.pool.depends_on(value, vi) {
+                continue;
+            }
+            let d = model.pool.diff(value, vi);
+            let Some(j) = velocities
+                .iter()
+                .position(|&vj| model.pool.depends_on(d, vj))
+            else {
+                continue;
+            };
+            let vj = velocities[j];
+            let range = locate_side(model, k, &|pool: &mut Pool, id| {
+                let d = pool.diff(id, vi);
+                pool.depends_on(d, vj)
+            });
             return Err(range.error(format!(
-                "constraint `{label}` depends on the velocity `dot({})`: that is a non-holonomic (velocity) \
-                 constraint, and `constraints:` takes holonomic ones only, φ(t, q) = 0 in the coordinates and `t`",
-                model.coordinates[i]
+                "constraint `{label}` is not linear in the velocities: ∂φ/∂dot({}) depends on `dot({})`; \
+                 `constraints:` takes holonomic constraints φ(t, q) = 0 and velocity constraints linear in the \
+                 velocities, A(t, q) q̇ + b(t, q) = 0",
+                model.coordinates[i], model.coordinates[j]
             )));
         }
-        if !coordinates.iter().any(|&q| model.pool.depends_on(value, q)) {
+        let names_any = coordinates
+            .iter()
+            .chain(&velocities)
+            .any(|&q| model.pool.depends_on(value, q));
+        if !names_any {
             let (def, _) = model.constraint_def(&model.constraints[k]);
             return Err(def.range().error(format!(
                 "constraint `{label}` names no coordinate: it constrains nothing (a constraint is an equation \
-                 φ(t, q) = 0 that the coordinates must satisfy)"
+                 φ(t, q) = 0 that the coordinates must satisfy, or A(t, q) q̇ + b(t, q) = 0 on their velocities)"
             )));
         }
     }

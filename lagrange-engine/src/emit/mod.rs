@@ -64,7 +64,11 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
         .constraints
         .as_ref()
         .is_some_and(|c| c.mass_regular_on_constraints_only);
-    let holonomic = holonomic_impl(&cx, singular_mass);
+    let velocity_constraints = eq
+        .constraints
+        .as_ref()
+        .is_some_and(|c| c.velocity_rows.contains(&true));
+    let holonomic = holonomic_impl(&cx, singular_mass, velocity_constraints);
     let actuated = actuated_impl(&cx);
     let lets = lets_impl(cx.outline.name, &cx.types);
     quote! {
@@ -260,8 +264,9 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
 
 /// `impl Holonomic<N, C> for Name<S>`, for a constrained model only: each
 /// method calls the inherent one. `singular_mass`: `M` is regular only on
-/// the velocities the constraints allow, which the impl says.
-fn holonomic_impl(cx: &Context, singular_mass: bool) -> TokenStream {
+/// the velocities the constraints allow; `velocity_constraints`: some are
+/// constraints on the velocities. The impl says both.
+fn holonomic_impl(cx: &Context, singular_mass: bool, velocity_constraints: bool) -> TokenStream {
     if cx.types.constraints == 0 {
         return TokenStream::new();
     }
@@ -291,11 +296,20 @@ fn holonomic_impl(cx: &Context, singular_mass: bool) -> TokenStream {
             }
         }
     });
+    let on_velocities = velocity_constraints.then(|| {
+        quote! {
+            #[inline]
+            fn has_velocity_constraints(&self) -> bool {
+                true
+            }
+        }
+    });
     quote! {
         impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::Holonomic<#n, #c> for #name<S> {
             const CONSTRAINTS: [&'static str; #c] = Self::CONSTRAINTS;
             #(#methods)*
             #regular_on_constraints
+            #on_velocities
         }
     }
 }

@@ -129,6 +129,7 @@ impl<S: RealField + Copy> EquilibriumSearch<S> {
         guess: &SVector<S, N>,
     ) -> Result<Equilibrium<S, N>, AnalysisError<S, N>> {
         crate::model::ready(model).map_err(|e| AnalysisError::Model(e.into()))?;
+        super::error::refuse_velocity_constraints(model, t, guess)?;
         if let Some(result) = model.visit_constraints(ManifoldSearch {
             search: self,
             t,
@@ -335,6 +336,7 @@ pub fn is_equilibrium<L: Lagrangian<N>, const N: usize>(
     tol: L::Scalar,
 ) -> Result<bool, AnalysisError<L::Scalar, N>> {
     crate::model::ready(model).map_err(|e| AnalysisError::Model(e.into()))?;
+    super::error::refuse_velocity_constraints(model, t, q)?;
     if let Some(result) = model.visit_constraints(ManifoldTest { t, q, tol }) {
         return result;
     }

@@ -48,6 +48,24 @@ pub enum AnalysisError<S: RealField + Copy, const N: usize> {
         q: SVector<S, N>,
     },
 
+    /// The model has constraints on its velocities (rolling, a knife edge:
+    /// [`Holonomic::has_velocity_constraints`](crate::model::constraints::Holonomic::has_velocity_constraints)).
+    /// The analyses on the constraint manifold reduce the coordinates by
+    /// the constraints' position level, which such a row does not have: not
+    /// supported yet. (Integrating such a model is.)
+    #[error(
+        "the model has constraints on its velocities (at t = {t:?}, q = {}): the analyses on the \
+         constraint manifold need every constraint on the positions, and velocity constraints are \
+         not supported there yet",
+        Row(.q)
+    )]
+    VelocityConstraints {
+        /// Time asked about.
+        t: S,
+        /// Configuration asked about.
+        q: SVector<S, N>,
+    },
+
     /// A constrained model was asked about a state off its constraints:
     /// `φ(t, q)` (or, for a linearization, `φ̇ = G q̇ + ∂φ/∂t`) is beyond
     /// `√ε` relative (see
@@ -169,4 +187,20 @@ pub enum AnalysisError<S: RealField + Copy, const N: usize> {
         /// Generalized velocities.
         qdot: SVector<S, N>,
     },
+}
+
+/// [`AnalysisError::VelocityConstraints`] for a model with constraints on
+/// its velocities, at `(t, q)`.
+pub(crate) fn refuse_velocity_constraints<L, const N: usize>(
+    model: &L,
+    t: L::Scalar,
+    q: &SVector<L::Scalar, N>,
+) -> Result<(), AnalysisError<L::Scalar, N>>
+where
+    L: crate::model::Lagrangian<N>,
+{
+    if crate::model::constraints::has_velocity_constraints(model) {
+        return Err(AnalysisError::VelocityConstraints { t, q: *q });
+    }
+    Ok(())
 }

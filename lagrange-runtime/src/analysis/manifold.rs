@@ -211,6 +211,7 @@ pub fn linearize_on_manifold<L: Lagrangian<N>, const N: usize>(
     qdot: &SVector<L::Scalar, N>,
 ) -> Result<ManifoldLinearization<L::Scalar, N>, AnalysisError<L::Scalar, N>> {
     crate::model::ready(model).map_err(|e| AnalysisError::Model(e.into()))?;
+    super::error::refuse_velocity_constraints(model, t, q)?;
     if let Some(result) = model.visit_constraints(Reduce { t, q, qdot }) {
         return result;
     }

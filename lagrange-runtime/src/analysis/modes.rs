@@ -154,6 +154,7 @@ pub fn modes<L: Lagrangian<N>, const N: usize>(
     q: &SVector<L::Scalar, N>,
 ) -> Result<Modes<L::Scalar, N>, AnalysisError<L::Scalar, N>> {
     crate::model::ready(model).map_err(|e| AnalysisError::Model(e.into()))?;
+    super::error::refuse_velocity_constraints(model, t, q)?;
     if let Some(result) = model.visit_constraints(ManifoldModes { t, q }) {
         return result;
     }

@@ -475,6 +475,22 @@ pub enum InvalidInput<S: RealField + Copy> {
         method: Name,
     },
 
+    /// The method needs every constraint on the positions, and the model
+    /// has constraints on its velocities
+    /// ([`Holonomic::has_velocity_constraints`](crate::model::constraints::Holonomic::has_velocity_constraints)):
+    /// the variational integrator's RATTLE steps impose each constraint on
+    /// the next position.
+    #[error(
+        "{method} imposes every constraint on the positions, and this model has constraints on its \
+         velocities (rolling, a knife edge); integrate it with a method that solves for q̈ through the \
+         constraints (RK4, Dopri5, Tsit5, Dop853, Radau5, GaussLegendre, ...)"
+    )]
+    VelocityConstraints {
+        /// The integrator.
+        #[cfg_attr(feature = "serde", serde(with = "crate::names::one"))]
+        method: Name,
+    },
+
     /// The initial state is off the constraints beyond rounding, and the
     /// model asked for such states to be refused rather than projected
     /// ([`InitialConditions::Reject`](crate::constraints::InitialConditions::Reject)).

@@ -93,6 +93,28 @@ pub trait Holonomic<const N: usize, const C: usize>: Lagrangian<N> {
         false
     }
 
+    /// Whether some of the constraints are on the velocities,
+    /// `A(t, q) q̇ + b(t, q) = 0` (rolling, a knife edge), not on the
+    /// positions. Such a row has no position-level value
+    /// ([`constraints`](Holonomic::constraints) returns zero there, which no
+    /// projection moves); its row of
+    /// [`constraint_jacobian`](Holonomic::constraint_jacobian) is `A`, its
+    /// [`constraint_velocities`](Holonomic::constraint_velocities) entry the
+    /// residual `A q̇ + b`, and its bias `γ = Ȧ q̇ + ḃ`: the saddle-point
+    /// system, the velocity projection and Baumgarte's velocity term treat
+    /// it as they treat a holonomic row (Lagrange–d'Alembert dynamics). The
+    /// methods and analyses that need a position-level constraint for every
+    /// row (the variational integrator's RATTLE steps, the linearization
+    /// on the constraint manifold) refuse such a model with a typed error.
+    ///
+    /// `lagrangian!` answers it from the constraints as written; a
+    /// hand-written model of holonomic constraints keeps the default,
+    /// `false`.
+    #[inline]
+    fn has_velocity_constraints(&self) -> bool {
+        false
+    }
+
     /// This model with another drift control, for its runs:
     /// `method.integrate(&model.with_drift(Drift::None), ..)`. The model
     /// is taken by value (a model from `lagrangian!` is `Copy`; borrow one
@@ -140,6 +162,22 @@ pub(crate) fn mass_regular_on_constraints_only<L: Lagrangian<N>, const N: usize>
             H: Holonomic<N, C, Scalar = S> + ?Sized,
         {
             model.mass_regular_on_constraints_only()
+        }
+    }
+    model.visit_constraints(Probe).unwrap_or(false)
+}
+
+/// Whether `model` has constraints on its velocities
+/// ([`Holonomic::has_velocity_constraints`]).
+pub(crate) fn has_velocity_constraints<L: Lagrangian<N>, const N: usize>(model: &L) -> bool {
+    struct Probe;
+    impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Probe {
+        type Output = bool;
+        fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> bool
+        where
+            H: Holonomic<N, C, Scalar = S> + ?Sized,
+        {
+            model.has_velocity_constraints()
         }
     }
     model.visit_constraints(Probe).unwrap_or(false)

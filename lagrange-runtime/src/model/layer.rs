@@ -404,6 +404,11 @@ where
     fn mass_regular_on_constraints_only(&self) -> bool {
         self.model.mass_regular_on_constraints_only()
     }
+
+    #[inline]
+    fn has_velocity_constraints(&self) -> bool {
+        self.model.has_velocity_constraints()
+    }
 }
 
 /// The visitor that meets the constraints inside a layered model and hands
@@ -609,5 +614,9 @@ where
     #[inline]
     fn mass_regular_on_constraints_only(&self) -> bool {
         self.constraints.mass_regular_on_constraints_only()
+    }
+    #[inline]
+    fn has_velocity_constraints(&self) -> bool {
+        self.constraints.has_velocity_constraints()
     }
 }

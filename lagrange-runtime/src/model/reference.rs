@@ -165,6 +165,10 @@ impl<H: Holonomic<N, C> + ?Sized, const N: usize, const C: usize> Holonomic<N, C
         (**self).mass_regular_on_constraints_only()
     }
     #[inline]
+    fn has_velocity_constraints(&self) -> bool {
+        (**self).has_velocity_constraints()
+    }
+    #[inline]
     #[allow(clippy::type_complexity)]
     fn constrained_system(
         &self,

@@ -12,7 +12,9 @@ use crate::driver::run::{Advanced, Flow, Fresh, Run, Walk};
 use crate::driver::Interval;
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::linalg::solve::positive_semidefinite;
-use crate::model::constraints::{is_constrained, mass_regular_on_constraints_only};
+use crate::model::constraints::{
+    has_velocity_constraints, is_constrained, mass_regular_on_constraints_only,
+};
 use crate::model::Lagrangian;
 
 /// The variational method's work between steps: the state in `(q, p)`, the
@@ -79,6 +81,10 @@ impl<S: RealField + Copy, const N: usize> VariationalWalk<S, N> {
         if mass_regular_on_constraints_only(model) {
             let method = "Variational";
             return Err(InvalidInput::MassRegularOnConstraintsOnly { method }.into());
+        }
+        if has_velocity_constraints(model) {
+            let method = "Variational";
+            return Err(InvalidInput::VelocityConstraints { method }.into());
         }
         run.rec.stats.rhs_evals += 1;
         if !all_finite(&p0) {

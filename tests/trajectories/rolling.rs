@@ -1,0 +1,309 @@
+//! Constraints on the velocities, `A(t, q) q̇ + b(t, q) = 0`, with
+//! Lagrange–d'Alembert dynamics: a knife edge (the Chaplygin sleigh) and a
+//! thin disk rolling without slipping, each against its closed form.
+
+use lagrange::nalgebra::{SVector, Vector3, Vector5};
+use lagrange::prelude::*;
+use lagrange::{InvalidInput, Method};
+
+lagrangian! {
+    /// The Chaplygin sleigh: a body of mass `m` and moment of inertia `i`
+    /// about its mass centre `(x, y)`, heading `theta`, on a knife edge at
+    /// distance `a` behind the mass centre that cannot slide sideways (the
+    /// edge's velocity across the heading is zero).
+    pub struct Sleigh {
+        coordinates: x, y, theta;
+        parameters: m, i, a;
+        kinetic: m/2*(dot(x)^2 + dot(y)^2) + i/2*dot(theta)^2;
+        potential: 0;
+        constraints: edge: cos(theta)*dot(y) - sin(theta)*dot(x) = a*dot(theta);
+    }
+}
+
+lagrangian! {
+    /// A thin uniform disk of mass `m` and radius `r` rolling without
+    /// slipping on the plane `z = 0`: contact point `(x, y)`, heading `psi`
+    /// (the rolling direction `(cos ψ, sin ψ, 0)`), lean `theta` from the
+    /// vertical, spin `phi` about its axis. Its centre is `r` above the
+    /// contact point along the disk's plane; its angular velocity is
+    /// `ψ̇ ẑ + θ̇ t̂ + φ̇ â` (`â` the axis, `â·ẑ = −sin θ`), moments
+    /// `m r²/4` across the axis and `m r²/2` along it. Rolling: the contact
+    /// point of the disk is at rest, `(ẋ, ẏ) + r φ̇ (cos ψ, sin ψ) = 0`.
+    pub struct RollingDisk {
+        coordinates: x, y, psi, theta, phi;
+        parameters: m, r, g;
+        let cx = x + r*sin(theta)*sin(psi);
+        let cy = y - r*sin(theta)*cos(psi);
+        let cz = r*cos(theta);
+        let axial = dot(phi) - sin(theta)*dot(psi);
+        kinetic: m/2*(dot(cx)^2 + dot(cy)^2 + dot(cz)^2)
+            + m*r^2/8*(dot(psi)^2 + dot(theta)^2 + dot(phi)^2 - 2*sin(theta)*dot(psi)*dot(phi))
+            + m*r^2/8*axial^2;
+        potential: m*g*cz;
+        constraints:
+            roll_x: dot(x) + r*cos(psi)*dot(phi) = 0,
+            roll_y: dot(y) + r*sin(psi)*dot(phi) = 0;
+    }
+}
+
+/// The sleigh's `m`, `i`, `a`, and its start: forward speed `v0`, turning
+/// rate `ω0`, from the origin heading along `x`.
+const SLEIGH: [f64; 3] = [2.0, 0.3, 0.4];
+const V0: f64 = 0.5;
+const W0: f64 = 1.5;
+
+/// The sleigh's forward speed `v` and turning rate `ω` in closed form
+/// (Neimark & Fufaev, Dynamics of Nonholonomic Systems, ch. 3; Bloch,
+/// Nonholonomic Mechanics and Control, §1.7): with `J = i + m a²`, the
+/// equations `v̇ = a ω²`, `J ω̇ = −m a v ω` keep the energy
+/// `½ m v² + ½ J ω²`, so with `V² = v0² + J ω0² / m` and `λ = m a V / J`,
+/// `v = V tanh(λ t + c)` and `ω = ω0 cosh c / cosh(λ t + c)`, `tanh c = v0/V`.
+fn sleigh_closed_form(t: f64) -> (f64, f64) {
+    let [m, i, a] = SLEIGH;
+    let j = i + m * a * a;
+    let speed = (V0 * V0 + j * W0 * W0 / m).sqrt();
+    let lambda = m * a * speed / j;
+    let c = (V0 / speed).atanh();
+    (
+        speed * (lambda * t + c).tanh(),
+        W0 * c.cosh() / (lambda * t + c).cosh(),
+    )
+}
+
+/// The knife edge against its closed form: speed a tanh, turning rate a
+/// sech, to 1e-10 every 0.05 s over 10 s (the turning rate falls from 1.5
+/// to 2e-6 rad/s); the multiplier is the edge's sideways force, which
+/// turns the body: `a λ = i ω̇` (the force on `θ` is `−Gᵀλ`, G's row
+/// `(−sin θ, cos θ, −a)`), so `λ = −i m v ω / J`, to 1e-10 of its largest
+/// value; the velocity residual at rounding.
+///
+/// Bounds: Dop853 at rtol = atol = 1e-13 on a regular motion errs by a
+/// few times the tolerance per unit time, ~1e-12 here; the multiplier is
+/// a function of the state with derivatives of order one. 1e-10 leaves a
+/// margin of about 100.
+#[test]
+fn the_chaplygin_sleigh_speeds_up_as_a_tanh_and_stops_turning_as_a_sech() {
+    let [m, i, a] = SLEIGH;
+    let sleigh = Sleigh::new(m, i, a);
+    let q0 = SVector::<f64, 3>::zeros();
+    let v0 = SVector::<f64, 3>::new(V0, a * W0, W0);
+    let times: Vec<f64> = (1..=200).map(|k| 0.05 * k as f64).collect();
+    let run = Dop853::new()
+        .rtol(1e-13)
+        .atol(1e-13)
+        .integrate(&sleigh, 0.0, q0, v0, &times)
+        .unwrap();
+    let j = i + m * a * a;
+    let lambda_scale = i * m * V0.max(1.0) * W0 / j;
+    let energy0 = sleigh.energy(0.0, &q0, &v0);
+    let (mut worst_state, mut worst_force, mut worst_energy) = (0.0f64, 0.0f64, 0.0f64);
+    for s in &run {
+        let theta = s.q[2];
+        let v = theta.cos() * s.qdot[0] + theta.sin() * s.qdot[1];
+        let w = s.qdot[2];
+        let (v_exact, w_exact) = sleigh_closed_form(s.t);
+        worst_state = worst_state
+            .max((v - v_exact).abs())
+            .max((w - w_exact).abs());
+        let lambda = sleigh.multipliers(s.t, &s.q, &s.qdot).unwrap()[0];
+        worst_force =
+            worst_force.max((lambda + i * m * v_exact * w_exact / j).abs() / lambda_scale);
+        worst_energy =
+            worst_energy.max((sleigh.energy(s.t, &s.q, &s.qdot) - energy0).abs() / energy0);
+        assert!(sleigh.constraint_velocities(s.t, &s.q, &s.qdot)[0].abs() < 1e-14);
+    }
+    assert!(
+        worst_state < 1e-10,
+        "speed or turning rate off by {worst_state:e}"
+    );
+    assert!(worst_force < 1e-10, "edge force off by {worst_force:e}");
+    assert!(worst_energy < 1e-10, "energy drifted by {worst_energy:e}");
+    let end = run.last().unwrap();
+    assert!(end.qdot[2] < 1e-5, "it stops turning: ω = {}", end.qdot[2]);
+}
+
+/// The disk's `m`, `r`, `g`.
+const DISK: [f64; 3] = [1.5, 0.3, 9.81];
+
+fn disk() -> RollingDisk {
+    let [m, r, g] = DISK;
+    RollingDisk::new(m, r, g)
+}
+
+/// A consistent start: contact at the origin heading along `x`, lean
+/// `theta`, lean rate `theta_dot`, heading rate `psi_dot`, spin rate
+/// `phi_dot` (rolling: the contact point moves at `−r φ̇` along the heading).
+fn disk_state(
+    theta: f64,
+    theta_dot: f64,
+    psi_dot: f64,
+    phi_dot: f64,
+) -> (Vector5<f64>, Vector5<f64>) {
+    let r = DISK[1];
+    (
+        Vector5::new(0.0, 0.0, 0.0, theta, 0.0),
+        Vector5::new(-r * phi_dot, 0.0, psi_dot, theta_dot, phi_dot),
+    )
+}
+
+/// Steady circular rolling: for lean `θ`, spin `ω` and heading rate `Ω`
+/// held constant, the lean's equation of motion (the other four hold with
+/// the contact forces) reads
+///
+/// ```text
+/// 4 g sin θ = 6 Ω ω r cos θ − 5 Ω² r sin θ cos θ,
+/// ```
+///
+/// the classical relation of a thin disk (Routh, Advanced Rigid Dynamics,
+/// §244; derived here from this Lagrangian with SymPy, independently of
+/// the macro): `g tan θ = (1 + I_a / m r²) Ω v − …` with `v = r ω`. Given
+/// `θ` and `ω`, `Ω` is its smaller root, and the contact point runs round
+/// a circle of radius `R = r |ω / Ω|`.
+///
+/// Started on it (lean 0.5 rad, spin −6 rad/s), the disk stays on it: the
+/// lean stays at `θ` to 1e-9 rad and the contact point on its circle to
+/// 1e-9 of the radius over 10 s (3.7 turns), and the energy is kept to
+/// 1e-11 relative (the rolling constraints do no work). Dop853 at 1e-13
+/// errs by ~1e-12 per unit time, and this steady motion is stable, so the
+/// errors grow at most linearly: 1e-9 leaves a margin of ~100 (measured:
+/// the lean 7e-15, the circle 7e-13, the energy 4e-14). A wrong `Ω` would
+/// show at once: the lean would oscillate about the true steady lean by
+/// the difference.
+#[test]
+fn a_disk_rolls_round_the_circle_its_lean_spin_and_precession_say() {
+    let [_, r, g] = DISK;
+    let (theta, omega) = (0.5f64, -6.0f64);
+    let (s, c) = theta.sin_cos();
+    // a Ω² + b Ω + c = 0, its smaller root without cancellation.
+    let (qa, qb, qc) = (1.25 * r * s * c, -1.5 * omega * r * c, g * s);
+    let big_omega = qc / (-0.5 * (qb + qb.signum() * (qb * qb - 4.0 * qa * qc).sqrt()));
+    let residual =
+        4.0 * g * s - 6.0 * big_omega * omega * r * c + 5.0 * big_omega.powi(2) * r * s * c;
+    assert!(residual.abs() < 1e-12 * g, "the root: {residual:e}");
+    let radius = r * (omega / big_omega).abs();
+    let (q0, v0) = disk_state(theta, 0.0, big_omega, omega);
+    // The contact point starts at the origin moving along x at −r ω and
+    // turning at Ω: the circle's centre is R to the left or right.
+    let turning_left = (-r * omega) * big_omega > 0.0;
+    let centre = Vector3::new(0.0, if turning_left { radius } else { -radius }, 0.0);
+    let times: Vec<f64> = (1..=200).map(|k| 0.05 * k as f64).collect();
+    let model = disk();
+    let run = Dop853::new()
+        .rtol(1e-13)
+        .atol(1e-13)
+        .integrate(&model, 0.0, q0, v0, &times)
+        .unwrap();
+    let energy0 = model.energy(0.0, &q0, &v0);
+    let (mut worst_lean, mut worst_circle, mut worst_energy) = (0.0f64, 0.0f64, 0.0f64);
+    for s in &run {
+        worst_lean = worst_lean.max((s.q[3] - theta).abs());
+        let contact = Vector3::new(s.q[0], s.q[1], 0.0);
+        worst_circle = worst_circle.max(((contact - centre).norm() - radius).abs() / radius);
+        worst_energy =
+            worst_energy.max((model.energy(s.t, &s.q, &s.qdot) - energy0).abs() / energy0.abs());
+    }
+    let turns = (big_omega * 10.0).abs() / std::f64::consts::TAU;
+    assert!(turns > 2.0, "{turns} turns");
+    assert!(worst_lean < 1e-9, "the lean wandered by {worst_lean:e}");
+    assert!(
+        worst_circle < 1e-9,
+        "the contact point left its circle by {worst_circle:e}"
+    );
+    assert!(worst_energy < 1e-11, "energy drifted by {worst_energy:e}");
+}
+
+/// The largest lean over 20 s of a disk rolling upright at speed `v`,
+/// nudged by a lean rate of 1e-3 rad/s.
+fn largest_lean(v: f64) -> f64 {
+    let r = DISK[1];
+    let (q0, v0) = disk_state(0.0, 1e-3, 0.0, -v / r);
+    let times: Vec<f64> = (1..=400).map(|k| 0.05 * k as f64).collect();
+    let run = Dop853::new()
+        .rtol(1e-10)
+        .atol(1e-12)
+        .integrate(&disk(), 0.0, q0, v0, &times);
+    // A disk that falls over ends its run lying down, where the rolling
+    // model's contact breaks down: what was recorded up to then counts.
+    let trajectory = match run {
+        Ok(t) => t,
+        Err(failure) => failure.trajectory,
+    };
+    trajectory.iter().map(|s| s.q[3].abs()).fold(0.0, f64::max)
+}
+
+/// Upright rolling is stable above `v² = g r / 3` and not below. About
+/// upright rolling at spin `ω0` (`v = r |ω0|`), this Lagrangian linearized
+/// (with SymPy, as above) gives `ψ̇ = 2 ω0 θ` and
+/// `5 r θ̈ = (4 g − 12 ω0² r) θ`: a growing mode exactly when
+/// `v² < g r / 3` (the classical thin-disk threshold; Neimark & Fufaev,
+/// ch. 3). 10 % either side of it, `|s|² = 0.08 g / r` ≈ 2.6 /s²: above,
+/// the lean oscillates at 1.6 rad/s with the nudge's amplitude over that
+/// frequency, ≈ 6e-4 rad (6.2e-4 measured), bounded here by 1e-2; below,
+/// it grows at 1.6 /s until the nonlinear terms take over (the disk then
+/// circles, leaning, rather than falling: 0.35 rad measured), bounded below
+/// by 0.1, a hundred times what it reaches when stable.
+#[test]
+fn upright_rolling_is_stable_above_v_squared_gr_over_3_and_not_below() {
+    let [_, r, g] = DISK;
+    let critical = (g * r / 3.0).sqrt();
+    let above = largest_lean(1.1f64.sqrt() * critical);
+    let below = largest_lean(0.9f64.sqrt() * critical);
+    assert!(
+        above < 1e-2,
+        "above the critical speed the lean reached {above}"
+    );
+    assert!(
+        below > 0.1,
+        "below the critical speed the lean reached only {below}"
+    );
+}
+
+/// Every method that integrates `q̈` through the constraints takes velocity
+/// constraints; the variational integrator, whose RATTLE steps impose each
+/// constraint on the next position, refuses them with a typed error, and
+/// so do the analyses on the constraint manifold.
+#[test]
+fn velocity_constraints_are_taken_by_the_saddle_point_methods_and_refused_by_the_variational_one() {
+    let [m, i, a] = SLEIGH;
+    let sleigh = Sleigh::new(m, i, a);
+    let q0 = SVector::<f64, 3>::zeros();
+    let v0 = SVector::<f64, 3>::new(V0, a * W0, W0);
+    for method in Method::ALL {
+        let run = method
+            .integrator(1e-3, 1e-8)
+            .integrate(&sleigh, 0.0, q0, v0, &[1.0]);
+        if method == Method::Variational {
+            let error = run.unwrap_err().error;
+            assert!(
+                matches!(
+                    error,
+                    IntegrationError::InvalidInput(InvalidInput::VelocityConstraints { .. })
+                ),
+                "{error}"
+            );
+            continue;
+        }
+        let run = run.unwrap_or_else(|e| panic!("{method:?}: {}", e.error));
+        let end = run.last().unwrap();
+        let (v, w) = sleigh_closed_form(1.0);
+        let speed = end.q[2].cos() * end.qdot[0] + end.q[2].sin() * end.qdot[1];
+        // Order p at h = 1e-3: ~h^p over a unit time with rates of order
+        // one (10 h^p, or 1e-12 where rounding is the floor); adaptive at
+        // 1e-8: 100 tol.
+        let bound = if method.is_adaptive() {
+            1e-6
+        } else {
+            (10.0 * 1e-3f64.powi(method.order() as i32)).max(1e-12)
+        };
+        let off = (speed - v).abs().max((end.qdot[2] - w).abs());
+        assert!(off < bound, "{method:?}: off by {off:e}, bound {bound:e}");
+    }
+    let error = lagrange::analysis::linearize_on_manifold(&sleigh, 0.0, &q0, &v0).unwrap_err();
+    assert!(
+        matches!(
+            error,
+            lagrange::analysis::AnalysisError::VelocityConstraints { .. }
+        ),
+        "{error}"
+    );
+}
