@@ -7,21 +7,27 @@
 //! minimal-coordinate twin) and [`FourBar`]. One has a control input:
 //! [`CartPole`], pushed by a motor force. Two have impacts, as
 //! [events](lagrange_runtime::events): [`BouncingBall`] and
-//! [`PendulumWall`]. One is a rigid body in 3D, its orientation a unit
-//! quaternion whose constraint makes its singular mass matrix regular:
-//! [`FreeBody`].
+//! [`PendulumWall`]. Two are rigid bodies in 3D, their orientation a unit
+//! quaternion whose constraint makes their singular mass matrix regular:
+//! [`FreeBody`] and [`HeavyTop`] (the functions of [`quaternion`] convert
+//! their states). Two roll, under constraints on their velocities:
+//! [`ChaplyginSleigh`] and [`RollingDisk`].
 
 mod bouncing_ball;
 mod cart_pole;
 mod cartesian_pendulum;
 mod chain;
+mod chaplygin_sleigh;
 mod double_pendulum;
 mod four_bar;
 mod free_body;
+mod heavy_top;
 mod kepler;
 mod oscillator;
 mod pendulum;
 mod pendulum_wall;
+pub mod quaternion;
+mod rolling_disk;
 mod slider_crank;
 mod stiff_chain;
 mod two_mass_chain;
@@ -30,13 +36,16 @@ pub use bouncing_ball::BouncingBall;
 pub use cart_pole::CartPole;
 pub use cartesian_pendulum::CartesianPendulum;
 pub use chain::Chain;
+pub use chaplygin_sleigh::ChaplyginSleigh;
 pub use double_pendulum::DoublePendulum;
 pub use four_bar::FourBar;
 pub use free_body::FreeBody;
+pub use heavy_top::HeavyTop;
 pub use kepler::{Kepler, PolarKepler};
 pub use oscillator::Oscillator;
 pub use pendulum::Pendulum;
 pub use pendulum_wall::PendulumWall;
+pub use rolling_disk::RollingDisk;
 pub use slider_crank::{slider_crank_kinematics, MinimalSliderCrank, SliderCrank};
 pub use stiff_chain::StiffChain;
 pub use two_mass_chain::{RayleighTwoMassChain, TwoMassChain};

@@ -5,8 +5,9 @@
 //! `|q| = 1` fixes the fourth, and `lagrangian!` accepts the model because
 //! `M` is regular on the rates the constraint allows.
 
-use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3, Vector4};
+use nalgebra::{Matrix3, Vector3, Vector4};
 
+use super::quaternion;
 use crate::lagrangian;
 
 lagrangian! {
@@ -17,13 +18,13 @@ lagrangian! {
     /// Euler's `½ (i1 ω1² + i2 ω2² + i3 ω3²)`.
     ///
     /// ```
-    /// use lagrange::models::FreeBody;
+    /// use lagrange::models::{quaternion, FreeBody};
     /// use lagrange::nalgebra::{UnitQuaternion, Vector3};
     /// use lagrange::prelude::*;
     ///
     /// let body = FreeBody::new(1.0, 2.0, 3.0);
     /// // Spun about its intermediate axis, with a small perturbation.
-    /// let (q0, v0) = FreeBody::state(&UnitQuaternion::identity(), &Vector3::new(0.01, 2.0, 0.01));
+    /// let (q0, v0) = quaternion::state(&UnitQuaternion::identity(), &Vector3::new(0.01, 2.0, 0.01));
     /// let run = Dop853::new().rtol(1e-10).atol(1e-10).integrate(&body, 0.0, q0, v0, &[10.0])?;
     /// let end = run.last().unwrap();
     /// // The angular momentum in space is kept; |q| = 1 by the projection.
@@ -45,35 +46,9 @@ lagrangian! {
 }
 
 impl FreeBody {
-    /// The state `(q, q̇)` of the body at orientation `rotation` turning at
-    /// body rates `omega`: `q̇ = ½ q (0, ω)`.
-    pub fn state(
-        rotation: &UnitQuaternion<f64>,
-        omega: &Vector3<f64>,
-    ) -> (Vector4<f64>, Vector4<f64>) {
-        let q = rotation.quaternion();
-        let qdot = q * Quaternion::from_imag(*omega) * 0.5;
-        (
-            Vector4::new(q.w, q.i, q.j, q.k),
-            Vector4::new(qdot.w, qdot.i, qdot.j, qdot.k),
-        )
-    }
-
-    /// The rotation (body to space) of a state's quaternion, normalized.
-    pub fn rotation(q: &Vector4<f64>) -> UnitQuaternion<f64> {
-        UnitQuaternion::from_quaternion(Quaternion::new(q[0], q[1], q[2], q[3]))
-    }
-
-    /// The body rates `ω = 2 Im(q̄ q̇)`.
-    pub fn body_rates(q: &Vector4<f64>, qdot: &Vector4<f64>) -> Vector3<f64> {
-        let q = Quaternion::new(q[0], q[1], q[2], q[3]);
-        let qdot = Quaternion::new(qdot[0], qdot[1], qdot[2], qdot[3]);
-        (q.conjugate() * qdot).imag() * 2.0
-    }
-
     /// The angular momentum in space, `R(q) I ω`: constant for a free body.
     pub fn angular_momentum(&self, q: &Vector4<f64>, qdot: &Vector4<f64>) -> Vector3<f64> {
         let inertia = Matrix3::from_diagonal(&Vector3::new(self.i1, self.i2, self.i3));
-        Self::rotation(q) * (inertia * Self::body_rates(q, qdot))
+        quaternion::rotation(q) * (inertia * quaternion::body_rates(q, qdot))
     }
 }

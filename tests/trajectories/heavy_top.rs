@@ -1,5 +1,5 @@
-//! The heavy symmetric top, twice: in unit quaternions (no chart, `M`
-//! regular only on `|q| = 1`) and in Euler angles (z–x–z: precession `φ`,
+//! The heavy symmetric top, twice: in unit quaternions
+//! (`lagrange::models::HeavyTop`: no chart, `M` regular only on `|q| = 1`) and in Euler angles (z–x–z: precession `φ`,
 //! nutation `θ`, spin `ψ`), which lock at the pole `θ = 0` where `φ` and
 //! `ψ` turn about the same axis.
 //!
@@ -9,24 +9,9 @@
 //! `L_z = p_φ` and about the symmetry axis `L_3 = C ω3 = p_ψ` (Goldstein,
 //! Classical Mechanics, §5.7).
 
-use lagrange::nalgebra::{Quaternion, SVector, UnitQuaternion, Vector3, Vector4};
+use lagrange::models::{quaternion, HeavyTop};
+use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3, Vector4};
 use lagrange::prelude::*;
-
-lagrangian! {
-    /// The top in unit quaternions (body to space); `ω` its body rates.
-    pub struct QuaternionTop {
-        coordinates: w, x, y, z;
-        parameters: a, c, m, g, l;
-        let omega1 = 2*(w*dot(x) - x*dot(w) - y*dot(z) + z*dot(y));
-        let omega2 = 2*(w*dot(y) - y*dot(w) - z*dot(x) + x*dot(z));
-        let omega3 = 2*(w*dot(z) - z*dot(w) - x*dot(y) + y*dot(x));
-        // The height of the mass centre: l times R₃₃ = w² − x² − y² + z².
-        let height = l*(w^2 - x^2 - y^2 + z^2);
-        kinetic: (a*(omega1^2 + omega2^2) + c*omega3^2)/2;
-        potential: m*g*height;
-        constraints: unit: w^2 + x^2 + y^2 + z^2 = 1;
-    }
-}
 
 lagrangian! {
     /// The same top in z–x–z Euler angles.
@@ -41,9 +26,9 @@ lagrangian! {
 /// `A`, `C`, `m`, `g`, `l`: a top a little longer than wide.
 const TOP: [f64; 5] = [1.0, 0.5, 1.0, 9.81, 0.2];
 
-fn quaternion_top() -> QuaternionTop {
+fn quaternion_top() -> HeavyTop {
     let [a, c, m, g, l] = TOP;
-    QuaternionTop::new(a, c, m, g, l)
+    HeavyTop::new(a, c, m, g, l)
 }
 
 fn euler_top() -> EulerTop {
@@ -69,37 +54,9 @@ fn body_rates(e: &SVector<f64, 3>, rates: &SVector<f64, 3>) -> Vector3<f64> {
     )
 }
 
-/// The quaternion state of an Euler-angle state: `q̇ = ½ q (0, ω)`.
+/// The quaternion state of an Euler-angle state.
 fn quaternion_state(e: &SVector<f64, 3>, rates: &SVector<f64, 3>) -> (Vector4<f64>, Vector4<f64>) {
-    let r = rotation(e[0], e[1], e[2]);
-    let q = r.quaternion();
-    let qdot = q * Quaternion::from_imag(body_rates(e, rates)) * 0.5;
-    (
-        Vector4::new(q.w, q.i, q.j, q.k),
-        Vector4::new(qdot.w, qdot.i, qdot.j, qdot.k),
-    )
-}
-
-fn quaternion_rotation(q: &Vector4<f64>) -> UnitQuaternion<f64> {
-    UnitQuaternion::from_quaternion(Quaternion::new(q[0], q[1], q[2], q[3]))
-}
-
-fn quaternion_rates(q: &Vector4<f64>, qdot: &Vector4<f64>) -> Vector3<f64> {
-    let q = Quaternion::new(q[0], q[1], q[2], q[3]);
-    let qdot = Quaternion::new(qdot[0], qdot[1], qdot[2], qdot[3]);
-    (q.conjugate() * qdot).imag() * 2.0
-}
-
-/// Energy, `L_z` and `L_3` of a quaternion state.
-fn invariants(q: &Vector4<f64>, qdot: &Vector4<f64>) -> [f64; 3] {
-    let [a, c, m, g, l] = TOP;
-    let omega = quaternion_rates(q, qdot);
-    let r = quaternion_rotation(q);
-    let momentum = r * Vector3::new(a * omega[0], a * omega[1], c * omega[2]);
-    let height = l * (r * Vector3::z())[2];
-    let energy =
-        (a * (omega[0].powi(2) + omega[1].powi(2)) + c * omega[2].powi(2)) / 2.0 + m * g * height;
-    [energy, momentum[2], c * omega[2]]
+    quaternion::state(&rotation(e[0], e[1], e[2]), &body_rates(e, rates))
 }
 
 /// Away from the pole the two models are one motion: started from the same
@@ -128,7 +85,7 @@ fn the_quaternion_top_is_the_euler_angle_top_away_from_the_pole() {
         assert_eq!(e.t, s.t);
         lowest_theta = lowest_theta.min(e.q[1]);
         let re = rotation(e.q[0], e.q[1], e.q[2]);
-        let rq = quaternion_rotation(&s.q);
+        let rq = quaternion::rotation(&s.q);
         worst = worst.max((re.inverse() * rq).angle());
     }
     assert!(
@@ -164,7 +121,8 @@ fn the_quaternion_top_swings_through_the_pole_where_euler_angles_fail() {
     let (q0, v0) = quaternion_state(&e0, &rates0);
     let times: Vec<f64> = (1..=1000).map(|k| 0.01 * k as f64).collect();
 
-    let start = invariants(&q0, &v0);
+    let top = quaternion_top();
+    let start = top.invariants(&q0, &v0);
     assert!(
         (start[1] - start[2]).abs() < 1e-14 * p,
         "L_z = L_3: {start:?}"
@@ -172,17 +130,17 @@ fn the_quaternion_top_swings_through_the_pole_where_euler_angles_fail() {
     let run = Dop853::new()
         .rtol(1e-12)
         .atol(1e-12)
-        .integrate(&quaternion_top(), 0.0, q0, v0, &times)
+        .integrate(&top, 0.0, q0, v0, &times)
         .unwrap();
     let mut worst = [0.0f64; 3];
     let (mut highest, mut passes, mut was_near) = (0.0f64, 0, false);
     for s in &run {
-        let now = invariants(&s.q, &s.qdot);
+        let now = top.invariants(&s.q, &s.qdot);
         for k in 0..3 {
             worst[k] = worst[k].max((now[k] - start[k]).abs() / start[k].abs());
         }
         assert!((s.q.norm() - 1.0).abs() < 4.0 * f64::EPSILON);
-        let axis = quaternion_rotation(&s.q) * Vector3::z();
+        let axis = HeavyTop::axis(&s.q);
         highest = highest.max(axis[2]);
         let near = axis[2] > 0.999;
         passes += (near && !was_near) as usize;

@@ -18,7 +18,7 @@
 //! intermediate axis, reverses (the body flips) every `2K(k)/λ`.
 
 use crate::support::elliptic::jacobi;
-use lagrange::models::FreeBody;
+use lagrange::models::{quaternion, FreeBody};
 use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3};
 use lagrange::prelude::*;
 use lagrange::{InvalidInput, Method};
@@ -77,7 +77,7 @@ fn body() -> FreeBody {
 /// rates, which do not depend on it.
 fn start() -> (SVector<f64, 4>, SVector<f64, 4>) {
     let rotation = UnitQuaternion::from_euler_angles(0.3, -0.7, 1.1);
-    FreeBody::state(&rotation, &Vector3::from(OMEGA0))
+    quaternion::state(&rotation, &Vector3::from(OMEGA0))
 }
 
 /// Dop853 at rtol = atol = 1e-14 over ten flips (≈ 62 s), with the
@@ -120,7 +120,7 @@ fn an_asymmetric_body_near_its_intermediate_axis_flips_as_euler_says() {
     let scale = Vector3::from(OMEGA0).norm();
     let (mut worst_rate, mut worst_norm, mut worst_momentum) = (0.0f64, 0.0f64, 0.0f64);
     for s in &trajectory {
-        let rates = FreeBody::body_rates(&s.q, &s.qdot);
+        let rates = quaternion::body_rates(&s.q, &s.qdot);
         worst_rate = worst_rate.max((rates - exact.rates(s.t)).norm() / scale);
         worst_norm = worst_norm.max((s.q.norm() - 1.0).abs());
         let momentum = body.angular_momentum(&s.q, &s.qdot);
@@ -152,7 +152,7 @@ fn the_body_flips_every_2k_over_lambda_and_its_rates_return_every_4k() {
     let flips = 10;
     let end = (flips as f64 + 0.5) * half;
     let omega2 = Event::new("flip", |_t, q: &SVector<f64, 4>, qdot: &SVector<f64, 4>| {
-        FreeBody::body_rates(q, qdot)[1]
+        quaternion::body_rates(q, qdot)[1]
     });
     let trajectory = run(&[end], &Events::new().with(omega2));
     let crossings: Vec<_> = trajectory.events().iter().collect();
@@ -167,7 +167,7 @@ fn the_body_flips_every_2k_over_lambda_and_its_rates_return_every_4k() {
         );
         if n % 2 == 1 {
             // After a whole period 4K/λ: the rates of the start.
-            let rates = FreeBody::body_rates(&e.q, &e.qdot);
+            let rates = quaternion::body_rates(&e.q, &e.qdot);
             let off = (rates - Vector3::from(OMEGA0)).norm() / Vector3::from(OMEGA0).norm();
             assert!(
                 off < 1e-9,

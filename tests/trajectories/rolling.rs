@@ -1,50 +1,12 @@
 //! Constraints on the velocities, `A(t, q) q̇ + b(t, q) = 0`, with
-//! Lagrange–d'Alembert dynamics: a knife edge (the Chaplygin sleigh) and a
-//! thin disk rolling without slipping, each against its closed form.
+//! Lagrange–d'Alembert dynamics: a knife edge (`ChaplyginSleigh`) and a
+//! thin disk rolling without slipping (`RollingDisk`), each against its
+//! closed form, both from `lagrange::models`.
 
-use lagrange::nalgebra::{SVector, Vector3, Vector5};
+use lagrange::models::{ChaplyginSleigh, RollingDisk};
+use lagrange::nalgebra::Vector3;
 use lagrange::prelude::*;
 use lagrange::{InvalidInput, Method};
-
-lagrangian! {
-    /// The Chaplygin sleigh: a body of mass `m` and moment of inertia `i`
-    /// about its mass centre `(x, y)`, heading `theta`, on a knife edge at
-    /// distance `a` behind the mass centre that cannot slide sideways (the
-    /// edge's velocity across the heading is zero).
-    pub struct Sleigh {
-        coordinates: x, y, theta;
-        parameters: m, i, a;
-        kinetic: m/2*(dot(x)^2 + dot(y)^2) + i/2*dot(theta)^2;
-        potential: 0;
-        constraints: edge: cos(theta)*dot(y) - sin(theta)*dot(x) = a*dot(theta);
-    }
-}
-
-lagrangian! {
-    /// A thin uniform disk of mass `m` and radius `r` rolling without
-    /// slipping on the plane `z = 0`: contact point `(x, y)`, heading `psi`
-    /// (the rolling direction `(cos ψ, sin ψ, 0)`), lean `theta` from the
-    /// vertical, spin `phi` about its axis. Its centre is `r` above the
-    /// contact point along the disk's plane; its angular velocity is
-    /// `ψ̇ ẑ + θ̇ t̂ + φ̇ â` (`â` the axis, `â·ẑ = −sin θ`), moments
-    /// `m r²/4` across the axis and `m r²/2` along it. Rolling: the contact
-    /// point of the disk is at rest, `(ẋ, ẏ) + r φ̇ (cos ψ, sin ψ) = 0`.
-    pub struct RollingDisk {
-        coordinates: x, y, psi, theta, phi;
-        parameters: m, r, g;
-        let cx = x + r*sin(theta)*sin(psi);
-        let cy = y - r*sin(theta)*cos(psi);
-        let cz = r*cos(theta);
-        let axial = dot(phi) - sin(theta)*dot(psi);
-        kinetic: m/2*(dot(cx)^2 + dot(cy)^2 + dot(cz)^2)
-            + m*r^2/8*(dot(psi)^2 + dot(theta)^2 + dot(phi)^2 - 2*sin(theta)*dot(psi)*dot(phi))
-            + m*r^2/8*axial^2;
-        potential: m*g*cz;
-        constraints:
-            roll_x: dot(x) + r*cos(psi)*dot(phi) = 0,
-            roll_y: dot(y) + r*sin(psi)*dot(phi) = 0;
-    }
-}
 
 /// The sleigh's `m`, `i`, `a`, and its start: forward speed `v0`, turning
 /// rate `ω0`, from the origin heading along `x`.
@@ -52,22 +14,15 @@ const SLEIGH: [f64; 3] = [2.0, 0.3, 0.4];
 const V0: f64 = 0.5;
 const W0: f64 = 1.5;
 
-/// The sleigh's forward speed `v` and turning rate `ω` in closed form
-/// (Neimark & Fufaev, Dynamics of Nonholonomic Systems, ch. 3; Bloch,
-/// Nonholonomic Mechanics and Control, §1.7): with `J = i + m a²`, the
-/// equations `v̇ = a ω²`, `J ω̇ = −m a v ω` keep the energy
-/// `½ m v² + ½ J ω²`, so with `V² = v0² + J ω0² / m` and `λ = m a V / J`,
-/// `v = V tanh(λ t + c)` and `ω = ω0 cosh c / cosh(λ t + c)`, `tanh c = v0/V`.
-fn sleigh_closed_form(t: f64) -> (f64, f64) {
+fn sleigh() -> ChaplyginSleigh {
     let [m, i, a] = SLEIGH;
-    let j = i + m * a * a;
-    let speed = (V0 * V0 + j * W0 * W0 / m).sqrt();
-    let lambda = m * a * speed / j;
-    let c = (V0 / speed).atanh();
-    (
-        speed * (lambda * t + c).tanh(),
-        W0 * c.cosh() / (lambda * t + c).cosh(),
-    )
+    ChaplyginSleigh::new(m, i, a)
+}
+
+/// The sleigh's speed and turning rate in closed form
+/// (`ChaplyginSleigh::closed_form`: `v` a tanh, `ω` a sech).
+fn sleigh_closed_form(t: f64) -> (f64, f64) {
+    sleigh().closed_form(V0, W0, t)
 }
 
 /// The knife edge against its closed form: speed a tanh, turning rate a
@@ -84,9 +39,8 @@ fn sleigh_closed_form(t: f64) -> (f64, f64) {
 #[test]
 fn the_chaplygin_sleigh_speeds_up_as_a_tanh_and_stops_turning_as_a_sech() {
     let [m, i, a] = SLEIGH;
-    let sleigh = Sleigh::new(m, i, a);
-    let q0 = SVector::<f64, 3>::zeros();
-    let v0 = SVector::<f64, 3>::new(V0, a * W0, W0);
+    let sleigh = sleigh();
+    let (q0, v0) = sleigh.state(V0, W0);
     let times: Vec<f64> = (1..=200).map(|k| 0.05 * k as f64).collect();
     let run = Dop853::new()
         .rtol(1e-13)
@@ -98,8 +52,7 @@ fn the_chaplygin_sleigh_speeds_up_as_a_tanh_and_stops_turning_as_a_sech() {
     let energy0 = sleigh.energy(0.0, &q0, &v0);
     let (mut worst_state, mut worst_force, mut worst_energy) = (0.0f64, 0.0f64, 0.0f64);
     for s in &run {
-        let theta = s.q[2];
-        let v = theta.cos() * s.qdot[0] + theta.sin() * s.qdot[1];
+        let v = ChaplyginSleigh::speed(&s.q, &s.qdot);
         let w = s.qdot[2];
         let (v_exact, w_exact) = sleigh_closed_form(s.t);
         worst_state = worst_state
@@ -130,22 +83,6 @@ fn disk() -> RollingDisk {
     RollingDisk::new(m, r, g)
 }
 
-/// A consistent start: contact at the origin heading along `x`, lean
-/// `theta`, lean rate `theta_dot`, heading rate `psi_dot`, spin rate
-/// `phi_dot` (rolling: the contact point moves at `−r φ̇` along the heading).
-fn disk_state(
-    theta: f64,
-    theta_dot: f64,
-    psi_dot: f64,
-    phi_dot: f64,
-) -> (Vector5<f64>, Vector5<f64>) {
-    let r = DISK[1];
-    (
-        Vector5::new(0.0, 0.0, 0.0, theta, 0.0),
-        Vector5::new(-r * phi_dot, 0.0, psi_dot, theta_dot, phi_dot),
-    )
-}
-
 /// Steady circular rolling: for lean `θ`, spin `ω` and heading rate `Ω`
 /// held constant, the lean's equation of motion (the other four hold with
 /// the contact forces) reads
@@ -173,21 +110,19 @@ fn disk_state(
 fn a_disk_rolls_round_the_circle_its_lean_spin_and_precession_say() {
     let [_, r, g] = DISK;
     let (theta, omega) = (0.5f64, -6.0f64);
+    let model = disk();
+    let big_omega = model.steady_precession(theta, omega);
     let (s, c) = theta.sin_cos();
-    // a Ω² + b Ω + c = 0, its smaller root without cancellation.
-    let (qa, qb, qc) = (1.25 * r * s * c, -1.5 * omega * r * c, g * s);
-    let big_omega = qc / (-0.5 * (qb + qb.signum() * (qb * qb - 4.0 * qa * qc).sqrt()));
     let residual =
         4.0 * g * s - 6.0 * big_omega * omega * r * c + 5.0 * big_omega.powi(2) * r * s * c;
     assert!(residual.abs() < 1e-12 * g, "the root: {residual:e}");
     let radius = r * (omega / big_omega).abs();
-    let (q0, v0) = disk_state(theta, 0.0, big_omega, omega);
+    let (q0, v0) = model.state(theta, 0.0, big_omega, omega);
     // The contact point starts at the origin moving along x at −r ω and
     // turning at Ω: the circle's centre is R to the left or right.
     let turning_left = (-r * omega) * big_omega > 0.0;
     let centre = Vector3::new(0.0, if turning_left { radius } else { -radius }, 0.0);
     let times: Vec<f64> = (1..=200).map(|k| 0.05 * k as f64).collect();
-    let model = disk();
     let run = Dop853::new()
         .rtol(1e-13)
         .atol(1e-13)
@@ -216,7 +151,7 @@ fn a_disk_rolls_round_the_circle_its_lean_spin_and_precession_say() {
 /// nudged by a lean rate of 1e-3 rad/s.
 fn largest_lean(v: f64) -> f64 {
     let r = DISK[1];
-    let (q0, v0) = disk_state(0.0, 1e-3, 0.0, -v / r);
+    let (q0, v0) = disk().state(0.0, 1e-3, 0.0, -v / r);
     let times: Vec<f64> = (1..=400).map(|k| 0.05 * k as f64).collect();
     let run = Dop853::new()
         .rtol(1e-10)
@@ -264,10 +199,8 @@ fn upright_rolling_is_stable_above_v_squared_gr_over_3_and_not_below() {
 /// so do the analyses on the constraint manifold.
 #[test]
 fn velocity_constraints_are_taken_by_the_saddle_point_methods_and_refused_by_the_variational_one() {
-    let [m, i, a] = SLEIGH;
-    let sleigh = Sleigh::new(m, i, a);
-    let q0 = SVector::<f64, 3>::zeros();
-    let v0 = SVector::<f64, 3>::new(V0, a * W0, W0);
+    let sleigh = sleigh();
+    let (q0, v0) = sleigh.state(V0, W0);
     for method in Method::ALL {
         let run = method
             .integrator(1e-3, 1e-8)
@@ -286,7 +219,7 @@ fn velocity_constraints_are_taken_by_the_saddle_point_methods_and_refused_by_the
         let run = run.unwrap_or_else(|e| panic!("{method:?}: {}", e.error));
         let end = run.last().unwrap();
         let (v, w) = sleigh_closed_form(1.0);
-        let speed = end.q[2].cos() * end.qdot[0] + end.q[2].sin() * end.qdot[1];
+        let speed = ChaplyginSleigh::speed(&end.q, &end.qdot);
         // Order p at h = 1e-3: ~h^p over a unit time with rates of order
         // one (10 h^p, or 1e-12 where rounding is the floor); adaptive at
         // 1e-8: 100 tol.
