@@ -271,7 +271,7 @@ fn a_velocity_constraint_has_g_a_and_the_bias_of_its_rate() {
     }
     let tokens = d.tokens().to_string();
     assert!(
-        tokens.contains("fn has_velocity_constraints"),
+        tokens.contains("fn velocity_constraint_rows"),
         "the impl says so"
     );
 }

@@ -301,3 +301,61 @@ fn a_mass_matrix_regular_only_on_the_constraints_survives_every_layer() {
         Some(false)
     );
 }
+
+/// Whether the model reached through `visit_constraints` has constraints
+/// on its velocities.
+struct OnVelocities;
+impl<const N: usize> ConstraintVisitor<f64, N> for OnVelocities {
+    type Output = bool;
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<f64>) -> bool
+    where
+        H: Holonomic<N, C, Scalar = f64> + ?Sized,
+    {
+        model.has_velocity_constraints()
+    }
+}
+
+/// Which constraints are on the velocities survives every layer and pair
+/// of layers too: a layer that lost it would let the variational
+/// integrator run a knife edge as if it were a holonomic constraint.
+#[test]
+fn velocity_constraints_survive_every_layer() {
+    let sleigh = lagrange::models::ChaplyginSleigh::new(2.0, 0.3, 0.4);
+    assert_eq!(
+        sleigh.visit_constraints(OnVelocities),
+        Some(true),
+        "the model"
+    );
+    assert_eq!(
+        Lagrangian::visit_constraints(&&sleigh, OnVelocities),
+        Some(true),
+        "a borrow"
+    );
+    let drift = sleigh.with_drift(Drift::None);
+    let fd = sleigh.without_jacobians();
+    assert_eq!(
+        drift.visit_constraints(OnVelocities),
+        Some(true),
+        "with_drift"
+    );
+    assert_eq!(
+        fd.visit_constraints(OnVelocities),
+        Some(true),
+        "without_jacobians"
+    );
+    assert_eq!(
+        drift.without_jacobians().visit_constraints(OnVelocities),
+        Some(true)
+    );
+    assert_eq!(
+        fd.with_drift(Drift::None).visit_constraints(OnVelocities),
+        Some(true)
+    );
+    let bob = Bob::new(0.8, 0.6, 9.81);
+    assert_eq!(
+        bob.with_controller(push)
+            .with_drift(Drift::None)
+            .visit_constraints(OnVelocities),
+        Some(false)
+    );
+}

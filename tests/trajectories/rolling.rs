@@ -240,3 +240,122 @@ fn velocity_constraints_are_taken_by_the_saddle_point_methods_and_refused_by_the
         "{error}"
     );
 }
+
+/// The linearization about upright straight rolling, reduced to the lean,
+/// its rate and the heading rate (`x`, `y`, the heading and the spin angle
+/// are ignorable, the spin rate constant to first order), against the
+/// closed form above: `θ̈ = (4g / 5r) θ − (6 ω0 / 5) ψ̇`, `ψ̈ = 2 ω0 θ̇`, so
+/// `A = [[0, 1, 0], [4g/5r, 0, −6ω0/5], [0, 2ω0, 0]]`, eigenvalues `0` and
+/// `±√((4g − 12 ω0² r) / 5r)`.
+///
+/// Bounds: the derivatives are central differences of the constrained
+/// acceleration, relative error `≈ ε^(2/3)` ≈ 4e-11 times the size of the
+/// second derivatives (of order `g/r`, 30 /s²): 1e-7 absolute leaves a
+/// margin of about 30 (1.7e-9 measured at 0.99). The growing eigenvalue
+/// at 0.99 of the critical `v² = g r / 3` is `√(0.04 g / 5r)` ≈ 0.51 /s,
+/// and at 1.01 the real parts are zero: both far from the 1e-6 allowed.
+#[test]
+fn upright_rolling_linearized_is_the_closed_form_and_changes_stability_at_v_squared_gr_over_3() {
+    let [_, r, g] = DISK;
+    let model = disk();
+    for ratio in [0.5, 0.99, 1.01, 2.0] {
+        let v = (ratio * g * r / 3.0f64).sqrt();
+        let omega0 = -v / r;
+        let (q, qdot) = model.state(0.0, 0.0, 0.0, omega0);
+        let lin = lagrange::analysis::linearize_steady_motion(
+            &model,
+            0.0,
+            &q,
+            &qdot,
+            &["theta"],
+            &["theta", "psi"],
+        )
+        .unwrap();
+        assert_eq!(lin.states, ["theta", "dot(theta)", "dot(psi)"]);
+        let expected = lagrange::nalgebra::Matrix3::new(
+            0.0,
+            1.0,
+            0.0,
+            4.0 * g / (5.0 * r),
+            0.0,
+            -6.0 * omega0 / 5.0,
+            0.0,
+            2.0 * omega0,
+            0.0,
+        );
+        for i in 0..3 {
+            for j in 0..3 {
+                let off = (lin.state_matrix[(i, j)] - expected[(i, j)]).abs();
+                assert!(
+                    off < 1e-7,
+                    "v²/(gr/3) = {ratio}: A[{i},{j}] off by {off:e}\n{}",
+                    lin.state_matrix
+                );
+            }
+        }
+        let s2 = (4.0 * g - 12.0 * omega0 * omega0 * r) / (5.0 * r);
+        let growth = lin
+            .eigenvalues()
+            .iter()
+            .map(|s| s.re)
+            .fold(f64::MIN, f64::max);
+        if ratio < 1.0 {
+            assert!(
+                (growth - s2.sqrt()).abs() < 1e-6,
+                "{ratio}: growth {growth}, closed form {}",
+                s2.sqrt()
+            );
+        } else {
+            assert!(growth.abs() < 1e-6, "{ratio}: stable, yet growth {growth}");
+        }
+    }
+}
+
+/// The sleigh running straight: its turning rate decays at `m a v0 / J`
+/// (from `J ω̇ = −m a v ω`), the one state that matters; the position, the
+/// heading and the forward speed drop out. Bound as above: central
+/// differences of a rate of order one.
+#[test]
+fn the_sleigh_running_straight_linearized_damps_its_turning_at_m_a_v_over_j() {
+    let [m, i, a] = SLEIGH;
+    let sleigh = sleigh();
+    let (q, qdot) = sleigh.state(V0, 0.0);
+    let lin = lagrange::analysis::linearize_steady_motion(&sleigh, 0.0, &q, &qdot, &[], &["theta"])
+        .unwrap();
+    let expected = -m * a * V0 / (i + m * a * a);
+    assert!(
+        (lin.state_matrix[(0, 0)] - expected).abs() < 1e-8,
+        "{} against {expected}",
+        lin.state_matrix
+    );
+    // Leaving out a state that matters is an error, not a wrong answer:
+    // the disk's lean rate is driven by the heading rate.
+    let [_, r, g] = DISK;
+    let disk = disk();
+    let (q, qdot) = disk.state(0.0, 0.0, 0.0, -(g * r).sqrt() / r);
+    let error =
+        lagrange::analysis::linearize_steady_motion(&disk, 0.0, &q, &qdot, &["theta"], &["theta"])
+            .unwrap_err();
+    assert!(
+        matches!(
+            error,
+            lagrange::analysis::AnalysisError::NotReducible { .. }
+        ),
+        "{error}"
+    );
+    // And a motion that is not steady in a kept state is refused.
+    let (q, qdot) = disk.state(0.2, 0.1, 0.0, -6.0);
+    let error = lagrange::analysis::linearize_steady_motion(
+        &disk,
+        0.0,
+        &q,
+        &qdot,
+        &["theta"],
+        &["theta", "psi"],
+    )
+    .unwrap_err();
+    assert!(
+        matches!(error, lagrange::analysis::AnalysisError::NotSteady { .. }),
+        "{error}"
+    );
+}

@@ -64,11 +64,12 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
         .constraints
         .as_ref()
         .is_some_and(|c| c.mass_regular_on_constraints_only);
-    let velocity_constraints = eq
+    let velocity_rows = eq
         .constraints
         .as_ref()
-        .is_some_and(|c| c.velocity_rows.contains(&true));
-    let holonomic = holonomic_impl(&cx, singular_mass, velocity_constraints);
+        .filter(|c| c.velocity_rows.contains(&true))
+        .map(|c| c.velocity_rows.clone());
+    let holonomic = holonomic_impl(&cx, singular_mass, velocity_rows);
     let actuated = actuated_impl(&cx);
     let lets = lets_impl(cx.outline.name, &cx.types);
     quote! {
@@ -264,9 +265,13 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
 
 /// `impl Holonomic<N, C> for Name<S>`, for a constrained model only: each
 /// method calls the inherent one. `singular_mass`: `M` is regular only on
-/// the velocities the constraints allow; `velocity_constraints`: some are
-/// constraints on the velocities. The impl says both.
-fn holonomic_impl(cx: &Context, singular_mass: bool, velocity_constraints: bool) -> TokenStream {
+/// the velocities the constraints allow; `velocity_rows`: which constraints
+/// are on the velocities, where some are. The impl says both.
+fn holonomic_impl(
+    cx: &Context,
+    singular_mass: bool,
+    velocity_rows: Option<Vec<bool>>,
+) -> TokenStream {
     if cx.types.constraints == 0 {
         return TokenStream::new();
     }
@@ -296,11 +301,11 @@ fn holonomic_impl(cx: &Context, singular_mass: bool, velocity_constraints: bool)
             }
         }
     });
-    let on_velocities = velocity_constraints.then(|| {
+    let on_velocities = velocity_rows.map(|rows| {
         quote! {
             #[inline]
-            fn has_velocity_constraints(&self) -> bool {
-                true
+            fn velocity_constraint_rows(&self) -> [bool; #c] {
+                [#(#rows),*]
             }
         }
     });

@@ -66,6 +66,37 @@ pub enum AnalysisError<S: RealField + Copy, const N: usize> {
         q: SVector<S, N>,
     },
 
+    /// [`linearize_steady_motion`](super::linearize_steady_motion) was
+    /// asked about a motion that is not steady in a kept state: its rate
+    /// (a kept coordinate's velocity, a kept velocity's acceleration) is
+    /// not zero there.
+    #[error(
+        "the motion at t = {t:?} (q = {}, q̇ = {}) is not steady in `{state}`: its rate is {rate:?}",
+        Row(.q), Row(.qdot)
+    )]
+    NotSteady {
+        /// Time asked about.
+        t: S,
+        /// Configuration asked about.
+        q: SVector<S, N>,
+        /// Velocities asked about.
+        qdot: SVector<S, N>,
+        /// The kept state that moves.
+        state: String,
+        /// Its rate.
+        rate: S,
+    },
+
+    /// [`linearize_steady_motion`](super::linearize_steady_motion) cannot
+    /// reduce the motion to the states kept: one is not a coordinate, they
+    /// are not independent on the motions the constraints allow, or their
+    /// rates depend on states left out.
+    #[error("the small motions cannot be reduced to the states kept: {reason}")]
+    NotReducible {
+        /// What fails.
+        reason: String,
+    },
+
     /// A constrained model was asked about a state off its constraints:
     /// `φ(t, q)` (or, for a linearization, `φ̇ = G q̇ + ∂φ/∂t`) is beyond
     /// `√ε` relative (see

@@ -134,6 +134,7 @@ mod manifold_inputs;
 mod modes;
 mod neutral;
 mod rest;
+mod steady;
 
 pub use equilibrium::{equilibrium, is_equilibrium, Equilibrium, EquilibriumSearch};
 pub use error::AnalysisError;
@@ -141,6 +142,7 @@ pub use linearize::{linearize, linearize_with_inputs, InputLinearization, Linear
 pub use manifold::{linearize_on_manifold, ManifoldLinearization};
 pub use manifold_inputs::{linearize_on_manifold_with_inputs, ManifoldInputLinearization};
 pub use modes::{modes, Mode, ModeKind, Modes};
+pub use steady::{linearize_steady_motion, SteadyLinearization};
 
 #[cfg(doc)]
 use crate::model::Lagrangian;

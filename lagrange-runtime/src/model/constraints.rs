@@ -93,26 +93,35 @@ pub trait Holonomic<const N: usize, const C: usize>: Lagrangian<N> {
         false
     }
 
-    /// Whether some of the constraints are on the velocities,
+    /// Which of the constraints are on the velocities,
     /// `A(t, q) q̇ + b(t, q) = 0` (rolling, a knife edge), not on the
-    /// positions. Such a row has no position-level value
-    /// ([`constraints`](Holonomic::constraints) returns zero there, which no
-    /// projection moves); its row of
+    /// positions, in the order of `φ`. Such a row has no position-level
+    /// value ([`constraints`](Holonomic::constraints) returns zero there,
+    /// which no projection moves); its row of
     /// [`constraint_jacobian`](Holonomic::constraint_jacobian) is `A`, its
     /// [`constraint_velocities`](Holonomic::constraint_velocities) entry the
     /// residual `A q̇ + b`, and its bias `γ = Ȧ q̇ + ḃ`: the saddle-point
     /// system, the velocity projection and Baumgarte's velocity term treat
-    /// it as they treat a holonomic row (Lagrange–d'Alembert dynamics). The
-    /// methods and analyses that need a position-level constraint for every
-    /// row (the variational integrator's RATTLE steps, the linearization
-    /// on the constraint manifold) refuse such a model with a typed error.
+    /// it as they treat a holonomic row (Lagrange–d'Alembert dynamics).
     ///
     /// `lagrangian!` answers it from the constraints as written; a
-    /// hand-written model of holonomic constraints keeps the default,
+    /// hand-written model of holonomic constraints keeps the default, all
     /// `false`.
     #[inline]
+    fn velocity_constraint_rows(&self) -> [bool; C] {
+        [false; C]
+    }
+
+    /// Whether any constraint is on the velocities
+    /// ([`velocity_constraint_rows`](Holonomic::velocity_constraint_rows)).
+    /// The methods and analyses that need a position-level constraint for
+    /// every row (the variational integrator's RATTLE steps, the
+    /// linearization on the constraint manifold) refuse such a model with a
+    /// typed error; [`linearize_steady_motion`](crate::analysis::linearize_steady_motion)
+    /// takes it.
+    #[inline]
     fn has_velocity_constraints(&self) -> bool {
-        false
+        self.velocity_constraint_rows().contains(&true)
     }
 
     /// This model with another drift control, for its runs:

@@ -406,8 +406,8 @@ where
     }
 
     #[inline]
-    fn has_velocity_constraints(&self) -> bool {
-        self.model.has_velocity_constraints()
+    fn velocity_constraint_rows(&self) -> [bool; C] {
+        self.model.velocity_constraint_rows()
     }
 }
 
@@ -616,7 +616,7 @@ where
         self.constraints.mass_regular_on_constraints_only()
     }
     #[inline]
-    fn has_velocity_constraints(&self) -> bool {
-        self.constraints.has_velocity_constraints()
+    fn velocity_constraint_rows(&self) -> [bool; C] {
+        self.constraints.velocity_constraint_rows()
     }
 }

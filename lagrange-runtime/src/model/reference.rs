@@ -165,8 +165,8 @@ impl<H: Holonomic<N, C> + ?Sized, const N: usize, const C: usize> Holonomic<N, C
         (**self).mass_regular_on_constraints_only()
     }
     #[inline]
-    fn has_velocity_constraints(&self) -> bool {
-        (**self).has_velocity_constraints()
+    fn velocity_constraint_rows(&self) -> [bool; C] {
+        (**self).velocity_constraint_rows()
     }
     #[inline]
     #[allow(clippy::type_complexity)]

@@ -1,0 +1,249 @@
+//! Linearization about a steady motion, reduced to the states that matter:
+//! [`linearize_steady_motion`]. Built for models with constraints on their
+//! velocities (a disk rolling upright, a bicycle running straight), whose
+//! reference motion is no equilibrium (the wheels turn) and whose
+//! ignorable coordinates (position on the ground, heading, wheel angles)
+//! drop out of the small motions.
+
+use nalgebra::{Complex, DMatrix, DVector, RealField, SVector};
+
+use super::derivatives::central_step;
+use super::{AnalysisError, Derivatives};
+use crate::dynamics::acceleration;
+use crate::model::constraints::{Holonomic, Visitor};
+use crate::model::settings::ConstraintSettings;
+use crate::model::Lagrangian;
+
+/// The small motions about a steady motion in the states kept:
+/// `δẏ = A δy`, `y` the kept coordinates and velocities, in the order
+/// [`states`](Self::states) names them.
+///
+/// ```
+/// use lagrange::models::RollingDisk;
+/// use lagrange_runtime::analysis::linearize_steady_motion;
+///
+/// let (r, g) = (0.3, 9.81);
+/// let disk = RollingDisk::new(1.0, r, g);
+/// // Upright, rolling straight at 2 m/s (spin −v/r about the axis).
+/// let (q, qdot) = disk.state(0.0, 0.0, 0.0, -2.0 / r);
+/// let lin = linearize_steady_motion(&disk, 0.0, &q, &qdot, &["theta"], &["theta", "psi"])?;
+/// assert_eq!(lin.states, ["theta", "dot(theta)", "dot(psi)"]);
+/// // Stable above v² = g r / 3: no eigenvalue with a positive real part.
+/// assert!(lin.eigenvalues().iter().all(|s| s.re < 1e-6));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct SteadyLinearization<S: RealField + Copy> {
+    /// The kept states: a coordinate's name for its deviation, `dot(name)`
+    /// for its velocity's.
+    pub states: Vec<String>,
+    /// `A`, `k × k` for `k` kept states.
+    pub state_matrix: DMatrix<S>,
+    /// How the derivatives were obtained.
+    pub derivatives: Derivatives,
+}
+
+impl<S: RealField + Copy> SteadyLinearization<S> {
+    /// The eigenvalues of `A`: growth rates and frequencies of the small
+    /// motions (zero for a neutral direction kept, such as a heading rate
+    /// that settles at another value).
+    pub fn eigenvalues(&self) -> DVector<Complex<S>> {
+        self.state_matrix.complex_eigenvalues()
+    }
+}
+
+/// The linearization of `model` about the motion through `(t, q, q̇)`,
+/// reduced to the coordinates `positions` and the velocities `velocities`
+/// (by name, from [`Lagrangian::COORDINATES`]).
+///
+/// The motion must be steady in the kept states: each kept coordinate's
+/// velocity and each kept velocity's acceleration zero to `√ε` relative
+/// ([`AnalysisError::NotSteady`]); the others may move (a wheel turning,
+/// the contact point running along the ground). The deviations are those
+/// the constraints allow: `δq` tangent to the holonomic constraints and
+/// `δq̇` keeping every constraint's velocity residual at zero to first
+/// order, holonomic or on the velocities alike. `A` is the map from the
+/// kept states to their rates on that space, `(P J B)(P B)⁺` for the full
+/// linearization `J` along a basis `B` of it and the selection `P` of the
+/// kept states; it exists where the kept states are independent there and
+/// their rates do not depend on the states left out, and
+/// [`AnalysisError::NotReducible`] says which fails otherwise (a heading
+/// left out whose rate drives the lean, say).
+///
+/// The derivatives are central differences ([`Derivatives::CentralDifferences`],
+/// relative error `≈ ε^(2/3)`): of the constrained acceleration along each
+/// basis direction (`2 dim B` saddle solves), and of the constraints'
+/// velocity residuals for the basis. Models with constraints on their
+/// velocities are what this is for; it takes unconstrained and holonomic
+/// models too.
+pub fn linearize_steady_motion<L, S, const N: usize>(
+    model: &L,
+    t: S,
+    q: &SVector<S, N>,
+    qdot: &SVector<S, N>,
+    positions: &[&str],
+    velocities: &[&str],
+) -> Result<SteadyLinearization<S>, AnalysisError<S, N>>
+where
+    L: Lagrangian<N, Scalar = S>,
+    S: RealField + Copy,
+{
+    crate::model::ready(model).map_err(|e| AnalysisError::Model(e.into()))?;
+    let index = |name: &str| {
+        L::COORDINATES
+            .iter()
+            .position(|c| *c == name)
+            .ok_or_else(|| AnalysisError::NotReducible {
+                reason: format!(
+                    "`{name}` is not a coordinate of the model (its coordinates: {})",
+                    L::COORDINATES.join(", ")
+                ),
+            })
+    };
+    let mut kept = Vec::new();
+    let mut states = Vec::new();
+    for name in positions {
+        kept.push(index(name)?);
+        states.push(name.to_string());
+    }
+    for name in velocities {
+        kept.push(N + index(name)?);
+        states.push(format!("dot({name})"));
+    }
+    let qddot = acceleration(model, t, q, qdot)?;
+    // Steady in the kept states: their rates vanish.
+    let rate = |i: usize| if i < N { qdot[i] } else { qddot[i - N] };
+    let scale = qdot.amax().max(qddot.amax()).max(S::one());
+    let tolerance = S::default_epsilon().sqrt() * scale;
+    if let Some((k, &i)) = kept
+        .iter()
+        .enumerate()
+        .find(|&(_, &i)| rate(i).abs() > tolerance)
+    {
+        return Err(AnalysisError::NotSteady {
+            t,
+            q: *q,
+            qdot: *qdot,
+            state: states[k].clone(),
+            rate: rate(i),
+        });
+    }
+    let basis = match model.visit_constraints(Allowed { t, q, qdot }) {
+        Some(basis) => basis,
+        None => DMatrix::identity(2 * N, 2 * N),
+    };
+    // J B by central differences along each basis direction.
+    let d = basis.ncols();
+    let h = central_step(q.amax().max(qdot.amax()));
+    let mut jb = DMatrix::zeros(2 * N, d);
+    for k in 0..d {
+        let dq = SVector::<S, N>::from_fn(|i, _| basis[(i, k)] * h);
+        let dv = SVector::<S, N>::from_fn(|i, _| basis[(N + i, k)] * h);
+        let plus = acceleration(model, t, &(q + dq), &(qdot + dv))?;
+        let minus = acceleration(model, t, &(q - dq), &(qdot - dv))?;
+        for i in 0..N {
+            jb[(i, k)] = basis[(N + i, k)];
+            jb[(N + i, k)] = (plus[i] - minus[i]) / (h + h);
+        }
+    }
+    let y = DMatrix::from_fn(kept.len(), d, |r, c| basis[(kept[r], c)]);
+    let w = DMatrix::from_fn(kept.len(), d, |r, c| jb[(kept[r], c)]);
+    let svd = y.clone().svd(true, true);
+    let largest = svd.singular_values.max();
+    let smallest = svd.singular_values.min();
+    let noise = S::default_epsilon().powf(nalgebra::convert(2.0 / 3.0));
+    let independent = smallest > noise.sqrt() * largest;
+    if kept.len() > d || !independent {
+        return Err(AnalysisError::NotReducible {
+            reason: format!(
+                "the kept states ({}) are not independent on the motions the constraints allow",
+                states.join(", ")
+            ),
+        });
+    }
+    let pseudo_inverse =
+        svd.pseudo_inverse(S::zero())
+            .map_err(|_| AnalysisError::NotReducible {
+                reason: "the kept states' selection has no pseudo-inverse".to_string(),
+            })?;
+    let a = &w * &pseudo_inverse;
+    let residual = (&a * &y - &w).amax();
+    let size = w.amax().max(S::one());
+    let allowed: S = nalgebra::convert::<f64, S>(1e3) * noise * size;
+    if residual > allowed {
+        return Err(AnalysisError::NotReducible {
+            reason: format!(
+                "the rates of the kept states ({}) depend on states left out (off by {residual:?}, \
+                 beyond {allowed:?}): keep those too",
+                states.join(", ")
+            ),
+        });
+    }
+    Ok(SteadyLinearization {
+        states,
+        state_matrix: a,
+        derivatives: Derivatives::CentralDifferences,
+    })
+}
+
+/// A basis (`2N × D`) of the deviations `(δq, δq̇)` the constraints allow:
+/// the null space of the rows `[G_i, 0]` of the holonomic constraints and
+/// `[∂φ̇_i/∂q, G_i]` of every constraint (`φ̇_i` the velocity residual, of a
+/// velocity constraint too).
+struct Allowed<'a, S, const N: usize> {
+    t: S,
+    q: &'a SVector<S, N>,
+    qdot: &'a SVector<S, N>,
+}
+
+impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Allowed<'_, S, N> {
+    type Output = DMatrix<S>;
+
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> DMatrix<S>
+    where
+        H: Holonomic<N, C, Scalar = S> + ?Sized,
+    {
+        let (t, q, qdot) = (self.t, self.q, self.qdot);
+        let g = model.constraint_jacobian(t, q);
+        let on_velocities = model.velocity_constraint_rows();
+        let holonomic: Vec<usize> = (0..C).filter(|&i| !on_velocities[i]).collect();
+        let rows = holonomic.len() + C;
+        let mut k = DMatrix::zeros(rows, 2 * N);
+        for (r, &i) in holonomic.iter().enumerate() {
+            for j in 0..N {
+                k[(r, j)] = g[(i, j)];
+            }
+        }
+        let h = central_step(q.amax());
+        for j in 0..N {
+            let mut step = SVector::<S, N>::zeros();
+            step[j] = h;
+            let difference = model.constraint_velocities(t, &(q + step), qdot)
+                - model.constraint_velocities(t, &(q - step), qdot);
+            for i in 0..C {
+                k[(holonomic.len() + i, j)] = difference[i] / (h + h);
+                k[(holonomic.len() + i, N + j)] = g[(i, j)];
+            }
+        }
+        null_space(&k)
+    }
+}
+
+/// An orthonormal basis of the null space of `k` (`r × n`, full row rank:
+/// the saddle solve at the state has checked `G`), from one Householder QR
+/// of `[kᵀ | I]`, as the tangent basis of
+/// [`linearize_on_manifold`](super::linearize_on_manifold) is built.
+fn null_space<S: RealField + Copy>(k: &DMatrix<S>) -> DMatrix<S> {
+    let (r, n) = k.shape();
+    let wide = DMatrix::from_fn(n, r + n, |i, j| {
+        if j < r {
+            k[(j, i)]
+        } else if i == j - r {
+            S::one()
+        } else {
+            S::zero()
+        }
+    });
+    let q = wide.qr().q();
+    q.columns(r, n - r).into_owned()
+}
