@@ -12,6 +12,7 @@ mod layers;
 mod linearization;
 mod more_models;
 mod named_lets;
+mod physics_names;
 mod readme;
 mod textbook_models;
 mod trigonometry;

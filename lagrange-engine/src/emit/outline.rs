@@ -173,9 +173,13 @@ impl Outline<'_> {
                 )]
             }
         });
+        // The fields are named as the user named the parameters and inputs,
+        // as physics writes them (`R`, `Omega`, `I1`): no `non_snake_case`
+        // warning in the user's crate for names the user chose.
         quote! {
             #(#attrs)*
             #[derive(Clone, Copy, Debug, PartialEq)]
+            #[allow(non_snake_case)]
             #serde
             #vis struct #name<S = f64> #fields
         }

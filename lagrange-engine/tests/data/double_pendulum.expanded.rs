@@ -1,4 +1,5 @@
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[allow(non_snake_case)]
 pub struct DoublePendulum<S = f64> {
     /// The parameter `m1`.
     pub m1: S,
