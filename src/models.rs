@@ -10,8 +10,9 @@
 //! [`PendulumWall`]. Two are rigid bodies in 3D, their orientation a unit
 //! quaternion whose constraint makes their singular mass matrix regular:
 //! [`FreeBody`] and [`HeavyTop`] (the functions of [`quaternion`] convert
-//! their states). Two roll, under constraints on their velocities:
-//! [`ChaplyginSleigh`] and [`RollingDisk`].
+//! their states). Three roll, under constraints on their velocities:
+//! [`ChaplyginSleigh`], [`RollingDisk`] and [`RollingBall`], the last in
+//! quaternions too.
 
 mod bouncing_ball;
 mod cart_pole;
@@ -27,6 +28,7 @@ mod oscillator;
 mod pendulum;
 mod pendulum_wall;
 pub mod quaternion;
+mod rolling_ball;
 mod rolling_disk;
 mod slider_crank;
 mod stiff_chain;
@@ -45,6 +47,7 @@ pub use kepler::{Kepler, PolarKepler};
 pub use oscillator::Oscillator;
 pub use pendulum::Pendulum;
 pub use pendulum_wall::PendulumWall;
+pub use rolling_ball::RollingBall;
 pub use rolling_disk::RollingDisk;
 pub use slider_crank::{slider_crank_kinematics, MinimalSliderCrank, SliderCrank};
 pub use stiff_chain::StiffChain;

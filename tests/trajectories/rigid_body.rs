@@ -21,7 +21,6 @@ use crate::support::elliptic::jacobi;
 use lagrange::models::{quaternion, FreeBody};
 use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3};
 use lagrange::prelude::*;
-use lagrange::{InvalidInput, Method};
 
 /// Principal moments, and the start: rates `(1.7, 0, 1)`, so that
 /// `M² − 2 E I2 = 0.11`, near the separatrix of the intermediate axis
@@ -175,62 +174,5 @@ fn the_body_flips_every_2k_over_lambda_and_its_rates_return_every_4k() {
                 n / 2 + 1
             );
         }
-    }
-}
-
-/// Every method that integrates `q̈` from the saddle-point system takes a
-/// model whose `M` is regular only on its constraints; the variational
-/// integrator, which solves `p = M q̇` with `M` alone, refuses it with a
-/// typed error before any work. Over one second from the start above,
-/// each keeps the angular momentum in space to its own accuracy: a
-/// fixed-step method of order `p` at `h = 1e-3` errs by about `h^p` over a
-/// unit time with the rates of size one (symplectic Euler 1.05e-3,
-/// implicit midpoint 1.3e-7 measured), bounded by `10 h^p`, or 1e-12
-/// where that is below what rounding leaves over a thousand steps (RK4,
-/// Gauss–Legendre: 1e-14 measured); an adaptive one at rtol = atol = 1e-8
-/// errs by at most a few times the tolerance per unit time (Radau5 1.7e-8
-/// measured), bounded by `100 tol`.
-#[test]
-fn every_saddle_point_method_takes_the_quaternion_body_and_the_variational_one_refuses_it() {
-    let body = body();
-    let (q0, v0) = start();
-    let momentum0 = body.angular_momentum(&q0, &v0);
-    for method in Method::ALL {
-        let run = method
-            .integrator(1e-3, 1e-8)
-            .integrate(&body, 0.0, q0, v0, &[1.0]);
-        if method == Method::Variational {
-            let error = run.unwrap_err();
-            assert!(
-                matches!(
-                    error.error,
-                    IntegrationError::InvalidInput(
-                        InvalidInput::MassRegularOnConstraintsOnly { .. }
-                    )
-                ),
-                "{method:?}: {}",
-                error.error
-            );
-            continue;
-        }
-        let run = run.unwrap_or_else(|e| panic!("{method:?}: {}", e.error));
-        let end = run.last().unwrap();
-        let drift =
-            (body.angular_momentum(&end.q, &end.qdot) - momentum0).norm() / momentum0.norm();
-        let bound = if method.is_adaptive() {
-            100.0 * 1e-8
-        } else {
-            10.0 * 1e-3f64.powi(method.order() as i32)
-        }
-        .max(1e-12);
-        assert!(
-            drift < bound,
-            "{method:?}: angular momentum off by {drift:e}, bound {bound:e}"
-        );
-        assert!(
-            (end.q.norm() - 1.0).abs() < 1e-14,
-            "{method:?}: |q| = {}",
-            end.q.norm()
-        );
     }
 }
