@@ -95,19 +95,11 @@ pub fn mass_matrix_is_regular(model: &mut Model, eq: &mut Equations) -> syn::Res
         }
     }
     // A coordinate without kinetic energy may still be fixed by the
-    // constraints (the numeric check below decides): only an unconstrained
-    // model is refused on sight.
-    for i in (0..n).filter(|_| eq.constraints.is_none()) {
-        if eq.mass[i].iter().all(|&m| m == Pool::ZERO) {
-            let c = &model.coordinates[i];
-            return Err(syn::Error::new(
-                c.span(),
-                format!(
-                    "coordinate `{c}` has no kinetic energy: the mass matrix is singular \
-                     (T holds no `dot({c})` squared or times another velocity)"
-                ),
-            ));
-        }
+    // constraints (the numeric check below decides, and counts what is
+    // missing where they do not): only an unconstrained model is refused
+    // on sight, naming the coordinate.
+    if eq.constraints.is_none() {
+        no_coordinate_without_kinetic_energy(model, eq)?;
     }
     // Structurally full, but singular everywhere? Try two generic states; an
     // analytic M singular at both is singular identically (or nearly so).
@@ -173,6 +165,22 @@ pub fn mass_matrix_is_regular(model: &mut Model, eq: &mut Equations) -> syn::Res
          make up for it: of the {free} velocity combinations they allow, the kinetic energy sees only {seen} \
          (M + GᵀG has rank {augmented_rank} of {n}), so the accelerations are not determined"
     )))
+}
+
+/// The error on a coordinate whose row of M is zero: no kinetic energy of
+/// its own or shared with another.
+fn no_coordinate_without_kinetic_energy(model: &Model, eq: &Equations) -> syn::Result<()> {
+    let Some(i) = (0..model.dof()).find(|&i| eq.mass[i].iter().all(|&m| m == Pool::ZERO)) else {
+        return Ok(());
+    };
+    let c = &model.coordinates[i];
+    Err(syn::Error::new(
+        c.span(),
+        format!(
+            "coordinate `{c}` has no kinetic energy: the mass matrix is singular \
+             (T holds no `dot({c})` squared or times another velocity)"
+        ),
+    ))
 }
 
 /// A reproducible pseudo-random generic value in `[lo, hi)`.

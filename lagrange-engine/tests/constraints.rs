@@ -275,3 +275,32 @@ fn a_velocity_constraint_has_g_a_and_the_bias_of_its_rate() {
         "the impl says so"
     );
 }
+
+/// A singular `M` is accepted where the constraints make up for it, and
+/// refused where they do not, with the count of what is missing: a
+/// coordinate without kinetic energy whose velocity a constraint fixes
+/// (`y = x²`) is fine; one that no constraint fixes is not.
+#[test]
+fn a_singular_mass_matrix_is_accepted_only_where_the_constraints_fix_what_it_misses() {
+    let model = |coordinates: &str, constraints: &str| {
+        format!(
+            "pub struct P {{
+                coordinates: {coordinates};
+                parameters: m;
+                kinetic: m/2*dot(x)^2;
+                potential: 0;
+                constraints: {constraints};
+            }}"
+        )
+    };
+    let d = derive(&model("x, y", "curve: y = x^2"));
+    assert!(constraints(&d).mass_regular_on_constraints_only);
+    let e = error(&model("x, y, z", "curve: y = x^2"));
+    assert!(
+        e.contains("of the 2 velocity combinations they allow, the kinetic energy sees only 1"),
+        "{e}"
+    );
+    // A regular M is not marked.
+    let d = derive(CARTESIAN_PENDULUM);
+    assert!(!constraints(&d).mass_regular_on_constraints_only);
+}
