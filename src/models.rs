@@ -42,7 +42,7 @@ pub use chaplygin_sleigh::ChaplyginSleigh;
 pub use double_pendulum::DoublePendulum;
 pub use four_bar::FourBar;
 pub use free_body::FreeBody;
-pub use heavy_top::HeavyTop;
+pub use heavy_top::{EulerTop, HeavyTop};
 pub use kepler::{Kepler, PolarKepler};
 pub use oscillator::Oscillator;
 pub use pendulum::Pendulum;

@@ -20,22 +20,12 @@
 #[allow(dead_code)]
 mod elliptic;
 
-use lagrange::models::{quaternion, ChaplyginSleigh, FreeBody, HeavyTop, RollingDisk};
+use lagrange::models::{quaternion, ChaplyginSleigh, EulerTop, FreeBody, HeavyTop, RollingDisk};
 use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3};
 use lagrange::prelude::*;
 use plotters::prelude::*;
 use std::error::Error;
 use std::time::Instant;
-
-lagrangian! {
-    /// The heavy top in z–x–z Euler angles, for the comparison at the pole.
-    pub struct EulerTop {
-        coordinates: phi, theta, psi;
-        parameters: a, c, m, g, l;
-        kinetic: a/2*(dot(theta)^2 + dot(phi)^2*sin(theta)^2) + c/2*(dot(psi) + dot(phi)*cos(theta))^2;
-        potential: m*g*l*cos(theta);
-    }
-}
 
 /// A time and the body rates there.
 type Rates = (f64, Vector3<f64>);

@@ -48,6 +48,19 @@ lagrangian! {
     }
 }
 
+lagrangian! {
+    /// The same top in z–x–z Euler angles (precession `phi`, nutation
+    /// `theta`, spin `psi`): a chart that locks at the pole `θ = 0`, where
+    /// `φ` and `ψ` turn about the same axis and `M` is singular. Kept beside
+    /// [`HeavyTop`] to compare the two (`tests/trajectories/heavy_top.rs`).
+    pub struct EulerTop {
+        coordinates: phi, theta, psi;
+        parameters: a, c, m, g, l;
+        kinetic: a/2*(dot(theta)^2 + dot(phi)^2*sin(theta)^2) + c/2*(dot(psi) + dot(phi)*cos(theta))^2;
+        potential: m*g*l*cos(theta);
+    }
+}
+
 impl HeavyTop {
     /// The symmetry axis in space, `R(q) e₃`.
     pub fn axis(q: &Vector4<f64>) -> Vector3<f64> {

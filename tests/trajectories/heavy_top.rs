@@ -9,19 +9,9 @@
 //! `L_z = p_φ` and about the symmetry axis `L_3 = C ω3 = p_ψ` (Goldstein,
 //! Classical Mechanics, §5.7).
 
-use lagrange::models::{quaternion, HeavyTop};
+use lagrange::models::{quaternion, EulerTop, HeavyTop};
 use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3, Vector4};
 use lagrange::prelude::*;
-
-lagrangian! {
-    /// The same top in z–x–z Euler angles.
-    pub struct EulerTop {
-        coordinates: phi, theta, psi;
-        parameters: a, c, m, g, l;
-        kinetic: a/2*(dot(theta)^2 + dot(phi)^2*sin(theta)^2) + c/2*(dot(psi) + dot(phi)*cos(theta))^2;
-        potential: m*g*l*cos(theta);
-    }
-}
 
 /// `A`, `C`, `m`, `g`, `l`: a top a little longer than wide.
 const TOP: [f64; 5] = [1.0, 0.5, 1.0, 9.81, 0.2];
