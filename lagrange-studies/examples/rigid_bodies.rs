@@ -10,7 +10,8 @@
 //!   and what the Euler-angle model does there;
 //! - the Chaplygin sleigh (`ChaplyginSleigh`) against its tanh/sech;
 //! - a rolling disk (`RollingDisk`): the largest lean after a nudge from
-//!   upright rolling, either side of the critical speed `v² = g r / 3`.
+//!   upright rolling, either side of the critical speed `v² = g r / 3`, and
+//!   its linearization about upright rolling against the closed form.
 //!
 //! Writes `docs/rigid_bodies/rigid_bodies.svg`: the tumbling body's rates
 //! over four flips, and the paths of the sleigh and of the disk's contact
@@ -20,6 +21,7 @@
 #[allow(dead_code)]
 mod elliptic;
 
+use lagrange::analysis::linearize_steady_motion;
 use lagrange::models::{quaternion, ChaplyginSleigh, EulerTop, FreeBody, HeavyTop, RollingDisk};
 use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3};
 use lagrange::prelude::*;
@@ -233,6 +235,36 @@ fn disk() -> Result<Vec<(f64, f64)>, Box<dyn Error>> {
         };
         let largest = trajectory.iter().map(|s| s.q[3].abs()).fold(0.0, f64::max);
         println!("| {ratio} | {largest:.2e} |");
+    }
+    println!("\nThe same, linearized about upright rolling (analysis::linearize_steady_motion,");
+    println!("kept: lean, lean rate, heading rate) against the closed form");
+    println!(
+        "A = [[0, 1, 0], [4g/5r, 0, -6w/5], [0, 2w, 0]], growth rate sqrt((4g - 12 w^2 r) / 5r):\n"
+    );
+    println!("| v² / (g r / 3) | max |A − closed form| | largest Re s | closed form |");
+    println!("|---:|---:|---:|---:|");
+    for ratio in [0.5, 0.99, 1.01, 2.0] {
+        let omega0 = -(ratio * critical).sqrt() / r;
+        let (q, qdot) = disk.state(0.0, 0.0, 0.0, omega0);
+        let lin = linearize_steady_motion(&disk, 0.0, &q, &qdot, &["theta"], &["theta", "psi"])?;
+        let exact = [
+            [0.0, 1.0, 0.0],
+            [4.0 * g / (5.0 * r), 0.0, -6.0 * omega0 / 5.0],
+            [0.0, 2.0 * omega0, 0.0],
+        ];
+        let off = (0..9)
+            .map(|k| (lin.state_matrix[(k / 3, k % 3)] - exact[k / 3][k % 3]).abs())
+            .fold(0.0, f64::max);
+        let growth = lin
+            .eigenvalues()
+            .iter()
+            .map(|s| s.re)
+            .fold(f64::MIN, f64::max);
+        let s2 = (4.0 * g - 12.0 * omega0 * omega0 * r) / (5.0 * r);
+        println!(
+            "| {ratio} | {off:.1e} | {growth:.6} | {:.6} |",
+            s2.max(0.0).sqrt()
+        );
     }
     Ok(circle.iter().map(|s| (s.q[0], s.q[1])).collect())
 }
