@@ -183,6 +183,23 @@ fn no_coordinate_without_kinetic_energy(model: &Model, eq: &Equations) -> syn::R
     ))
 }
 
+/// A matrix of expressions (row-major) evaluated at `values`, sharing
+/// `memo` with the other evaluations at the same state.
+pub(crate) fn evaluate(
+    model: &Model,
+    rows: &[Vec<ExprId>],
+    values: &[f64],
+    memo: &mut std::collections::HashMap<ExprId, f64>,
+) -> Vec<Vec<f64>> {
+    rows.iter()
+        .map(|row| {
+            row.iter()
+                .map(|&x| model.pool.eval_memo(x, values, memo))
+                .collect()
+        })
+        .collect()
+}
+
 /// A reproducible pseudo-random generic value in `[lo, hi)`.
 fn generic_value(seed: u64, k: usize, lo: f64, hi: f64) -> f64 {
     let mut x = seed
@@ -216,22 +233,9 @@ fn numeric_rank(
     let n = model.dof();
     let values = generic_state(model, seed);
     let mut memo = std::collections::HashMap::new();
-    let mut a: Vec<Vec<f64>> = (0..n)
-        .map(|i| {
-            (0..n)
-                .map(|j| model.pool.eval_memo(eq.mass[i][j], &values, &mut memo))
-                .collect()
-        })
-        .collect();
+    let mut a = evaluate(model, &eq.mass, &values, &mut memo);
     if let Some(g) = g {
-        let g: Vec<Vec<f64>> = g
-            .iter()
-            .map(|row| {
-                row.iter()
-                    .map(|&x| model.pool.eval_memo(x, &values, &mut memo))
-                    .collect()
-            })
-            .collect();
+        let g = evaluate(model, g, &values, &mut memo);
         // Each row of G scaled to the size of M, so that neither swamps the
         // other in the rank's relative tolerance.
         let m_scale = a.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));

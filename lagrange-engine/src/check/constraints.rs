@@ -6,7 +6,7 @@
 //! saddle-point system singular at every state, the constrained analogue of
 //! a singular mass matrix, so they are a compile error like it.
 
-use super::generic_state;
+use super::{evaluate, generic_state};
 use crate::ast::{Expr, SpanRange};
 use crate::derive::Equations;
 use crate::expr::{ExprId, Pool};
@@ -175,15 +175,7 @@ enum Row {
 /// not finite, every row counts as independent.
 fn classify_rows(model: &Model, g: &[Vec<ExprId>], seed: u64) -> Vec<Row> {
     let values = generic_state(model, seed);
-    let mut memo = std::collections::HashMap::new();
-    let rows: Vec<Vec<f64>> = g
-        .iter()
-        .map(|row| {
-            row.iter()
-                .map(|&x| model.pool.eval_memo(x, &values, &mut memo))
-                .collect()
-        })
-        .collect();
+    let rows = evaluate(model, g, &values, &mut std::collections::HashMap::new());
     if rows.iter().flatten().any(|x| !x.is_finite()) {
         return vec![Row::Independent; g.len()];
     }

@@ -158,38 +158,39 @@ pub(crate) fn is_constrained<L: Lagrangian<N>, const N: usize>(model: &L) -> boo
     model.visit_constraints(Probe).is_some()
 }
 
+/// What a constrained model says of itself that the methods needing more
+/// than the saddle-point system ask before a run: whether its `M` is
+/// regular only on the constraints, and whether any constraint is on the
+/// velocities. `(false, false)` for a model without constraints.
+fn constraint_kinds<L: Lagrangian<N>, const N: usize>(model: &L) -> (bool, bool) {
+    struct Probe;
+    impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Probe {
+        type Output = (bool, bool);
+        fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> (bool, bool)
+        where
+            H: Holonomic<N, C, Scalar = S> + ?Sized,
+        {
+            (
+                model.mass_regular_on_constraints_only(),
+                model.has_velocity_constraints(),
+            )
+        }
+    }
+    model.visit_constraints(Probe).unwrap_or((false, false))
+}
+
 /// Whether `model` has constraints and a mass matrix regular only on them
 /// ([`Holonomic::mass_regular_on_constraints_only`]).
 pub(crate) fn mass_regular_on_constraints_only<L: Lagrangian<N>, const N: usize>(
     model: &L,
 ) -> bool {
-    struct Probe;
-    impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Probe {
-        type Output = bool;
-        fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> bool
-        where
-            H: Holonomic<N, C, Scalar = S> + ?Sized,
-        {
-            model.mass_regular_on_constraints_only()
-        }
-    }
-    model.visit_constraints(Probe).unwrap_or(false)
+    constraint_kinds(model).0
 }
 
 /// Whether `model` has constraints on its velocities
 /// ([`Holonomic::has_velocity_constraints`]).
 pub(crate) fn has_velocity_constraints<L: Lagrangian<N>, const N: usize>(model: &L) -> bool {
-    struct Probe;
-    impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Probe {
-        type Output = bool;
-        fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> bool
-        where
-            H: Holonomic<N, C, Scalar = S> + ?Sized,
-        {
-            model.has_velocity_constraints()
-        }
-    }
-    model.visit_constraints(Probe).unwrap_or(false)
+    constraint_kinds(model).1
 }
 
 /// What the integrators do with a constrained model, written once for
