@@ -383,7 +383,7 @@ impl Gen<'_> {
             return self.atom(allow_dot);
         }
         let d = depth - 1;
-        match self.rng.weighted(&[6, 10, 2, 4, 6, 2, 2, 2, 2, 2]) {
+        match self.rng.weighted(&[6, 10, 2, 4, 6, 2, 2, 2, 2, 2, 2]) {
             0 => self.atom(allow_dot),
             1 => {
                 let op = *self.rng.pick(&["+", "-", "*", "/", "*"]);
@@ -429,7 +429,73 @@ impl Gen<'_> {
                 let position = self.expr(d, false);
                 format!("dot({position})")
             }
+            9 => match self.rng.below(2) {
+                0 => format!(
+                    "inner({}, {})",
+                    self.vector(d, allow_dot),
+                    self.vector(d, allow_dot)
+                ),
+                _ => format!("norm({})", self.vector(d, allow_dot)),
+            },
             _ => self.atom(false),
+        }
+    }
+
+    /// A vector of 3 components, from the vector functions
+    /// (`docs/language.md`, "Vectors and rotations").
+    fn vector(&mut self, depth: u32, allow_dot: bool) -> String {
+        if depth == 0 {
+            return format!(
+                "vector({}, {}, {})",
+                self.atom(allow_dot),
+                self.atom(allow_dot),
+                self.atom(allow_dot)
+            );
+        }
+        let d = depth - 1;
+        match self.rng.below(7) {
+            0 => format!(
+                "vector({}, {}, {})",
+                self.expr(d, allow_dot),
+                self.expr(d, allow_dot),
+                self.expr(d, allow_dot)
+            ),
+            1 => format!(
+                "cross({}, {})",
+                self.vector(d, allow_dot),
+                self.vector(d, allow_dot)
+            ),
+            2 => {
+                let f = *self.rng.pick(&["rotate_x", "rotate_y", "rotate_z"]);
+                format!(
+                    "{f}({}, {})",
+                    self.expr(d, false),
+                    self.vector(d, allow_dot)
+                )
+            }
+            3 => format!(
+                "rotate(vector({}, {}, {}, {}), {})",
+                self.atom(false),
+                self.atom(false),
+                self.atom(false),
+                self.atom(false),
+                self.vector(d, allow_dot)
+            ),
+            4 => {
+                let op = *self.rng.pick(&["+", "-"]);
+                format!(
+                    "{} {op} {}",
+                    self.vector(d, allow_dot),
+                    self.vector(d, allow_dot)
+                )
+            }
+            5 => format!(
+                "({})*{}",
+                self.expr(d, allow_dot),
+                self.vector(d, allow_dot)
+            ),
+            _ if allow_dot => format!("dot({})", self.vector(d, false)),
+            _ => format!("-{}", self.vector(d, allow_dot)),
         }
     }
 

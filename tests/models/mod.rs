@@ -16,3 +16,4 @@ mod physics_names;
 mod readme;
 mod textbook_models;
 mod trigonometry;
+mod vectors;

@@ -3,6 +3,7 @@
 
 use super::functions::FUNCTIONS;
 use super::scope::{Binding, Role};
+use super::vectors::{describe, Value};
 use super::{limit_error, SymKind, Symbols};
 use crate::ast::{BinOp, Expr};
 use crate::expr::{Exceeded, ExprId, Pool, MAX_DEPTH};
@@ -41,6 +42,44 @@ impl Lowering {
     /// exhausted: a node too deep is an error on the smallest expression
     /// that built it.
     pub(super) fn lower(&mut self, e: &Expr) -> syn::Result<ExprId> {
+        if let Expr::Name(name) = e {
+            if let Some(error) = self.array_written_bare(name) {
+                return Err(error);
+            }
+        }
+        match self.lower_value(e)? {
+            Value::Scalar(id) => Ok(id),
+            v => Err(self.bare_array_in(e).unwrap_or_else(|| {
+                e.range().error(format!(
+                    "this is {} where a number is needed: take one component (`r[0]`), \
+                 or `inner(a, b)` or `norm(r)`",
+                    describe(&v)
+                ))
+            })),
+        }
+    }
+
+    /// The error of the first indexed name written bare in `e`, if any:
+    /// where a vector stands where a number is needed, the name that made
+    /// it a vector is most often the mistake (`dot(theta)^2` for
+    /// `dot(theta[i])^2`), unless it is a `let` of a vector.
+    pub(super) fn bare_array_in(&self, e: &Expr) -> Option<syn::Error> {
+        if let Expr::Name(name) = e {
+            // A `let` of a vector is meant as one: the operation is the
+            // mistake, and its own error says which.
+            if let Some(Binding::Array {
+                role: Role::Vector, ..
+            }) = self.names.get(&name.to_string())
+            {
+                return None;
+            }
+            return self.array_written_bare(name);
+        }
+        e.children().into_iter().find_map(|c| self.bare_array_in(c))
+    }
+
+    /// The value of `e`, a number or a vector (`vectors.rs`).
+    pub(super) fn lower_value(&mut self, e: &Expr) -> syn::Result<Value> {
         // Names are strings to look up: a lowering costs a few steps.
         self.pool.charge(2);
         let id = self.lower_node(e)?;
@@ -54,45 +93,41 @@ impl Lowering {
         }
     }
 
-    fn lower_node(&mut self, e: &Expr) -> syn::Result<ExprId> {
+    fn lower_node(&mut self, e: &Expr) -> syn::Result<Value> {
+        let scalar = Value::Scalar;
         Ok(match e {
-            Expr::Num { value, .. } => self.pool.num(*value),
+            Expr::Num { value, .. } => scalar(self.pool.num(*value)),
             Expr::Name(name) => {
                 let s = name.to_string();
                 if let Some(&(_, k)) = self.env.iter().rev().find(|(v, _)| *v == s) {
-                    return Ok(self.pool.num(k as f64));
+                    return Ok(scalar(self.pool.num(k as f64)));
                 }
                 match self.names.get(&s) {
-                    Some(Binding::Symbol(s)) => self.pool.sym(*s),
-                    Some(Binding::Let(id)) => *id,
-                    Some(Binding::Const(v)) => self.pool.num(*v as f64),
-                    Some(Binding::Array { lo, hi, role }) => {
-                        let role = match role {
-                            Role::Coordinate => "an indexed coordinate",
-                            Role::Parameter => "an indexed parameter",
-                            Role::Input => "an indexed input",
-                            Role::Let => "an indexed `let`",
-                        };
-                        let message = if hi > lo {
-                            let example = match self.env.last() {
-                                None => format!("`{s}[{lo}]`"),
-                                Some((var, _)) => format!("`{s}[{var}]`"),
-                            };
-                            format!(
-                                "`{s}` is {role} ({}): write one element, e.g. {example}",
-                                elements(&s, *lo, *hi)
-                            )
-                        } else {
-                            format!("`{s}` is {role} with no elements (its range `{lo}..{hi}` is empty)")
-                        };
-                        return Err(syn::Error::new(name.span(), message));
+                    Some(Binding::Symbol(s)) => scalar(self.pool.sym(*s)),
+                    Some(Binding::Let(id)) => scalar(*id),
+                    Some(Binding::Const(v)) => scalar(self.pool.num(*v as f64)),
+                    // An indexed name written bare is the vector of its
+                    // elements, once they are all defined.
+                    Some(&Binding::Array { lo, hi, .. }) if hi > lo => {
+                        let mut components = Vec::new();
+                        for k in lo..hi {
+                            match self.names.get(&format!("{s}[{k}]")) {
+                                Some(Binding::Symbol(x)) => components.push(self.pool.sym(*x)),
+                                Some(Binding::Let(id)) => components.push(*id),
+                                _ => return Err(self.array_written_bare(name).expect("an array")),
+                            }
+                        }
+                        Value::Vector(components)
+                    }
+                    Some(Binding::Array { .. }) => {
+                        return Err(self.array_written_bare(name).expect("an array"))
                     }
                     None => return Err(self.unknown_name(name)),
                 }
             }
             Expr::Index { base, index, .. } => match self.element(base, index)?.1 {
-                Binding::Symbol(s) => self.pool.sym(s),
-                Binding::Let(id) => id,
+                Binding::Symbol(s) => scalar(self.pool.sym(s)),
+                Binding::Let(id) => scalar(id),
                 _ => unreachable!("elements are symbols or lets"),
             },
             Expr::Sum { index, body, .. } => {
@@ -100,31 +135,125 @@ impl Lowering {
                 let mut terms = Vec::new();
                 for k in lo..hi {
                     self.env.push((index.var.to_string(), k));
-                    let term = self.lower(body);
+                    let term = self.lower_value(body);
                     self.env.pop();
                     terms.push(term?);
                 }
-                self.pool.add(&terms)
+                match terms.first() {
+                    Some(Value::Vector(first)) => {
+                        let n = first.len();
+                        let mut columns = vec![Vec::with_capacity(terms.len()); n];
+                        for t in &terms {
+                            match t {
+                                Value::Vector(c) if c.len() == n => {
+                                    for (column, &x) in columns.iter_mut().zip(c) {
+                                        column.push(x);
+                                    }
+                                }
+                                t => {
+                                    return Err(self.bare_array_in(body).unwrap_or_else(|| body.range().error(format!(
+                                        "the terms of this sum are {} and {}: a sum adds numbers, or vectors of one length",
+                                        describe(&terms[0]),
+                                        describe(t)
+                                    ))))
+                                }
+                            }
+                        }
+                        Value::Vector(columns.iter().map(|c| self.pool.add(c)).collect())
+                    }
+                    _ => {
+                        let mut scalars = Vec::with_capacity(terms.len());
+                        for t in &terms {
+                            match t {
+                                Value::Scalar(x) => scalars.push(*x),
+                                t => {
+                                    return Err(self.bare_array_in(body).unwrap_or_else(|| body.range().error(format!(
+                                        "the terms of this sum are {} and {}: a sum adds numbers, or vectors of one length",
+                                        describe(&terms[0]),
+                                        describe(t)
+                                    ))))
+                                }
+                            }
+                        }
+                        scalar(self.pool.add(&scalars))
+                    }
+                }
             }
-            Expr::Neg { inner, .. } => {
-                let x = self.lower(inner)?;
-                self.pool.neg(x)
-            }
+            Expr::Neg { inner, .. } => match self.lower_value(inner)? {
+                Value::Scalar(x) => scalar(self.pool.neg(x)),
+                Value::Vector(c) => Value::Vector(c.iter().map(|&x| self.pool.neg(x)).collect()),
+            },
             Expr::Chain { first, rest, .. } => {
-                let mut acc = self.lower(first)?;
+                let mut acc = self.lower_value(first)?;
                 for (op, x) in rest {
-                    let b = self.lower(x)?;
-                    acc = self.combine(*op, acc, b);
+                    let b = self.lower_value(x)?;
+                    acc = self
+                        .combine_values(*op, acc, b, first.range().to(x.range()))
+                        .map_err(|error| self.bare_array_in(e).unwrap_or(error))?;
                 }
                 acc
             }
             Expr::Power { base, exponent, .. } => {
-                let a = self.lower(base)?;
+                let a = match self.lower_value(base)? {
+                    Value::Scalar(a) => a,
+                    v => {
+                        return Err(self.bare_array_in(base).unwrap_or_else(|| {
+                            base.range().error(format!(
+                                "a power of {}: |r|² is `inner(r, r)`, |r| is `norm(r)`",
+                                describe(&v)
+                            ))
+                        }))
+                    }
+                };
                 let b = self.lower(exponent)?;
-                self.pool.pow(a, b)
+                scalar(self.pool.pow(a, b))
             }
             Expr::Call { func, range, args } => self.lower_call(func, *range, args)?,
         })
+    }
+
+    /// The error of an indexed name written bare where a number is needed
+    /// (or whose elements are not all defined yet); `None` where `name` is
+    /// not an indexed name.
+    fn array_written_bare(&self, name: &Ident) -> Option<syn::Error> {
+        let s = name.to_string();
+        if self.env.iter().any(|(v, _)| *v == s) {
+            return None;
+        }
+        match self.names.get(&s) {
+            Some(Binding::Array { lo, hi, role }) => {
+                let role = match role {
+                    Role::Coordinate => "an indexed coordinate",
+                    Role::Parameter => "an indexed parameter",
+                    Role::Input => "an indexed input",
+                    Role::Let => "an indexed `let`",
+                    Role::Vector => {
+                        return Some(syn::Error::new(
+                            name.span(),
+                            format!(
+                                "`{s}` is a vector ({}) where a number is needed: write one component, \
+                                 e.g. `{s}[{lo}]`, or a number made of it, `inner({s}, {s})` or `norm({s})`",
+                                elements(&s, *lo, *hi)
+                            ),
+                        ))
+                    }
+                };
+                let message = if hi > lo {
+                    let example = match self.env.last() {
+                        None => format!("`{s}[{lo}]`"),
+                        Some((var, _)) => format!("`{s}[{var}]`"),
+                    };
+                    format!(
+                        "`{s}` is {role} ({}): write one element, e.g. {example}",
+                        elements(&s, *lo, *hi)
+                    )
+                } else {
+                    format!("`{s}` is {role} with no elements (its range `{lo}..{hi}` is empty)")
+                };
+                Some(syn::Error::new(name.span(), message))
+            }
+            _ => None,
+        }
     }
 
     /// `a op b`, one step of a chain.
@@ -177,8 +306,14 @@ impl Lowering {
         }
     }
 
-    /// The force target `x` or `x[k]`: its label and its position.
-    pub(super) fn force_target(&mut self, target: &Expr) -> syn::Result<(String, ExprId)> {
+    /// The force target `x` or `x[k]`: its label and its position. A
+    /// component of a vector target (`constant_allowed`) may be constant
+    /// (the z of a planar motion): the force along it does no work.
+    pub(super) fn force_target(
+        &mut self,
+        target: &Expr,
+        constant_allowed: bool,
+    ) -> syn::Result<(String, ExprId)> {
         let (label, binding) = match target {
             Expr::Name(name) => {
                 let s = name.to_string();
@@ -221,10 +356,11 @@ impl Lowering {
         {
             return Err(not_a_position("not a position (it holds a velocity)"));
         }
-        if !s
-            .coordinates
-            .iter()
-            .any(|&q| self.pool.depends_on(position, q))
+        if !constant_allowed
+            && !s
+                .coordinates
+                .iter()
+                .any(|&q| self.pool.depends_on(position, q))
         {
             return Err(not_a_position(
                 "a constant or a parameter (it depends on no coordinate, so the force does no virtual work)",

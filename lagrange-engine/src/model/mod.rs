@@ -18,6 +18,7 @@ mod lowering;
 mod passes;
 mod scope;
 pub mod symbols;
+mod vectors;
 
 pub use functions::FUNCTIONS;
 pub use index::MAX_RANGE;

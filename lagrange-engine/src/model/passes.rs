@@ -5,10 +5,11 @@
 
 use super::lowering::Lowering;
 use super::scope::{Binding, Declared, Role};
+use super::vectors::{describe, Value};
 use super::{limit_error, Constraint, Field, Force, Scalar, Section, Symbols};
 use crate::ast::{BinOp, ConstraintDef, Expr, Item, ModelDef};
 use crate::expr::{ExprId, Pool};
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use syn::Ident;
 
 /// What a coordinate or parameter costs the budget, measured as the
@@ -205,11 +206,30 @@ pub(super) fn lets(def: &ModelDef, cx: &mut Lowering) -> syn::Result<Vec<(String
     for item in &def.items {
         if let Item::Let { name, index, value } = item {
             match index {
-                None => {
-                    let id = cx.lower(value)?;
-                    cx.names.insert(name.to_string(), Binding::Let(id));
-                    values.push((name.to_string(), id));
-                }
+                None => match cx.lower_value(value)? {
+                    Value::Scalar(id) => {
+                        cx.names.insert(name.to_string(), Binding::Let(id));
+                        values.push((name.to_string(), id));
+                    }
+                    // A vector is bound as an indexed `let`: `r[0]` is its
+                    // first component, `r` written bare the vector.
+                    Value::Vector(components) => {
+                        cx.names.insert(
+                            name.to_string(),
+                            Binding::Array {
+                                lo: 0,
+                                hi: components.len() as i64,
+                                role: Role::Vector,
+                            },
+                        );
+                        for (k, id) in components.into_iter().enumerate() {
+                            cx.pool.charge(STEPS_PER_NAME);
+                            let element = format!("{name}[{k}]");
+                            cx.names.insert(element.clone(), Binding::Let(id));
+                            values.push((element, id));
+                        }
+                    }
+                },
                 Some(range) => {
                     let (lo, hi) = cx.range(range)?;
                     cx.names.insert(
@@ -224,7 +244,16 @@ pub(super) fn lets(def: &ModelDef, cx: &mut Lowering) -> syn::Result<Vec<(String
                         // Each element is a name kept to the end.
                         cx.pool.charge(STEPS_PER_NAME);
                         cx.env.push((range.var.to_string(), k));
-                        let id = cx.lower(value);
+                        let id = cx.lower_value(value).and_then(|v| match v {
+                            Value::Scalar(id) => Ok(id),
+                            v => Err(value.range().error(format!(
+                                "an indexed `let` holds one number per index, and this is {}: \
+                                 write `let {name}[{var} in ..] = ...` of one component, or \
+                                 `let {name} = vector(...)` for one vector",
+                                describe(&v),
+                                var = range.var
+                            ))),
+                        });
                         cx.env.pop();
                         let (element, id) = (format!("{name}[{k}]"), id?);
                         cx.names.insert(element.clone(), Binding::Let(id));
@@ -265,7 +294,7 @@ pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn
             Item::Dissipation { keyword, value } => add_to(&mut dissipation, cx, keyword, value)?,
             Item::Forces { entries, .. } => {
                 for (target, value) in entries {
-                    forces.push(force(&mut targets, cx, target, value)?);
+                    forces.extend(force(&mut targets, cx, target, value)?);
                 }
             }
             Item::Constraints { entries, .. } => {
@@ -351,14 +380,81 @@ fn constraint(
     Ok(out)
 }
 
-/// One entry `target = value` of `forces:`; `targets`, those before it.
+/// One entry `target = value` of `forces:`; `targets`, those before it. A
+/// vector force along a vector position (`r = vector(fx, fy, fz)`, `r` a
+/// `let` of a vector) is one force along each component.
 fn force(
     targets: &mut HashSet<String>,
     cx: &mut Lowering,
     target: Expr,
     value: Expr,
+) -> syn::Result<Vec<Force>> {
+    let vector_target = match &target {
+        Expr::Name(n) => match cx.names.get(&n.to_string()) {
+            Some(&Binding::Array { lo, hi, .. }) if hi > lo => Some((n.clone(), lo, hi)),
+            _ => None,
+        },
+        _ => None,
+    };
+    let Some((base, lo, hi)) = vector_target else {
+        return Ok(vec![one_force(targets, cx, target, value)?]);
+    };
+    let components = match cx.lower_value(&value)? {
+        Value::Vector(c) if c.len() as i64 == hi - lo => c,
+        // A number along an indexed name: the error of `one_force`.
+        Value::Scalar(_) => return Ok(vec![one_force(targets, cx, target, value)?]),
+        v => return Err(value.range().error(format!(
+            "a force along `{base}`, which has {} components, is a vector of as many; this is {}",
+            hi - lo,
+            describe(&v)
+        ))),
+    };
+    let mut out = Vec::with_capacity(components.len());
+    for (k, id) in (lo..hi).zip(components) {
+        let element = Expr::Index {
+            base: base.clone(),
+            index: Box::new(Expr::Num {
+                value: k as f64,
+                span: base.span(),
+            }),
+            range: target.range(),
+        };
+        let (label, position) = cx.force_target(&element, true)?;
+        if !targets.insert(label.clone()) {
+            return Err(target.range().error(format!(
+                "a second force on `{label}`: write the sum of the forces in one entry"
+            )));
+        }
+        out.push(Force {
+            label,
+            target: element,
+            ast: value.clone(),
+            position,
+            value: id,
+        });
+    }
+    if !out.iter().any(|f| {
+        cx.symbols
+            .coordinates
+            .iter()
+            .any(|&q| cx.pool.depends_on(f.position, q))
+    }) {
+        return Err(target.range().error(format!(
+            "force along `{base}`, which depends on no coordinate (so the force does no virtual work): \
+             a force acts along a position, a `let` of the coordinates"
+        )));
+    }
+    Ok(out)
+}
+
+/// One scalar force `target = value`.
+fn one_force(
+    targets: &mut HashSet<String>,
+    cx: &mut Lowering,
+    target: Expr,
+    value: Expr,
 ) -> syn::Result<Force> {
-    let (label, position) = cx.force_target(&target)?;
+    let (label, position) = cx.force_target(&target, false)?;
     if !targets.insert(label.clone()) {
         return Err(target.range().error(format!(
             "a second force on `{label}`: write the sum of the forces in one entry"
@@ -434,17 +530,23 @@ pub fn declared_shape(def: &ModelDef) -> Shape {
     let mut constraints = 0usize;
     let mut lets = 0usize;
     let mut seen_lets: HashSet<String> = HashSet::new();
+    // The `let`s of vectors so far, with their lengths.
+    let mut vectors: HashMap<String, usize> = HashMap::new();
     // Apart from the other names: a constraint named like a coordinate is
     // the error, and the coordinate still counts.
     let mut seen_constraints: HashSet<String> = HashSet::new();
     let mut field_names: HashSet<String> = HashSet::new();
     for item in &def.items {
-        if let Item::Let { name, index, .. } = item {
+        if let Item::Let { name, index, value } = item {
             if seen_lets.insert(name.to_string()) {
-                lets += match index {
-                    None => 1,
+                let n = match index {
+                    None => written_length(value, &vectors),
                     Some(range) => cx.range(range).map_or(1, |(lo, hi)| (hi - lo) as usize),
                 };
+                if index.is_none() && n != 1 {
+                    vectors.insert(name.to_string(), n);
+                }
+                lets += n;
             }
             continue;
         }
@@ -498,5 +600,29 @@ pub fn declared_shape(def: &ModelDef) -> Shape {
         inputs,
         constraints,
         lets,
+    }
+}
+
+/// The number of components of a `let`'s value as written, for the stub's
+/// count: a vector's where the text shows it (`vector(..)`, a vector
+/// function, a vector `let` before it, and sums, differences and multiples
+/// of these), else 1.
+fn written_length(e: &Expr, vectors: &HashMap<String, usize>) -> usize {
+    match e {
+        Expr::Call { func, args, .. } => match func.to_string().as_str() {
+            "vector" => args.len().max(1),
+            "cross" | "rotate" | "rotate_x" | "rotate_y" | "rotate_z" | "body_rates"
+            | "space_rates" => 3,
+            "dot" => args.first().map_or(1, |a| written_length(a, vectors)),
+            _ => 1,
+        },
+        Expr::Name(name) => vectors.get(&name.to_string()).copied().unwrap_or(1),
+        Expr::Neg { inner, .. } => written_length(inner, vectors),
+        Expr::Chain { first, rest, .. } => std::iter::once(&**first)
+            .chain(rest.iter().map(|(_, x)| x))
+            .map(|x| written_length(x, vectors))
+            .max()
+            .unwrap_or(1),
+        _ => 1,
     }
 }

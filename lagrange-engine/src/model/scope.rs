@@ -27,6 +27,9 @@ pub(super) enum Role {
     Parameter,
     Input,
     Let,
+    /// A `let` of a vector (`let r = vector(..)`): its elements are the
+    /// components.
+    Vector,
 }
 
 /// The names declared so far, each with what it was declared as.
