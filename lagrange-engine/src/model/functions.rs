@@ -99,13 +99,15 @@ impl Lowering {
         for (v, a) in values.iter().zip(args) {
             match v {
                 Value::Scalar(x) => xs.push(*x),
-                v => return Err(self.bare_array_in(a).unwrap_or_else(|| {
-                    a.range().error(format!(
+                v => {
+                    return Err(self.bare_array_in(a).unwrap_or_else(|| {
+                        a.range().error(format!(
                         "`{name}` takes a number; this is {}: apply it to one component (`r[0]`), \
                              or to `norm(r)` or `inner(a, b)`",
                         describe(v)
                     ))
-                })),
+                    }))
+                }
             }
         }
         let p = &mut self.pool;

@@ -403,11 +403,13 @@ fn force(
         Value::Vector(c) if c.len() as i64 == hi - lo => c,
         // A number along an indexed name: the error of `one_force`.
         Value::Scalar(_) => return Ok(vec![one_force(targets, cx, target, value)?]),
-        v => return Err(value.range().error(format!(
+        v => {
+            return Err(value.range().error(format!(
             "a force along `{base}`, which has {} components, is a vector of as many; this is {}",
             hi - lo,
             describe(&v)
-        ))),
+        )))
+        }
     };
     let mut out = Vec::with_capacity(components.len());
     for (k, id) in (lo..hi).zip(components) {
