@@ -14,6 +14,7 @@
 //! [`ChaplyginSleigh`], [`RollingDisk`] and [`RollingBall`], the last in
 //! quaternions too.
 
+mod bicycle;
 mod bouncing_ball;
 mod cart_pole;
 mod cartesian_pendulum;
@@ -34,6 +35,7 @@ mod slider_crank;
 mod stiff_chain;
 mod two_mass_chain;
 
+pub use bicycle::WhippleBicycle;
 pub use bouncing_ball::BouncingBall;
 pub use cart_pole::CartPole;
 pub use cartesian_pendulum::CartesianPendulum;
