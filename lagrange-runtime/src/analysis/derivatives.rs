@@ -27,6 +27,7 @@ pub(super) fn relative_noise<S: RealField + Copy>(derivatives: Derivatives, n: u
     match derivatives {
         Derivatives::Exact => hundred * nalgebra::convert::<f64, S>(n.max(1) as f64) * eps,
         Derivatives::CentralDifferences => hundred * eps.powf(nalgebra::convert(2.0 / 3.0)),
+        Derivatives::Extrapolated => hundred * eps.powf(nalgebra::convert(0.8)),
     }
 }
 

@@ -167,4 +167,7 @@ pub enum Derivatives {
     Exact,
     /// Central differences: relative error `≈ ε^(2/3)`.
     CentralDifferences,
+    /// Central differences at two steps, extrapolated (Richardson):
+    /// relative error `≈ ε^(4/5)`.
+    Extrapolated,
 }

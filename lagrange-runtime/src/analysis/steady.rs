@@ -7,7 +7,6 @@
 
 use nalgebra::{Complex, DMatrix, DVector, RealField, SVector};
 
-use super::derivatives::central_step;
 use super::{AnalysisError, Derivatives};
 use crate::dynamics::acceleration;
 use crate::model::constraints::{Holonomic, Visitor};
@@ -70,9 +69,10 @@ impl<S: RealField + Copy> SteadyLinearization<S> {
 /// [`AnalysisError::NotReducible`] says which fails otherwise (a heading
 /// left out whose rate drives the lean, say).
 ///
-/// The derivatives are central differences ([`Derivatives::CentralDifferences`],
-/// relative error `≈ ε^(2/3)`): of the constrained acceleration along each
-/// basis direction (`2 dim B` saddle solves), and of the constraints'
+/// The derivatives are central differences at two steps, extrapolated
+/// ([`Derivatives::Extrapolated`], relative error `≈ ε^(4/5)`, some 1e-12
+/// in the bicycle's state matrix): of the constrained acceleration along
+/// each basis direction (`4 dim B` saddle solves), and of the constraints'
 /// velocity residuals for the basis. Models with constraints on their
 /// velocities are what this is for; it takes unconstrained and holonomic
 /// models too.
@@ -132,18 +132,19 @@ where
         Some(basis) => basis,
         None => DMatrix::identity(2 * N, 2 * N),
     };
-    // J B by central differences along each basis direction.
+    // J B along each basis direction, by extrapolated central differences.
     let d = basis.ncols();
-    let h = central_step(q.amax().max(qdot.amax()));
+    let h = extrapolated_step(q.amax().max(qdot.amax()));
     let mut jb = DMatrix::zeros(2 * N, d);
     for k in 0..d {
-        let dq = SVector::<S, N>::from_fn(|i, _| basis[(i, k)] * h);
-        let dv = SVector::<S, N>::from_fn(|i, _| basis[(N + i, k)] * h);
-        let plus = acceleration(model, t, &(q + dq), &(qdot + dv))?;
-        let minus = acceleration(model, t, &(q - dq), &(qdot - dv))?;
+        let dq = SVector::<S, N>::from_fn(|i, _| basis[(i, k)]);
+        let dv = SVector::<S, N>::from_fn(|i, _| basis[(N + i, k)]);
+        let rate = extrapolated(h, |s| {
+            acceleration(model, t, &(q + dq * s), &(qdot + dv * s))
+        })?;
         for i in 0..N {
             jb[(i, k)] = basis[(N + i, k)];
-            jb[(N + i, k)] = (plus[i] - minus[i]) / (h + h);
+            jb[(N + i, k)] = rate[i];
         }
     }
     let y = DMatrix::from_fn(kept.len(), d, |r, c| basis[(kept[r], c)]);
@@ -191,7 +192,7 @@ where
     Ok(SteadyLinearization {
         states,
         state_matrix: a,
-        derivatives: Derivatives::CentralDifferences,
+        derivatives: Derivatives::Extrapolated,
     })
 }
 
@@ -223,14 +224,16 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Allowed<'_, S, N> {
                 k[(r, j)] = g[(i, j)];
             }
         }
-        let h = central_step(q.amax());
+        let h = extrapolated_step(q.amax());
         for j in 0..N {
-            let mut step = SVector::<S, N>::zeros();
-            step[j] = h;
-            let difference = model.constraint_velocities(t, &(q + step), qdot)
-                - model.constraint_velocities(t, &(q - step), qdot);
+            let mut direction = SVector::<S, N>::zeros();
+            direction[j] = S::one();
+            let derivative = extrapolated(h, |s| {
+                Ok::<_, ()>(model.constraint_velocities(t, &(q + direction * s), qdot))
+            })
+            .unwrap_or_else(|()| unreachable!("the closure cannot fail"));
             for i in 0..C {
-                k[(holonomic.len() + i, j)] = difference[i] / (h + h);
+                k[(holonomic.len() + i, j)] = derivative[i];
                 k[(holonomic.len() + i, N + j)] = g[(i, j)];
             }
         }
@@ -255,4 +258,29 @@ fn null_space<S: RealField + Copy>(k: &DMatrix<S>) -> DMatrix<S> {
     });
     let q = wide.qr().q();
     q.columns(r, n - r).into_owned()
+}
+
+/// The step of [`extrapolated`] for arguments of size `x`: `ε^(1/5)`, where
+/// its truncation error (`h⁴`) and its rounding (`ε/h`) balance.
+fn extrapolated_step<S: RealField + Copy>(x: S) -> S {
+    let fifth: S = nalgebra::convert(0.2);
+    S::default_epsilon().powf(fifth) * S::one().max(x.abs())
+}
+
+/// The derivative at `s = 0` of `f(s)`, from central differences at steps
+/// `h` and `h/2` combined so that their `h²` errors cancel (Richardson):
+/// `(4 D(h/2) − D(h)) / 3`, relative error about `ε^(4/5)` (3e-13 in `f64`)
+/// against central differences' `ε^(2/3)` (4e-11), for four evaluations
+/// instead of two.
+fn extrapolated<S, V, E>(h: S, mut f: impl FnMut(S) -> Result<V, E>) -> Result<V, E>
+where
+    S: RealField + Copy,
+    V: std::ops::Sub<Output = V> + std::ops::Mul<S, Output = V>,
+{
+    let two: S = nalgebra::convert(2.0);
+    let whole = (f(h)? - f(-h)?) * (S::one() / (two * h));
+    let half = (f(h / two)? - f(-h / two)?) * (S::one() / h);
+    let four: S = nalgebra::convert(4.0);
+    let third: S = nalgebra::convert(1.0 / 3.0);
+    Ok((half * four - whole) * third)
 }
