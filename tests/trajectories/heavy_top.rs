@@ -164,3 +164,73 @@ fn the_quaternion_top_swings_through_the_pole_where_euler_angles_fail() {
         failure.error
     );
 }
+
+/// The largest relative errors of the energy, `L_z` and `L_3` of the
+/// variational integrator at step `h` on the motion through the pole
+/// (10 s), and the energy's over the first 5 s alone.
+fn variational_through_the_pole(h: f64) -> ([f64; 3], f64) {
+    let [a, c, ..] = TOP;
+    let theta0 = 0.5f64;
+    let omega3 = 5.0;
+    let p = c * omega3;
+    let phid = p * (1.0 - theta0.cos()) / (a * theta0.sin().powi(2));
+    let e0 = SVector::<f64, 3>::new(0.0, theta0, 0.0);
+    let rates0 = SVector::<f64, 3>::new(phid, -2.0, omega3 - phid * theta0.cos());
+    let (q0, v0) = quaternion_state(&e0, &rates0);
+    let times: Vec<f64> = (1..=1000).map(|k| 0.01 * k as f64).collect();
+    let top = quaternion_top();
+    let start = top.invariants(&q0, &v0);
+    let run = Variational::new(h)
+        .integrate(&top, 0.0, q0, v0, &times)
+        .unwrap_or_else(|e| panic!("h = {h}: {}", e.error));
+    let mut worst = [0.0f64; 3];
+    let mut first_half = 0.0f64;
+    for s in run.iter() {
+        let now = top.invariants(&s.q, &s.qdot);
+        for k in 0..3 {
+            worst[k] = worst[k].max((now[k] - start[k]).abs() / start[k].abs());
+        }
+        if s.t <= 5.0 {
+            first_half = worst[0];
+        }
+    }
+    (worst, first_half)
+}
+
+/// The top through the pole by the variational integrator at fixed steps
+/// h = 0.002, 0.001, 0.0005 over 10 s (5,000 to 20,000 steps), in
+/// quaternions (`M` regular only on `|q| = 1`). `L_z` and `L_3` are the
+/// momenta of symmetries (rotations about the vertical in space, about the
+/// axis in the body): kept by the discrete Noether theorem to the Newton
+/// tolerance, 1e-12 relative (3e-14 to 6e-14 measured). The energy error
+/// is bounded (a symplectic step: over the second 5 s no larger than twice
+/// its largest over the first, no drift) and second order: halving `h`
+/// divides its largest value by 4 (3.5 to 4.5 allowed; 4.00 measured,
+/// while from h = 0.004 the ratio is still 2.8).
+#[test]
+fn the_variational_integrator_keeps_the_tops_momenta_and_its_energy_at_second_order() {
+    let results: Vec<(f64, ([f64; 3], f64))> = [0.002, 0.001, 0.0005]
+        .iter()
+        .map(|&h| (h, variational_through_the_pole(h)))
+        .collect();
+    for (h, ([energy, lz, l3], first_half)) in &results {
+        println!("h = {h}: energy {energy:.3e} ({first_half:.3e} over the first 5 s), L_z {lz:.1e}, L_3 {l3:.1e}");
+        assert!(
+            *lz < 1e-12 && *l3 < 1e-12,
+            "h = {h}: L_z {lz:e}, L_3 {l3:e}"
+        );
+        assert!(
+            *energy <= 2.0 * first_half,
+            "h = {h}: the energy error grows, {first_half:e} → {energy:e}"
+        );
+    }
+    for pair in results.windows(2) {
+        let ratio = pair[0].1 .0[0] / pair[1].1 .0[0];
+        assert!(
+            (3.5..4.5).contains(&ratio),
+            "energy error ratio {ratio} between h = {} and {}",
+            pair[0].0,
+            pair[1].0
+        );
+    }
+}

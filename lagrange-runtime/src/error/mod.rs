@@ -459,22 +459,6 @@ pub enum InvalidInput<S: RealField + Copy> {
         needs: Name,
     },
 
-    /// The method solves `p = M q̇` for `q̇` with `M` alone, and the model's
-    /// `M` is singular by itself, regular only on the velocities its
-    /// constraints allow
-    /// ([`Holonomic::mass_regular_on_constraints_only`](crate::model::constraints::Holonomic::mass_regular_on_constraints_only)):
-    /// the methods that integrate `q̈` from the saddle-point system take it.
-    #[error(
-        "{method} solves p = M q̇ with the mass matrix alone, which is singular for this model (regular only \
-         on the velocities its constraints allow); integrate it with a method that solves for q̈ through the \
-         constraints (RK4, Dopri5, Tsit5, Dop853, Radau5, GaussLegendre, ...)"
-    )]
-    MassRegularOnConstraintsOnly {
-        /// The integrator.
-        #[cfg_attr(feature = "serde", serde(with = "crate::names::one"))]
-        method: Name,
-    },
-
     /// The method needs every constraint on the positions, and the model
     /// has constraints on its velocities
     /// ([`Holonomic::has_velocity_constraints`](crate::model::constraints::Holonomic::has_velocity_constraints)):

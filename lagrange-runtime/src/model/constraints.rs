@@ -82,9 +82,9 @@ pub trait Holonomic<const N: usize, const C: usize>: Lagrangian<N> {
     /// The saddle-point system is regular all the same, and the runtime
     /// solves it with `M + k GᵀG` in place of `M` and `f − k Gᵀγ` in place
     /// of `f`, which has the same `q̈` and `λ` wherever `G q̈ = −γ`
-    /// (`k` scales `GᵀG` to `M`). The variational methods need `M` itself
-    /// regular (they solve `p = M q̇` for `q̇`) and refuse such a model
-    /// ([`InvalidInput::MassRegularOnConstraintsOnly`](crate::error::InvalidInput::MassRegularOnConstraintsOnly)).
+    /// (`k` scales `GᵀG` to `M`). The variational integrator steps the
+    /// Lagrangian `L + (k/2)|φ̇|²` instead, equal to `L` on the constrained
+    /// motion, whose mass matrix is `M + k GᵀG`.
     ///
     /// `lagrangian!` answers it from its compile-time rank check; a
     /// hand-written model whose `M` is regular keeps the default, `false`.

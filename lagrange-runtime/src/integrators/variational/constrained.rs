@@ -28,7 +28,7 @@ use nalgebra::{RealField, SVector};
 use super::newton::{DiscreteEulerLagrange, StepFailure};
 use super::rattle::{Outer, RattleStep};
 use super::velocity::{velocity, VelocityHistory};
-use super::Variational;
+use super::{lacks, Variational};
 use crate::driver::Recorder;
 use crate::dynamics::projection::VelocityProjection;
 use crate::error::IntegrationError;
@@ -57,6 +57,7 @@ impl<S: RealField + Copy> Variational<S> {
                 q: del.q,
                 p: del.p - force * h,
                 half_h: del.half_h,
+                augment: del.augment,
             };
             self.solve(stats, &shifted, guess)
         };
@@ -68,6 +69,7 @@ impl<S: RealField + Copy> Variational<S> {
             qdot: near,
             guess: force,
             max_iterations: self.max_iterations,
+            augment: del.augment,
             inner,
         };
         match del.model.visit_constraints(step) {
@@ -94,6 +96,12 @@ impl<S: RealField + Copy> Variational<S> {
         };
         let (qdot, impulse) = projected?;
         rec.record_residuals(model, t, *q, qdot)?;
+        if velocities.augment.is_some() {
+            // The projected velocity minimizes the distance to `free` in
+            // any metric `M + k GᵀG` alike; the momenta of `L'` are those of
+            // `L` there, since `φ̇ = 0` (`augmented.rs`).
+            return model.momentum(t, q, &qdot).ok_or_else(|| lacks("momentum").into());
+        }
         Ok(p - impulse)
     }
 }

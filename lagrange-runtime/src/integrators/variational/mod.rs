@@ -35,6 +35,7 @@ use crate::model::Lagrangian;
 use velocity::{with_velocity, VelocityHistory};
 use walk::VariationalWalk;
 
+mod augmented;
 mod constrained;
 mod newton;
 mod rattle;
@@ -82,6 +83,17 @@ mod walk;
 /// costs an outer iteration on the multipliers (3 to 4 on the Cartesian
 /// pendulum at `h = 0.01`), each one unconstrained solve as below, plus
 /// one velocity projection.
+///
+/// A model whose `M` is singular by itself and regular only with its
+/// constraints (a rigid body in unit quaternions,
+/// [`Holonomic::mass_regular_on_constraints_only`](crate::model::constraints::Holonomic::mass_regular_on_constraints_only))
+/// is stepped as the Lagrangian `L + (k/2)|φ̇|²` (`augmented.rs`): equal to
+/// `L` on the constrained motion, with every symmetry `L` and `φ` share,
+/// and the regular mass matrix `M + k GᵀG` (`k` fixed at the start). For a
+/// constraint quadratic in `q` such as `|q| = 1` the steps are RATTLE's for
+/// `L` itself. Constraints on the velocities are refused
+/// ([`VelocityConstraints`](InvalidInput::VelocityConstraints)): RATTLE
+/// imposes every constraint on the next position.
 ///
 /// # Cost
 ///

@@ -114,6 +114,9 @@ pub(super) struct DiscreteEulerLagrange<'a, L: Lagrangian<N>, const N: usize> {
     pub(super) q: SVector<L::Scalar, N>,
     pub(super) p: SVector<L::Scalar, N>,
     pub(super) half_h: L::Scalar,
+    /// `k` of the augmented Lagrangian `L + (k/2)|φ̇|²` (`augmented.rs`),
+    /// for a model whose `M` is regular only with its constraints.
+    pub(super) augment: Option<L::Scalar>,
 }
 
 impl<L: Lagrangian<N>, const N: usize> DiscreteEulerLagrange<'_, L, N> {
@@ -159,6 +162,16 @@ impl<L: Lagrangian<N>, const N: usize> DiscreteEulerLagrange<'_, L, N> {
         if !all_finite(&forces) {
             return Err(non_finite(NonFiniteValue::NonconservativeForces));
         }
+        let (momentum, gradient) = match self.augment {
+            None => (momentum, gradient),
+            Some(k) => {
+                let terms = super::augmented::Terms { k, t, q: &q, v };
+                match self.model.visit_constraints(terms) {
+                    Some((dp, dg)) => (momentum + dp, gradient + dg),
+                    None => (momentum, gradient),
+                }
+            }
+        };
         let rate = gradient + forces;
         Ok((self.p + rate * self.half_h - momentum, rate))
     }

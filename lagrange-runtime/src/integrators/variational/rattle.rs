@@ -70,6 +70,9 @@ pub(crate) struct RattleStep<'a, S, const N: usize, F> {
     /// The constraint force `Gᵀ λ` of the previous step.
     pub(crate) guess: SVector<S, N>,
     pub(crate) max_iterations: usize,
+    /// `k` of the augmented Lagrangian (`augmented.rs`): the outer
+    /// iteration's metric is then `M + k GᵀG`.
+    pub(crate) augment: Option<S>,
     pub(crate) inner: F,
 }
 
@@ -93,11 +96,15 @@ where
             qdot,
             guess,
             max_iterations,
+            augment,
             mut inner,
         } = self;
-        let mass =
-            factor_mass_matrix(&model.mass_matrix(t, q)).map_err(|e| mass_error(e, t, q, qdot))?;
         let g = model.constraint_jacobian(t, q);
+        let m = match augment {
+            None => model.mass_matrix(t, q),
+            Some(k) => model.mass_matrix(t, q) + g.transpose() * g * k,
+        };
+        let mass = factor_mass_matrix(&m).map_err(|e| mass_error(e, t, q, qdot))?;
         if !g.iter().all(|x| x.is_finite()) {
             let (q, qdot, value) = (*q, *qdot, NonFiniteValue::Constraints);
             return Err(IntegrationError::NonFiniteState { t, q, qdot, value }.into());

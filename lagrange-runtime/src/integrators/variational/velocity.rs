@@ -43,7 +43,14 @@ pub(super) fn velocity<L: Lagrangian<N>, const N: usize>(
     if !all_finite(&offset) {
         return Err(non_finite(NonFiniteValue::Momentum));
     }
-    solve_mass_matrix(&model.mass_matrix(t, q), &(p - offset)).map_err(|err| match err {
+    let mut m = model.mass_matrix(t, q);
+    if let Some(k) = velocities.augment {
+        let metric = super::augmented::Metric { k, t, q };
+        if let Some(added) = model.visit_constraints(metric) {
+            m += added;
+        }
+    }
+    solve_mass_matrix(&m, &(p - offset)).map_err(|err| match err {
         SolveError::NonFiniteMassMatrix => non_finite(NonFiniteValue::MassMatrix),
         SolveError::NonFiniteForcing => non_finite(NonFiniteValue::Momentum),
         SolveError::Singular => IntegrationError::SingularMassMatrix {
@@ -79,13 +86,18 @@ pub(super) fn with_velocity<L: Lagrangian<N>, const N: usize>(
 pub(super) struct VelocityHistory<S, const N: usize> {
     older: Option<(S, SVector<S, N>)>,
     newer: (S, SVector<S, N>),
+    /// `k` of the augmented Lagrangian (`augmented.rs`), for a model whose
+    /// `M` is regular only with its constraints: the run's Legendre
+    /// transform is then `p = (M + k GᵀG) q̇ + ∂L/∂q̇(q, 0)`.
+    pub(super) augment: Option<S>,
 }
 
 impl<S: RealField + Copy, const N: usize> VelocityHistory<S, N> {
-    pub(super) fn new(t0: S, qdot0: SVector<S, N>) -> Self {
+    pub(super) fn new(t0: S, qdot0: SVector<S, N>, augment: Option<S>) -> Self {
         Self {
             older: None,
             newer: (t0, qdot0),
+            augment,
         }
     }
 

@@ -5,6 +5,7 @@
 use nalgebra::{RealField, SVector};
 
 use super::newton::{DiscreteEulerLagrange, StepFailure};
+use super::augmented::Weight;
 use super::rattle::StartForce;
 use super::velocity::{velocity, with_velocity, VelocityHistory};
 use super::{all_finite, lacks, out_of_budget, Variational};
@@ -48,7 +49,7 @@ impl<S: RealField + Copy, const N: usize> VariationalWalk<S, N> {
             t: S::zero(),
             q: zero,
             p: zero,
-            velocities: VelocityHistory::new(S::zero(), zero),
+            velocities: VelocityHistory::new(S::zero(), zero, None),
             qdot_now: zero,
             constrained: false,
             force: zero,
@@ -78,10 +79,6 @@ impl<S: RealField + Copy, const N: usize> VariationalWalk<S, N> {
             };
             return Err(lacks(needs).into());
         };
-        if mass_regular_on_constraints_only(model) {
-            let method = "Variational";
-            return Err(InvalidInput::MassRegularOnConstraintsOnly { method }.into());
-        }
         if has_velocity_constraints(model) {
             let method = "Variational";
             return Err(InvalidInput::VelocityConstraints { method }.into());
@@ -109,8 +106,15 @@ impl<S: RealField + Copy, const N: usize> VariationalWalk<S, N> {
             return Err(IntegrationError::IndefiniteMassMatrix { t: t0, q, qdot });
         }
 
+        // A mass matrix regular only with the constraints: the step
+        // integrates `L + (k/2)|φ̇|²`, `k` fixed here (`augmented.rs`).
+        let augment = if mass_regular_on_constraints_only(model) {
+            model.visit_constraints(Weight { t: t0, q: &q0 })
+        } else {
+            None
+        };
         (self.t, self.q, self.p) = (t0, q0, p0);
-        self.velocities = VelocityHistory::new(t0, qdot0);
+        self.velocities = VelocityHistory::new(t0, qdot0, augment);
         self.qdot_now = qdot0;
         // A constrained model takes the RATTLE step (`constrained.rs`),
         // which carries the constraint force `Gᵀ λ` from step to step as
@@ -193,6 +197,7 @@ impl<S: RealField + Copy, const N: usize> Walk<S, N> for VariationalWalk<S, N> {
                     q,
                     p,
                     half_h: dt / nalgebra::convert(2.0),
+                    augment: self.velocities.augment,
                 };
                 let guess = self.velocities.predict(del.t_mid);
                 let solved = if self.constrained {
