@@ -24,7 +24,7 @@ mod engine;
 
 use lagrange::analysis::linearize_steady_motion;
 use lagrange::models::WhippleBicycle;
-use lagrange::nalgebra::{DMatrix, Matrix2, Matrix4, Vector4};
+use lagrange::nalgebra::{DMatrix, Matrix2, Matrix4, SMatrix, SVector, Vector4};
 use lagrange::prelude::*;
 use plotters::prelude::*;
 use std::error::Error;
@@ -63,6 +63,28 @@ fn linearized(bike: &WhippleBicycle<f64>, v: f64) -> Result<Matrix4<f64>, Box<dy
     let (q, qdot) = bike.upright(0.0, v);
     let lin = linearize_steady_motion(bike, 0.0, &q, &qdot, &["phi", "delta"], &["phi", "delta"])?;
     Ok(Matrix4::from_iterator(lin.state_matrix.iter().copied()))
+}
+
+/// The lean–steer mass matrix at the upright, `Bᵀ M B`, `B` mapping the
+/// lean and steer rates to the full `q̇` that keeps the constraints with the
+/// rear wheel still (as `tests/trajectories/bicycle.rs`).
+fn lean_steer_mass_matrix(bike: &WhippleBicycle<f64>) -> Matrix2<f64> {
+    let (q, _) = bike.upright(0.0, 0.0);
+    let g = bike.constraint_jacobian(0.0, &q);
+    let (known, unknown) = ([3usize, 5], [0usize, 1, 2, 4, 7]);
+    let solve = SMatrix::<f64, 5, 5>::from_fn(|r, c| g[(r, unknown[c])]).lu();
+    let mut b = SMatrix::<f64, 8, 2>::zeros();
+    for (col, &k) in known.iter().enumerate() {
+        let rhs = SVector::<f64, 5>::from_fn(|r, _| -g[(r, k)]);
+        let rates = solve
+            .solve(&rhs)
+            .expect("the constraints fix the other rates");
+        b[(k, col)] = 1.0;
+        for (i, &u) in unknown.iter().enumerate() {
+            b[(u, col)] = rates[i];
+        }
+    }
+    b.transpose() * bike.mass_matrix(0.0, &q) * b
 }
 
 /// Eigenvalues, sorted by real part then imaginary part.
@@ -161,6 +183,40 @@ fn main() -> Result<(), Box<dyn Error>> {
         ours_points.extend(e.iter().map(|&(re, im)| (v, re, im)));
     }
     println!("\nState matrices: largest difference {worst:.1e} of the benchmark's largest entry, 0–10 m/s.");
+
+    // M from the kinetic energy on the allowed rates; C1, K0, K2 from the
+    // state matrices at rest and at 5 m/s.
+    let [m_ref, c1_ref, k0_ref, k2_ref] = bike.benchmark_matrices();
+    let m = lean_steer_mass_matrix(&bike);
+    let (a0, a5) = (linearized(&bike, 0.0)?, linearized(&bike, 5.0)?);
+    let lower = |a: &Matrix4<f64>, col: usize| a.fixed_view::<2, 2>(2, col).into_owned();
+    let k0 = -m * lower(&a0, 0) / bike.g;
+    let k2 = -m * (lower(&a5, 0) - lower(&a0, 0)) / 25.0;
+    let c1 = -m * lower(&a5, 2) / 5.0;
+    println!("\n| matrix | ours | benchmark's | relative difference |");
+    println!("|---|---|---|---:|");
+    for (name, ours, theirs) in [
+        ("M", m, m_ref),
+        ("C1", c1, c1_ref),
+        ("K0", k0, k0_ref),
+        ("K2", k2, k2_ref),
+    ] {
+        let show = |x: &Matrix2<f64>| {
+            format!(
+                "[[{:.10}, {:.10}], [{:.10}, {:.10}]]",
+                x[(0, 0)],
+                x[(0, 1)],
+                x[(1, 0)],
+                x[(1, 1)]
+            )
+        };
+        println!(
+            "| {name} | {} | {} | {:.1e} |",
+            show(&ours),
+            show(&theirs),
+            (ours - theirs).amax() / theirs.amax()
+        );
+    }
 
     let weave = crossing(3.0, 5.0, |v| growth(&linearized(&bike, v).expect("steady")));
     let weave_ref = crossing(3.0, 5.0, |v| growth(&benchmark_state_matrix(&bike, v)));
