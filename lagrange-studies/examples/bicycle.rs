@@ -24,7 +24,7 @@ mod engine;
 
 use lagrange::analysis::linearize_steady_motion;
 use lagrange::models::WhippleBicycle;
-use lagrange::nalgebra::{DMatrix, Matrix2, Matrix4, SMatrix, SVector, Vector4};
+use lagrange::nalgebra::{DMatrix, Matrix2, Matrix4, Vector4};
 use lagrange::prelude::*;
 use plotters::prelude::*;
 use std::error::Error;
@@ -44,47 +44,11 @@ fn invocation() -> &'static str {
     &SOURCE[start..end]
 }
 
-/// The benchmark's state matrix for `(φ, δ, φ̇, δ̇)` at speed `v`.
-fn benchmark_state_matrix(bike: &WhippleBicycle<f64>, v: f64) -> Matrix4<f64> {
-    let [m, c1, k0, k2] = bike.benchmark_matrices();
-    let minv = m.try_inverse().expect("the benchmark's M is regular");
-    let mut a = Matrix4::zeros();
-    a.fixed_view_mut::<2, 2>(0, 2)
-        .copy_from(&Matrix2::identity());
-    a.fixed_view_mut::<2, 2>(2, 0)
-        .copy_from(&(-minv * (bike.g * k0 + v * v * k2)));
-    a.fixed_view_mut::<2, 2>(2, 2)
-        .copy_from(&(-minv * (v * c1)));
-    a
-}
-
 /// The nonlinear model's linearization at `v`, reduced to lean and steer.
 fn linearized(bike: &WhippleBicycle<f64>, v: f64) -> Result<Matrix4<f64>, Box<dyn Error>> {
     let (q, qdot) = bike.upright(0.0, v);
     let lin = linearize_steady_motion(bike, 0.0, &q, &qdot, &["phi", "delta"], &["phi", "delta"])?;
     Ok(Matrix4::from_iterator(lin.state_matrix.iter().copied()))
-}
-
-/// The lean–steer mass matrix at the upright, `Bᵀ M B`, `B` mapping the
-/// lean and steer rates to the full `q̇` that keeps the constraints with the
-/// rear wheel still (as `tests/trajectories/bicycle.rs`).
-fn lean_steer_mass_matrix(bike: &WhippleBicycle<f64>) -> Matrix2<f64> {
-    let (q, _) = bike.upright(0.0, 0.0);
-    let g = bike.constraint_jacobian(0.0, &q);
-    let (known, unknown) = ([3usize, 5], [0usize, 1, 2, 4, 7]);
-    let solve = SMatrix::<f64, 5, 5>::from_fn(|r, c| g[(r, unknown[c])]).lu();
-    let mut b = SMatrix::<f64, 8, 2>::zeros();
-    for (col, &k) in known.iter().enumerate() {
-        let rhs = SVector::<f64, 5>::from_fn(|r, _| -g[(r, k)]);
-        let rates = solve
-            .solve(&rhs)
-            .expect("the constraints fix the other rates");
-        b[(k, col)] = 1.0;
-        for (i, &u) in unknown.iter().enumerate() {
-            b[(u, col)] = rates[i];
-        }
-    }
-    b.transpose() * bike.mass_matrix(0.0, &q) * b
 }
 
 /// Eigenvalues, sorted by real part then imaginary part.
@@ -165,7 +129,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     let mut ours_points = Vec::new();
     for k in 0..=20 {
         let v = 0.5 * k as f64;
-        let (ours, theirs) = (linearized(&bike, v)?, benchmark_state_matrix(&bike, v));
+        let (ours, theirs) = (linearized(&bike, v)?, bike.benchmark_state_matrix(v));
         worst = worst.max((ours - theirs).amax() / theirs.amax());
         let (e, e_ref) = (eigenvalues(&ours), eigenvalues(&theirs));
         let diff = e
@@ -187,7 +151,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     // M from the kinetic energy on the allowed rates; C1, K0, K2 from the
     // state matrices at rest and at 5 m/s.
     let [m_ref, c1_ref, k0_ref, k2_ref] = bike.benchmark_matrices();
-    let m = lean_steer_mass_matrix(&bike);
+    let m = bike.lean_steer_mass_matrix();
     let (a0, a5) = (linearized(&bike, 0.0)?, linearized(&bike, 5.0)?);
     let lower = |a: &Matrix4<f64>, col: usize| a.fixed_view::<2, 2>(2, col).into_owned();
     let k0 = -m * lower(&a0, 0) / bike.g;
@@ -219,9 +183,9 @@ fn main() -> Result<(), Box<dyn Error>> {
     }
 
     let weave = crossing(3.0, 5.0, |v| growth(&linearized(&bike, v).expect("steady")));
-    let weave_ref = crossing(3.0, 5.0, |v| growth(&benchmark_state_matrix(&bike, v)));
+    let weave_ref = crossing(3.0, 5.0, |v| growth(&bike.benchmark_state_matrix(v)));
     let capsize = crossing(5.5, 7.0, |v| growth(&linearized(&bike, v).expect("steady")));
-    let capsize_ref = crossing(5.5, 7.0, |v| growth(&benchmark_state_matrix(&bike, v)));
+    let capsize_ref = crossing(5.5, 7.0, |v| growth(&bike.benchmark_state_matrix(v)));
     println!("\n| speed | ours [m/s] | benchmark's closed form | published (table 2) | ours against the closed form |");
     println!("|---|---:|---:|---:|---:|");
     for (name, ours, theirs, published) in [
@@ -247,7 +211,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             .atol(1e-13)
             .integrate(&bike, 0.0, q, qdot, &times)?;
         let elapsed = start.elapsed();
-        let a = benchmark_state_matrix(&bike, v);
+        let a = bike.benchmark_state_matrix(v);
         let x0 = Vector4::new(0.01, 0.0, 0.0, 0.0);
         let off = run
             .iter()
@@ -358,7 +322,7 @@ fn draw(
     let fine: Vec<(f64, Vec<(f64, f64)>)> = (0..=400)
         .map(|k| {
             let v = 0.025 * k as f64;
-            (v, eigenvalues(&benchmark_state_matrix(bike, v)))
+            (v, eigenvalues(&bike.benchmark_state_matrix(v)))
         })
         .collect();
     chart

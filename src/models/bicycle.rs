@@ -5,7 +5,7 @@
 //! (Meijaard, Papadopoulos, Ruina and Schwab 2007, Proc. R. Soc. A 463,
 //! appendix A), against which it is checked.
 
-use nalgebra::Matrix2;
+use nalgebra::{Matrix2, Matrix4, SMatrix, SVector};
 
 use crate::lagrangian;
 
@@ -148,6 +148,48 @@ impl WhippleBicycle<f64> {
             -v / self.rF,
         ]);
         (q, qdot)
+    }
+
+    /// The benchmark's state matrix for `(φ, δ, φ̇, δ̇)` at speed `v`, from
+    /// [`benchmark_matrices`](Self::benchmark_matrices):
+    /// `[[0, I], [−M⁻¹(g K0 + v² K2), −v M⁻¹ C1]]`.
+    pub fn benchmark_state_matrix(&self, v: f64) -> Matrix4<f64> {
+        let [m, c1, k0, k2] = self.benchmark_matrices();
+        let minv = m.try_inverse().expect("the benchmark's M is regular");
+        let mut a = Matrix4::zeros();
+        a.fixed_view_mut::<2, 2>(0, 2)
+            .copy_from(&Matrix2::identity());
+        a.fixed_view_mut::<2, 2>(2, 0)
+            .copy_from(&(-minv * (self.g * k0 + v * v * k2)));
+        a.fixed_view_mut::<2, 2>(2, 2)
+            .copy_from(&(-minv * (v * c1)));
+        a
+    }
+
+    /// This model's mass matrix for lean and steer at the upright, from its
+    /// own kinetic energy: `Bᵀ M B`, where `B` maps the lean and steer rates
+    /// to the full `q̇` that keeps every constraint with the rear wheel
+    /// still (forward speed zero). It is the `M` of the equations for the
+    /// lean and steer torques, the benchmark's `M`.
+    pub fn lean_steer_mass_matrix(&self) -> Matrix2<f64> {
+        let (q, _) = self.upright(0.0, 0.0);
+        let g = self.constraint_jacobian(0.0, &q);
+        // Given: lean (3) and steer (5) rates, the rear wheel's (6) zero;
+        // solved for: x, y, yaw, pitch and the front wheel's (0, 1, 2, 4, 7).
+        let (given, solved) = ([3usize, 5], [0usize, 1, 2, 4, 7]);
+        let lu = SMatrix::<f64, 5, 5>::from_fn(|r, c| g[(r, solved[c])]).lu();
+        let mut b = SMatrix::<f64, 8, 2>::zeros();
+        for (col, &k) in given.iter().enumerate() {
+            let rhs = SVector::<f64, 5>::from_fn(|r, _| -g[(r, k)]);
+            let rates = lu
+                .solve(&rhs)
+                .expect("the constraints fix the other rates at the upright");
+            b[(k, col)] = 1.0;
+            for (i, &u) in solved.iter().enumerate() {
+                b[(u, col)] = rates[i];
+            }
+        }
+        b.transpose() * self.mass_matrix(0.0, &q) * b
     }
 
     /// The benchmark's linearized lean–steer equations about upright

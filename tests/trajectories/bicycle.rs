@@ -10,21 +10,6 @@ use lagrange::models::WhippleBicycle;
 use lagrange::nalgebra::{DMatrix, Matrix2, Matrix4, Vector4};
 use lagrange::prelude::*;
 
-/// The benchmark's state matrix for `(φ, δ, φ̇, δ̇)` at speed `v`, from its
-/// closed-form `M`, `C1`, `K0`, `K2`: `[[0, I], [−M⁻¹(g K0 + v² K2), −M⁻¹ v C1]]`.
-fn benchmark_state_matrix(bike: &WhippleBicycle<f64>, v: f64) -> Matrix4<f64> {
-    let [m, c1, k0, k2] = bike.benchmark_matrices();
-    let minv = m.try_inverse().expect("the benchmark's M is regular");
-    let k = -minv * (bike.g * k0 + v * v * k2);
-    let c = -minv * (v * c1);
-    let mut a = Matrix4::zeros();
-    a.fixed_view_mut::<2, 2>(0, 2)
-        .copy_from(&Matrix2::identity());
-    a.fixed_view_mut::<2, 2>(2, 0).copy_from(&k);
-    a.fixed_view_mut::<2, 2>(2, 2).copy_from(&c);
-    a
-}
-
 /// The closed form as transcribed (`WhippleBicycle::benchmark_matrices`)
 /// gives the matrices the paper prints (section 5.3, to 14 or 15 digits):
 /// 1e-13 of each matrix's largest entry is the last printed digit.
@@ -85,7 +70,7 @@ fn the_linearized_bicycle_is_the_benchmark() {
     let bike = WhippleBicycle::benchmark();
     let mut worst = 0.0f64;
     for v in [0.0, 1.0, 2.0, 4.0, 4.6, 5.0, 6.0, 8.0, 10.0] {
-        let (ours, theirs) = (linearized(&bike, v), benchmark_state_matrix(&bike, v));
+        let (ours, theirs) = (linearized(&bike, v), bike.benchmark_state_matrix(v));
         let error = (ours - theirs).amax() / theirs.amax();
         worst = worst.max(error);
         assert!(
@@ -94,31 +79,6 @@ fn the_linearized_bicycle_is_the_benchmark() {
         );
     }
     println!("largest relative difference from the benchmark's state matrix: {worst:e}");
-}
-
-/// The lean–steer mass matrix of the nonlinear model at the upright:
-/// `Bᵀ M B`, where `B` maps the lean and steer rates to the full `q̇` that
-/// keeps every constraint with the rear wheel not turning (forward speed
-/// zero): the mass matrix of the equations for the lean and steer torques.
-fn lean_steer_mass_matrix(bike: &WhippleBicycle<f64>) -> Matrix2<f64> {
-    let (q, _) = bike.upright(0.0, 0.0);
-    let g = bike.constraint_jacobian(0.0, &q);
-    // Known rates: lean (3), steer (5), rear wheel (6, zero); solved for:
-    // x, y, yaw, pitch, front wheel (0, 1, 2, 4, 7).
-    let (known, unknown) = ([3usize, 5], [0usize, 1, 2, 4, 7]);
-    let solve = lagrange::nalgebra::SMatrix::<f64, 5, 5>::from_fn(|r, c| g[(r, unknown[c])]).lu();
-    let mut b = lagrange::nalgebra::SMatrix::<f64, 8, 2>::zeros();
-    for (col, &k) in known.iter().enumerate() {
-        let rhs = lagrange::nalgebra::SVector::<f64, 5>::from_fn(|r, _| -g[(r, k)]);
-        let rates = solve
-            .solve(&rhs)
-            .expect("the constraints fix the other rates");
-        b[(k, col)] = 1.0;
-        for (i, &u) in unknown.iter().enumerate() {
-            b[(u, col)] = rates[i];
-        }
-    }
-    b.transpose() * bike.mass_matrix(0.0, &q) * b
 }
 
 /// `M`, `C1`, `K0` and `K2` one by one against the benchmark's, each to
@@ -134,7 +94,7 @@ fn lean_steer_mass_matrix(bike: &WhippleBicycle<f64>) -> Matrix2<f64> {
 fn the_benchmarks_m_c1_k0_k2_one_by_one() {
     let bike = WhippleBicycle::benchmark();
     let [m_ref, c1_ref, k0_ref, k2_ref] = bike.benchmark_matrices();
-    let m = lean_steer_mass_matrix(&bike);
+    let m = bike.lean_steer_mass_matrix();
     let v = 5.0;
     let (a0, av) = (linearized(&bike, 0.0), linearized(&bike, v));
     let lower = |a: &Matrix4<f64>, col: usize| a.fixed_view::<2, 2>(2, col).into_owned();
@@ -182,9 +142,9 @@ fn the_weave_and_capsize_speeds_are_the_benchmarks() {
     // The weave mode is the complex pair: the growth of the largest real
     // part between 3 and 5 m/s; capsize, the real mode, between 5.5 and 7.
     let ours_weave = crossing(3.0, 5.0, |v| growth(&linearized(&bike, v)));
-    let theirs_weave = crossing(3.0, 5.0, |v| growth(&benchmark_state_matrix(&bike, v)));
+    let theirs_weave = crossing(3.0, 5.0, |v| growth(&bike.benchmark_state_matrix(v)));
     let ours_capsize = crossing(5.5, 7.0, |v| growth(&linearized(&bike, v)));
-    let theirs_capsize = crossing(5.5, 7.0, |v| growth(&benchmark_state_matrix(&bike, v)));
+    let theirs_capsize = crossing(5.5, 7.0, |v| growth(&bike.benchmark_state_matrix(v)));
     for (what, ours, theirs, published) in [
         ("weave", ours_weave, theirs_weave, 4.29238253634111),
         ("capsize", ours_capsize, theirs_capsize, 6.02426201538837),
@@ -215,7 +175,7 @@ fn released(bike: &WhippleBicycle<f64>, v: f64, phi0: f64, end: f64) -> (f64, f6
         .atol(1e-13)
         .integrate(bike, 0.0, q, qdot, &times)
         .expect("the run completes");
-    let a = benchmark_state_matrix(bike, v);
+    let a = bike.benchmark_state_matrix(v);
     let x0 = Vector4::new(phi0, 0.0, 0.0, 0.0);
     let (mut off, mut late) = (0.0f64, 0.0f64);
     for s in run.iter() {
@@ -250,7 +210,7 @@ fn a_released_lean_follows_the_linear_motion_decaying_at_5_m_s_and_growing_at_3_
         let (off, late, energy) = released(&bike, v, phi0, end);
         let (off_half, _, _) = released(&bike, v, phi0 / 2.0, end);
         let ratio = off / off_half;
-        let rate = growth(&benchmark_state_matrix(&bike, v));
+        let rate = growth(&bike.benchmark_state_matrix(v));
         println!(
             "v = {v} m/s: growth rate {rate:.4} /s, largest lean in the last quarter of {end} s {late:.3e} rad, \
              off the linear motion by {off:.2e} (by {off_half:.2e} from half the lean: ratio {ratio:.2}), energy drift {energy:.1e}"
@@ -283,6 +243,6 @@ fn a_released_lean_follows_the_linear_motion_decaying_at_5_m_s_and_growing_at_3_
 fn the_reduction_holds_at_the_capsize_speed_itself() {
     let bike = WhippleBicycle::benchmark();
     let v = 6.02426201650087;
-    let (ours, theirs) = (linearized(&bike, v), benchmark_state_matrix(&bike, v));
+    let (ours, theirs) = (linearized(&bike, v), bike.benchmark_state_matrix(v));
     assert!((ours - theirs).amax() < 1e-10 * theirs.amax());
 }

@@ -85,6 +85,26 @@ fn the_quaternion_top_is_the_euler_angle_top_away_from_the_pole() {
     assert!(worst < 1e-10, "the rotations differ by {worst:e} rad");
 }
 
+/// The start of the motion through the pole: tilted by 0.5 rad, spinning at
+/// `ω3 = 5` with `L_z = L_3` (`φ̇ = p (1 − cos θ) / (A sin² θ)`, `p = C ω3`),
+/// and a nutation rate of −2 rad/s: in Euler angles and in quaternions, and
+/// `p`.
+#[allow(clippy::type_complexity)]
+fn through_the_pole() -> (
+    (SVector<f64, 3>, SVector<f64, 3>),
+    (Vector4<f64>, Vector4<f64>),
+    f64,
+) {
+    let [a, c, ..] = TOP;
+    let theta0 = 0.5f64;
+    let omega3 = 5.0;
+    let p = c * omega3;
+    let phid = p * (1.0 - theta0.cos()) / (a * theta0.sin().powi(2));
+    let e0 = SVector::<f64, 3>::new(0.0, theta0, 0.0);
+    let rates0 = SVector::<f64, 3>::new(phid, -2.0, omega3 - phid * theta0.cos());
+    ((e0, rates0), quaternion_state(&e0, &rates0), p)
+}
+
 /// Through the pole: with `L_z = L_3` the symmetry axis swings straight
 /// through the vertical (`θ = 0`), where `φ̇` and `ψ̇` of the Euler angles
 /// are not determined by the motion alone (`M` singular there). Started
@@ -101,14 +121,7 @@ fn the_quaternion_top_is_the_euler_angle_top_away_from_the_pole() {
 /// samples before returned.
 #[test]
 fn the_quaternion_top_swings_through_the_pole_where_euler_angles_fail() {
-    let [a, c, ..] = TOP;
-    let theta0 = 0.5f64;
-    let omega3 = 5.0;
-    let p = c * omega3;
-    let phid = p * (1.0 - theta0.cos()) / (a * theta0.sin().powi(2));
-    let e0 = SVector::<f64, 3>::new(0.0, theta0, 0.0);
-    let rates0 = SVector::<f64, 3>::new(phid, -2.0, omega3 - phid * theta0.cos());
-    let (q0, v0) = quaternion_state(&e0, &rates0);
+    let ((e0, rates0), (q0, v0), p) = through_the_pole();
     let times: Vec<f64> = (1..=1000).map(|k| 0.01 * k as f64).collect();
 
     let top = quaternion_top();
@@ -169,14 +182,7 @@ fn the_quaternion_top_swings_through_the_pole_where_euler_angles_fail() {
 /// variational integrator at step `h` on the motion through the pole
 /// (10 s), and the energy's over the first 5 s alone.
 fn variational_through_the_pole(h: f64) -> ([f64; 3], f64) {
-    let [a, c, ..] = TOP;
-    let theta0 = 0.5f64;
-    let omega3 = 5.0;
-    let p = c * omega3;
-    let phid = p * (1.0 - theta0.cos()) / (a * theta0.sin().powi(2));
-    let e0 = SVector::<f64, 3>::new(0.0, theta0, 0.0);
-    let rates0 = SVector::<f64, 3>::new(phid, -2.0, omega3 - phid * theta0.cos());
-    let (q0, v0) = quaternion_state(&e0, &rates0);
+    let (_, (q0, v0), _) = through_the_pole();
     let times: Vec<f64> = (1..=1000).map(|k| 0.01 * k as f64).collect();
     let top = quaternion_top();
     let start = top.invariants(&q0, &v0);

@@ -118,7 +118,8 @@ mod walk;
 ///
 /// The state handed in and out is `(q, q̇)`: `p_0 = ∂L/∂q̇(t_0, q_0, q̇_0)`,
 /// and at each sample `q̇ = M(t, q)⁻¹ (p − ∂L/∂q̇(t, q, 0))`, exact for any
-/// Lagrangian quadratic in `q̇` (those `lagrangian!` derives: `M = ∂²T/∂q̇²`).
+/// Lagrangian quadratic in `q̇` (those `lagrangian!` derives: `M = ∂²T/∂q̇²`);
+/// `M + k GᵀG` in place of `M` for a model stepped as `L + (k/2)|φ̇|²`.
 ///
 /// ```
 /// use lagrange_runtime::Variational;
