@@ -331,3 +331,36 @@ fn deeply_nested_roots_are_written_as_text_in_linear_time() {
     let text = derive(model, DEFAULT_BUDGET).expect("the model derives");
     assert_eq!(text.matches("sqrt(").count(), depth, "{text}");
 }
+
+/// A sum over the longest range allowed (10 000 terms, in a `let` that the
+/// equations do not use, so that it stays within the budget) expands into
+/// code of bounded nesting: written as one chain `a + b + …`, rustc parsed
+/// it into a tree 10 000 deep and overflowed its stack (an internal
+/// compiler error; found by the fuzzer on a mutation of
+/// `tests/models/vectors.rs`), and so did syn on rustc's 8 MiB. The sum is
+/// now written in pieces of 128 terms, each added to the partial sum of
+/// the previous ones (the same additions in the same order). Checked by
+/// parsing the expansion as Rust on a quarter of rustc's stack.
+#[test]
+fn a_sum_over_the_longest_range_expands_to_code_rustc_can_parse() {
+    let source = "pub struct LongSum {
+        coordinates: x;
+        parameters: c;
+        let s = sum(i in 0..10000, (i + 1)*sin(i*c + x));
+        kinetic: dot(x)^2/2;
+        potential: x^2/2;
+    }";
+    let parsed = std::thread::Builder::new()
+        .stack_size(STACK)
+        .spawn(move || {
+            let tokens: proc_macro2::TokenStream = source.parse().expect("the model lexes");
+            let output = lagrange_engine::expand(tokens);
+            let text = output.to_string();
+            assert!(!text.contains("compile_error"), "the model expands");
+            syn::parse2::<syn::File>(output).is_ok()
+        })
+        .expect("a thread")
+        .join()
+        .expect("no panic");
+    assert!(parsed, "the expansion is Rust items");
+}

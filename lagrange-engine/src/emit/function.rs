@@ -44,6 +44,9 @@ struct FnEmitter<'a> {
     fma: Option<Ident>,
 }
 
+/// The most terms written in one chain `a + b + …` (see `inline`).
+const SUM_PIECE: usize = 128;
+
 impl<'a> FnEmitter<'a> {
     fn new(pool: &'a Pool, namer: &Namer, roots: &[ExprId]) -> Self {
         let sched = schedule(pool, roots);
@@ -209,9 +212,22 @@ impl<'a> FnEmitter<'a> {
         match self.pool.node(id).clone() {
             Node::Num(_) | Node::Sym(_) => (self.operand(id, Prec::Sum), Prec::Atom),
             Node::Add(xs) => {
+                // A long sum is written in pieces of at most `SUM_PIECE`
+                // terms, each added to the previous ones' partial sum bound
+                // to a local: rustc parses `a + b + …` into a tree as deep as
+                // the sum is long and overflows its stack on some ten
+                // thousand terms (a `sum` over a long range). The order of
+                // the additions, and so every rounding, is the same.
+                let partial = (xs.len() > SUM_PIECE).then(|| self.namer.fresh("partial", true));
+                let mut pieces = TokenStream::new();
                 let mut out = TokenStream::new();
                 let mut fused = false;
                 for (k, &x) in xs.iter().enumerate() {
+                    if let Some(partial) = partial.as_ref().filter(|_| k > 0 && k % SUM_PIECE == 0)
+                    {
+                        pieces.extend(quote!(let #partial = #out;));
+                        out = quote!(#partial);
+                    }
                     if k > 0 {
                         if let Some((c, factors)) = fused_term(self.pool, x) {
                             let (head, last) = factors.split_at(factors.len() - 1);
@@ -245,6 +261,9 @@ impl<'a> FnEmitter<'a> {
                         (_, true) => quote!(- #term),
                     });
                     fused = false;
+                }
+                if partial.is_some() {
+                    return (quote!({ #pieces #out }), Prec::Atom);
                 }
                 (out, if fused { Prec::Atom } else { Prec::Sum })
             }
