@@ -18,15 +18,19 @@
 //! Writes `docs/bicycle/eigenvalues.svg`: the eigenvalues against speed,
 //! ours over the benchmark's.
 
+#[path = "../../tests/support/stability.rs"]
+mod stability;
+
 #[path = "scaling/engine.rs"]
 #[allow(dead_code)]
 mod engine;
 
 use lagrange::analysis::linearize_steady_motion;
 use lagrange::models::WhippleBicycle;
-use lagrange::nalgebra::{DMatrix, Matrix2, Matrix4, Vector4};
+use lagrange::nalgebra::{Matrix2, Matrix4, Vector4};
 use lagrange::prelude::*;
 use plotters::prelude::*;
+use stability::{crossing, eigenvalues, growth};
 use std::error::Error;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -49,38 +53,6 @@ fn linearized(bike: &WhippleBicycle<f64>, v: f64) -> Result<Matrix4<f64>, Box<dy
     let (q, qdot) = bike.upright(0.0, v);
     let lin = linearize_steady_motion(bike, 0.0, &q, &qdot, &["phi", "delta"], &["phi", "delta"])?;
     Ok(Matrix4::from_iterator(lin.state_matrix.iter().copied()))
-}
-
-/// Eigenvalues, sorted by real part then imaginary part.
-fn eigenvalues(a: &Matrix4<f64>) -> Vec<(f64, f64)> {
-    let mut e: Vec<(f64, f64)> = DMatrix::from_iterator(4, 4, a.iter().copied())
-        .complex_eigenvalues()
-        .iter()
-        .map(|l| (l.re, l.im))
-        .collect();
-    e.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-    e
-}
-
-fn growth(a: &Matrix4<f64>) -> f64 {
-    eigenvalues(a)
-        .iter()
-        .map(|e| e.0)
-        .fold(f64::NEG_INFINITY, f64::max)
-}
-
-/// Where `f` changes sign in `lo..hi`, by bisection.
-fn crossing(mut lo: f64, mut hi: f64, f: impl Fn(f64) -> f64) -> f64 {
-    let flo = f(lo);
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if (f(mid) > 0.0) == (flo > 0.0) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
 }
 
 fn main() -> Result<(), Box<dyn Error>> {

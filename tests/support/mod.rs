@@ -7,3 +7,4 @@ pub mod closed_form;
 pub mod elliptic;
 pub mod fit;
 pub mod reference;
+pub mod stability;

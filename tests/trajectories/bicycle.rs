@@ -5,9 +5,10 @@
 //! closed-form `M`, `C1`, `K0`, `K2`, the weave and capsize speeds, and
 //! nonlinear runs against the linear motion.
 
+use crate::support::stability::{crossing, growth};
 use lagrange::analysis::linearize_steady_motion;
 use lagrange::models::WhippleBicycle;
-use lagrange::nalgebra::{DMatrix, Matrix2, Matrix4, Vector4};
+use lagrange::nalgebra::{Matrix2, Matrix4, Vector4};
 use lagrange::prelude::*;
 
 /// The closed form as transcribed (`WhippleBicycle::benchmark_matrices`)
@@ -48,15 +49,6 @@ fn linearized(bike: &WhippleBicycle<f64>, v: f64) -> Matrix4<f64> {
         .unwrap_or_else(|e| panic!("upright running at {v} m/s is steady in lean and steer: {e}"));
     assert_eq!(lin.states, ["phi", "delta", "dot(phi)", "dot(delta)"]);
     Matrix4::from_iterator(lin.state_matrix.iter().copied())
-}
-
-/// The largest real part among the eigenvalues of `a`.
-fn growth(a: &Matrix4<f64>) -> f64 {
-    DMatrix::from_iterator(4, 4, a.iter().copied())
-        .complex_eigenvalues()
-        .iter()
-        .map(|l| l.re)
-        .fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// The linearization equals the benchmark's, entry by entry, at speeds
@@ -111,21 +103,6 @@ fn the_benchmarks_m_c1_k0_k2_one_by_one() {
         println!("{name}: relative difference {error:.1e}");
         assert!(error < 1e-10, "{name}: {ours} against {theirs}");
     }
-}
-
-/// The speed in `lo..hi` where `f` changes sign, by bisection to the last
-/// bits.
-fn crossing(mut lo: f64, mut hi: f64, f: impl Fn(f64) -> f64) -> f64 {
-    let (flo, _) = (f(lo), f(hi));
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if (f(mid) > 0.0) == (flo > 0.0) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
 }
 
 /// The weave speed (where the oscillating mode turns stable) and the

@@ -86,13 +86,7 @@ impl Lowering {
                 Value::Vector(self.cross(&a, &b))
             }
             "rotate" => {
-                let q = vector_arg(
-                    name,
-                    &args[0],
-                    &values[0],
-                    Some(4),
-                    "the quaternion `(w, x, y, z)`",
-                )?;
+                let q = quaternion_arg(name, &args[0], &values[0])?;
                 let v = vector_arg(name, &args[1], &values[1], Some(3), "the vector it rotates")?;
                 // v + 2w (u × v) + 2 u × (u × v), u = (x, y, z): the rotation
                 // of a unit quaternion (a constraint keeps |q| = 1).
@@ -138,13 +132,7 @@ impl Lowering {
                 Value::Vector(out)
             }
             "body_rates" | "space_rates" => {
-                let q = vector_arg(
-                    name,
-                    &args[0],
-                    &values[0],
-                    Some(4),
-                    "the quaternion `(w, x, y, z)`",
-                )?;
+                let q = quaternion_arg(name, &args[0], &values[0])?;
                 let qd = q
                     .iter()
                     .map(|&x| self.time_derivative(x, range))
@@ -263,6 +251,11 @@ fn vector_arg(
             .range()
             .error(format!("`{name}` takes a vector; this is {}", describe(v)))),
     }
+}
+
+/// The quaternion `(w, x, y, z)` that `name` takes first.
+fn quaternion_arg(name: &str, arg: &Expr, value: &Value) -> syn::Result<Vec<ExprId>> {
+    vector_arg(name, arg, value, Some(4), "the quaternion `(w, x, y, z)`")
 }
 
 /// The two arguments of `name`, vectors of one length.
