@@ -23,6 +23,7 @@ const LAYERS: &[&str] = &[
     "driver",      // the run loops, recording, validation
     "integrators", // one method per file
     "stepper",     // frame by frame
+    "contact",     // contacts and friction: modes switched at events
     "analysis",    // small motions
     "export",      // results out
     "interop",     // other crates' solvers

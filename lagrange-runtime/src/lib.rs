@@ -277,6 +277,7 @@
 
 pub mod analysis;
 pub mod constraints;
+pub mod contact;
 mod driver;
 pub mod dynamics;
 pub mod error;

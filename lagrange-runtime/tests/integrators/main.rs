@@ -10,6 +10,7 @@ mod allocations;
 mod analysis;
 mod clock;
 mod constraints;
+mod contact;
 mod dop853;
 mod euler_methods;
 mod events;

@@ -8,6 +8,7 @@
 mod breaking;
 mod cart_pole;
 mod constrained;
+mod contact;
 mod elastic_pendulum;
 mod light_joint;
 mod oscillators;
@@ -17,6 +18,7 @@ mod without;
 pub use breaking::{BlowUp, ExponentialWell, ForcingBreaksDown, InertiaVanishes};
 pub use cart_pole::CartPole;
 pub use constrained::{CartesianPendulum, ParallelAtOne, VanishingGradient};
+pub use contact::{Ladder, OnSphere};
 pub use elastic_pendulum::ElasticPendulum;
 pub use light_joint::LightJoint;
 pub use oscillators::{CoupledOscillator, DrivenOscillator};

@@ -1,0 +1,453 @@
+//! The decisions at a switch: the impact of the touching contacts, which
+//! of them push, stick or slide afterwards (one complementarity problem
+//! each), and the state projected back onto them.
+
+use nalgebra::{ComplexField, DMatrix, DVector, RealField, SMatrix, SVector};
+
+use super::lcp::lemke;
+use super::phase::{normal_direction, Terms};
+use super::{Cause, ContactError, ContactLaw, ContactSettings, Contacts, Mode, Switch};
+
+/// One touching contact's unknowns in a complementarity problem: a normal
+/// force along a known direction (frictionless, or sliding with known
+/// friction), or a normal force with the planar friction cone of
+/// coefficient `mu` (four unknowns: `N`, `β⁺`, `β⁻`, `σ`).
+#[derive(Clone, Copy)]
+enum Entry<S> {
+    Normal { contact: usize, mode: Mode },
+    Cone { contact: usize, mu: S },
+}
+
+/// The solution of a contact complementarity problem: per contact, its
+/// normal force (or impulse), its friction force, and for a cone whether
+/// it slips and which way; and `M⁻¹ Dᵀ z`, the change it makes.
+struct Solution<S: RealField + Copy, const N: usize, const K: usize> {
+    normal: SVector<S, K>,
+    friction: SVector<S, K>,
+    /// For a cone entry: `Some(forward)` where it slips, `None` where it
+    /// sticks.
+    slips: [Option<bool>; K],
+    change: SVector<S, N>,
+}
+
+/// Solves `w = A z + b ≥ 0, z ≥ 0, zᵀ w = 0` for `entries`, where the
+/// normal rows' base values are `base_n` (gap rates or accelerations with
+/// no contact force) and the tangential ones' `base_t`.
+fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
+    terms: &Terms<S, N, K>,
+    laws: &[ContactLaw<S>; K],
+    entries: &[Entry<S>],
+    base_n: &SVector<S, K>,
+    base_t: &SVector<S, K>,
+) -> Result<Option<Solution<S, N, K>>, ()> {
+    // Columns: (force direction, row vector whose product with the
+    // change is this column's row's own term, sign of that product).
+    struct Column<S: RealField + Copy, const N: usize> {
+        direction: Option<SVector<S, N>>,
+        row: Option<(SVector<S, N>, S)>,
+        base: S,
+    }
+    let mut columns: Vec<Column<S, N>> = Vec::new();
+    // For a cone at column c: its σ couples c+1, c+2 (β±) and c+3 (σ).
+    let mut cones = Vec::new();
+    for entry in entries {
+        match *entry {
+            Entry::Normal { contact, mode } => columns.push(Column {
+                direction: Some(normal_direction(
+                    terms,
+                    contact,
+                    mode,
+                    laws[contact].kinetic_friction,
+                )),
+                row: Some((terms.g.row(contact).transpose(), S::one())),
+                base: base_n[contact],
+            }),
+            Entry::Cone { contact, mu } => {
+                let (g, t) = (
+                    terms.g.row(contact).transpose(),
+                    terms.t.row(contact).transpose(),
+                );
+                cones.push((columns.len(), mu));
+                columns.push(Column {
+                    direction: Some(g),
+                    row: Some((g, S::one())),
+                    base: base_n[contact],
+                });
+                columns.push(Column {
+                    direction: Some(t),
+                    row: Some((t, S::one())),
+                    base: base_t[contact],
+                });
+                columns.push(Column {
+                    direction: Some(-t),
+                    row: Some((t, -S::one())),
+                    base: -base_t[contact],
+                });
+                columns.push(Column {
+                    direction: None,
+                    row: None,
+                    base: S::zero(),
+                });
+            }
+        }
+    }
+    let m = columns.len();
+    if m == 0 {
+        return Ok(None);
+    }
+    let mut responses = Vec::with_capacity(m);
+    for c in &columns {
+        responses.push(match &c.direction {
+            Some(d) => Some(terms.solve(d).ok_or(())?),
+            None => None,
+        });
+    }
+    let mut a = DMatrix::zeros(m, m);
+    let mut b = DVector::zeros(m);
+    for (r, col) in columns.iter().enumerate() {
+        b[r] = col.base;
+        if let Some((w, sign)) = &col.row {
+            for (c, response) in responses.iter().enumerate() {
+                if let Some(response) = response {
+                    a[(r, c)] = w.dot(response) * *sign;
+                }
+            }
+        }
+    }
+    for &(c, mu) in &cones {
+        // β± rows: σ ± a_t; σ row: μ N − β⁺ − β⁻.
+        a[(c + 1, c + 3)] = S::one();
+        a[(c + 2, c + 3)] = S::one();
+        a[(c + 3, c)] = mu;
+        a[(c + 3, c + 1)] = -S::one();
+        a[(c + 3, c + 2)] = -S::one();
+    }
+    let z = lemke(&a, &b).map_err(|_| ())?;
+    let mut solution = Solution {
+        normal: SVector::zeros(),
+        friction: SVector::zeros(),
+        slips: [None; K],
+        change: SVector::zeros(),
+    };
+    for (c, response) in responses.iter().enumerate() {
+        if let Some(response) = response {
+            solution.change += response * z[c];
+        }
+    }
+    let mut c = 0;
+    for entry in entries {
+        match *entry {
+            Entry::Normal { contact, mode } => {
+                solution.normal[contact] = z[c];
+                if let Mode::Sliding { forward } = mode {
+                    let f = laws[contact].kinetic_friction * z[c];
+                    solution.friction[contact] = if forward { -f } else { f };
+                }
+                c += 1;
+            }
+            Entry::Cone { contact, .. } => {
+                solution.normal[contact] = z[c];
+                solution.friction[contact] = z[c + 1] - z[c + 2];
+                if z[c + 3] > S::zero() {
+                    // Slipping: friction at the cone's edge against it.
+                    solution.slips[contact] = Some(z[c + 2] > z[c + 1]);
+                }
+                c += 4;
+            }
+        }
+    }
+    Ok(Some(solution))
+}
+
+/// Which contacts touch: a gap within the tolerance.
+pub(crate) fn touching<L, const N: usize, const K: usize>(
+    model: &L,
+    settings: &ContactSettings<L::Scalar>,
+    t: L::Scalar,
+    q: &SVector<L::Scalar, N>,
+) -> [bool; K]
+where
+    L: Contacts<N, K>,
+{
+    let gaps = model.gaps(t, q);
+    core::array::from_fn(|i| gaps[i] <= settings.gap_tolerance)
+}
+
+/// The modes after a decision at `(t, q, q̇)`: every touching contact at
+/// rest along its normal decided together, `forced` (a contact and its
+/// mode, from its own event) taken as given.
+pub(crate) fn modes<L, const N: usize, const K: usize>(
+    model: &L,
+    settings: &ContactSettings<L::Scalar>,
+    (t, q, qdot): (L::Scalar, &SVector<L::Scalar, N>, &SVector<L::Scalar, N>),
+    forced: Option<(usize, Mode)>,
+) -> Result<[Mode; K], ContactError<L::Scalar, N>>
+where
+    L: Contacts<N, K>,
+{
+    let laws = model.laws();
+    let touch = touching(model, settings, t, q);
+    let rate = model.gap_velocities(t, q, qdot);
+    let slip = model.slip_velocities(t, q, qdot);
+    let terms = Terms::new(model, t, q, qdot).ok_or(ContactError::DependentContacts {
+        t,
+        q: *q,
+        qdot: *qdot,
+    })?;
+    let free = terms
+        .solve(&terms.forcing)
+        .ok_or(ContactError::DependentContacts {
+            t,
+            q: *q,
+            qdot: *qdot,
+        })?;
+    let base_n = terms.g * free + terms.gamma;
+    let base_t = terms.t * free + terms.gamma_t;
+    let mut entries = Vec::new();
+    for i in 0..K {
+        match forced {
+            Some((j, Mode::Open)) if j == i => continue,
+            Some((j, mode)) if j == i => {
+                entries.push(Entry::Normal { contact: i, mode });
+                continue;
+            }
+            _ => {}
+        }
+        if !touch[i] || rate[i].abs() > settings.velocity_tolerance {
+            continue;
+        }
+        let entry = if !laws[i].has_friction() {
+            Entry::Normal {
+                contact: i,
+                mode: Mode::Closed,
+            }
+        } else if slip[i].abs() <= settings.velocity_tolerance {
+            Entry::Cone {
+                contact: i,
+                mu: laws[i].static_friction,
+            }
+        } else {
+            Entry::Normal {
+                contact: i,
+                mode: Mode::Sliding {
+                    forward: slip[i] > nalgebra::zero::<L::Scalar>(),
+                },
+            }
+        };
+        entries.push(entry);
+    }
+    let no_mode = ContactError::NoConsistentMode {
+        t,
+        q: *q,
+        qdot: *qdot,
+        at_impact: false,
+    };
+    let solution =
+        complementarity(&terms, &laws, &entries, &base_n, &base_t).map_err(|()| no_mode)?;
+    let mut modes = [Mode::Open; K];
+    if let Some(solution) = solution {
+        for entry in &entries {
+            let (i, mode) = match *entry {
+                Entry::Normal { contact, mode } => (contact, mode),
+                Entry::Cone { contact, .. } => (
+                    contact,
+                    match solution.slips[contact] {
+                        Some(forward) => Mode::Sliding { forward },
+                        None => Mode::Stuck,
+                    },
+                ),
+            };
+            if solution.normal[i] > nalgebra::zero::<L::Scalar>() {
+                modes[i] = mode;
+            }
+        }
+    }
+    Ok(modes)
+}
+
+/// An impact of the touching contacts at `(t, q, q̇⁻)`: the velocities
+/// after it, and per contact the impulses `(normal, tangential)` and
+/// whether its rebound was too short to resolve (made plastic). `None`
+/// where nothing approaches.
+#[allow(clippy::type_complexity)]
+pub(crate) fn impact<L, const N: usize, const K: usize>(
+    model: &L,
+    settings: &ContactSettings<L::Scalar>,
+    (t, q, qdot): (L::Scalar, &SVector<L::Scalar, N>, &SVector<L::Scalar, N>),
+) -> Result<
+    Option<(SVector<L::Scalar, N>, [(L::Scalar, L::Scalar); K], bool)>,
+    ContactError<L::Scalar, N>,
+>
+where
+    L: Contacts<N, K>,
+{
+    let laws = model.laws();
+    let touch = touching(model, settings, t, q);
+    let rate = model.gap_velocities(t, q, qdot);
+    if !(0..K).any(|i| touch[i] && rate[i] < -settings.velocity_tolerance) {
+        return Ok(None);
+    }
+    let dependent = ContactError::DependentContacts {
+        t,
+        q: *q,
+        qdot: *qdot,
+    };
+    let terms = Terms::new(model, t, q, qdot).ok_or(dependent.clone())?;
+    let slip = model.slip_velocities(t, q, qdot);
+    let entries: Vec<Entry<L::Scalar>> = (0..K)
+        .filter(|&i| touch[i])
+        .map(|i| {
+            if laws[i].has_friction() {
+                Entry::Cone {
+                    contact: i,
+                    mu: laws[i].kinetic_friction,
+                }
+            } else {
+                Entry::Normal {
+                    contact: i,
+                    mode: Mode::Closed,
+                }
+            }
+        })
+        .collect();
+    let no_mode = ContactError::NoConsistentMode {
+        t,
+        q: *q,
+        qdot: *qdot,
+        at_impact: true,
+    };
+    let plastic = complementarity(&terms, &laws, &entries, &rate, &slip)
+        .map_err(|()| no_mode)?
+        .ok_or(dependent.clone())?;
+    let one = nalgebra::one::<L::Scalar>();
+    let e = (0..K)
+        .filter(|&i| plastic.normal[i] > nalgebra::zero::<L::Scalar>())
+        .map(|i| laws[i].restitution)
+        .fold(one, |a, b| a.min(b));
+    let after = |e: L::Scalar| qdot + plastic.change * (one + e);
+    let mut e = e;
+    let mut velocity = after(e);
+    let mut settled = false;
+    if e > nalgebra::zero::<L::Scalar>() {
+        // A rebound too short to resolve: its flight 2 ġ⁺ / |g̈|, with the
+        // contacts open, below the shortest flight.
+        let rebound = model.gap_velocities(t, q, &velocity);
+        let (m, f) = model.mass_matrix_and_forcing(t, q, &velocity);
+        let terms_after = Terms::with(model, (t, q, &velocity), &m, f).ok_or(dependent.clone())?;
+        let free = terms_after.solve(&terms_after.forcing).ok_or(dependent)?;
+        let fall = terms_after.g * free + terms_after.gamma;
+        let two = one + one;
+        settled = (0..K).any(|i| {
+            plastic.normal[i] > nalgebra::zero::<L::Scalar>()
+                && rebound[i] > nalgebra::zero::<L::Scalar>()
+                && fall[i] < nalgebra::zero::<L::Scalar>()
+                && two * rebound[i] < settings.shortest_flight * -fall[i]
+        });
+        if settled {
+            e = nalgebra::zero::<L::Scalar>();
+            velocity = after(e);
+        }
+    }
+    let impulses = core::array::from_fn(|i| {
+        (
+            plastic.normal[i] * (one + e),
+            plastic.friction[i] * (one + e),
+        )
+    });
+    Ok(Some((velocity, impulses, settled)))
+}
+
+/// The state projected onto the touching contacts of `modes`: a few Newton
+/// steps on `g = 0` and one on `ġ = 0` (and `v_t = 0` for stuck ones), each
+/// the least change in the metric of `M`.
+pub(crate) fn project<L, const N: usize, const K: usize>(
+    model: &L,
+    modes: &[Mode; K],
+    t: L::Scalar,
+    (mut q, mut qdot): (SVector<L::Scalar, N>, SVector<L::Scalar, N>),
+) -> Option<(SVector<L::Scalar, N>, SVector<L::Scalar, N>)>
+where
+    L: Contacts<N, K>,
+{
+    let touching: Vec<usize> = (0..K).filter(|&i| modes[i].touching()).collect();
+    if touching.is_empty() {
+        return Some((q, qdot));
+    }
+    let correct = |rows: &[SVector<L::Scalar, N>],
+                   residual: &DVector<L::Scalar>,
+                   m: &SMatrix<L::Scalar, N, N>|
+     -> Option<SVector<L::Scalar, N>> {
+        let factor = crate::linalg::solve::factor_mass_matrix(m).ok()?;
+        let responses: Vec<SVector<L::Scalar, N>> = rows
+            .iter()
+            .map(|r| factor.solve(r).ok())
+            .collect::<Option<_>>()?;
+        let k = rows.len();
+        let a = DMatrix::from_fn(k, k, |i, j| rows[i].dot(&responses[j]));
+        let y = a.lu().solve(residual)?;
+        let mut dx = SVector::zeros();
+        for j in 0..k {
+            dx -= responses[j] * y[j];
+        }
+        Some(dx)
+    };
+    for _ in 0..3 {
+        let gaps = model.gaps(t, &q);
+        let residual = DVector::from_iterator(touching.len(), touching.iter().map(|&i| gaps[i]));
+        if residual.iter().all(|g| *g == nalgebra::zero::<L::Scalar>()) {
+            break;
+        }
+        let g = model.gap_jacobian(t, &q);
+        let rows: Vec<_> = touching.iter().map(|&i| g.row(i).transpose()).collect();
+        q += correct(&rows, &residual, &model.mass_matrix(t, &q))?;
+    }
+    let g = model.gap_jacobian(t, &q);
+    let tt = model.slip_jacobian(t, &q);
+    let rate = model.gap_velocities(t, &q, &qdot);
+    let slip = model.slip_velocities(t, &q, &qdot);
+    let mut rows = Vec::new();
+    let mut residual = Vec::new();
+    for &i in &touching {
+        rows.push(g.row(i).transpose());
+        residual.push(rate[i]);
+        if modes[i] == Mode::Stuck {
+            rows.push(tt.row(i).transpose());
+            residual.push(slip[i]);
+        }
+    }
+    let residual = DVector::from_vec(residual);
+    qdot += correct(&rows, &residual, &model.mass_matrix(t, &q))?;
+    Some((q, qdot))
+}
+
+/// Appends a switch for every contact whose mode changed, and for every
+/// contact with an impulse.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn record<S: RealField + Copy, const N: usize, const K: usize>(
+    switches: &mut Vec<Switch<S, N>>,
+    names: &[&'static str; K],
+    (t, q, qdot): (S, SVector<S, N>, SVector<S, N>),
+    (from, to): (&[Mode; K], &[Mode; K]),
+    causes: impl Fn(usize) -> Cause,
+    impulses: Option<&[(S, S); K]>,
+    energy_lost: S,
+) {
+    for i in 0..K {
+        let impulse = impulses.map_or((S::zero(), S::zero()), |p| p[i]);
+        let struck = impulse.0 != S::zero();
+        if from[i] != to[i] || struck {
+            switches.push(Switch {
+                t,
+                contact: i,
+                name: names[i],
+                from: from[i],
+                to: to[i],
+                cause: causes(i),
+                impulse,
+                energy_lost: if struck { energy_lost } else { S::zero() },
+                q,
+                qdot,
+            });
+        }
+    }
+}

@@ -1,0 +1,460 @@
+//! Contacts that open and close, and friction that sticks: unilateral
+//! constraints `g(t, q) ≥ 0` and planar Coulomb friction, with every switch
+//! located as an event.
+//!
+//! A model with contacts implements [`Contacts<N, K>`]: for each of its `K`
+//! contacts a gap `g(t, q)`, non-negative while the bodies are apart, with
+//! its Jacobian and the bias of its acceleration (as a holonomic
+//! constraint has), optionally a slip velocity `v_t = T(t, q) q̇ + b` along
+//! which friction acts, and its [`ContactLaw`]: restitution, static and
+//! kinetic friction coefficients. [`integrate`] runs it with any
+//! [`Integrator`](crate::integrators::Integrator) through the one run loop: the
+//! contacts' state (their [`Mode`]s) is discrete, it changes only at
+//! events, and between events the model is integrated with the closed
+//! contacts as equality constraints and the sliding ones' friction as known
+//! forces.
+//!
+//! # Modes and switches
+//!
+//! Each contact is [`Open`](Mode::Open) (no force), [`Closed`](Mode::Closed)
+//! (touching, frictionless: a normal force `N ≥ 0` keeps `g̈ = 0`),
+//! [`Sliding`](Mode::Sliding) (touching and slipping: `N ≥ 0` and the
+//! friction force `−μ_k N sign(v_t)`), or [`Stuck`](Mode::Stuck) (touching
+//! and not slipping: `N ≥ 0` and a friction force `F` that keeps `v̇_t = 0`,
+//! as long as `|F| ≤ μ_s N`). The mode changes where:
+//!
+//! | event | function, located by the run's event search | then |
+//! |---|---|---|
+//! | arrival | `g` falling through 0 (an open contact) | an impact, then a new decision |
+//! | release | `N` falling through 0 (a touching contact) | the contact opens (and the others are decided again) |
+//! | slide stop | `sign(v_t) v_t` falling through 0 (a sliding contact) | stick or slide back, decided |
+//! | stick limit | `μ_s N − |F|` falling through 0 (a stuck contact) | it slides, in the direction its friction force was holding |
+//!
+//! Every switch is located to the events' time tolerance on the step's
+//! interpolant (see [`events`](crate::events)), so a contact opens where its
+//! normal force reaches zero and a sliding body sticks where its slip
+//! velocity does, to that tolerance and the integrator's own error.
+//!
+//! # Several contacts at once: a complementarity problem
+//!
+//! Which touching contacts push, and which stick or slide, is not decided
+//! contact by contact: at every switch, all touching contacts are decided
+//! together by one linear complementarity problem at the level of the
+//! accelerations (for each contact `N ≥ 0`, `g̈ ≥ 0`, `N g̈ = 0`; for each
+//! sticking candidate the planar friction cone as two complementary pairs
+//! and a slip rate, the classic formulation of Trinkle, Pang, Sudarsky and
+//! Lo), solved by Lemke's complementary pivoting. Where it has no solution
+//! (friction makes the problem inconsistent: Painlevé's paradox), the run
+//! ends with [`ContactError::NoConsistentMode`], at that time and state.
+//! A contact forced by its own event (a release, a stick limit) takes the
+//! mode the event says, and the others are decided around it.
+//!
+//! # Impacts
+//!
+//! A contact arriving with `ġ < 0` makes all touching contacts collide at
+//! once. The impulse `P` is the plastic one, decided by the same
+//! complementarity at the level of velocities (no contact approaching after
+//! it, friction impulses within the cone `μ_k P_n`), and the velocity after
+//! the impact is `v⁻ + (1 + e) M⁻¹ Dᵀ P`: Poisson's restitution applied to
+//! the whole impulse, friction included. This law **cannot gain energy**
+//! for `0 ≤ e ≤ 1`: with `d` the plastic velocity change, complementarity
+//! gives `(v⁻ + d)ᵀ M d ≤ 0`, and so the kinetic energy changes by
+//! `(1 + e) [v⁻ᵀ M d + (1 + e)/2 dᵀ M d] ≤ (1 + e)(e − 1)/2 dᵀ M d ≤ 0`.
+//! (Newton's restitution on the normal velocity alone can gain energy when
+//! friction acts; with this law a contact that stuck during the impact
+//! rebounds tangentially by `−e` too.) Where contacts of different
+//! restitution collide together, the smallest `e` applies, for which the
+//! proof holds. Each impact is recorded as a [`Switch`] with its impulses
+//! and the kinetic energy it took.
+//!
+//! # Impacts that accumulate
+//!
+//! A ball bouncing with `e < 1` makes infinitely many bounces before a
+//! finite time. Here a rebound whose flight would be shorter than the
+//! settings' [`shortest_flight`](ContactSettings::shortest_flight) (its
+//! normal velocity over its acceleration back, `2 ġ⁺ / |g̈|`) is made
+//! plastic: the contact closes and stays closed, a persistent contact
+//! instead of a [`Zeno`](crate::error::IntegrationError::Zeno) error. The
+//! flights cut off would have added up to at most `shortest_flight /
+//! (1 − e)` for a constant acceleration, which bounds the error this makes
+//! in the time of rest.
+//!
+//! # What the contacts need, and what they do not support yet
+//!
+//! - The model's own constraints: a model with `constraints:` is refused
+//!   ([`ContactError::Unsupported`]); contacts on models in minimal or
+//!   redundant coordinates without other constraints only.
+//! - Friction is planar: one slip direction per contact. A contact in 3D
+//!   needs a friction cone, a disc of tangential forces; its standard
+//!   treatment is a polygonal cone (a few directions, each a column of the
+//!   same complementarity problem, as `β⁺`, `β⁻` are here), or the exact
+//!   cone as a second-order cone complementarity problem.
+//! - The variational integrator (whose step sees no forces solved from
+//!   the state) is refused through its own check, and so is a model whose
+//!   contact forces it could not represent.
+//! - The drift of a closed contact between switches is the integrator's
+//!   error (`g̈ = 0` holds exactly, `g` and `ġ` only as well as the steps
+//!   keep them); at every switch the state is projected back onto the
+//!   closed contacts (`g = 0`, `ġ = 0`, `v_t = 0` for stuck ones).
+
+use core::fmt;
+
+use nalgebra::{RealField, SMatrix, SVector};
+
+use crate::model::Lagrangian;
+
+mod decide;
+mod lcp;
+mod phase;
+mod run;
+
+pub use run::{integrate, ContactFailure, ContactResult, ContactTrajectory};
+
+/// A model with `K` unilateral contacts on its `N` coordinates: gaps
+/// `g(t, q) ≥ 0` and, where friction acts, slip velocities `v_t`.
+///
+/// Written by hand for now (the language's `contacts:` section, which will
+/// generate it, is not built yet); the gap terms are those of a holonomic
+/// constraint (see [`Holonomic`](crate::model::constraints::Holonomic)).
+pub trait Contacts<const N: usize, const K: usize>: Lagrangian<N> {
+    /// Names of the contacts, for switches and errors.
+    const CONTACTS: [&'static str; K];
+
+    /// The gaps `g(t, q)`: positive apart, zero touching.
+    fn gaps(&self, t: Self::Scalar, q: &SVector<Self::Scalar, N>) -> SVector<Self::Scalar, K>;
+
+    /// `G(t, q) = ∂g/∂q`, `K × N`: the normal forces act along its rows.
+    fn gap_jacobian(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+    ) -> SMatrix<Self::Scalar, K, N>;
+
+    /// `ġ = G q̇ + ∂g/∂t`.
+    fn gap_velocities(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> SVector<Self::Scalar, K>;
+
+    /// `γ` with `g̈ = G q̈ + γ`.
+    fn gap_bias(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> SVector<Self::Scalar, K>;
+
+    /// `T(t, q)`, `K × N`, with the slip velocities `v_t = T q̇ + b(t, q)`:
+    /// friction acts along its rows. Zero rows (the default) for
+    /// frictionless contacts.
+    fn slip_jacobian(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+    ) -> SMatrix<Self::Scalar, K, N> {
+        let _ = (t, q);
+        SMatrix::zeros()
+    }
+
+    /// The slip velocities `v_t = T q̇ + b`.
+    fn slip_velocities(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> SVector<Self::Scalar, K> {
+        let _ = (t, q, qdot);
+        SVector::zeros()
+    }
+
+    /// `γ_t` with `v̇_t = T q̈ + γ_t`.
+    fn slip_bias(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> SVector<Self::Scalar, K> {
+        let _ = (t, q, qdot);
+        SVector::zeros()
+    }
+
+    /// Each contact's restitution and friction.
+    fn laws(&self) -> [ContactLaw<Self::Scalar>; K];
+}
+
+/// What happens at one contact: its impacts and its friction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ContactLaw<S> {
+    /// Poisson's coefficient of restitution, `0 ≤ e ≤ 1` (0: plastic).
+    pub restitution: S,
+    /// The static friction coefficient `μ_s ≥ μ_k`: a stuck contact holds
+    /// while `|F| ≤ μ_s N`.
+    pub static_friction: S,
+    /// The kinetic friction coefficient `μ_k ≥ 0`: a sliding contact feels
+    /// `μ_k N` against its slip.
+    pub kinetic_friction: S,
+}
+
+impl<S: RealField + Copy> ContactLaw<S> {
+    /// A frictionless contact with restitution `e`.
+    pub fn frictionless(restitution: S) -> Self {
+        Self {
+            restitution,
+            static_friction: S::zero(),
+            kinetic_friction: S::zero(),
+        }
+    }
+
+    /// With Coulomb friction `μ` (static and kinetic alike).
+    pub fn with_friction(self, mu: S) -> Self {
+        Self {
+            static_friction: mu,
+            kinetic_friction: mu,
+            ..self
+        }
+    }
+
+    /// With static friction `μ_s` and kinetic friction `μ_k`.
+    pub fn with_static_and_kinetic(self, static_friction: S, kinetic_friction: S) -> Self {
+        Self {
+            static_friction,
+            kinetic_friction,
+            ..self
+        }
+    }
+
+    fn has_friction(&self) -> bool {
+        self.static_friction > S::zero() || self.kinetic_friction > S::zero()
+    }
+}
+
+/// The state of one contact between switches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum Mode {
+    /// Apart, or touching without force: no force.
+    Open,
+    /// Touching, frictionless: a normal force keeps `g̈ = 0`.
+    Closed,
+    /// Touching and slipping, `v_t` of the sign given (`true`: positive):
+    /// kinetic friction against it.
+    Sliding {
+        /// Whether the slip velocity is positive.
+        forward: bool,
+    },
+    /// Touching, not slipping: a friction force keeps `v̇_t = 0`.
+    Stuck,
+}
+
+impl Mode {
+    /// Whether the contact carries a normal force.
+    pub fn touching(self) -> bool {
+        !matches!(self, Self::Open)
+    }
+}
+
+/// Why a contact's mode changed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum Cause {
+    /// The mode decided at the start of the run.
+    Start,
+    /// An impact: this contact arrived, or collided together with one
+    /// that did.
+    Impact,
+    /// Its normal force reached zero.
+    Release,
+    /// Its slip velocity reached zero.
+    SlideStopped,
+    /// Its friction force reached `μ_s N`.
+    StickLimit,
+    /// Decided again together with another contact's switch.
+    Coupled,
+    /// A rebound too short to resolve (shorter than
+    /// [`shortest_flight`](ContactSettings::shortest_flight)): the impact
+    /// made plastic, the contact closed for good.
+    Settled,
+}
+
+/// One switch of one contact: when, from which mode to which, and what it
+/// took.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Switch<S: RealField + Copy, const N: usize> {
+    /// The time of the switch.
+    pub t: S,
+    /// The contact's index in [`Contacts::CONTACTS`].
+    pub contact: usize,
+    /// The contact's name.
+    pub name: &'static str,
+    /// Its mode before.
+    pub from: Mode,
+    /// Its mode after.
+    pub to: Mode,
+    /// Why.
+    pub cause: Cause,
+    /// At an impact: the normal and tangential impulses on this contact
+    /// (restitution included); zero otherwise.
+    pub impulse: (S, S),
+    /// At an impact: the kinetic energy the whole impact took (the same on
+    /// every contact's switch of that impact); zero otherwise.
+    pub energy_lost: S,
+    /// The positions after the switch (projected onto the touching
+    /// contacts).
+    pub q: SVector<S, N>,
+    /// The velocities after the switch.
+    pub qdot: SVector<S, N>,
+}
+
+/// The contact forces at a state: each contact's normal force `N` (along
+/// its row of `G`) and friction force `F` (along its row of `T`), zero for
+/// open ones.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactForces<S: RealField + Copy, const N: usize, const K: usize> {
+    /// The normal forces, non-negative.
+    pub normal: SVector<S, K>,
+    /// The friction forces along the slip directions.
+    pub friction: SVector<S, K>,
+    /// All of them as generalized forces, `Gᵀ N + Tᵀ F`: what they add to
+    /// the model's `f`.
+    pub generalized: SVector<S, N>,
+}
+
+impl<S: RealField + Copy, const N: usize, const K: usize> ContactForces<S, N, K> {
+    pub(crate) fn zero() -> Self {
+        Self {
+            normal: SVector::zeros(),
+            friction: SVector::zeros(),
+            generalized: SVector::zeros(),
+        }
+    }
+}
+
+/// How a contact run decides what touches, and what counts as too short to
+/// resolve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactSettings<S> {
+    /// A gap at most this is touching (and below its negative the start
+    /// is refused as penetrating). By default `1e-9`, in the gap's units.
+    pub gap_tolerance: S,
+    /// A gap rate or slip velocity within this of zero is at rest. By
+    /// default `1e-9`, in the gaps' units per unit time.
+    pub velocity_tolerance: S,
+    /// A rebound whose flight would be shorter than this is made plastic
+    /// (see [impacts that accumulate](self#impacts-that-accumulate)). By
+    /// default `1e-10`, in the model's time units.
+    pub shortest_flight: S,
+}
+
+impl<S: RealField + Copy> Default for ContactSettings<S> {
+    fn default() -> Self {
+        let c = nalgebra::convert::<f64, S>;
+        Self {
+            gap_tolerance: c(1e-9),
+            velocity_tolerance: c(1e-9),
+            shortest_flight: c(1e-10),
+        }
+    }
+}
+
+/// A contact run's own failures, each at a time and state.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ContactError<S: RealField + Copy, const N: usize> {
+    /// The run loop's own failure (a step size underflow, a NaN, …).
+    Integration(crate::error::IntegrationError<S, N>),
+    /// No assignment of modes satisfies the contact conditions: the
+    /// complementarity problem has no solution (Lemke's method ended on a
+    /// ray, or cycled). With friction, Painlevé's paradox.
+    NoConsistentMode {
+        /// Time.
+        t: S,
+        /// Positions.
+        q: SVector<S, N>,
+        /// Velocities.
+        qdot: SVector<S, N>,
+        /// Whether at an impact (velocity level) or between them.
+        at_impact: bool,
+    },
+    /// The touching contacts' forces are not determined: their rows of `G`
+    /// (and of `T` for stuck ones) are dependent in the metric of `M`, or
+    /// `M` itself is singular.
+    DependentContacts {
+        /// Time.
+        t: S,
+        /// Positions.
+        q: SVector<S, N>,
+        /// Velocities.
+        qdot: SVector<S, N>,
+    },
+    /// The start is inside a contact: a gap below minus the gap tolerance.
+    Penetrating {
+        /// The contact.
+        contact: &'static str,
+        /// Its gap.
+        gap: S,
+    },
+    /// A setting or law out of range.
+    InvalidSetting {
+        /// Which.
+        setting: &'static str,
+        /// Its value.
+        value: S,
+        /// What it must be.
+        requirement: &'static str,
+    },
+    /// What contacts do not support yet.
+    Unsupported {
+        /// What.
+        what: &'static str,
+    },
+}
+
+impl<S: RealField + Copy, const N: usize> fmt::Display for ContactError<S, N> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use crate::error::Row;
+        match self {
+            Self::Integration(e) => write!(f, "{e}"),
+            Self::NoConsistentMode {
+                t,
+                q,
+                qdot,
+                at_impact,
+            } => {
+                write!(
+                f,
+                "no consistent contact mode {} at t = {t:?} (q = {}, q̇ = {}): the complementarity \
+                 problem of the touching contacts has no solution (with friction, Painlevé's \
+                 paradox)",
+                if *at_impact { "for the impact" } else { "between impacts" },
+                Row(q),
+                Row(qdot)
+            )
+            }
+            Self::DependentContacts { t, q, qdot } => write!(
+                f,
+                "the touching contacts' forces are not determined at t = {t:?} (q = {}, q̇ = {}): \
+                 their directions are dependent, or M is singular",
+                Row(q),
+                Row(qdot)
+            ),
+            Self::Penetrating { contact, gap } => write!(
+                f,
+                "the start is inside contact `{contact}`: its gap is {gap:?}, below minus the gap \
+                 tolerance"
+            ),
+            Self::InvalidSetting {
+                setting,
+                value,
+                requirement,
+            } => write!(
+                f,
+                "contact setting `{setting}` is {value:?}; it must be {requirement}"
+            ),
+            Self::Unsupported { what } => write!(f, "contacts do not support {what} yet"),
+        }
+    }
+}
+
+impl<S: RealField + Copy, const N: usize> std::error::Error for ContactError<S, N> {}

@@ -1,0 +1,308 @@
+//! The dynamics in one assignment of modes: the touching contacts'
+//! forces solved with the accelerations, and the model a run integrates
+//! between switches ([`Phase`]), whose forcing includes them.
+
+use std::sync::Mutex;
+
+use nalgebra::{ComplexField, DMatrix, DVector, RealField, SMatrix, SVector};
+
+use super::{ContactError, ContactForces, Contacts, Mode, Switch};
+use crate::linalg::solve::{factor_mass_matrix, MassFactor};
+use crate::model::Lagrangian;
+
+/// One unknown force of a mode: the contact, and whether normal or
+/// tangential (a stuck contact's friction).
+#[derive(Clone, Copy)]
+struct Unknown {
+    contact: usize,
+    tangential: bool,
+}
+
+/// The contact terms at a state, evaluated once.
+pub(crate) struct Terms<S: RealField + Copy, const N: usize, const K: usize> {
+    pub(crate) factor: MassFactor<S, N>,
+    pub(crate) forcing: SVector<S, N>,
+    pub(crate) g: SMatrix<S, K, N>,
+    pub(crate) gamma: SVector<S, K>,
+    pub(crate) t: SMatrix<S, K, N>,
+    pub(crate) gamma_t: SVector<S, K>,
+}
+
+impl<S: RealField + Copy, const N: usize, const K: usize> Terms<S, N, K> {
+    /// `M` factored, `f`, `G`, `γ`, `T`, `γ_t` at `(t, q, q̇)`; `None` where
+    /// `M` cannot be factored.
+    pub(crate) fn new<L: Contacts<N, K, Scalar = S>>(
+        model: &L,
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) -> Option<Self> {
+        let (m, forcing) = model.mass_matrix_and_forcing(t, q, qdot);
+        Self::with(model, (t, q, qdot), &m, forcing)
+    }
+
+    /// The same, with `M` and `f` already evaluated.
+    pub(crate) fn with<L: Contacts<N, K, Scalar = S>>(
+        model: &L,
+        (t, q, qdot): (S, &SVector<S, N>, &SVector<S, N>),
+        m: &SMatrix<S, N, N>,
+        forcing: SVector<S, N>,
+    ) -> Option<Self> {
+        let factor = factor_mass_matrix(m).ok()?;
+        Some(Self {
+            factor,
+            forcing,
+            g: model.gap_jacobian(t, q),
+            gamma: model.gap_bias(t, q, qdot),
+            t: model.slip_jacobian(t, q),
+            gamma_t: model.slip_bias(t, q, qdot),
+        })
+    }
+
+    /// `M⁻¹ b`.
+    pub(crate) fn solve(&self, b: &SVector<S, N>) -> Option<SVector<S, N>> {
+        self.factor.solve(b).ok()
+    }
+}
+
+/// The generalized force direction of a normal force on contact `i` in
+/// mode `mode`: `Gᵢ`, or `Gᵢ ∓ μ_k Tᵢ` while it slides.
+pub(crate) fn normal_direction<S: RealField + Copy, const N: usize, const K: usize>(
+    terms: &Terms<S, N, K>,
+    i: usize,
+    mode: Mode,
+    kinetic_friction: S,
+) -> SVector<S, N> {
+    let g = terms.g.row(i).transpose();
+    match mode {
+        Mode::Sliding { forward } => {
+            let sign = if forward { S::one() } else { -S::one() };
+            g - terms.t.row(i).transpose() * (sign * kinetic_friction)
+        }
+        _ => g,
+    }
+}
+
+/// The accelerations and contact forces in `modes`: `M q̈ = f + Dᵀ λ` with
+/// `g̈ᵢ = 0` for every touching contact and `v̇_t = 0` for every stuck one.
+/// `None` where the system is singular.
+pub(crate) fn accelerations<L, const N: usize, const K: usize>(
+    model: &L,
+    modes: &[Mode; K],
+    terms: &Terms<L::Scalar, N, K>,
+) -> Option<(SVector<L::Scalar, N>, ContactForces<L::Scalar, N, K>)>
+where
+    L: Contacts<N, K>,
+{
+    let laws = model.laws();
+    let free = terms.solve(&terms.forcing)?;
+    let mut unknowns = Vec::new();
+    for (i, mode) in modes.iter().enumerate() {
+        if mode.touching() {
+            unknowns.push(Unknown {
+                contact: i,
+                tangential: false,
+            });
+        }
+        if *mode == Mode::Stuck {
+            unknowns.push(Unknown {
+                contact: i,
+                tangential: true,
+            });
+        }
+    }
+    let mut forces = ContactForces::zero();
+    if unknowns.is_empty() {
+        return Some((free, forces));
+    }
+    let m = unknowns.len();
+    let mut directions = Vec::with_capacity(m);
+    let mut responses = Vec::with_capacity(m);
+    for u in &unknowns {
+        let d = if u.tangential {
+            terms.t.row(u.contact).transpose()
+        } else {
+            normal_direction(
+                terms,
+                u.contact,
+                modes[u.contact],
+                laws[u.contact].kinetic_friction,
+            )
+        };
+        responses.push(terms.solve(&d)?);
+        directions.push(d);
+    }
+    let row = |u: &Unknown| {
+        if u.tangential {
+            (terms.t.row(u.contact), terms.gamma_t[u.contact])
+        } else {
+            (terms.g.row(u.contact), terms.gamma[u.contact])
+        }
+    };
+    let mut a = DMatrix::zeros(m, m);
+    let mut b = DVector::zeros(m);
+    for (r, u) in unknowns.iter().enumerate() {
+        let (w, bias) = row(u);
+        for (c, response) in responses.iter().enumerate() {
+            a[(r, c)] = w.dot(&response.transpose());
+        }
+        b[r] = -(w.dot(&free.transpose()) + bias);
+    }
+    let lambda = a.lu().solve(&b)?;
+    if !lambda.iter().all(|x| x.is_finite()) {
+        return None;
+    }
+    let mut qddot = free;
+    let mut force = SVector::zeros();
+    for c in 0..m {
+        qddot += responses[c] * lambda[c];
+        force += directions[c] * lambda[c];
+    }
+    for (c, u) in unknowns.iter().enumerate() {
+        if u.tangential {
+            forces.friction[u.contact] = lambda[c];
+        } else {
+            forces.normal[u.contact] = lambda[c];
+            if let Mode::Sliding { forward } = modes[u.contact] {
+                let friction = laws[u.contact].kinetic_friction * lambda[c];
+                forces.friction[u.contact] = if forward { -friction } else { friction };
+            }
+        }
+    }
+    forces.generalized = force;
+    Some((qddot, forces))
+}
+
+/// What the run shares with its events: the modes, the switches so far,
+/// and the first failure met inside an evaluation (reported instead of the
+/// NaN that stopped the run).
+pub(crate) struct Shared<S: RealField + Copy, const N: usize, const K: usize> {
+    pub(crate) modes: Mutex<[Mode; K]>,
+    pub(crate) switches: Mutex<Vec<Switch<S, N>>>,
+    pub(crate) failure: Mutex<Option<ContactError<S, N>>>,
+}
+
+impl<S: RealField + Copy, const N: usize, const K: usize> Shared<S, N, K> {
+    pub(crate) fn new(modes: [Mode; K]) -> Self {
+        Self {
+            modes: Mutex::new(modes),
+            switches: Mutex::new(Vec::new()),
+            failure: Mutex::new(None),
+        }
+    }
+
+    pub(crate) fn modes(&self) -> [Mode; K] {
+        *self.modes.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Keeps the first failure.
+    pub(crate) fn fail(&self, error: ContactError<S, N>) {
+        let mut slot = self.failure.lock().unwrap_or_else(|e| e.into_inner());
+        if slot.is_none() {
+            *slot = Some(error);
+        }
+    }
+}
+
+/// The model a run integrates between switches: the contact model with the
+/// touching contacts' forces in its forcing, in the modes `shared` holds.
+pub(crate) struct Phase<'a, L, const N: usize, const K: usize>
+where
+    L: Contacts<N, K>,
+{
+    pub(crate) model: &'a L,
+    pub(crate) shared: &'a Shared<L::Scalar, N, K>,
+}
+
+impl<L, const N: usize, const K: usize> Phase<'_, L, N, K>
+where
+    L: Contacts<N, K>,
+{
+    /// The accelerations and forces at a state in the current modes;
+    /// `None` (the failure kept) where they are not determined.
+    pub(crate) fn solve(
+        &self,
+        t: L::Scalar,
+        q: &SVector<L::Scalar, N>,
+        qdot: &SVector<L::Scalar, N>,
+    ) -> Option<(SVector<L::Scalar, N>, ContactForces<L::Scalar, N, K>)> {
+        let (m, f) = self.model.mass_matrix_and_forcing(t, q, qdot);
+        self.solve_with(t, q, qdot, &m, f)
+    }
+
+    /// [`solve`](Self::solve) with `M` and `f` already evaluated.
+    fn solve_with(
+        &self,
+        t: L::Scalar,
+        q: &SVector<L::Scalar, N>,
+        qdot: &SVector<L::Scalar, N>,
+        m: &SMatrix<L::Scalar, N, N>,
+        f: SVector<L::Scalar, N>,
+    ) -> Option<(SVector<L::Scalar, N>, ContactForces<L::Scalar, N, K>)> {
+        let modes = self.shared.modes();
+        let solved = Terms::with(self.model, (t, q, qdot), m, f)
+            .and_then(|terms| accelerations(self.model, &modes, &terms));
+        if solved.is_none() && q.iter().chain(qdot.iter()).all(|x| x.is_finite()) {
+            self.shared.fail(ContactError::DependentContacts {
+                t,
+                q: *q,
+                qdot: *qdot,
+            });
+        }
+        solved
+    }
+}
+
+impl<L, const N: usize, const K: usize> Lagrangian<N> for Phase<'_, L, N, K>
+where
+    L: Contacts<N, K>,
+{
+    type Scalar = L::Scalar;
+    const COORDINATES: [&'static str; N] = L::COORDINATES;
+
+    fn mass_matrix(&self, t: L::Scalar, q: &SVector<L::Scalar, N>) -> SMatrix<L::Scalar, N, N> {
+        self.model.mass_matrix(t, q)
+    }
+
+    fn forcing(
+        &self,
+        t: L::Scalar,
+        q: &SVector<L::Scalar, N>,
+        qdot: &SVector<L::Scalar, N>,
+    ) -> SVector<L::Scalar, N> {
+        self.mass_matrix_and_forcing(t, q, qdot).1
+    }
+
+    /// `M`, and `f` with the contact forces `Dᵀ λ` added (NaN where they
+    /// are not determined: the run stops, and reports the failure kept).
+    fn mass_matrix_and_forcing(
+        &self,
+        t: L::Scalar,
+        q: &SVector<L::Scalar, N>,
+        qdot: &SVector<L::Scalar, N>,
+    ) -> (SMatrix<L::Scalar, N, N>, SVector<L::Scalar, N>) {
+        let (m, f) = self.model.mass_matrix_and_forcing(t, q, qdot);
+        let f = match self.solve_with(t, q, qdot, &m, f) {
+            Some((_, forces)) => f + forces.generalized,
+            None => SVector::repeat(nalgebra::zero::<L::Scalar>() / nalgebra::zero::<L::Scalar>()),
+        };
+        (m, f)
+    }
+
+    fn kinetic_energy(
+        &self,
+        t: L::Scalar,
+        q: &SVector<L::Scalar, N>,
+        qdot: &SVector<L::Scalar, N>,
+    ) -> L::Scalar {
+        self.model.kinetic_energy(t, q, qdot)
+    }
+
+    fn potential_energy(&self, t: L::Scalar, q: &SVector<L::Scalar, N>) -> L::Scalar {
+        self.model.potential_energy(t, q)
+    }
+
+    fn parameters_are_finite(&self) -> bool {
+        self.model.parameters_are_finite()
+    }
+}

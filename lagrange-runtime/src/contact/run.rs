@@ -1,0 +1,531 @@
+//! A contact run: the start decided, the switches wired as events of the
+//! one run loop, and the forces of every sample.
+
+use nalgebra::{ComplexField, RealField, SVector};
+
+use super::decide::{impact, modes, project, record, touching};
+use super::phase::{accelerations, Phase, Shared, Terms};
+use super::{Cause, ContactError, ContactForces, ContactSettings, Contacts, Mode, Switch};
+use crate::error::IntegrationError;
+use crate::events::{Event, Events};
+use crate::integrators::Integrator;
+use crate::model::constraints::{Holonomic, Visitor};
+use crate::model::settings::ConstraintSettings;
+use crate::trajectory::Trajectory;
+
+/// A contact run's result: its trajectory, every switch, and the contact
+/// forces and modes at every sample.
+#[derive(Debug, Clone)]
+pub struct ContactTrajectory<S: RealField + Copy, const N: usize, const K: usize> {
+    trajectory: Trajectory<S, N>,
+    switches: Vec<Switch<S, N>>,
+    modes: Vec<[Mode; K]>,
+    forces: Vec<ContactForces<S, N, K>>,
+}
+
+impl<S: RealField + Copy, const N: usize, const K: usize> ContactTrajectory<S, N, K> {
+    /// The samples (with the run's events: every switch's event record).
+    pub fn trajectory(&self) -> &Trajectory<S, N> {
+        &self.trajectory
+    }
+
+    /// Every switch in time order: impacts (with their impulses and the
+    /// energy they took), contacts opening, sticking, slipping.
+    pub fn switches(&self) -> &[Switch<S, N>] {
+        &self.switches
+    }
+
+    /// The contacts' modes at each sample (at a sample on a switch's time,
+    /// the modes before it).
+    pub fn modes(&self) -> &[[Mode; K]] {
+        &self.modes
+    }
+
+    /// The contact forces at each sample.
+    pub fn forces(&self) -> &[ContactForces<S, N, K>] {
+        &self.forces
+    }
+
+    /// The trajectory apart from the rest.
+    pub fn into_trajectory(self) -> Trajectory<S, N> {
+        self.trajectory
+    }
+}
+
+/// A failed contact run: what went wrong, and everything up to it.
+#[derive(Debug, Clone)]
+pub struct ContactFailure<S: RealField + Copy, const N: usize, const K: usize> {
+    /// What went wrong, where, and in which state.
+    pub error: ContactError<S, N>,
+    /// The samples, switches and forces before the failure.
+    pub trajectory: ContactTrajectory<S, N, K>,
+}
+
+impl<S: RealField + Copy, const N: usize, const K: usize> core::fmt::Display
+    for ContactFailure<S, N, K>
+{
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "{} (after {} samples and {} switches)",
+            self.error,
+            self.trajectory.trajectory.len(),
+            self.trajectory.switches.len()
+        )
+    }
+}
+
+impl<S: RealField + Copy, const N: usize, const K: usize> std::error::Error
+    for ContactFailure<S, N, K>
+{
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.error)
+    }
+}
+
+/// What [`integrate`] returns.
+pub type ContactResult<S, const N: usize, const K: usize> =
+    Result<ContactTrajectory<S, N, K>, Box<ContactFailure<S, N, K>>>;
+
+/// Whether a model has constraints of its own.
+struct HasConstraints;
+
+impl<S: RealField + Copy, const N: usize> Visitor<S, N> for HasConstraints {
+    type Output = ();
+    fn visit<H, const C: usize>(self, _model: &H, _settings: ConstraintSettings<S>)
+    where
+        H: Holonomic<N, C, Scalar = S> + ?Sized,
+    {
+    }
+}
+
+/// Integrates a model with contacts from `(t0, q0, q̇0)` through `times`
+/// with `method`: the contacts' modes decided at the start and at every
+/// switch, each switch located as an event of the one run loop (see the
+/// [module documentation](super)).
+///
+/// ```
+/// use lagrange_runtime::contact::{self, ContactLaw, ContactSettings, Contacts, Mode};
+/// use lagrange_runtime::nalgebra::{SMatrix, SVector, Vector1};
+/// use lagrange_runtime::prelude::*;
+///
+/// /// A ball in one dimension, `z̈ = −g`, above a floor at `z = 0`.
+/// struct Ball;
+/// impl Lagrangian<1> for Ball {
+///     type Scalar = f64;
+///     const COORDINATES: [&'static str; 1] = ["z"];
+///     fn mass_matrix(&self, _t: f64, _q: &SVector<f64, 1>) -> SMatrix<f64, 1, 1> {
+///         SMatrix::<f64, 1, 1>::new(1.0)
+///     }
+///     fn forcing(&self, _t: f64, _q: &SVector<f64, 1>, _qd: &SVector<f64, 1>) -> SVector<f64, 1> {
+///         Vector1::new(-9.81)
+///     }
+///     fn kinetic_energy(&self, _t: f64, _q: &SVector<f64, 1>, qd: &SVector<f64, 1>) -> f64 {
+///         0.5 * qd[0] * qd[0]
+///     }
+///     fn potential_energy(&self, _t: f64, q: &SVector<f64, 1>) -> f64 {
+///         9.81 * q[0]
+///     }
+/// }
+/// impl Contacts<1, 1> for Ball {
+///     const CONTACTS: [&'static str; 1] = ["floor"];
+///     fn gaps(&self, _t: f64, q: &SVector<f64, 1>) -> SVector<f64, 1> { *q }
+///     fn gap_jacobian(&self, _t: f64, _q: &SVector<f64, 1>) -> SMatrix<f64, 1, 1> {
+///         SMatrix::<f64, 1, 1>::new(1.0)
+///     }
+///     fn gap_velocities(&self, _t: f64, _q: &SVector<f64, 1>, qd: &SVector<f64, 1>) -> SVector<f64, 1> { *qd }
+///     fn gap_bias(&self, _t: f64, _q: &SVector<f64, 1>, _qd: &SVector<f64, 1>) -> SVector<f64, 1> {
+///         Vector1::new(0.0)
+///     }
+///     fn laws(&self) -> [ContactLaw<f64>; 1] { [ContactLaw::frictionless(0.5)] }
+/// }
+///
+/// // Dropped from 1 m with restitution 1/2: the bounces accumulate and the
+/// // ball comes to rest at t₁ (1 + e)/(1 − e) = 3 t₁, then lies on the floor.
+/// let run = contact::integrate(
+///     &Dop853::new().rtol(1e-12).atol(1e-12), &Ball, 0.0,
+///     Vector1::new(1.0), Vector1::new(0.0), &[2.0], ContactSettings::default(),
+/// )?;
+/// let t1 = (2.0 / 9.81f64).sqrt();
+/// let rest = run.switches().last().unwrap();
+/// assert_eq!(rest.to, Mode::Closed);
+/// assert!((rest.t - 3.0 * t1).abs() < 1e-9);
+/// assert!((run.forces()[0].normal[0] - 9.81).abs() < 1e-12);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[allow(clippy::too_many_arguments)]
+pub fn integrate<I, L, const N: usize, const K: usize>(
+    method: &I,
+    model: &L,
+    t0: L::Scalar,
+    q0: SVector<L::Scalar, N>,
+    qdot0: SVector<L::Scalar, N>,
+    times: &[L::Scalar],
+    settings: ContactSettings<L::Scalar>,
+) -> ContactResult<L::Scalar, N, K>
+where
+    I: Integrator<L::Scalar>,
+    L: Contacts<N, K> + Sync,
+{
+    let empty = |error| {
+        Box::new(ContactFailure {
+            error,
+            trajectory: ContactTrajectory {
+                trajectory: Trajectory::with_capacity(0),
+                switches: Vec::new(),
+                modes: Vec::new(),
+                forces: Vec::new(),
+            },
+        })
+    };
+    validate(model, &settings).map_err(empty)?;
+    if let Err(invalid) = crate::model::ready(model) {
+        return Err(empty(ContactError::Integration(
+            IntegrationError::InvalidInput(invalid),
+        )));
+    }
+    if !(t0.is_finite() && q0.iter().chain(qdot0.iter()).all(|x| x.is_finite())) {
+        // The run loop says which in its own words.
+        let shared = Shared::new([Mode::Open; K]);
+        let phase = Phase {
+            model,
+            shared: &shared,
+        };
+        return match method.integrate(&phase, t0, q0, qdot0, times) {
+            Err(failure) => Err(empty(ContactError::Integration(failure.error))),
+            Ok(_) => unreachable!("a non-finite start is refused"),
+        };
+    }
+    let gaps = model.gaps(t0, &q0);
+    for i in 0..K {
+        if gaps[i] < -settings.gap_tolerance {
+            return Err(empty(ContactError::Penetrating {
+                contact: L::CONTACTS[i],
+                gap: gaps[i],
+            }));
+        }
+    }
+
+    // The start: an impact if a touching contact approaches, then the
+    // modes decided.
+    let mut switches = Vec::new();
+    let opened = [Mode::Open; K];
+    let (start, start_modes) = decide_switch(
+        model,
+        &settings,
+        t0,
+        (q0, qdot0),
+        &opened,
+        None,
+        Cause::Start,
+        &mut switches,
+    )
+    .map_err(empty)?;
+    let shared = Shared::new(start_modes);
+    *shared.switches.lock().unwrap_or_else(|e| e.into_inner()) = switches;
+    let phase = Phase {
+        model,
+        shared: &shared,
+    };
+    let phase = &phase;
+
+    let mut events = Events::new();
+    for i in 0..K {
+        let name = L::CONTACTS[i];
+        let switch = |cause: Cause| {
+            move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| {
+                phase.switch(&settings, i, cause, t, (*q, *qdot))
+            }
+        };
+        let arrival = move |t, q: &SVector<L::Scalar, N>, _: &SVector<L::Scalar, N>| match phase
+            .shared
+            .modes()[i]
+        {
+            Mode::Open => phase.model.gaps(t, q)[i],
+            _ => nalgebra::one::<L::Scalar>(),
+        };
+        let release = move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| {
+            if phase.shared.modes()[i].touching() {
+                phase.solve(t, q, qdot).map_or(nan(), |(_, f)| f.normal[i])
+            } else {
+                nalgebra::one::<L::Scalar>()
+            }
+        };
+        let slide_stop =
+            move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| match phase
+                .shared
+                .modes()[i]
+            {
+                Mode::Sliding { forward } => {
+                    let v = phase.model.slip_velocities(t, q, qdot)[i];
+                    if forward {
+                        v
+                    } else {
+                        -v
+                    }
+                }
+                _ => nalgebra::one::<L::Scalar>(),
+            };
+        let mu_s = model.laws()[i].static_friction;
+        let stick_limit =
+            move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| match phase
+                .shared
+                .modes()[i]
+            {
+                Mode::Stuck => phase
+                    .solve(t, q, qdot)
+                    .map_or(nan(), |(_, f)| mu_s * f.normal[i] - f.friction[i].abs()),
+                _ => nalgebra::one::<L::Scalar>(),
+            };
+        events = events
+            .with(
+                Event::new(name, arrival)
+                    .falling()
+                    .reset(switch(Cause::Impact)),
+            )
+            .with(
+                Event::new(name, release)
+                    .falling()
+                    .reset(switch(Cause::Release)),
+            )
+            .with(
+                Event::new(name, slide_stop)
+                    .falling()
+                    .reset(switch(Cause::SlideStopped)),
+            )
+            .with(
+                Event::new(name, stick_limit)
+                    .falling()
+                    .reset(switch(Cause::StickLimit)),
+            );
+    }
+
+    let run = method.integrate_with_events(phase, t0, start.0, start.1, times, &events);
+    let switches = shared
+        .switches
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .clone();
+    match run {
+        Ok(trajectory) => Ok(results(model, trajectory, switches, start_modes)),
+        Err(failure) => {
+            let kept = shared
+                .failure
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .take();
+            let error = kept.unwrap_or(ContactError::Integration(failure.error));
+            Err(Box::new(ContactFailure {
+                error,
+                trajectory: results(model, failure.trajectory, switches, start_modes),
+            }))
+        }
+    }
+}
+
+fn nan<S: RealField + Copy>() -> S {
+    S::zero() / S::zero()
+}
+
+/// The settings and laws out of range, before any work; a model with
+/// constraints of its own.
+fn validate<L, const N: usize, const K: usize>(
+    model: &L,
+    settings: &ContactSettings<L::Scalar>,
+) -> Result<(), ContactError<L::Scalar, N>>
+where
+    L: Contacts<N, K>,
+{
+    if model.visit_constraints(HasConstraints).is_some() {
+        return Err(ContactError::Unsupported {
+            what: "a model with constraints of its own (`constraints:`)",
+        });
+    }
+    let bad = |setting, value, requirement| {
+        Err(ContactError::InvalidSetting {
+            setting,
+            value,
+            requirement,
+        })
+    };
+    let zero = nalgebra::zero::<L::Scalar>();
+    for (setting, value) in [
+        ("gap_tolerance", settings.gap_tolerance),
+        ("velocity_tolerance", settings.velocity_tolerance),
+        ("shortest_flight", settings.shortest_flight),
+    ] {
+        if !(value.is_finite() && value >= zero) {
+            return bad(setting, value, "non-negative and finite");
+        }
+    }
+    for law in model.laws() {
+        if !(law.restitution >= zero && law.restitution <= nalgebra::one::<L::Scalar>()) {
+            return bad("restitution", law.restitution, "between 0 and 1");
+        }
+        if !(law.kinetic_friction.is_finite() && law.kinetic_friction >= zero) {
+            return bad(
+                "kinetic_friction",
+                law.kinetic_friction,
+                "non-negative and finite",
+            );
+        }
+        if !(law.static_friction.is_finite() && law.static_friction >= law.kinetic_friction) {
+            return bad(
+                "static_friction",
+                law.static_friction,
+                "finite and at least the kinetic friction",
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The decision at a switch: an impact where a touching contact approaches
+/// (for an arrival and at the start), the modes decided, the state
+/// projected onto them, and the switches recorded.
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+fn decide_switch<L, const N: usize, const K: usize>(
+    model: &L,
+    settings: &ContactSettings<L::Scalar>,
+    t: L::Scalar,
+    (q, mut qdot): (SVector<L::Scalar, N>, SVector<L::Scalar, N>),
+    from: &[Mode; K],
+    forced: Option<(usize, Mode)>,
+    cause: Cause,
+    switches: &mut Vec<Switch<L::Scalar, N>>,
+) -> Result<((SVector<L::Scalar, N>, SVector<L::Scalar, N>), [Mode; K]), ContactError<L::Scalar, N>>
+where
+    L: Contacts<N, K>,
+{
+    let mut impulses = None;
+    let mut energy_lost = nalgebra::zero::<L::Scalar>();
+    let mut settled = false;
+    if matches!(cause, Cause::Impact | Cause::Start) {
+        if let Some((after, impulse, short)) = impact(model, settings, (t, &q, &qdot))? {
+            energy_lost = model.kinetic_energy(t, &q, &qdot) - model.kinetic_energy(t, &q, &after);
+            qdot = after;
+            impulses = Some(impulse);
+            settled = short;
+        }
+    }
+    let to = modes(model, settings, (t, &q, &qdot), forced)?;
+    let state =
+        project(model, &to, t, (q, qdot)).ok_or(ContactError::DependentContacts { t, q, qdot })?;
+    let touch = touching(model, settings, t, &q);
+    record(
+        switches,
+        &L::CONTACTS,
+        (t, state.0, state.1),
+        (from, &to),
+        |i| {
+            let struck = impulses.is_some_and(|p: [(L::Scalar, L::Scalar); K]| {
+                p[i].0 != nalgebra::zero::<L::Scalar>()
+            });
+            match cause {
+                Cause::Impact | Cause::Start if settled && struck => Cause::Settled,
+                Cause::Impact if struck => Cause::Impact,
+                Cause::Start => Cause::Start,
+                _ if forced.is_some_and(|(j, _)| j == i) => cause,
+                Cause::SlideStopped if touch[i] && from[i] != to[i] => cause,
+                _ => Cause::Coupled,
+            }
+        },
+        impulses.as_ref(),
+        energy_lost,
+    );
+    Ok((state, to))
+}
+
+impl<L, const N: usize, const K: usize> Phase<'_, L, N, K>
+where
+    L: Contacts<N, K>,
+{
+    /// An event's reset: the switch decided, the modes changed, the state
+    /// after it; NaN (the failure kept) where it cannot be decided.
+    fn switch(
+        &self,
+        settings: &ContactSettings<L::Scalar>,
+        i: usize,
+        cause: Cause,
+        t: L::Scalar,
+        state: (SVector<L::Scalar, N>, SVector<L::Scalar, N>),
+    ) -> (SVector<L::Scalar, N>, SVector<L::Scalar, N>) {
+        let from = self.shared.modes();
+        let forced = match cause {
+            Cause::Release => Some((i, Mode::Open)),
+            Cause::StickLimit => {
+                // It slides the way its friction force was holding it from.
+                let friction = self
+                    .solve(t, &state.0, &state.1)
+                    .map(|(_, f)| f.friction[i]);
+                let forward = friction.is_some_and(|f| f < nalgebra::zero::<L::Scalar>());
+                Some((i, Mode::Sliding { forward }))
+            }
+            _ => None,
+        };
+        let mut switches = self
+            .shared
+            .switches
+            .lock()
+            .unwrap_or_else(|e| e.into_inner());
+        match decide_switch(
+            self.model,
+            settings,
+            t,
+            state,
+            &from,
+            forced,
+            cause,
+            &mut switches,
+        ) {
+            Ok((state, to)) => {
+                *self.shared.modes.lock().unwrap_or_else(|e| e.into_inner()) = to;
+                state
+            }
+            Err(error) => {
+                self.shared.fail(error);
+                (SVector::repeat(nan()), SVector::repeat(nan()))
+            }
+        }
+    }
+}
+
+/// The modes and forces at every sample, the modes replayed from the
+/// switches.
+fn results<L, const N: usize, const K: usize>(
+    model: &L,
+    trajectory: Trajectory<L::Scalar, N>,
+    switches: Vec<Switch<L::Scalar, N>>,
+    start: [Mode; K],
+) -> ContactTrajectory<L::Scalar, N, K>
+where
+    L: Contacts<N, K>,
+{
+    let mut current = start;
+    let mut next = 0;
+    let mut modes = Vec::with_capacity(trajectory.len());
+    let mut forces = Vec::with_capacity(trajectory.len());
+    for sample in trajectory.iter() {
+        while next < switches.len() && switches[next].t < sample.t {
+            current[switches[next].contact] = switches[next].to;
+            next += 1;
+        }
+        modes.push(current);
+        let solved = Terms::new(model, sample.t, &sample.q, &sample.qdot)
+            .and_then(|terms| accelerations(model, &current, &terms));
+        forces.push(solved.map_or_else(
+            || ContactForces {
+                normal: SVector::repeat(nan()),
+                friction: SVector::repeat(nan()),
+                generalized: SVector::repeat(nan()),
+            },
+            |(_, f)| f,
+        ));
+    }
+    ContactTrajectory {
+        trajectory,
+        switches,
+        modes,
+        forces,
+    }
+}
