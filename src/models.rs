@@ -12,7 +12,11 @@
 //! [`FreeBody`] and [`HeavyTop`] (the functions of [`quaternion`] convert
 //! their states). Three roll, under constraints on their velocities:
 //! [`ChaplyginSleigh`], [`RollingDisk`] and [`RollingBall`], the last in
-//! quaternions too.
+//! quaternions too. Eight have unilateral contacts (`contacts:`), run by
+//! [`contact::integrate`](lagrange_runtime::contact::integrate):
+//! [`BallOnFloor`], [`ParticleOnSphere`], [`Ladder`], [`BobOnString`],
+//! [`SlidingBall`], [`BlockOnIncline`], [`BlockOnBelt`] and
+//! [`TumblingBox`].
 
 mod bicycle;
 mod bouncing_ball;
@@ -20,6 +24,7 @@ mod cart_pole;
 mod cartesian_pendulum;
 mod chain;
 mod chaplygin_sleigh;
+mod contact;
 mod double_pendulum;
 mod four_bar;
 mod free_body;
@@ -41,6 +46,10 @@ pub use cart_pole::CartPole;
 pub use cartesian_pendulum::CartesianPendulum;
 pub use chain::Chain;
 pub use chaplygin_sleigh::ChaplyginSleigh;
+pub use contact::{
+    BallOnFloor, BlockOnBelt, BlockOnIncline, BobOnString, Ladder, ParticleOnSphere, SlidingBall,
+    StickSlip, TumblingBox,
+};
 pub use double_pendulum::DoublePendulum;
 pub use four_bar::FourBar;
 pub use free_body::FreeBody;

@@ -192,6 +192,36 @@ pub enum Item {
         /// The constraints, in the order written.
         entries: Vec<ConstraintDef>,
     },
+    /// `contacts: floor: y >= 0 { restitution: e }, ...;`.
+    Contacts {
+        /// The `contacts` keyword, for errors.
+        keyword: Ident,
+        /// The contacts, in the order written.
+        entries: Vec<ContactDef>,
+    },
+}
+
+/// One entry of `contacts:`: `name: lhs >= rhs` (the gap `lhs − rhs`) or
+/// `name: lhs <= rhs` (the gap `rhs − lhs`), then optionally its law in
+/// braces, `{ restitution: e, friction: mu, slip: dot(x) }`.
+pub struct ContactDef {
+    /// The contact's name.
+    pub name: Ident,
+    /// The left-hand side.
+    pub lhs: Expr,
+    /// `>=` (`true`) or `<=` (`false`).
+    pub at_least: bool,
+    /// The right-hand side.
+    pub rhs: Expr,
+    /// The law's entries, `key: value`, in the order written.
+    pub fields: Vec<(Ident, Expr)>,
+}
+
+impl ContactDef {
+    /// From the name to the end of the inequality.
+    pub fn range(&self) -> SpanRange {
+        SpanRange::single(self.name.span()).to(self.rhs.range())
+    }
 }
 
 /// One entry of `constraints:`: `name: lhs` (meaning `lhs = 0`) or

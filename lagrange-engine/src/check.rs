@@ -5,6 +5,7 @@
 //! in [`constraints`], the control inputs' in [`inputs`].
 
 pub mod constraints;
+pub mod contacts;
 pub mod inputs;
 
 use crate::ast::Expr;

@@ -60,8 +60,24 @@ pub struct Equations {
     pub jacobians: Option<(ExprMatrix, ExprMatrix)>,
     /// The constraints' terms, for a constrained model only.
     pub constraints: Option<ConstraintEquations>,
+    /// The contacts' terms, for a model with contacts only.
+    pub contacts: Option<ContactEquations>,
     /// `∂f/∂u`, `N × K` row-major, for a model with inputs only.
     pub input_jacobian: Option<ExprMatrix>,
+}
+
+/// What the contacts contribute, each in the order written: the gaps'
+/// terms as a holonomic constraint's (`g`, `G`, `ġ`, `γ`), the slip
+/// velocities' as a velocity constraint's (`T` in the rows of `G`, `v_t`
+/// in the velocities, `γ_t` in the biases; zero rows for a frictionless
+/// contact), and each law's restitution, static and kinetic friction.
+pub struct ContactEquations {
+    /// The gaps' terms.
+    pub gaps: ConstraintEquations,
+    /// The slip velocities' terms.
+    pub slips: ConstraintEquations,
+    /// `[e, μ_s, μ_k]` per contact.
+    pub laws: Vec<[ExprId; 3]>,
 }
 
 /// What the constraints contribute, each vector in the order of `φ`:
@@ -104,6 +120,17 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         model.forces.iter().map(|f| (f.position, f.value)).collect();
     let want_jacobians = model.options.jacobians;
     let phi: Vec<ExprId> = model.constraints.iter().map(|c| c.value).collect();
+    let gaps: Vec<ExprId> = model.contacts.iter().map(|c| c.gap).collect();
+    let slips: Vec<ExprId> = model
+        .contacts
+        .iter()
+        .map(|c| c.slip.unwrap_or(Pool::ZERO))
+        .collect();
+    let laws: Vec<[ExprId; 3]> = model
+        .contacts
+        .iter()
+        .map(|c| [c.restitution, c.static_friction, c.kinetic_friction])
+        .collect();
     let pool = &mut model.pool;
 
     // The matrices alone hold n² entries each: paid for before they are
@@ -236,6 +263,17 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
             None => return Equations::exhausted(),
         }
     };
+    // A contact's gap has the terms of a holonomic constraint, its slip
+    // velocity those of a velocity constraint (a contact without friction
+    // has a slip of zero: zero rows).
+    let contacts = if gaps.is_empty() {
+        None
+    } else {
+        match (holonomic(pool, &s, gaps), holonomic(pool, &s, slips)) {
+            (Some(gaps), Some(slips)) => Some(ContactEquations { gaps, slips, laws }),
+            _ => return Equations::exhausted(),
+        }
+    };
     Equations {
         mass,
         forcing,
@@ -245,6 +283,7 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         nonconservative,
         jacobians,
         constraints,
+        contacts,
         input_jacobian,
     }
 }
@@ -317,6 +356,7 @@ impl Equations {
             nonconservative: Vec::new(),
             jacobians: None,
             constraints: None,
+            contacts: None,
             input_jacobian: None,
         }
     }

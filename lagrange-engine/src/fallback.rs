@@ -27,6 +27,7 @@ pub struct Stub {
     fields: Vec<Field>,
     inputs: Vec<Field>,
     constraints: usize,
+    contacts: usize,
     lets: usize,
     serde: bool,
 }
@@ -43,6 +44,7 @@ impl Stub {
             fields: shape.fields,
             inputs: shape.inputs,
             constraints: shape.constraints,
+            contacts: shape.contacts,
             lets: shape.lets,
             serde: def.options.serde,
         }
@@ -59,6 +61,7 @@ impl Stub {
             fields: &self.fields,
             inputs: &self.inputs,
             constraints: self.constraints,
+            contacts: self.contacts,
             serde: self.serde,
             lets: self.lets,
         };
@@ -69,7 +72,8 @@ impl Stub {
         let na = nalgebra();
         let name = &self.name;
         let k: usize = self.inputs.iter().map(|f| f.len.unwrap_or(1)).sum();
-        let types = Types::new(self.dof, self.constraints, k, self.lets);
+        let types =
+            Types::new(self.dof, self.constraints, k, self.lets).with_contacts(self.contacts);
         let n = &types.n;
         let stop = quote!(::core::unreachable!(
             "`lagrangian!` reported a compile error for this model"
@@ -81,6 +85,7 @@ impl Stub {
         let methods = METHODS
             .iter()
             .filter(|m| constrained || !matches!(m.in_trait, InTrait::Holonomic { .. }))
+            .filter(|m| self.contacts > 0 || m.in_trait != InTrait::Contacts)
             .filter(|m| actuated || m.in_trait != InTrait::Actuated)
             .map(|m| {
                 let signature = m.signature(&types);
@@ -106,6 +111,23 @@ impl Stub {
                 #[allow(unused_variables, clippy::all)]
                 impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::Holonomic<#n, #c> for #name<S> {
                     const CONSTRAINTS: [&'static str; #c] = [""; #c];
+                    #(#required)*
+                }
+            }
+        });
+        let contacts = (self.contacts > 0).then(|| {
+            let kc = &types.kc;
+            let required = METHODS
+                .iter()
+                .filter(|m| m.in_trait == InTrait::Contacts)
+                .map(|m| {
+                    let signature = m.trait_signature(&types);
+                    quote!(#signature { #stop })
+                });
+            quote! {
+                #[allow(unused_variables, clippy::all)]
+                impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::contact::Contacts<#n, #kc> for #name<S> {
+                    const CONTACTS: [&'static str; #kc] = [""; #kc];
                     #(#required)*
                 }
             }
@@ -142,6 +164,7 @@ impl Stub {
                 #(#required)*
             }
             #holonomic
+            #contacts
             #actuated
             #lets
         }

@@ -289,6 +289,8 @@ fn derive_model(def: ast::ModelDef, budget: u64) -> syn::Result<Derived> {
     within_budget(&model, r)?;
     let r = check::constraints::constraints_are_admissible(&mut model);
     within_budget(&model, r)?;
+    let r = check::contacts::contacts_are_admissible(&mut model);
+    within_budget(&model, r)?;
     let r = check::inputs::constraints_hold_no_input(&mut model);
     within_budget(&model, r)?;
     let mut equations = derive::euler_lagrange(&mut model);

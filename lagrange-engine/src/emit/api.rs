@@ -79,6 +79,13 @@ pub enum Returns {
     InputMatrix,
     /// `[S; L]`, `L` the number of `let` values: `L` roots.
     Lets,
+    /// `SVector<S, K>`, `K` the number of contacts: `K` roots.
+    ContactVector,
+    /// `SMatrix<S, K, N>`: `K·N` roots.
+    ContactMatrix,
+    /// `[ContactLaw<S>; K]`: `3K` roots, each contact's restitution, static
+    /// and kinetic friction.
+    ContactLaws,
 }
 
 impl Returns {
@@ -99,6 +106,12 @@ impl Returns {
             }
             Returns::InputMatrix => ty.input_matrix.clone(),
             Returns::Lets => ty.lets.clone(),
+            Returns::ContactVector => ty.contact_vector.clone(),
+            Returns::ContactMatrix => ty.contact_matrix.clone(),
+            Returns::ContactLaws => {
+                let k = &ty.kc;
+                quote!([::lagrange::contact::ContactLaw<S>; #k])
+            }
         }
     }
 
@@ -150,6 +163,27 @@ impl Returns {
                 quote!(#new(&[#(#outs),*]))
             }
             Returns::Lets => quote!([#(#outs),*]),
+            Returns::ContactVector => {
+                let new = &ty.new_contact_vector;
+                quote!(#new(&[#(#outs),*]))
+            }
+            Returns::ContactMatrix => {
+                let new = &ty.new_contact_matrix;
+                quote!(#new(&[#(#outs),*]))
+            }
+            Returns::ContactLaws => {
+                let laws = outs.chunks(3).map(|law| {
+                    let (e, s, k) = (&law[0], &law[1], &law[2]);
+                    quote! {
+                        ::lagrange::contact::ContactLaw {
+                            restitution: #e,
+                            static_friction: #s,
+                            kinetic_friction: #k,
+                        }
+                    }
+                });
+                quote!([#(#laws),*])
+            }
         }
     }
 }
@@ -177,6 +211,10 @@ pub enum InTrait {
         /// Whether the stub implements it too.
         required: bool,
     },
+    /// Not a method of `Lagrangian` but of `Contacts<N, K>`, which only a
+    /// model with contacts implements: its impl calls the inherent one,
+    /// and the stub implements it too.
+    Contacts,
     /// Not a method of `Lagrangian` but of `Actuated<N, K>`, which only a
     /// model with inputs implements: its impl calls the inherent one, and
     /// the stub implements it too.
@@ -392,6 +430,84 @@ pub const METHODS: &[Method] = &[
         },
         in_trait: InTrait::Holonomic { required: false },
     },
+    // Only a model with `contacts:` has these.
+    Method {
+        name: "gaps",
+        doc: &["The contacts' gaps `g(t, q)`: positive apart, zero touching."],
+        args: &[Arg::T, Arg::Q],
+        returns: Returns::ContactVector,
+        roots: |_, eq| Some(eq.contacts.as_ref()?.gaps.values.clone()),
+        in_trait: InTrait::Contacts,
+    },
+    Method {
+        name: "gap_jacobian",
+        doc: &["`G(t, q) = ∂g/∂q`: the normal forces act along its rows."],
+        args: &[Arg::T, Arg::Q],
+        returns: Returns::ContactMatrix,
+        roots: |model, eq| {
+            Some(column_major_of(
+                &eq.contacts.as_ref()?.gaps.jacobian,
+                model.dof(),
+            ))
+        },
+        in_trait: InTrait::Contacts,
+    },
+    Method {
+        name: "gap_velocities",
+        doc: &["The gaps' rates `ġ = G q̇ + ∂g/∂t`."],
+        args: &[Arg::T, Arg::Q, Arg::Qdot],
+        returns: Returns::ContactVector,
+        roots: |_, eq| Some(eq.contacts.as_ref()?.gaps.velocities.clone()),
+        in_trait: InTrait::Contacts,
+    },
+    Method {
+        name: "gap_bias",
+        doc: &["The bias `γ(t, q, q̇)` of the gaps' accelerations, `g̈ = G q̈ + γ`."],
+        args: &[Arg::T, Arg::Q, Arg::Qdot],
+        returns: Returns::ContactVector,
+        roots: |_, eq| Some(eq.contacts.as_ref()?.gaps.bias.clone()),
+        in_trait: InTrait::Contacts,
+    },
+    Method {
+        name: "slip_jacobian",
+        doc: &[
+            "`T(t, q)` of the slip velocities `v_t = T q̇ + b`: friction acts along",
+            "its rows (zero rows for frictionless contacts).",
+        ],
+        args: &[Arg::T, Arg::Q],
+        returns: Returns::ContactMatrix,
+        roots: |model, eq| {
+            Some(column_major_of(
+                &eq.contacts.as_ref()?.slips.jacobian,
+                model.dof(),
+            ))
+        },
+        in_trait: InTrait::Contacts,
+    },
+    Method {
+        name: "slip_velocities",
+        doc: &["The slip velocities `v_t` (zero for frictionless contacts)."],
+        args: &[Arg::T, Arg::Q, Arg::Qdot],
+        returns: Returns::ContactVector,
+        roots: |_, eq| Some(eq.contacts.as_ref()?.slips.velocities.clone()),
+        in_trait: InTrait::Contacts,
+    },
+    Method {
+        name: "slip_bias",
+        doc: &["The bias `γ_t` of the slip accelerations, `v̇_t = T q̈ + γ_t`."],
+        args: &[Arg::T, Arg::Q, Arg::Qdot],
+        returns: Returns::ContactVector,
+        roots: |_, eq| Some(eq.contacts.as_ref()?.slips.bias.clone()),
+        in_trait: InTrait::Contacts,
+    },
+    Method {
+        name: "contact_laws",
+        doc: &["Each contact's restitution and friction coefficients."],
+        args: &[],
+        returns: Returns::ContactLaws,
+        roots: |_, eq| Some(eq.contacts.as_ref()?.laws.concat()),
+        in_trait: InTrait::Contacts,
+    },
     // Only a model with `inputs:` has this one.
     Method {
         name: "input_jacobian",
@@ -445,6 +561,7 @@ impl Method {
             InTrait::Required
             | InTrait::Provided
             | InTrait::Holonomic { .. }
+            | InTrait::Contacts
             | InTrait::Actuated
             | InTrait::Inherent => self.signature_returning(ty, returns),
         }

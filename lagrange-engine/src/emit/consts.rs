@@ -40,6 +40,9 @@ pub enum ConstValue {
     /// `[&'static str; C]`: the constraints' names (empty in the stub;
     /// absent from a model without constraints).
     ConstraintNames,
+    /// `[&'static str; K]`: the contacts' names (empty in the stub;
+    /// absent from a model without contacts).
+    ContactNames,
     /// `[&'static str; L]`: the `let` values' names, an indexed `let`
     /// flattened (`x[0]`, ...); empty strings in the stub.
     LetNames,
@@ -65,6 +68,11 @@ pub const CONSTS: &[Const] = &[
         name: "CONSTRAINTS",
         doc: Doc::Lines(&["Names of the holonomic constraints, in the order of `φ`."]),
         value: ConstValue::ConstraintNames,
+    },
+    Const {
+        name: "CONTACTS",
+        doc: Doc::Lines(&["Names of the contacts, in the order of the gaps `g`."]),
+        value: ConstValue::ContactNames,
     },
     Const {
         name: "PARAMETERS",
@@ -153,6 +161,16 @@ impl Const {
             (ConstValue::ConstraintNames, None) => {
                 let c = Literal::usize_unsuffixed(outline.constraints);
                 (quote!([&'static str; #c]), quote!([""; #c]))
+            }
+            (ConstValue::ContactNames, _) if outline.contacts == 0 => return None,
+            (ConstValue::ContactNames, Some((model, _))) => {
+                let k = Literal::usize_unsuffixed(outline.contacts);
+                let names = model.contacts.iter().map(|c| &c.label);
+                (quote!([&'static str; #k]), quote!([#(#names),*]))
+            }
+            (ConstValue::ContactNames, None) => {
+                let k = Literal::usize_unsuffixed(outline.contacts);
+                (quote!([&'static str; #k]), quote!([""; #k]))
             }
             (ConstValue::LetNames, Some((model, _))) => {
                 let l = Literal::usize_unsuffixed(model.lets.len());

@@ -45,6 +45,7 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
             fields: &model.fields,
             inputs: &model.input_fields,
             constraints: model.constraints.len(),
+            contacts: model.contacts.len(),
             serde: model.options.serde,
             lets: model.lets.len(),
         },
@@ -53,7 +54,8 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
             model.constraints.len(),
             model.inputs.len(),
             model.lets.len(),
-        ),
+        )
+        .with_contacts(model.contacts.len()),
         namer: Namer::new(model),
         roots: METHODS.iter().map(|m| (m.roots)(model, eq)).collect(),
     };
@@ -71,12 +73,14 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
         .map(|c| c.velocity_rows.clone());
     let holonomic = holonomic_impl(&cx, singular_mass, velocity_rows);
     let actuated = actuated_impl(&cx);
+    let contacts = contacts_impl(&cx);
     let lets = lets_impl(cx.outline.name, &cx.types);
     quote! {
         #item
         #inherent
         #lagrangian
         #holonomic
+        #contacts
         #actuated
         #lets
     }
@@ -319,12 +323,44 @@ fn holonomic_impl(
     }
 }
 
+/// `impl Contacts<N, K> for Name<S>`, for a model with contacts only: each
+/// method calls the inherent one.
+fn contacts_impl(cx: &Context) -> TokenStream {
+    if cx.types.contacts == 0 {
+        return TokenStream::new();
+    }
+    let na = nalgebra();
+    let name = cx.outline.name;
+    let (n, k) = (&cx.types.n, &cx.types.kc);
+    let methods = METHODS
+        .iter()
+        .zip(&cx.roots)
+        .filter(|(m, roots)| m.in_trait == InTrait::Contacts && roots.is_some())
+        .map(|(m, _)| {
+            let signature = m.trait_signature(&cx.types);
+            let method = m.ident();
+            let args = m.arg_idents();
+            quote! {
+                #[inline]
+                #signature {
+                    #name::#method(self, #(#args),*)
+                }
+            }
+        });
+    quote! {
+        impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::contact::Contacts<#n, #k> for #name<S> {
+            const CONTACTS: [&'static str; #k] = Self::CONTACTS;
+            #(#methods)*
+        }
+    }
+}
+
 /// A method of the `Lagrangian` impl: a call of the inherent one, or, where
 /// the model has none, the trait's flag for its absence.
 fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
     if matches!(
         m.in_trait,
-        InTrait::Holonomic { .. } | InTrait::Actuated | InTrait::Inherent
+        InTrait::Holonomic { .. } | InTrait::Contacts | InTrait::Actuated | InTrait::Inherent
     ) {
         return TokenStream::new();
     }
@@ -354,6 +390,7 @@ fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
         InTrait::Required
         | InTrait::Provided
         | InTrait::Holonomic { .. }
+        | InTrait::Contacts
         | InTrait::Actuated
         | InTrait::Inherent => {
             quote! {

@@ -44,6 +44,18 @@ pub struct Types {
     pub new_constraint_vector: TokenStream,
     /// The constructor of `SMatrix<S, C, N>` from a column-major slice.
     pub new_constraint_matrix: TokenStream,
+    /// The number of contacts, `K` of `Contacts<N, K>`.
+    pub contacts: usize,
+    /// The number of contacts as a literal.
+    pub kc: Literal,
+    /// `SVector<S, K>`, `K` the number of contacts.
+    pub contact_vector: TokenStream,
+    /// `SMatrix<S, K, N>`.
+    pub contact_matrix: TokenStream,
+    /// The constructor of `SVector<S, K>` from a slice.
+    pub new_contact_vector: TokenStream,
+    /// The constructor of `SMatrix<S, K, N>` from a column-major slice.
+    pub new_contact_matrix: TokenStream,
     /// `[S; L]`, `L` the number of `let` values.
     pub lets: TokenStream,
     /// `L`.
@@ -75,6 +87,12 @@ impl Types {
             constraint_matrix: quote!(#na::SMatrix<S, #c, #n>),
             new_constraint_vector: quote!(#na::SVector::<S, #c>::from_column_slice),
             new_constraint_matrix: quote!(#na::SMatrix::<S, #c, #n>::from_column_slice),
+            contacts: 0,
+            kc: Literal::usize_unsuffixed(0),
+            contact_vector: quote!(#na::SVector<S, 0>),
+            contact_matrix: quote!(#na::SMatrix<S, 0, #n>),
+            new_contact_vector: quote!(#na::SVector::<S, 0>::from_column_slice),
+            new_contact_matrix: quote!(#na::SMatrix::<S, 0, #n>::from_column_slice),
             lets: {
                 let l = Literal::usize_unsuffixed(lets);
                 quote!([S; #l])
@@ -84,6 +102,19 @@ impl Types {
             n,
             c,
         }
+    }
+
+    /// The same types for a model with `contacts` contacts.
+    pub fn with_contacts(mut self, contacts: usize) -> Self {
+        let na = nalgebra();
+        let (n, k) = (&self.n, Literal::usize_unsuffixed(contacts));
+        self.contact_vector = quote!(#na::SVector<S, #k>);
+        self.contact_matrix = quote!(#na::SMatrix<S, #k, #n>);
+        self.new_contact_vector = quote!(#na::SVector::<S, #k>::from_column_slice);
+        self.new_contact_matrix = quote!(#na::SMatrix::<S, #k, #n>::from_column_slice);
+        self.contacts = contacts;
+        self.kc = k;
+        self
     }
 }
 
@@ -114,6 +145,8 @@ pub struct Outline<'a> {
     /// The control inputs' fields (after the parameters'), which `new` does
     /// not take: they start unset (NaN).
     pub inputs: &'a [Field],
+    /// The number of contacts (0 for a model without `contacts:`).
+    pub contacts: usize,
     /// The number of holonomic constraints (0 for a model in minimal
     /// coordinates, which then has no constraint items).
     pub constraints: usize,

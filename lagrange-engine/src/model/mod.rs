@@ -123,6 +123,30 @@ pub struct Constraint {
     pub value: ExprId,
 }
 
+/// A unilateral contact, an entry of `contacts:`: its gap `g(t, q) ≥ 0`,
+/// the slip velocity friction acts against, and its law's coefficients
+/// (each a constant of the parameters).
+pub struct Contact {
+    /// As `CONTACTS` names it.
+    pub label: String,
+    /// Which entry of [`Model::contact_defs`] it comes from.
+    pub entry: usize,
+    /// The sides as lowered, for the checks to tell which is at fault.
+    pub sides: (ExprId, ExprId),
+    /// The law's entries as lowered, in the order written.
+    pub fields: Vec<ExprId>,
+    /// The gap, `lhs − rhs` for `>=`, `rhs − lhs` for `<=`.
+    pub gap: ExprId,
+    /// The slip velocity, if written (`slip:`).
+    pub slip: Option<ExprId>,
+    /// The coefficient of restitution (`restitution:`, zero by default).
+    pub restitution: ExprId,
+    /// The static friction coefficient (zero without friction).
+    pub static_friction: ExprId,
+    /// The kinetic friction coefficient (zero without friction).
+    pub kinetic_friction: ExprId,
+}
+
 /// The lowered model.
 pub struct Model {
     /// The user's attributes, passed through to the struct.
@@ -160,6 +184,11 @@ pub struct Model {
     /// The holonomic constraints, in the order of `φ`; empty for a model
     /// in minimal coordinates.
     pub constraints: Vec<Constraint>,
+    /// The `contacts:` entries as written, for the checks' errors.
+    pub contact_defs: Vec<crate::ast::ContactDef>,
+    /// The unilateral contacts, in the order written; empty for a model
+    /// without `contacts:`.
+    pub contacts: Vec<Contact>,
     /// Every `let` value by name, in declaration order (an indexed `let`
     /// as `x[0]`, `x[1]`, …): what the generated `lets` returns.
     pub lets: Vec<(String, ExprId)>,
@@ -200,6 +229,8 @@ pub fn lower_with_pool(def: ModelDef, pool: Pool) -> syn::Result<Model> {
         forces: sections.forces,
         constraint_defs: sections.constraint_defs,
         constraints: sections.constraints,
+        contact_defs: sections.contact_defs,
+        contacts: sections.contacts,
         lets,
         pool: cx.pool,
         scope: cx.names,

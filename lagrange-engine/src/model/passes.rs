@@ -6,8 +6,8 @@
 use super::lowering::Lowering;
 use super::scope::{Binding, Declared, Role};
 use super::vectors::{describe, Value};
-use super::{limit_error, Constraint, Field, Force, Scalar, Section, Symbols};
-use crate::ast::{BinOp, ConstraintDef, Expr, Item, ModelDef};
+use super::{limit_error, Constraint, Contact, Field, Force, Scalar, Section, Symbols};
+use crate::ast::{BinOp, ConstraintDef, ContactDef, Expr, Item, ModelDef};
 use crate::expr::{ExprId, Pool};
 use std::collections::{HashMap, HashSet};
 use syn::Ident;
@@ -128,6 +128,11 @@ pub(super) fn declarations(
             Item::Constraints { entries, .. } => {
                 for e in entries {
                     declared.declare(&e.name, "constraint")?;
+                }
+            }
+            Item::Contacts { entries, .. } => {
+                for e in entries {
+                    declared.declare(&e.name, "contact")?;
                 }
             }
             _ => {}
@@ -275,6 +280,8 @@ pub(super) struct Sections {
     pub(super) forces: Vec<Force>,
     pub(super) constraint_defs: Vec<ConstraintDef>,
     pub(super) constraints: Vec<Constraint>,
+    pub(super) contact_defs: Vec<ContactDef>,
+    pub(super) contacts: Vec<Contact>,
 }
 
 /// Pass 6: the sections, in order; a section written twice is the sum of
@@ -287,6 +294,8 @@ pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn
     let mut targets: HashSet<String> = HashSet::new();
     let mut constraint_defs = Vec::new();
     let mut constraints = Vec::new();
+    let mut contact_defs = Vec::new();
+    let mut contacts = Vec::new();
     for item in items {
         match item {
             Item::Kinetic { keyword, value } => add_to(&mut kinetic, cx, keyword, value)?,
@@ -301,6 +310,12 @@ pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn
                 for def in entries {
                     constraints.extend(constraint(cx, &def, constraint_defs.len())?);
                     constraint_defs.push(def);
+                }
+            }
+            Item::Contacts { entries, .. } => {
+                for def in entries {
+                    contacts.push(contact(cx, &def, contact_defs.len())?);
+                    contact_defs.push(def);
                 }
             }
             _ => {}
@@ -331,6 +346,92 @@ pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn
         forces,
         constraint_defs,
         constraints,
+        contact_defs,
+        contacts,
+    })
+}
+
+/// The keys of a contact's law.
+const CONTACT_KEYS: &str =
+    "`restitution`, `friction`, `static_friction`, `kinetic_friction` or `slip`";
+
+/// The contact of one entry `name: lhs >= rhs { law }` (the `entry`-th).
+fn contact(cx: &mut Lowering, def: &ContactDef, entry: usize) -> syn::Result<Contact> {
+    let lhs = cx.lower(&def.lhs)?;
+    let rhs = cx.lower(&def.rhs)?;
+    let gap = if def.at_least {
+        cx.pool.sub(lhs, rhs)
+    } else {
+        cx.pool.sub(rhs, lhs)
+    };
+    let mut law: HashMap<String, ExprId> = HashMap::new();
+    let mut fields = Vec::with_capacity(def.fields.len());
+    for (key, value) in &def.fields {
+        let name = key.to_string();
+        if !matches!(
+            name.as_str(),
+            "restitution" | "friction" | "static_friction" | "kinetic_friction" | "slip"
+        ) {
+            return Err(syn::Error::new(
+                key.span(),
+                format!(
+                    "unknown entry `{name}` in contact `{}`'s law: expected {CONTACT_KEYS}",
+                    def.name
+                ),
+            ));
+        }
+        let both = name == "friction"
+            && (law.contains_key("static_friction") || law.contains_key("kinetic_friction"));
+        let one = name.ends_with("_friction") && law.contains_key("friction");
+        if law.contains_key(&name) || both || one {
+            return Err(syn::Error::new(
+                key.span(),
+                format!(
+                    "contact `{}` gives `{name}` twice: `friction: mu` sets the static and the kinetic \
+                     coefficient at once, `static_friction:` and `kinetic_friction:` each",
+                    def.name
+                ),
+            ));
+        }
+        let lowered = cx.lower(value)?;
+        fields.push(lowered);
+        law.insert(name, lowered);
+    }
+    let (static_friction, kinetic_friction) = match (
+        law.get("friction"),
+        law.get("static_friction"),
+        law.get("kinetic_friction"),
+    ) {
+        (Some(&mu), _, _) => (mu, mu),
+        (None, Some(&s), Some(&k)) => (s, k),
+        (None, None, None) => (Pool::ZERO, Pool::ZERO),
+        (None, _, _) => {
+            let key = def
+                .fields
+                .iter()
+                .find(|(k, _)| k.to_string().ends_with("_friction"))
+                .map(|(k, _)| k.span())
+                .unwrap_or_else(|| def.name.span());
+            return Err(syn::Error::new(
+                key,
+                format!(
+                    "contact `{}` gives one friction coefficient: give both `static_friction:` and \
+                     `kinetic_friction:`, or `friction:` for one coefficient of both",
+                    def.name
+                ),
+            ));
+        }
+    };
+    Ok(Contact {
+        label: def.name.to_string(),
+        entry,
+        sides: (lhs, rhs),
+        fields,
+        gap,
+        slip: law.get("slip").copied(),
+        restitution: law.get("restitution").copied().unwrap_or(Pool::ZERO),
+        static_friction,
+        kinetic_friction,
     })
 }
 
@@ -505,6 +606,8 @@ pub struct Shape {
     pub inputs: Vec<Field>,
     /// The number of holonomic constraints.
     pub constraints: usize,
+    /// The number of contacts.
+    pub contacts: usize,
     /// The `let` values, an indexed `let` counting its elements.
     pub lets: usize,
 }
@@ -530,6 +633,7 @@ pub fn declared_shape(def: &ModelDef) -> Shape {
     let mut fields = Vec::new();
     let mut inputs = Vec::new();
     let mut constraints = 0usize;
+    let mut contacts = 0usize;
     let mut lets = 0usize;
     let mut seen_lets: HashSet<String> = HashSet::new();
     // The `let`s of vectors so far, with their lengths.
@@ -549,6 +653,14 @@ pub fn declared_shape(def: &ModelDef) -> Shape {
                     vectors.insert(name.to_string(), n);
                 }
                 lets += n;
+            }
+            continue;
+        }
+        if let Item::Contacts { entries, .. } = item {
+            for e in entries {
+                if seen_constraints.insert(e.name.to_string()) {
+                    contacts += 1;
+                }
             }
             continue;
         }
@@ -601,6 +713,7 @@ pub fn declared_shape(def: &ModelDef) -> Shape {
         fields,
         inputs,
         constraints,
+        contacts,
         lets,
     }
 }

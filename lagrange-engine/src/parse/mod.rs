@@ -17,7 +17,8 @@ pub mod expression;
 pub use expression::parse_expr;
 
 use crate::ast::{
-    ConstraintDef, Decl, Expr, IndexRange, Item, ModelDef, Options, SpanRange, MAX_BUDGET,
+    ConstraintDef, ContactDef, Decl, Expr, IndexRange, Item, ModelDef, Options, SpanRange,
+    MAX_BUDGET,
 };
 use crate::expr::DEFAULT_BUDGET;
 use expression::{drain_on_error, parse_bracket, parse_index_range};
@@ -28,7 +29,7 @@ use syn::{braced, bracketed, Attribute, Ident, LitInt, Token, Visibility};
 /// The sections a model may contain, for error messages.
 pub const SECTIONS: &str =
     "`const`, `coordinates:`, `parameters:`, `inputs:`, `constants:`, `let`, `kinetic:`, \
-     `potential:`, `dissipation:`, `forces:` or `constraints:`";
+     `potential:`, `dissipation:`, `forces:`, `constraints:` or `contacts:`";
 
 /// A parsed model and the first error met inside its body, if any.
 pub struct Parsed {
@@ -206,6 +207,7 @@ fn parse_item(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result
         "dissipation",
         "forces",
         "constraints",
+        "contacts",
     ];
     if !known.contains(&section.as_str()) {
         return Err(syn::Error::new(
@@ -246,6 +248,10 @@ fn parse_item(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result
         },
         "constraints" => Item::Constraints {
             entries: parse_constraints(input, error)?,
+            keyword,
+        },
+        "contacts" => Item::Contacts {
+            entries: parse_contacts(input, error)?,
             keyword,
         },
         "constants" => Item::Constants {
@@ -406,6 +412,82 @@ fn parse_constraints(
             return Ok(entries);
         } else {
             return Err(input.error("expected an operator, `=`, `,` or `;`"));
+        }
+    }
+}
+
+/// `name: lhs >= rhs { key: value, ... }, ...;` (or `<=`; the braces
+/// optional).
+fn parse_contacts(
+    input: ParseStream,
+    error: &mut Option<syn::Error>,
+) -> syn::Result<Vec<ContactDef>> {
+    let mut entries = Vec::new();
+    loop {
+        if input.peek(Token![;]) && !entries.is_empty() {
+            input.parse::<Token![;]>()?;
+            return Ok(entries);
+        }
+        let name: Ident = plain_name(input)?;
+        if !input.peek(Token![:]) || input.peek(Token![::]) {
+            return Err(input.error(
+                "expected `:` after the contact's name: each contact is named, as in `floor: y >= 0`",
+            ));
+        }
+        input.parse::<Token![:]>()?;
+        let lhs = parse_expr(input)?;
+        let at_least = if input.peek(Token![>=]) {
+            input.parse::<Token![>=]>()?;
+            true
+        } else if input.peek(Token![<=]) {
+            input.parse::<Token![<=]>()?;
+            false
+        } else {
+            return Err(input.error(
+                "expected `>=` or `<=`: a contact is a gap that stays non-negative, as in `floor: y >= 0` \
+                 (an equation `=` is a constraint, in `constraints:`)",
+            ));
+        };
+        let rhs = parse_expr(input)?;
+        let mut fields = Vec::new();
+        if input.peek(syn::token::Brace) {
+            let inner;
+            braced!(inner in input);
+            drain_on_error(&inner, |inner| {
+                while !inner.is_empty() {
+                    let key: Ident = inner.parse()?;
+                    if !inner.peek(Token![:]) || inner.peek(Token![::]) {
+                        return Err(inner.error(
+                            "expected `:` after the law's entry, as in `{ restitution: e, friction: mu, slip: dot(x) }`",
+                        ));
+                    }
+                    inner.parse::<Token![:]>()?;
+                    fields.push((key, parse_expr(inner)?));
+                    if inner.peek(Token![,]) {
+                        inner.parse::<Token![,]>()?;
+                    } else if !inner.is_empty() {
+                        return Err(inner.error("expected an operator, `,` or `}`"));
+                    }
+                }
+                Ok(())
+            })?;
+        }
+        entries.push(ContactDef {
+            name,
+            lhs,
+            at_least,
+            rhs,
+            fields,
+        });
+        if input.peek(Token![,]) {
+            input.parse::<Token![,]>()?;
+        } else if input.peek(Token![;]) {
+            input.parse::<Token![;]>()?;
+            return Ok(entries);
+        } else if recover_missing_semicolon(input, error) {
+            return Ok(entries);
+        } else {
+            return Err(input.error("expected an operator, `{`, `,` or `;`"));
         }
     }
 }

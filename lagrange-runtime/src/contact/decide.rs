@@ -185,7 +185,7 @@ pub(crate) fn modes<L, const N: usize, const K: usize>(
 where
     L: Contacts<N, K>,
 {
-    let laws = model.laws();
+    let laws = model.contact_laws();
     let touch = touching(model, settings, t, q);
     let rate = model.gap_velocities(t, q, qdot);
     let slip = model.slip_velocities(t, q, qdot);
@@ -281,7 +281,7 @@ pub(crate) fn impact<L, const N: usize, const K: usize>(
 where
     L: Contacts<N, K>,
 {
-    let laws = model.laws();
+    let laws = model.contact_laws();
     let touch = touching(model, settings, t, q);
     let rate = model.gap_velocities(t, q, qdot);
     if !(0..K).any(|i| touch[i] && rate[i] < -settings.velocity_tolerance) {

@@ -181,7 +181,7 @@ pub trait Contacts<const N: usize, const K: usize>: Lagrangian<N> {
     }
 
     /// Each contact's restitution and friction.
-    fn laws(&self) -> [ContactLaw<Self::Scalar>; K];
+    fn contact_laws(&self) -> [ContactLaw<Self::Scalar>; K];
 }
 
 /// What happens at one contact: its impacts and its friction.

@@ -94,7 +94,7 @@ pub(crate) fn accelerations<L, const N: usize, const K: usize>(
 where
     L: Contacts<N, K>,
 {
-    let laws = model.laws();
+    let laws = model.contact_laws();
     let free = terms.solve(&terms.forcing)?;
     let mut unknowns = Vec::new();
     for (i, mode) in modes.iter().enumerate() {

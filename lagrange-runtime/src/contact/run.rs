@@ -137,7 +137,7 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for HasConstraints {
 ///     fn gap_bias(&self, _t: f64, _q: &SVector<f64, 1>, _qd: &SVector<f64, 1>) -> SVector<f64, 1> {
 ///         Vector1::new(0.0)
 ///     }
-///     fn laws(&self) -> [ContactLaw<f64>; 1] { [ContactLaw::frictionless(0.5)] }
+///     fn contact_laws(&self) -> [ContactLaw<f64>; 1] { [ContactLaw::frictionless(0.5)] }
 /// }
 ///
 /// // Dropped from 1 m with restitution 1/2: the bounces accumulate and the
@@ -266,7 +266,7 @@ where
                 }
                 _ => nalgebra::one::<L::Scalar>(),
             };
-        let mu_s = model.laws()[i].static_friction;
+        let mu_s = model.contact_laws()[i].static_friction;
         let stick_limit =
             move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| match phase
                 .shared
@@ -358,7 +358,7 @@ where
             return bad(setting, value, "non-negative and finite");
         }
     }
-    for law in model.laws() {
+    for law in model.contact_laws() {
         if !(law.restitution >= zero && law.restitution <= nalgebra::one::<L::Scalar>()) {
             return bad("restitution", law.restitution, "between 0 and 1");
         }

@@ -56,7 +56,7 @@ impl Contacts<2, 1> for OnSphere {
         let rdot = q.dot(qd) / r;
         SVector::<f64, 1>::new((qd.norm_squared() - rdot * rdot) / r)
     }
-    fn laws(&self) -> [ContactLaw<f64>; 1] {
+    fn contact_laws(&self) -> [ContactLaw<f64>; 1] {
         [ContactLaw::frictionless(0.0)]
     }
 }
@@ -124,7 +124,7 @@ impl Contacts<3, 2> for Ladder {
         let w2 = qd[2] * qd[2];
         Vector2::new(h * c * w2, h * s * w2)
     }
-    fn laws(&self) -> [ContactLaw<f64>; 2] {
+    fn contact_laws(&self) -> [ContactLaw<f64>; 2] {
         [ContactLaw::frictionless(0.0); 2]
     }
 }
@@ -151,7 +151,7 @@ impl Contacts<2, 1> for CartesianPendulum<f64> {
     fn gap_bias(&self, _t: f64, _q: &SVector<f64, 2>, _qd: &SVector<f64, 2>) -> SVector<f64, 1> {
         SVector::<f64, 1>::zeros()
     }
-    fn laws(&self) -> [ContactLaw<f64>; 1] {
+    fn contact_laws(&self) -> [ContactLaw<f64>; 1] {
         [ContactLaw::frictionless(0.5)]
     }
 }

@@ -1,0 +1,21 @@
+//! Scenes with unilateral contacts and friction (`contacts:`), each with
+//! its closed form: run them with
+//! [`contact::integrate`](lagrange_runtime::contact::integrate).
+
+mod ball_on_floor;
+mod belt;
+mod incline;
+mod ladder;
+mod sliding_ball;
+mod sphere;
+mod string;
+mod tumbling_box;
+
+pub use ball_on_floor::BallOnFloor;
+pub use belt::{BlockOnBelt, StickSlip};
+pub use incline::BlockOnIncline;
+pub use ladder::Ladder;
+pub use sliding_ball::SlidingBall;
+pub use sphere::ParticleOnSphere;
+pub use string::BobOnString;
+pub use tumbling_box::TumblingBox;
