@@ -3,6 +3,7 @@
 
 mod bicycle;
 mod constrained;
+mod contact;
 mod ensemble;
 mod events;
 mod fingerprints;

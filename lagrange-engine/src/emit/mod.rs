@@ -251,6 +251,13 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
             }
         }
     });
+    // A model with contacts says so: the runs other than the contact run
+    // refuse it.
+    let has_contacts = (cx.types.contacts > 0).then(|| {
+        quote!(
+            const HAS_CONTACTS: bool = true;
+        )
+    });
     quote! {
         impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::Lagrangian<#n> for #name<S> {
             type Scalar = S;
@@ -263,6 +270,7 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
             #visit_inputs
             #visit_lets
             #visit
+            #has_contacts
         }
     }
 }

@@ -5,7 +5,7 @@
 use nalgebra::{ComplexField, DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::lcp::lemke;
-use super::phase::{normal_direction, Terms};
+use super::phase::{min_norm_solve, normal_direction, Terms};
 use super::{Cause, ContactError, ContactLaw, ContactSettings, Contacts, Mode, Switch};
 
 /// One touching contact's unknowns in a complementarity problem: a normal
@@ -337,11 +337,17 @@ where
         let free = terms_after.solve(&terms_after.forcing).ok_or(dependent)?;
         let fall = terms_after.g * free + terms_after.gamma;
         let two = one + one;
+        let zero = nalgebra::zero::<L::Scalar>();
+        let rounding = nalgebra::convert::<f64, L::Scalar>(64.0 * f64::EPSILON);
         settled = (0..K).any(|i| {
-            plastic.normal[i] > nalgebra::zero::<L::Scalar>()
-                && rebound[i] > nalgebra::zero::<L::Scalar>()
-                && fall[i] < nalgebra::zero::<L::Scalar>()
-                && two * rebound[i] < settings.shortest_flight * -fall[i]
+            let (v, a) = (rebound[i], -fall[i]);
+            // The rounding of the gap's value, from its terms' sizes.
+            let resolution =
+                rounding * (0..N).fold(zero, |sum, j| sum + (terms_after.g[(i, j)] * q[j]).abs());
+            plastic.normal[i] > zero
+                && v > zero
+                && a > zero
+                && (two * v < settings.shortest_flight * a || v * v < two * a * resolution)
         });
         if settled {
             e = nalgebra::zero::<L::Scalar>();
@@ -384,7 +390,7 @@ where
             .collect::<Option<_>>()?;
         let k = rows.len();
         let a = DMatrix::from_fn(k, k, |i, j| rows[i].dot(&responses[j]));
-        let y = a.lu().solve(residual)?;
+        let y = min_norm_solve(a, residual)?;
         let mut dx = SVector::zeros();
         for j in 0..k {
             dx -= responses[j] * y[j];

@@ -25,7 +25,7 @@
 //!
 //! | event | function, located by the run's event search | then |
 //! |---|---|---|
-//! | arrival | `g` falling through 0 (an open contact) | an impact, then a new decision |
+//! | arrival | `g` falling through 0 (an open contact; the function is `g + max(ġ, 0)`, which is `g` while it approaches and positive from a rebound's start on) | an impact, then a new decision |
 //! | release | `N` falling through 0 (a touching contact) | the contact opens (and the others are decided again) |
 //! | slide stop | `sign(v_t) v_t` falling through 0 (a sliding contact) | stick or slide back, decided |
 //! | stick limit | `μ_s N − |F|` falling through 0 (a stuck contact) | it slides, in the direction its friction force was holding |
@@ -70,14 +70,18 @@
 //! # Impacts that accumulate
 //!
 //! A ball bouncing with `e < 1` makes infinitely many bounces before a
-//! finite time. Here a rebound whose flight would be shorter than the
-//! settings' [`shortest_flight`](ContactSettings::shortest_flight) (its
-//! normal velocity over its acceleration back, `2 ġ⁺ / |g̈|`) is made
-//! plastic: the contact closes and stays closed, a persistent contact
-//! instead of a [`Zeno`](crate::error::IntegrationError::Zeno) error. The
-//! flights cut off would have added up to at most `shortest_flight /
-//! (1 − e)` for a constant acceleration, which bounds the error this makes
-//! in the time of rest.
+//! finite time. Here a rebound that cannot be resolved is made plastic:
+//! the contact closes and stays closed, a persistent contact instead of a
+//! [`Zeno`](crate::error::IntegrationError::Zeno) error (the run's own
+//! Zeno guard is off). A rebound is unresolved when its flight would be
+//! shorter than the settings'
+//! [`shortest_flight`](ContactSettings::shortest_flight) (its normal
+//! velocity over its acceleration back, `2 ġ⁺ / |g̈|`), or its apex
+//! `ġ⁺² / (2 |g̈|)` below the rounding of the gap's value (`64 ε Σⱼ |Gᵢⱼ
+//! qⱼ|`: a bounce no evaluation of `g` could see), or its velocity below
+//! the velocity tolerance. The flights cut off would have added up to at
+//! most `flight / (1 − e)` for a constant acceleration, which bounds the
+//! error this makes in the time of rest.
 //!
 //! # What the contacts need, and what they do not support yet
 //!

@@ -148,10 +148,7 @@ where
         }
         b[r] = -(w.dot(&free.transpose()) + bias);
     }
-    let lambda = a.lu().solve(&b)?;
-    if !lambda.iter().all(|x| x.is_finite()) {
-        return None;
-    }
+    let lambda = min_norm_solve(a, &b)?;
     let mut qddot = free;
     let mut force = SVector::zeros();
     for c in 0..m {
@@ -171,6 +168,28 @@ where
     }
     forces.generalized = force;
     Some((qddot, forces))
+}
+
+/// The minimum-norm solution of `A x = b`, by singular values: touching
+/// contacts whose rows are dependent (two corners of a box flat on the
+/// floor, both stuck) leave their forces undetermined but the
+/// accelerations not, and this takes the smallest forces that give them.
+/// `None` where no `x` satisfies the equations to rounding (a system that
+/// is inconsistent, not merely redundant) or a value is not finite.
+pub(crate) fn min_norm_solve<S: RealField + Copy>(
+    a: DMatrix<S>,
+    b: &DVector<S>,
+) -> Option<DVector<S>> {
+    if !a.iter().chain(b.iter()).all(|x| x.is_finite()) {
+        return None;
+    }
+    let scale = a.iter().fold(S::zero(), |m, x| m.max(x.abs()));
+    let c = nalgebra::convert::<f64, S>;
+    let svd = a.clone().svd(true, true);
+    let x = svd.solve(b, c(1e-12) * scale).ok()?;
+    let residual = (&a * &x - b).norm();
+    let size = b.norm().max(scale * x.norm());
+    (x.iter().all(|v| v.is_finite()) && residual <= c(1e-8) * size).then_some(x)
 }
 
 /// What the run shares with its events: the modes, the switches so far,

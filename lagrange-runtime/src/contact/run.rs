@@ -229,7 +229,9 @@ where
     };
     let phase = &phase;
 
-    let mut events = Events::new();
+    // The run's Zeno guard is off: impacts that accumulate settle into a
+    // persistent contact instead (`shortest_flight`).
+    let mut events = Events::new().min_separation(nalgebra::zero());
     for i in 0..K {
         let name = L::CONTACTS[i];
         let switch = |cause: Cause| {
@@ -237,11 +239,19 @@ where
                 phase.switch(&settings, i, cause, t, (*q, *qdot))
             }
         };
-        let arrival = move |t, q: &SVector<L::Scalar, N>, _: &SVector<L::Scalar, N>| match phase
+        // The gap, looking one time unit ahead while it opens: `g + max(ġ,
+        // 0)` equals `g` while the contact approaches, so it crosses zero
+        // where the contact arrives, and it is positive from the start of
+        // a rebound on, when `g` itself is zero: a bounce shorter than a
+        // step is not lost to an unarmed start.
+        let arrival = move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| match phase
             .shared
             .modes()[i]
         {
-            Mode::Open => phase.model.gaps(t, q)[i],
+            Mode::Open => {
+                let rate = phase.model.gap_velocities(t, q, qdot)[i];
+                phase.model.gaps(t, q)[i] + rate.max(nalgebra::zero())
+            }
             _ => nalgebra::one::<L::Scalar>(),
         };
         let release = move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| {
@@ -400,15 +410,21 @@ where
     let mut impulses = None;
     let mut energy_lost = nalgebra::zero::<L::Scalar>();
     let mut settled = false;
-    if matches!(cause, Cause::Impact | Cause::Start) {
-        if let Some((after, impulse, short)) = impact(model, settings, (t, &q, &qdot))? {
-            energy_lost = model.kinetic_energy(t, &q, &qdot) - model.kinetic_energy(t, &q, &after);
-            qdot = after;
-            impulses = Some(impulse);
-            settled = short;
-        }
+    // An impact wherever a touching contact approaches: at an arrival,
+    // at the start, and after any other switch that leaves one doing so.
+    if let Some((after, impulse, short)) = impact(model, settings, (t, &q, &qdot))? {
+        energy_lost = model.kinetic_energy(t, &q, &qdot) - model.kinetic_energy(t, &q, &after);
+        qdot = after;
+        impulses = Some(impulse);
+        settled = short;
     }
     let to = modes(model, settings, (t, &q, &qdot), forced)?;
+    // A rebound below the velocity tolerance closes the contact too: the
+    // impact settled it.
+    let laws = model.contact_laws();
+    let settled_at = |i: usize| {
+        settled || (to[i].touching() && laws[i].restitution > nalgebra::zero::<L::Scalar>())
+    };
     let state =
         project(model, &to, t, (q, qdot)).ok_or(ContactError::DependentContacts { t, q, qdot })?;
     let touch = touching(model, settings, t, &q);
@@ -422,8 +438,8 @@ where
                 p[i].0 != nalgebra::zero::<L::Scalar>()
             });
             match cause {
-                Cause::Impact | Cause::Start if settled && struck => Cause::Settled,
-                Cause::Impact if struck => Cause::Impact,
+                _ if struck && settled_at(i) => Cause::Settled,
+                _ if struck => Cause::Impact,
                 Cause::Start => Cause::Start,
                 _ if forced.is_some_and(|(j, _)| j == i) => cause,
                 Cause::SlideStopped if touch[i] && from[i] != to[i] => cause,

@@ -31,6 +31,9 @@ pub(super) fn validate<L: Lagrangian<N>, const N: usize>(
         return Err(InvalidInput::NonFiniteStartTime { t0 });
     }
     crate::model::ready(model)?;
+    if L::HAS_CONTACTS {
+        return Err(InvalidInput::ContactsNotRun);
+    }
     for (i, coordinate) in L::COORDINATES.into_iter().enumerate() {
         if !q0[i].is_finite() {
             let value = q0[i];

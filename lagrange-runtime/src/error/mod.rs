@@ -357,6 +357,14 @@ pub enum InvalidInput<S: RealField + Copy> {
         inputs: &'static [Name],
     },
 
+    /// The model has unilateral contacts (`contacts:`), which this run
+    /// would ignore: the model would pass through its floor.
+    #[error(
+        "the model has contacts (`contacts:`), which this run would ignore: run it with \
+         `lagrange::contact::integrate`"
+    )]
+    ContactsNotRun,
+
     /// A sample time is NaN or infinite.
     #[error("sample time times[{index}] = {time:?} is not finite")]
     NonFiniteSampleTime {

@@ -50,6 +50,9 @@ const MAX_ITERATIONS: usize = 3000;
 /// `evaluations`; a non-finite value is
 /// [`NonFiniteEvent`](IntegrationError::NonFiniteEvent) at the state where
 /// it was evaluated.
+/// The fraction of a step over which `g`'s rate is differenced, `2⁻²⁰`.
+const STEP_FRACTION: f64 = 1.0 / 1_048_576.0;
+
 pub(crate) fn first_crossing<S: RealField + Copy, const N: usize>(
     events: &Events<'_, S, N>,
     (t0, g0): (S, &[S]),
@@ -70,6 +73,17 @@ pub(crate) fn first_crossing<S: RealField + Copy, const N: usize>(
         // the value crossing is judged from.
         let bracket = if event.crosses(g0[i], g1[i]) {
             Some(((t0, g0[i]), (t1, g1[i]), g0[i]))
+        } else if g0[i] == S::zero() && g1[i] != S::zero() {
+            // Unarmed at the start (zero there: a restart on the event):
+            // `g` may leave zero one way and come back across within the
+            // step, as a ball does after a bounce shorter than the step.
+            // Just after the start, on the interpolant, it shows which way
+            // it left.
+            let ta = t0 + (t1 - t0) * nalgebra::convert::<f64, S>(STEP_FRACTION);
+            let ga = g(ta)?;
+            event
+                .crosses(ga, g1[i])
+                .then_some(((ta, ga), (t1, g1[i]), ga))
         } else {
             match hidden_extremum(&mut g, (t0, g0[i]), (t1, g1[i]), tolerance)? {
                 // Across zero and back: the way there, or the way back.
@@ -135,7 +149,7 @@ fn hidden_extremum<S: RealField + Copy, E>(
     }
     // Towards zero is down for a positive g, up for a negative one.
     let sign = if g0 > zero { S::one() } else { -S::one() };
-    let delta = (t1 - t0) * nalgebra::convert::<f64, S>(2f64.powi(-20));
+    let delta = (t1 - t0) * nalgebra::convert::<f64, S>(STEP_FRACTION);
     if !(t0 + delta > t0 && t1 - delta < t1) {
         return Ok(None);
     }

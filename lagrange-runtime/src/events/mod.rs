@@ -116,7 +116,10 @@
 //! - A function that is zero at the start (`t0`, or the time of the
 //!   previous event) is not armed: no crossing is reported there, and the
 //!   next one needs `g` to leave zero first. An event exactly at `t0` is not
-//!   triggered.
+//!   triggered. Where `g` leaves zero and comes back across it within the
+//!   first step (a bounce shorter than the step), the way it left is read
+//!   from `g` just after the start (`2⁻²⁰` of the step, on the
+//!   interpolant: one more evaluation), and that crossing is found.
 //! - Several events crossing within the same located time are handled
 //!   together: all are recorded; a stop wins over resets; resets are
 //!   applied in the order the events were added.

@@ -195,6 +195,7 @@ where
     type Scalar = M::Scalar;
     const COORDINATES: [&'static str; N] = M::COORDINATES;
     const CONSERVATIVE: bool = M::CONSERVATIVE;
+    const HAS_CONTACTS: bool = M::HAS_CONTACTS;
 
     #[inline]
     fn mass_matrix(&self, t: M::Scalar, q: &SVector<M::Scalar, N>) -> SMatrix<M::Scalar, N, N> {

@@ -206,6 +206,15 @@ pub trait Lagrangian<const N: usize> {
         Self::CONSERVATIVE.then(SVector::zeros)
     }
 
+    /// Whether the model has unilateral contacts (`contacts:`, see
+    /// [`contact`](crate::contact)), which only
+    /// [`contact::integrate`](crate::contact::integrate) runs: the other
+    /// runs refuse such a model
+    /// ([`InvalidInput::ContactsNotRun`](crate::error::InvalidInput::ContactsNotRun))
+    /// rather than let it pass through its floor. The analyses (which look
+    /// at the smooth dynamics only) take it.
+    const HAS_CONTACTS: bool = false;
+
     /// Hands `visitor` this model as a [`Holonomic`](crate::model::constraints::Holonomic)
     /// model with its number of constraints `C`, and the constraint
     /// settings of the run, if it has constraints: how the integrators

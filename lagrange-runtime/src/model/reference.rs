@@ -15,6 +15,7 @@ impl<L: Lagrangian<N> + ?Sized, const N: usize> Lagrangian<N> for &L {
     type Scalar = L::Scalar;
     const COORDINATES: [&'static str; N] = L::COORDINATES;
     const CONSERVATIVE: bool = L::CONSERVATIVE;
+    const HAS_CONTACTS: bool = L::HAS_CONTACTS;
 
     #[inline]
     fn mass_matrix(&self, t: L::Scalar, q: &SVector<L::Scalar, N>) -> SMatrix<L::Scalar, N, N> {

@@ -1,0 +1,144 @@
+//! Coulomb friction: a ball that slides until it rolls, a block that
+//! stays put below its friction angle and slides above it, and a block
+//! on a belt that sticks and slips.
+
+use lagrange::contact::{Cause, Mode};
+use lagrange::models::{BlockOnBelt, BlockOnIncline, SlidingBall};
+
+use super::{run, times};
+
+#[test]
+fn a_ball_thrown_sliding_starts_to_roll_at_two_v0_over_seven_mu_g_at_five_sevenths_of_v0() {
+    let ball = SlidingBall::new(0.3, 0.05, 9.81, 0.2);
+    for v0 in [0.5, 3.0] {
+        let t_roll = ball.rolling_time(v0);
+        let run = run(&ball, ball.thrown(v0), &times(3.0 * t_roll, 60)).unwrap();
+        let start = run.switches()[0];
+        assert_eq!(start.to, Mode::Sliding { forward: true });
+        let roll = run
+            .switches()
+            .iter()
+            .find(|s| s.cause == Cause::SlideStopped)
+            .expect("it rolls");
+        assert_eq!(roll.to, Mode::Stuck);
+        // The slip velocity is linear in t while it slides (every method
+        // exact up to rounding), so the time is the location's (a few ulps)
+        // and the speed the trajectory's rounding.
+        assert!(
+            (roll.t - t_roll).abs() < 1e-10,
+            "rolls at {}, closed form {t_roll}",
+            roll.t
+        );
+        let speed = SlidingBall::rolling_speed(v0);
+        assert!(
+            (roll.qdot[0] - speed).abs() < 1e-10,
+            "{} against {speed}",
+            roll.qdot[0]
+        );
+        for ((sample, forces), modes) in run.trajectory().iter().zip(run.forces()).zip(run.modes())
+        {
+            // N = m g throughout; while it slides friction is −μ N, once it
+            // rolls none is needed: the speed stays 5 v₀ / 7.
+            assert!((forces.normal[0] - 0.3 * 9.81).abs() < 1e-12);
+            if sample.t < roll.t {
+                assert_eq!(modes[0], Mode::Sliding { forward: true });
+                assert!((forces.friction[0] + 0.2 * 0.3 * 9.81).abs() < 1e-12);
+            } else if sample.t > roll.t {
+                assert_eq!(modes[0], Mode::Stuck);
+                assert!(forces.friction[0].abs() < 1e-12);
+                assert!((sample.qdot[0] - speed).abs() < 1e-10);
+            }
+        }
+    }
+}
+
+#[test]
+fn a_block_below_its_friction_angle_stays_put_and_above_it_slides_at_the_closed_form_rate() {
+    // μ_s = 0.5, μ_k = 0.4: the friction angle is atan(0.5) = 26.6°.
+    let (m, g) = (1.0, 9.81);
+    for degrees in [10.0f64, 20.0, 26.0] {
+        let alpha = degrees.to_radians();
+        let block = BlockOnIncline::new(m, g, alpha, 0.5, 0.4);
+        assert!(block.holds());
+        let run = run(&block, ([0.0, 0.0], [0.0, 0.0]), &times(10.0, 100)).unwrap();
+        assert_eq!(run.switches().len(), 1, "{:?}", run.switches());
+        assert_eq!(run.switches()[0].to, Mode::Stuck);
+        for (sample, forces) in run.trajectory().iter().zip(run.forces()) {
+            // Stuck: the accelerations are zero to rounding of forces of
+            // 10 N, so over 10 s the block moves by no more than rounding.
+            assert!(
+                sample.q.norm() < 1e-13,
+                "moved {} at t = {}",
+                sample.q.norm(),
+                sample.t
+            );
+            assert!((forces.normal[0] - m * g * alpha.cos()).abs() < 1e-12);
+            // The friction force holds it up the slope.
+            assert!((forces.friction[0] + m * g * alpha.sin()).abs() < 1e-12);
+        }
+    }
+    for degrees in [30.0f64, 45.0] {
+        let alpha = degrees.to_radians();
+        let block = BlockOnIncline::new(m, g, alpha, 0.5, 0.4);
+        assert!(!block.holds());
+        let run = run(&block, ([0.0, 0.0], [0.0, 0.0]), &times(2.0, 20)).unwrap();
+        assert_eq!(run.switches()[0].to, Mode::Sliding { forward: true });
+        let a = block.sliding_acceleration();
+        for sample in run.trajectory().iter() {
+            // x = a t²/2: a quadratic, exact for Dop853 up to rounding.
+            assert!((sample.q[0] - a * sample.t * sample.t / 2.0).abs() < 1e-12);
+            assert!(sample.q[1].abs() < 1e-12);
+        }
+    }
+}
+
+#[test]
+fn a_block_on_a_belt_sticks_and_slips_on_its_closed_form_cycle() {
+    // Riding the belt from x = 0, it slips at x₁ = μ_s m g / k, slips back
+    // harmonically about μ_k m g / k, sticks again at the belt's speed at
+    // x₂, and rides to x₁ again: a limit cycle.
+    let block = BlockOnBelt::new(1.0, 9.81, 40.0, 0.3, 0.6, 0.4);
+    let cycle = block.cycle();
+    let run = run(&block, ([0.0, 0.0], [0.3, 0.0]), &times(10.0, 200)).unwrap();
+    let switches: Vec<_> = run
+        .switches()
+        .iter()
+        .filter(|s| s.cause != Cause::Start)
+        .collect();
+    assert!(switches.len() >= 6, "{switches:?}");
+    let mut expected_t = cycle.slips_at / 0.3;
+    for (k, s) in switches.iter().enumerate() {
+        // Alternately: it slips back (the friction needed reached μ_s N)
+        // and sticks (the slip velocity reached zero).
+        if k % 2 == 0 {
+            assert_eq!(
+                (s.cause, s.to),
+                (Cause::StickLimit, Mode::Sliding { forward: false })
+            );
+            assert!(
+                (s.q[0] - cycle.slips_at).abs() < 1e-10,
+                "slips at x = {}",
+                s.q[0]
+            );
+        } else {
+            assert_eq!((s.cause, s.to), (Cause::SlideStopped, Mode::Stuck));
+            assert!(
+                (s.q[0] - cycle.sticks_at).abs() < 1e-10,
+                "sticks at x = {}",
+                s.q[0]
+            );
+        }
+        // The times: each phase's duration in closed form; the errors of
+        // the harmonic phases (1e-12 each) add up over the cycles.
+        assert!(
+            (s.t - expected_t).abs() < 1e-9,
+            "switch {k} at {}, closed form {expected_t}",
+            s.t
+        );
+        expected_t += if k % 2 == 0 {
+            cycle.slip_duration
+        } else {
+            cycle.stick_duration
+        };
+    }
+}
