@@ -6,6 +6,8 @@ use nalgebra::{ComplexField, DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::lcp::lemke;
 use super::phase::{min_norm_solve, normal_direction, Terms};
+use crate::trajectory::State;
+
 use super::{Cause, ContactError, ContactLaw, ContactSettings, Contacts, Mode, Switch};
 
 /// One touching contact's unknowns in a complementarity problem: a normal
@@ -371,7 +373,7 @@ pub(crate) fn project<L, const N: usize, const K: usize>(
     modes: &[Mode; K],
     t: L::Scalar,
     (mut q, mut qdot): (SVector<L::Scalar, N>, SVector<L::Scalar, N>),
-) -> Option<(SVector<L::Scalar, N>, SVector<L::Scalar, N>)>
+) -> Option<State<L::Scalar, N>>
 where
     L: Contacts<N, K>,
 {

@@ -112,7 +112,8 @@ mod lcp;
 mod phase;
 mod run;
 
-pub use run::{integrate, ContactFailure, ContactResult, ContactTrajectory};
+pub use phase::Phase;
+pub use run::{integrate, ContactFailure, ContactResult, ContactTrajectory, Scene};
 
 /// A model with `K` unilateral contacts on its `N` coordinates: gaps
 /// `g(t, q) ≥ 0` and, where friction acts, slip velocities `v_t`.

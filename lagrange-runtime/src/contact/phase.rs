@@ -2,13 +2,16 @@
 //! forces solved with the accelerations, and the model a run integrates
 //! between switches ([`Phase`]), whose forcing includes them.
 
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 use nalgebra::{ComplexField, DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::{ContactError, ContactForces, Contacts, Mode, Switch};
 use crate::linalg::solve::{factor_mass_matrix, MassFactor};
 use crate::model::Lagrangian;
+
+/// The accelerations and the contact forces at a state.
+pub(crate) type Solved<S, const N: usize, const K: usize> = (SVector<S, N>, ContactForces<S, N, K>);
 
 /// One unknown force of a mode: the contact, and whether normal or
 /// tangential (a stuck contact's friction).
@@ -90,7 +93,7 @@ pub(crate) fn accelerations<L, const N: usize, const K: usize>(
     model: &L,
     modes: &[Mode; K],
     terms: &Terms<L::Scalar, N, K>,
-) -> Option<(SVector<L::Scalar, N>, ContactForces<L::Scalar, N, K>)>
+) -> Option<Solved<L::Scalar, N, K>>
 where
     L: Contacts<N, K>,
 {
@@ -225,12 +228,37 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Shared<S, N, K> {
 
 /// The model a run integrates between switches: the contact model with the
 /// touching contacts' forces in its forcing, in the modes `shared` holds.
-pub(crate) struct Phase<'a, L, const N: usize, const K: usize>
+///
+/// A [`Scene`](super::Scene)'s [`Stepper`](crate::stepper::Stepper) steps
+/// it; it is not built by hand.
+pub struct Phase<'a, L, const N: usize, const K: usize>
 where
     L: Contacts<N, K>,
 {
     pub(crate) model: &'a L,
-    pub(crate) shared: &'a Shared<L::Scalar, N, K>,
+    pub(crate) shared: Arc<Shared<L::Scalar, N, K>>,
+}
+
+impl<L, const N: usize, const K: usize> Clone for Phase<'_, L, N, K>
+where
+    L: Contacts<N, K>,
+{
+    fn clone(&self) -> Self {
+        Self {
+            model: self.model,
+            shared: Arc::clone(&self.shared),
+        }
+    }
+}
+
+impl<'a, L, const N: usize, const K: usize> Phase<'a, L, N, K>
+where
+    L: Contacts<N, K>,
+{
+    /// The model with contacts.
+    pub fn model(&self) -> &'a L {
+        self.model
+    }
 }
 
 impl<L, const N: usize, const K: usize> Phase<'_, L, N, K>
@@ -244,7 +272,7 @@ where
         t: L::Scalar,
         q: &SVector<L::Scalar, N>,
         qdot: &SVector<L::Scalar, N>,
-    ) -> Option<(SVector<L::Scalar, N>, ContactForces<L::Scalar, N, K>)> {
+    ) -> Option<Solved<L::Scalar, N, K>> {
         let (m, f) = self.model.mass_matrix_and_forcing(t, q, qdot);
         self.solve_with(t, q, qdot, &m, f)
     }
@@ -257,7 +285,7 @@ where
         qdot: &SVector<L::Scalar, N>,
         m: &SMatrix<L::Scalar, N, N>,
         f: SVector<L::Scalar, N>,
-    ) -> Option<(SVector<L::Scalar, N>, ContactForces<L::Scalar, N, K>)> {
+    ) -> Option<Solved<L::Scalar, N, K>> {
         let modes = self.shared.modes();
         let solved = Terms::with(self.model, (t, q, qdot), m, f)
             .and_then(|terms| accelerations(self.model, &modes, &terms));

@@ -1,6 +1,8 @@
 //! A contact run: the start decided, the switches wired as events of the
 //! one run loop, and the forces of every sample.
 
+use std::sync::Arc;
+
 use nalgebra::{ComplexField, RealField, SVector};
 
 use super::decide::{impact, modes, project, record, touching};
@@ -8,9 +10,10 @@ use super::phase::{accelerations, Phase, Shared, Terms};
 use super::{Cause, ContactError, ContactForces, ContactSettings, Contacts, Mode, Switch};
 use crate::error::IntegrationError;
 use crate::events::{Event, Events};
-use crate::integrators::Integrator;
+use crate::integrators::{Integrator, StepMethod};
 use crate::model::constraints::{Holonomic, Visitor};
 use crate::model::settings::ConstraintSettings;
+use crate::stepper::Stepper;
 use crate::trajectory::Trajectory;
 
 /// A contact run's result: its trajectory, every switch, and the contact
@@ -167,8 +170,9 @@ where
     I: Integrator<L::Scalar>,
     L: Contacts<N, K> + Sync,
 {
-    let empty = |error| {
-        Box::new(ContactFailure {
+    match Scene::new(model, t0, q0, qdot0, settings) {
+        Ok(scene) => scene.integrate(method, times),
+        Err(error) => Err(Box::new(ContactFailure {
             error,
             trajectory: ContactTrajectory {
                 trajectory: Trajectory::with_capacity(0),
@@ -176,65 +180,274 @@ where
                 modes: Vec::new(),
                 forces: Vec::new(),
             },
-        })
-    };
-    validate(model, &settings).map_err(empty)?;
-    if let Err(invalid) = crate::model::ready(model) {
-        return Err(empty(ContactError::Integration(
-            IntegrationError::InvalidInput(invalid),
-        )));
+        })),
     }
-    if !(t0.is_finite() && q0.iter().chain(qdot0.iter()).all(|x| x.is_finite())) {
-        // The run loop says which in its own words.
-        let shared = Shared::new([Mode::Open; K]);
-        let phase = Phase {
+}
+
+/// A model with contacts at its start, ready to run: the start checked
+/// and decided (an impact where a touching contact approaches, the modes),
+/// and the switches wired as events. [`integrate`](Scene::integrate) runs
+/// it through sample times, as [`integrate`](super::integrate) does;
+/// [`stepper`](Scene::stepper) makes a [`Stepper`] that advances it frame
+/// by frame through the same loop, its switches located in the frame they
+/// fall in.
+///
+/// A scene holds the contacts' modes and the switches so far: it drives
+/// one run at a time, and each run (an `integrate`, a new stepper) starts
+/// again from the scene's start, forgetting the last one's switches.
+///
+/// ```
+/// use lagrange_runtime::contact::{Cause, ContactLaw, ContactSettings, Contacts, Scene};
+/// use lagrange_runtime::nalgebra::{SMatrix, SVector, Vector1};
+/// use lagrange_runtime::prelude::*;
+/// # struct Ball;
+/// # impl Lagrangian<1> for Ball {
+/// #     type Scalar = f64;
+/// #     const COORDINATES: [&'static str; 1] = ["z"];
+/// #     fn mass_matrix(&self, _t: f64, _q: &SVector<f64, 1>) -> SMatrix<f64, 1, 1> { SMatrix::<f64, 1, 1>::new(1.0) }
+/// #     fn forcing(&self, _t: f64, _q: &SVector<f64, 1>, _qd: &SVector<f64, 1>) -> SVector<f64, 1> { Vector1::new(-9.81) }
+/// #     fn kinetic_energy(&self, _t: f64, _q: &SVector<f64, 1>, qd: &SVector<f64, 1>) -> f64 { 0.5 * qd[0] * qd[0] }
+/// #     fn potential_energy(&self, _t: f64, q: &SVector<f64, 1>) -> f64 { 9.81 * q[0] }
+/// # }
+/// # impl Contacts<1, 1> for Ball {
+/// #     const CONTACTS: [&'static str; 1] = ["floor"];
+/// #     fn gaps(&self, _t: f64, q: &SVector<f64, 1>) -> SVector<f64, 1> { *q }
+/// #     fn gap_jacobian(&self, _t: f64, _q: &SVector<f64, 1>) -> SMatrix<f64, 1, 1> { SMatrix::<f64, 1, 1>::new(1.0) }
+/// #     fn gap_velocities(&self, _t: f64, _q: &SVector<f64, 1>, qd: &SVector<f64, 1>) -> SVector<f64, 1> { *qd }
+/// #     fn gap_bias(&self, _t: f64, _q: &SVector<f64, 1>, _qd: &SVector<f64, 1>) -> SVector<f64, 1> { Vector1::new(0.0) }
+/// #     fn contact_laws(&self) -> [ContactLaw<f64>; 1] { [ContactLaw::frictionless(0.5)] }
+/// # }
+/// // The ball dropped from 1 m, frame by frame at 60 Hz.
+/// let scene = Scene::new(&Ball, 0.0, Vector1::new(1.0), Vector1::new(0.0), ContactSettings::default())?;
+/// let mut stepper = scene.stepper(Dopri5::new().rtol(1e-10).atol(1e-10))?;
+/// let mut first_bounce_frame = None;
+/// for frame in 1..=60 {
+///     stepper.advance(1.0 / 60.0)?;
+///     if first_bounce_frame.is_none() && !stepper.events().is_empty() {
+///         first_bounce_frame = Some(frame);
+///     }
+/// }
+/// // It lands at √(2/g) = 0.4515 s: in the 28th frame, (0.45, 0.4667].
+/// assert_eq!(first_bounce_frame, Some(28));
+/// assert_eq!(scene.switches()[0].cause, Cause::Impact);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct Scene<'a, L, const N: usize, const K: usize>
+where
+    L: Contacts<N, K>,
+{
+    phase: Phase<'a, L, N, K>,
+    settings: ContactSettings<L::Scalar>,
+    events: Events<'a, L::Scalar, N>,
+    t0: L::Scalar,
+    /// The state after the start's decision.
+    start: (SVector<L::Scalar, N>, SVector<L::Scalar, N>),
+    start_modes: [Mode; K],
+    start_switches: Vec<Switch<L::Scalar, N>>,
+}
+
+impl<'a, L, const N: usize, const K: usize> Scene<'a, L, N, K>
+where
+    L: Contacts<N, K> + Sync,
+{
+    /// `model` at `(t0, q0, q̇0)`: the settings and laws checked, the start
+    /// refused if it penetrates a contact, an impact where a touching
+    /// contact approaches, and the modes decided.
+    pub fn new(
+        model: &'a L,
+        t0: L::Scalar,
+        q0: SVector<L::Scalar, N>,
+        qdot0: SVector<L::Scalar, N>,
+        settings: ContactSettings<L::Scalar>,
+    ) -> Result<Self, ContactError<L::Scalar, N>> {
+        validate(model, &settings)?;
+        crate::model::ready(model).map_err(|invalid| {
+            ContactError::Integration(IntegrationError::InvalidInput(invalid))
+        })?;
+        if !t0.is_finite() {
+            let invalid = crate::error::InvalidInput::NonFiniteStartTime { t0 };
+            return Err(ContactError::Integration(IntegrationError::InvalidInput(
+                invalid,
+            )));
+        }
+        for (i, coordinate) in L::COORDINATES.into_iter().enumerate() {
+            let invalid = if !q0[i].is_finite() {
+                crate::error::InvalidInput::NonFiniteInitialPosition {
+                    coordinate,
+                    value: q0[i],
+                }
+            } else if !qdot0[i].is_finite() {
+                crate::error::InvalidInput::NonFiniteInitialVelocity {
+                    coordinate,
+                    value: qdot0[i],
+                }
+            } else {
+                continue;
+            };
+            return Err(ContactError::Integration(IntegrationError::InvalidInput(
+                invalid,
+            )));
+        }
+        let gaps = model.gaps(t0, &q0);
+        for i in 0..K {
+            if gaps[i] < -settings.gap_tolerance {
+                return Err(ContactError::Penetrating {
+                    contact: L::CONTACTS[i],
+                    gap: gaps[i],
+                });
+            }
+        }
+        // The start: an impact if a touching contact approaches, then the
+        // modes decided.
+        let mut start_switches = Vec::new();
+        let (start, start_modes) = decide_switch(
             model,
-            shared: &shared,
-        };
-        return match method.integrate(&phase, t0, q0, qdot0, times) {
-            Err(failure) => Err(empty(ContactError::Integration(failure.error))),
-            Ok(_) => unreachable!("a non-finite start is refused"),
-        };
+            &settings,
+            t0,
+            (q0, qdot0),
+            &[Mode::Open; K],
+            None,
+            Cause::Start,
+            &mut start_switches,
+        )?;
+        let shared = Arc::new(Shared::new(start_modes));
+        *shared.switches.lock().unwrap_or_else(|e| e.into_inner()) = start_switches.clone();
+        let phase = Phase { model, shared };
+        let events = events(&phase, settings);
+        Ok(Self {
+            phase,
+            settings,
+            events,
+            t0,
+            start,
+            start_modes,
+            start_switches,
+        })
     }
-    let gaps = model.gaps(t0, &q0);
-    for i in 0..K {
-        if gaps[i] < -settings.gap_tolerance {
-            return Err(empty(ContactError::Penetrating {
-                contact: L::CONTACTS[i],
-                gap: gaps[i],
-            }));
+
+    /// Integrates the scene from its start through `times` with `method`
+    /// (see [`integrate`](super::integrate)).
+    pub fn integrate<I: Integrator<L::Scalar>>(
+        &self,
+        method: &I,
+        times: &[L::Scalar],
+    ) -> ContactResult<L::Scalar, N, K> {
+        self.restart();
+        let shared = &self.phase.shared;
+        let (q0, qdot0) = self.start;
+        let run =
+            method.integrate_with_events(&self.phase, self.t0, q0, qdot0, times, &self.events);
+        let model = self.phase.model;
+        let switches = self.switches();
+        match run {
+            Ok(trajectory) => Ok(results(model, trajectory, switches, self.start_modes)),
+            Err(failure) => {
+                let kept = shared
+                    .failure
+                    .lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .take();
+                let error = kept.unwrap_or(ContactError::Integration(failure.error));
+                Err(Box::new(ContactFailure {
+                    error,
+                    trajectory: results(model, failure.trajectory, switches, self.start_modes),
+                }))
+            }
         }
     }
 
-    // The start: an impact if a touching contact approaches, then the
-    // modes decided.
-    let mut switches = Vec::new();
-    let opened = [Mode::Open; K];
-    let (start, start_modes) = decide_switch(
-        model,
-        &settings,
-        t0,
-        (q0, qdot0),
-        &opened,
-        None,
-        Cause::Start,
-        &mut switches,
-    )
-    .map_err(empty)?;
-    let shared = Shared::new(start_modes);
-    *shared.switches.lock().unwrap_or_else(|e| e.into_inner()) = switches;
-    let phase = Phase {
-        model,
-        shared: &shared,
-    };
-    let phase = &phase;
+    /// A [`Stepper`] that advances the scene frame by frame with `method`,
+    /// from the scene's start, watching the
+    /// switches: [`Stepper::events`] lists the switches' events of each
+    /// call, [`switches`](Self::switches) all the switches so far. A
+    /// failure inside the contacts' decisions shows in the stepper's error
+    /// as a non-finite event; [`failure`](Self::failure) says what it was.
+    pub fn stepper<M: StepMethod<L::Scalar>>(
+        &self,
+        method: M,
+    ) -> Result<Stepper<'_, Phase<'a, L, N, K>, M, N>, ContactError<L::Scalar, N>> {
+        self.restart();
+        let (q0, qdot0) = self.start;
+        Stepper::new(self.phase.clone(), method, self.t0, q0, qdot0)
+            .and_then(|stepper| stepper.with_events(&self.events))
+            .map_err(ContactError::Integration)
+    }
 
+    /// The modes and switches back to the start's, no failure kept: what
+    /// every run of the scene begins with.
+    fn restart(&self) {
+        let shared = &self.phase.shared;
+        *shared.modes.lock().unwrap_or_else(|e| e.into_inner()) = self.start_modes;
+        *shared.switches.lock().unwrap_or_else(|e| e.into_inner()) = self.start_switches.clone();
+        *shared.failure.lock().unwrap_or_else(|e| e.into_inner()) = None;
+    }
+
+    /// Every switch of the current run so far, in time order (the
+    /// start's first).
+    pub fn switches(&self) -> Vec<Switch<L::Scalar, N>> {
+        self.phase
+            .shared
+            .switches
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .clone()
+    }
+
+    /// The contacts' modes now.
+    pub fn modes(&self) -> [Mode; K] {
+        self.phase.shared.modes()
+    }
+
+    /// The contact forces at `(t, q, q̇)` in the current modes; `None`
+    /// where they are not determined.
+    pub fn forces(
+        &self,
+        t: L::Scalar,
+        q: &SVector<L::Scalar, N>,
+        qdot: &SVector<L::Scalar, N>,
+    ) -> Option<ContactForces<L::Scalar, N, K>> {
+        let modes = self.modes();
+        let terms = Terms::new(self.phase.model, t, q, qdot)?;
+        accelerations(self.phase.model, &modes, &terms).map(|(_, f)| f)
+    }
+
+    /// The failure met inside a decision or an evaluation, if a run
+    /// stopped on one (the stepper's error then says only that an event's
+    /// reset or the forcing was not finite).
+    pub fn failure(&self) -> Option<ContactError<L::Scalar, N>> {
+        self.phase
+            .shared
+            .failure
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .clone()
+    }
+
+    /// The settings the scene runs with.
+    pub fn settings(&self) -> &ContactSettings<L::Scalar> {
+        &self.settings
+    }
+}
+
+/// Four events per contact, each a switch when it crosses zero falling:
+/// its arrival, its release, its slide stopping and its stick limit (see
+/// [the table](super#modes-and-switches)); each a constant one while the
+/// contact's mode does not watch it.
+fn events<'a, L, const N: usize, const K: usize>(
+    phase: &Phase<'a, L, N, K>,
+    settings: ContactSettings<L::Scalar>,
+) -> Events<'a, L::Scalar, N>
+where
+    L: Contacts<N, K> + Sync,
+{
     // The run's Zeno guard is off: impacts that accumulate settle into a
     // persistent contact instead (`shortest_flight`).
     let mut events = Events::new().min_separation(nalgebra::zero());
+    let one = nalgebra::one::<L::Scalar>;
     for i in 0..K {
         let name = L::CONTACTS[i];
         let switch = |cause: Cause| {
+            let phase = phase.clone();
             move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| {
                 phase.switch(&settings, i, cause, t, (*q, *qdot))
             }
@@ -244,49 +457,51 @@ where
         // where the contact arrives, and it is positive from the start of
         // a rebound on, when `g` itself is zero: a bounce shorter than a
         // step is not lost to an unarmed start.
-        let arrival = move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| match phase
+        let p = phase.clone();
+        let arrival = move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| match p
             .shared
             .modes()[i]
         {
             Mode::Open => {
-                let rate = phase.model.gap_velocities(t, q, qdot)[i];
-                phase.model.gaps(t, q)[i] + rate.max(nalgebra::zero())
+                let rate = p.model.gap_velocities(t, q, qdot)[i];
+                p.model.gaps(t, q)[i] + rate.max(nalgebra::zero())
             }
-            _ => nalgebra::one::<L::Scalar>(),
+            _ => one(),
         };
+        let p = phase.clone();
         let release = move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| {
-            if phase.shared.modes()[i].touching() {
-                phase.solve(t, q, qdot).map_or(nan(), |(_, f)| f.normal[i])
+            if p.shared.modes()[i].touching() {
+                p.solve(t, q, qdot).map_or(nan(), |(_, f)| f.normal[i])
             } else {
-                nalgebra::one::<L::Scalar>()
+                one()
             }
         };
-        let slide_stop =
-            move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| match phase
-                .shared
-                .modes()[i]
-            {
-                Mode::Sliding { forward } => {
-                    let v = phase.model.slip_velocities(t, q, qdot)[i];
-                    if forward {
-                        v
-                    } else {
-                        -v
-                    }
+        let p = phase.clone();
+        let slide_stop = move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| match p
+            .shared
+            .modes()[i]
+        {
+            Mode::Sliding { forward } => {
+                let v = p.model.slip_velocities(t, q, qdot)[i];
+                if forward {
+                    v
+                } else {
+                    -v
                 }
-                _ => nalgebra::one::<L::Scalar>(),
-            };
-        let mu_s = model.contact_laws()[i].static_friction;
-        let stick_limit =
-            move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| match phase
-                .shared
-                .modes()[i]
-            {
-                Mode::Stuck => phase
-                    .solve(t, q, qdot)
-                    .map_or(nan(), |(_, f)| mu_s * f.normal[i] - f.friction[i].abs()),
-                _ => nalgebra::one::<L::Scalar>(),
-            };
+            }
+            _ => one(),
+        };
+        let mu_s = phase.model.contact_laws()[i].static_friction;
+        let p = phase.clone();
+        let stick_limit = move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| match p
+            .shared
+            .modes()[i]
+        {
+            Mode::Stuck => p
+                .solve(t, q, qdot)
+                .map_or(nan(), |(_, f)| mu_s * f.normal[i] - f.friction[i].abs()),
+            _ => one(),
+        };
         events = events
             .with(
                 Event::new(name, arrival)
@@ -309,28 +524,7 @@ where
                     .reset(switch(Cause::StickLimit)),
             );
     }
-
-    let run = method.integrate_with_events(phase, t0, start.0, start.1, times, &events);
-    let switches = shared
-        .switches
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .clone();
-    match run {
-        Ok(trajectory) => Ok(results(model, trajectory, switches, start_modes)),
-        Err(failure) => {
-            let kept = shared
-                .failure
-                .lock()
-                .unwrap_or_else(|e| e.into_inner())
-                .take();
-            let error = kept.unwrap_or(ContactError::Integration(failure.error));
-            Err(Box::new(ContactFailure {
-                error,
-                trajectory: results(model, failure.trajectory, switches, start_modes),
-            }))
-        }
-    }
+    events
 }
 
 fn nan<S: RealField + Copy>() -> S {

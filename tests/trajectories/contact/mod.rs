@@ -5,6 +5,7 @@
 //! method on them.
 
 mod closed_forms;
+mod frames;
 mod friction;
 mod methods;
 mod tumbling;
