@@ -196,7 +196,7 @@ fn main() -> Result<(), Box<dyn Error>> {
 /// 30°): how far it moves in 10 s and how deep it sinks, here and in
 /// MuJoCo.
 fn incline() -> Result<(), Box<dyn Error>> {
-    println!("\nblock on an incline, mu = 1, 10 s       creep [m]     penetration [m]");
+    println!("\nblock on an incline, mu = 1, 10 s                     creep [m]   penetration [m]");
     for degrees in [20.0f64, 30.0] {
         let block = BlockOnIncline::new(1.0, 9.81, degrees.to_radians(), 1.0, 1.0);
         let stays = run(&block, ([0.0, 0.0], [0.0, 0.0]), 10.0, 100)?;
@@ -207,10 +207,8 @@ fn incline() -> Result<(), Box<dyn Error>> {
             .map(|s| -s.q[1])
             .fold(0.0f64, f64::max);
         assert_eq!(stays.modes().last().unwrap()[0], Mode::Stuck);
-        println!(
-            "lagrange, {degrees}°{:<27} {:<13.1e} {sink:.1e}",
-            "", last.q[0]
-        );
+        let label = format!("lagrange, {degrees}°");
+        println!("{label:<53} {:<11.1e} {sink:.1e}", last.q[0]);
     }
     let python = std::env::var("LAGRANGE_PEERS_PYTHON").unwrap_or_else(|_| "python3".into());
     let script = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -220,8 +218,8 @@ fn incline() -> Result<(), Box<dyn Error>> {
             for line in String::from_utf8_lossy(&out.stdout).lines() {
                 let f: Vec<&str> = line.split(';').collect();
                 if let [label, degrees, creep, sink] = f[..] {
-                    println!("{label}, {degrees}°");
-                    println!("{:<39} {creep:<13} {sink}", "");
+                    let label = format!("{label}, {degrees}°");
+                    println!("{label:<53} {creep:<11} {sink}");
                 }
             }
         }
@@ -246,7 +244,7 @@ fn draw(
         .margin(10)
         .x_label_area_size(35)
         .y_label_area_size(50)
-        .build_cartesian_2d(0.0..6.0, -4.0..4.0)?;
+        .build_cartesian_2d(0.0..6.0, -0.5..7.0)?;
     chart.configure_mesh().x_desc("t [s]").draw()?;
     let times = belt.trajectory().times();
     chart

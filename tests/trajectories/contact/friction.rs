@@ -142,3 +142,45 @@ fn a_block_on_a_belt_sticks_and_slips_on_its_closed_form_cycle() {
         };
     }
 }
+
+lagrange::lagrangian! {
+    /// A uniform rod of half-length `l` (moment of inertia `m l²/3`), its
+    /// lower end on a rough floor: centre `(x, y)`, angle `theta` above
+    /// the horizontal, the end at `(x − l cos θ, y − l sin θ)`.
+    struct PainleveRod {
+        coordinates: x, y, theta;
+        parameters: m, l, g, mu;
+        let end_x = x - l*cos(theta);
+        let end_y = y - l*sin(theta);
+        kinetic: m/2*(dot(x)^2 + dot(y)^2) + m*l^2/6*dot(theta)^2;
+        potential: m*g*y;
+        contacts: floor: end_y >= 0 { friction: mu, slip: dot(end_x) };
+    }
+}
+
+#[test]
+fn painleves_rod_sliding_with_too_much_friction_is_a_typed_error_at_its_state() {
+    // Sliding towards its foot at 30°: the normal force's own effect on the
+    // end's normal acceleration is G M⁻¹ (Gᵀ ∓ μ Tᵀ) = (1 + 3 cos² θ −
+    // 3 μ sin θ cos θ)/m, negative for μ > 2.5 here, so gravity's pull
+    // down is met by no normal force ≥ 0: no mode is consistent. Below that
+    // it slides.
+    let (l, theta) = (0.5f64, 30f64.to_radians());
+    let start = |v: f64| ([l * theta.cos(), l * theta.sin(), theta], [v, 0.0, 0.0]);
+    let rod = PainleveRod::new(1.0, l, 9.81, 3.0);
+    let failure = run(&rod, start(-1.0), &[0.1]).unwrap_err();
+    match failure.error {
+        lagrange::contact::ContactError::NoConsistentMode { t, at_impact, .. } => {
+            assert_eq!((t, at_impact), (0.0, false));
+        }
+        error => panic!("{error}"),
+    }
+    assert!(
+        failure.error.to_string().contains("Painlevé"),
+        "{}",
+        failure.error
+    );
+    let rod = PainleveRod::new(1.0, l, 9.81, 1.0);
+    let slides = run(&rod, start(-1.0), &[0.1]).unwrap();
+    assert_eq!(slides.switches()[0].to, Mode::Sliding { forward: false });
+}
