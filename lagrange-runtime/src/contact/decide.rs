@@ -161,18 +161,20 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
     Ok(Some(solution))
 }
 
-/// Which contacts touch: a gap within the tolerance.
+/// Which contacts touch: a gap within the tolerance, or a contact that
+/// was touching until now (its gap drifted by the integration's error, at
+/// most, which the projection after the decision takes back).
 pub(crate) fn touching<L, const N: usize, const K: usize>(
     model: &L,
     settings: &ContactSettings<L::Scalar>,
-    t: L::Scalar,
-    q: &SVector<L::Scalar, N>,
+    (t, q): (L::Scalar, &SVector<L::Scalar, N>),
+    current: &[Mode; K],
 ) -> [bool; K]
 where
     L: Contacts<N, K>,
 {
     let gaps = model.gaps(t, q);
-    core::array::from_fn(|i| gaps[i] <= settings.gap_tolerance)
+    core::array::from_fn(|i| current[i].touching() || gaps[i] <= settings.gap_tolerance)
 }
 
 /// The modes after a decision at `(t, q, q̇)`: every touching contact at
@@ -182,13 +184,13 @@ pub(crate) fn modes<L, const N: usize, const K: usize>(
     model: &L,
     settings: &ContactSettings<L::Scalar>,
     (t, q, qdot): (L::Scalar, &SVector<L::Scalar, N>, &SVector<L::Scalar, N>),
-    forced: Option<(usize, Mode)>,
+    (current, forced): (&[Mode; K], Option<(usize, Mode)>),
 ) -> Result<[Mode; K], ContactError<L::Scalar, N>>
 where
     L: Contacts<N, K>,
 {
     let laws = model.contact_laws();
-    let touch = touching(model, settings, t, q);
+    let touch = touching(model, settings, (t, q), current);
     let rate = model.gap_velocities(t, q, qdot);
     let slip = model.slip_velocities(t, q, qdot);
     let terms = Terms::new(model, t, q, qdot).ok_or(ContactError::DependentContacts {
@@ -215,7 +217,12 @@ where
             }
             _ => {}
         }
-        if !touch[i] || rate[i].abs() > settings.velocity_tolerance {
+        // A contact held until now (not struck by an impact in this
+        // switch) is at rest along its normal, and a stuck one along its
+        // surface, whatever drift the integration left in its rates: the
+        // projection after the decision takes it back.
+        let held = current[i].touching();
+        if !touch[i] || (!held && rate[i].abs() > settings.velocity_tolerance) {
             continue;
         }
         let entry = if !laws[i].has_friction() {
@@ -223,7 +230,7 @@ where
                 contact: i,
                 mode: Mode::Closed,
             }
-        } else if slip[i].abs() <= settings.velocity_tolerance {
+        } else if current[i] == Mode::Stuck || slip[i].abs() <= settings.velocity_tolerance {
             Entry::Cone {
                 contact: i,
                 mu: laws[i].static_friction,
@@ -276,6 +283,7 @@ pub(crate) fn impact<L, const N: usize, const K: usize>(
     model: &L,
     settings: &ContactSettings<L::Scalar>,
     (t, q, qdot): (L::Scalar, &SVector<L::Scalar, N>, &SVector<L::Scalar, N>),
+    current: &[Mode; K],
 ) -> Result<
     Option<(SVector<L::Scalar, N>, [(L::Scalar, L::Scalar); K], bool)>,
     ContactError<L::Scalar, N>,
@@ -284,9 +292,12 @@ where
     L: Contacts<N, K>,
 {
     let laws = model.contact_laws();
-    let touch = touching(model, settings, t, q);
+    let touch = touching(model, settings, (t, q), current);
     let rate = model.gap_velocities(t, q, qdot);
-    if !(0..K).any(|i| touch[i] && rate[i] < -settings.velocity_tolerance) {
+    // An impact needs an arriving contact: one held until now approaches
+    // only by the integration's drift, which the projection takes back.
+    let arriving = |i: usize| !current[i].touching() && rate[i] < -settings.velocity_tolerance;
+    if !(0..K).any(|i| touch[i] && arriving(i)) {
         return Ok(None);
     }
     let dependent = ContactError::DependentContacts {

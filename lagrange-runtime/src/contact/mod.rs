@@ -83,6 +83,19 @@
 //! most `flight / (1 − e)` for a constant acceleration, which bounds the
 //! error this makes in the time of rest.
 //!
+//! # Guards
+//!
+//! - Switches that undo each other (a decision that opens a contact whose
+//!   next decision closes it again, at the same time) stop the run after
+//!   64 in a row at one time: [`ContactError::Chattering`], at that time
+//!   and state.
+//! - A contact that was touching counts as touching at the next decision
+//!   even where the integration let its gap drift beyond the gap
+//!   tolerance; the projection after the decision takes the drift back.
+//! - A failure inside a decision or an evaluation (no consistent mode,
+//!   dependent contacts) ends the run with that error and the trajectory
+//!   so far, not with the NaN the run loop saw.
+//!
 //! # What the contacts need, and what they do not support yet
 //!
 //! - The model's own constraints: a model with `constraints:` is refused
@@ -108,10 +121,12 @@ use nalgebra::{RealField, SMatrix, SVector};
 use crate::model::Lagrangian;
 
 mod decide;
+mod erased;
 mod lcp;
 mod phase;
 mod run;
 
+pub use erased::Erased;
 pub use phase::Phase;
 pub use run::{integrate, ContactFailure, ContactResult, ContactTrajectory, Scene};
 
@@ -393,6 +408,18 @@ pub enum ContactError<S: RealField + Copy, const N: usize> {
         /// Velocities.
         qdot: SVector<S, N>,
     },
+    /// The contacts' modes undo each other: more than 64 switches in a row
+    /// at the same time, without time passing.
+    Chattering {
+        /// Time.
+        t: S,
+        /// Positions.
+        q: SVector<S, N>,
+        /// Velocities.
+        qdot: SVector<S, N>,
+        /// How many switches fell on `t`.
+        switches: usize,
+    },
     /// The start is inside a contact: a gap below minus the gap tolerance.
     Penetrating {
         /// The contact.
@@ -441,6 +468,18 @@ impl<S: RealField + Copy, const N: usize> fmt::Display for ContactError<S, N> {
                 f,
                 "the touching contacts' forces are not determined at t = {t:?} (q = {}, q̇ = {}): \
                  their directions are dependent, or M is singular",
+                Row(q),
+                Row(qdot)
+            ),
+            Self::Chattering {
+                t,
+                q,
+                qdot,
+                switches,
+            } => write!(
+                f,
+                "the contacts switched {switches} times at t = {t:?} (q = {}, q̇ = {}) without time \
+                 passing: their modes undo each other",
                 Row(q),
                 Row(qdot)
             ),

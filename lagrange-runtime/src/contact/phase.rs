@@ -4,8 +4,9 @@
 
 use std::sync::{Arc, Mutex};
 
-use nalgebra::{ComplexField, DMatrix, DVector, RealField, SMatrix, SVector};
+use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
+use super::erased::Erased;
 use super::{ContactError, ContactForces, Contacts, Mode, Switch};
 use crate::linalg::solve::{factor_mass_matrix, MassFactor};
 use crate::model::Lagrangian;
@@ -202,6 +203,9 @@ pub(crate) struct Shared<S: RealField + Copy, const N: usize, const K: usize> {
     pub(crate) modes: Mutex<[Mode; K]>,
     pub(crate) switches: Mutex<Vec<Switch<S, N>>>,
     pub(crate) failure: Mutex<Option<ContactError<S, N>>>,
+    /// The time of the last switch and how many switches in a row fell on
+    /// it: the guard against modes that undo each other.
+    pub(crate) streak: Mutex<(S, usize)>,
 }
 
 impl<S: RealField + Copy, const N: usize, const K: usize> Shared<S, N, K> {
@@ -210,6 +214,7 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Shared<S, N, K> {
             modes: Mutex::new(modes),
             switches: Mutex::new(Vec::new()),
             failure: Mutex::new(None),
+            streak: Mutex::new((S::zero(), 0)),
         }
     }
 
@@ -230,19 +235,16 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Shared<S, N, K> {
 /// touching contacts' forces in its forcing, in the modes `shared` holds.
 ///
 /// A [`Scene`](super::Scene)'s [`Stepper`](crate::stepper::Stepper) steps
-/// it; it is not built by hand.
-pub struct Phase<'a, L, const N: usize, const K: usize>
-where
-    L: Contacts<N, K>,
-{
-    pub(crate) model: &'a L,
-    pub(crate) shared: Arc<Shared<L::Scalar, N, K>>,
+/// it; it is not built by hand. It is the same type for every model with
+/// the same scalar, `N` and `K` (the model behind [`Erased`]), so the
+/// loops that run it are compiled once for all of them; its
+/// `COORDINATES` are blank (the model's own are the model's).
+pub struct Phase<'a, S: RealField + Copy, const N: usize, const K: usize> {
+    pub(crate) model: Erased<'a, S, N, K>,
+    pub(crate) shared: Arc<Shared<S, N, K>>,
 }
 
-impl<L, const N: usize, const K: usize> Clone for Phase<'_, L, N, K>
-where
-    L: Contacts<N, K>,
-{
+impl<S: RealField + Copy, const N: usize, const K: usize> Clone for Phase<'_, S, N, K> {
     fn clone(&self) -> Self {
         Self {
             model: self.model,
@@ -251,28 +253,15 @@ where
     }
 }
 
-impl<'a, L, const N: usize, const K: usize> Phase<'a, L, N, K>
-where
-    L: Contacts<N, K>,
-{
-    /// The model with contacts.
-    pub fn model(&self) -> &'a L {
-        self.model
-    }
-}
-
-impl<L, const N: usize, const K: usize> Phase<'_, L, N, K>
-where
-    L: Contacts<N, K>,
-{
+impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
     /// The accelerations and forces at a state in the current modes;
     /// `None` (the failure kept) where they are not determined.
     pub(crate) fn solve(
         &self,
-        t: L::Scalar,
-        q: &SVector<L::Scalar, N>,
-        qdot: &SVector<L::Scalar, N>,
-    ) -> Option<Solved<L::Scalar, N, K>> {
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) -> Option<Solved<S, N, K>> {
         let (m, f) = self.model.mass_matrix_and_forcing(t, q, qdot);
         self.solve_with(t, q, qdot, &m, f)
     }
@@ -280,15 +269,15 @@ where
     /// [`solve`](Self::solve) with `M` and `f` already evaluated.
     fn solve_with(
         &self,
-        t: L::Scalar,
-        q: &SVector<L::Scalar, N>,
-        qdot: &SVector<L::Scalar, N>,
-        m: &SMatrix<L::Scalar, N, N>,
-        f: SVector<L::Scalar, N>,
-    ) -> Option<Solved<L::Scalar, N, K>> {
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+        m: &SMatrix<S, N, N>,
+        f: SVector<S, N>,
+    ) -> Option<Solved<S, N, K>> {
         let modes = self.shared.modes();
-        let solved = Terms::with(self.model, (t, q, qdot), m, f)
-            .and_then(|terms| accelerations(self.model, &modes, &terms));
+        let solved = Terms::with(&self.model, (t, q, qdot), m, f)
+            .and_then(|terms| accelerations(&self.model, &modes, &terms));
         if solved.is_none() && q.iter().chain(qdot.iter()).all(|x| x.is_finite()) {
             self.shared.fail(ContactError::DependentContacts {
                 t,
@@ -300,23 +289,15 @@ where
     }
 }
 
-impl<L, const N: usize, const K: usize> Lagrangian<N> for Phase<'_, L, N, K>
-where
-    L: Contacts<N, K>,
-{
-    type Scalar = L::Scalar;
-    const COORDINATES: [&'static str; N] = L::COORDINATES;
+impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Phase<'_, S, N, K> {
+    type Scalar = S;
+    const COORDINATES: [&'static str; N] = [""; N];
 
-    fn mass_matrix(&self, t: L::Scalar, q: &SVector<L::Scalar, N>) -> SMatrix<L::Scalar, N, N> {
+    fn mass_matrix(&self, t: S, q: &SVector<S, N>) -> SMatrix<S, N, N> {
         self.model.mass_matrix(t, q)
     }
 
-    fn forcing(
-        &self,
-        t: L::Scalar,
-        q: &SVector<L::Scalar, N>,
-        qdot: &SVector<L::Scalar, N>,
-    ) -> SVector<L::Scalar, N> {
+    fn forcing(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> SVector<S, N> {
         self.mass_matrix_and_forcing(t, q, qdot).1
     }
 
@@ -324,28 +305,23 @@ where
     /// are not determined: the run stops, and reports the failure kept).
     fn mass_matrix_and_forcing(
         &self,
-        t: L::Scalar,
-        q: &SVector<L::Scalar, N>,
-        qdot: &SVector<L::Scalar, N>,
-    ) -> (SMatrix<L::Scalar, N, N>, SVector<L::Scalar, N>) {
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) -> (SMatrix<S, N, N>, SVector<S, N>) {
         let (m, f) = self.model.mass_matrix_and_forcing(t, q, qdot);
         let f = match self.solve_with(t, q, qdot, &m, f) {
             Some((_, forces)) => f + forces.generalized,
-            None => SVector::repeat(nalgebra::zero::<L::Scalar>() / nalgebra::zero::<L::Scalar>()),
+            None => SVector::repeat(S::zero() / S::zero()),
         };
         (m, f)
     }
 
-    fn kinetic_energy(
-        &self,
-        t: L::Scalar,
-        q: &SVector<L::Scalar, N>,
-        qdot: &SVector<L::Scalar, N>,
-    ) -> L::Scalar {
+    fn kinetic_energy(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> S {
         self.model.kinetic_energy(t, q, qdot)
     }
 
-    fn potential_energy(&self, t: L::Scalar, q: &SVector<L::Scalar, N>) -> L::Scalar {
+    fn potential_energy(&self, t: S, q: &SVector<S, N>) -> S {
         self.model.potential_energy(t, q)
     }
 

@@ -6,6 +6,7 @@ use std::sync::Arc;
 use nalgebra::{ComplexField, RealField, SVector};
 
 use super::decide::{impact, modes, project, record, touching};
+use super::erased::Erased;
 use super::phase::{accelerations, Phase, Shared, Terms};
 use super::{Cause, ContactError, ContactForces, ContactSettings, Contacts, Mode, Switch};
 use crate::error::IntegrationError;
@@ -13,8 +14,9 @@ use crate::events::{Event, Events};
 use crate::integrators::{Integrator, StepMethod};
 use crate::model::constraints::{Holonomic, Visitor};
 use crate::model::settings::ConstraintSettings;
+use crate::model::Lagrangian;
 use crate::stepper::Stepper;
-use crate::trajectory::Trajectory;
+use crate::trajectory::{State, Trajectory};
 
 /// A contact run's result: its trajectory, every switch, and the contact
 /// forces and modes at every sample.
@@ -232,34 +234,31 @@ where
 /// assert_eq!(scene.switches()[0].cause, Cause::Impact);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub struct Scene<'a, L, const N: usize, const K: usize>
-where
-    L: Contacts<N, K>,
-{
-    phase: Phase<'a, L, N, K>,
-    settings: ContactSettings<L::Scalar>,
-    events: Events<'a, L::Scalar, N>,
-    t0: L::Scalar,
+pub struct Scene<'a, S: RealField + Copy, const N: usize, const K: usize> {
+    phase: Phase<'a, S, N, K>,
+    settings: ContactSettings<S>,
+    events: Events<'a, S, N>,
+    t0: S,
     /// The state after the start's decision.
-    start: (SVector<L::Scalar, N>, SVector<L::Scalar, N>),
+    start: (SVector<S, N>, SVector<S, N>),
     start_modes: [Mode; K],
-    start_switches: Vec<Switch<L::Scalar, N>>,
+    start_switches: Vec<Switch<S, N>>,
 }
 
-impl<'a, L, const N: usize, const K: usize> Scene<'a, L, N, K>
-where
-    L: Contacts<N, K> + Sync,
-{
+impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K> {
     /// `model` at `(t0, q0, q̇0)`: the settings and laws checked, the start
     /// refused if it penetrates a contact, an impact where a touching
     /// contact approaches, and the modes decided.
-    pub fn new(
+    pub fn new<L>(
         model: &'a L,
-        t0: L::Scalar,
-        q0: SVector<L::Scalar, N>,
-        qdot0: SVector<L::Scalar, N>,
-        settings: ContactSettings<L::Scalar>,
-    ) -> Result<Self, ContactError<L::Scalar, N>> {
+        t0: S,
+        q0: SVector<S, N>,
+        qdot0: SVector<S, N>,
+        settings: ContactSettings<S>,
+    ) -> Result<Self, ContactError<S, N>>
+    where
+        L: Contacts<N, K, Scalar = S> + Sync,
+    {
         validate(model, &settings)?;
         crate::model::ready(model).map_err(|invalid| {
             ContactError::Integration(IntegrationError::InvalidInput(invalid))
@@ -299,9 +298,10 @@ where
         }
         // The start: an impact if a touching contact approaches, then the
         // modes decided.
+        let erased = Erased::new(model);
         let mut start_switches = Vec::new();
         let (start, start_modes) = decide_switch(
-            model,
+            &erased,
             &settings,
             t0,
             (q0, qdot0),
@@ -312,7 +312,10 @@ where
         )?;
         let shared = Arc::new(Shared::new(start_modes));
         *shared.switches.lock().unwrap_or_else(|e| e.into_inner()) = start_switches.clone();
-        let phase = Phase { model, shared };
+        let phase = Phase {
+            model: erased,
+            shared,
+        };
         let events = events(&phase, settings);
         Ok(Self {
             phase,
@@ -327,17 +330,13 @@ where
 
     /// Integrates the scene from its start through `times` with `method`
     /// (see [`integrate`](super::integrate)).
-    pub fn integrate<I: Integrator<L::Scalar>>(
-        &self,
-        method: &I,
-        times: &[L::Scalar],
-    ) -> ContactResult<L::Scalar, N, K> {
+    pub fn integrate<I: Integrator<S>>(&self, method: &I, times: &[S]) -> ContactResult<S, N, K> {
         self.restart();
         let shared = &self.phase.shared;
         let (q0, qdot0) = self.start;
         let run =
             method.integrate_with_events(&self.phase, self.t0, q0, qdot0, times, &self.events);
-        let model = self.phase.model;
+        let model = &self.phase.model;
         let switches = self.switches();
         match run {
             Ok(trajectory) => Ok(results(model, trajectory, switches, self.start_modes)),
@@ -362,10 +361,10 @@ where
     /// call, [`switches`](Self::switches) all the switches so far. A
     /// failure inside the contacts' decisions shows in the stepper's error
     /// as a non-finite event; [`failure`](Self::failure) says what it was.
-    pub fn stepper<M: StepMethod<L::Scalar>>(
+    pub fn stepper<M: StepMethod<S>>(
         &self,
         method: M,
-    ) -> Result<Stepper<'_, Phase<'a, L, N, K>, M, N>, ContactError<L::Scalar, N>> {
+    ) -> Result<Stepper<'_, Phase<'a, S, N, K>, M, N>, ContactError<S, N>> {
         self.restart();
         let (q0, qdot0) = self.start;
         Stepper::new(self.phase.clone(), method, self.t0, q0, qdot0)
@@ -380,11 +379,12 @@ where
         *shared.modes.lock().unwrap_or_else(|e| e.into_inner()) = self.start_modes;
         *shared.switches.lock().unwrap_or_else(|e| e.into_inner()) = self.start_switches.clone();
         *shared.failure.lock().unwrap_or_else(|e| e.into_inner()) = None;
+        *shared.streak.lock().unwrap_or_else(|e| e.into_inner()) = (self.t0, 0);
     }
 
     /// Every switch of the current run so far, in time order (the
     /// start's first).
-    pub fn switches(&self) -> Vec<Switch<L::Scalar, N>> {
+    pub fn switches(&self) -> Vec<Switch<S, N>> {
         self.phase
             .shared
             .switches
@@ -402,19 +402,19 @@ where
     /// where they are not determined.
     pub fn forces(
         &self,
-        t: L::Scalar,
-        q: &SVector<L::Scalar, N>,
-        qdot: &SVector<L::Scalar, N>,
-    ) -> Option<ContactForces<L::Scalar, N, K>> {
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) -> Option<ContactForces<S, N, K>> {
         let modes = self.modes();
-        let terms = Terms::new(self.phase.model, t, q, qdot)?;
-        accelerations(self.phase.model, &modes, &terms).map(|(_, f)| f)
+        let terms = Terms::new(&self.phase.model, t, q, qdot)?;
+        accelerations(&self.phase.model, &modes, &terms).map(|(_, f)| f)
     }
 
     /// The failure met inside a decision or an evaluation, if a run
     /// stopped on one (the stepper's error then says only that an event's
     /// reset or the forcing was not finite).
-    pub fn failure(&self) -> Option<ContactError<L::Scalar, N>> {
+    pub fn failure(&self) -> Option<ContactError<S, N>> {
         self.phase
             .shared
             .failure
@@ -424,7 +424,7 @@ where
     }
 
     /// The settings the scene runs with.
-    pub fn settings(&self) -> &ContactSettings<L::Scalar> {
+    pub fn settings(&self) -> &ContactSettings<S> {
         &self.settings
     }
 }
@@ -433,22 +433,19 @@ where
 /// its arrival, its release, its slide stopping and its stick limit (see
 /// [the table](super#modes-and-switches)); each a constant one while the
 /// contact's mode does not watch it.
-fn events<'a, L, const N: usize, const K: usize>(
-    phase: &Phase<'a, L, N, K>,
-    settings: ContactSettings<L::Scalar>,
-) -> Events<'a, L::Scalar, N>
-where
-    L: Contacts<N, K> + Sync,
-{
+fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
+    phase: &Phase<'a, S, N, K>,
+    settings: ContactSettings<S>,
+) -> Events<'a, S, N> {
     // The run's Zeno guard is off: impacts that accumulate settle into a
     // persistent contact instead (`shortest_flight`).
     let mut events = Events::new().min_separation(nalgebra::zero());
-    let one = nalgebra::one::<L::Scalar>;
+    let one = nalgebra::one::<S>;
     for i in 0..K {
-        let name = L::CONTACTS[i];
+        let name = phase.model.names[i];
         let switch = |cause: Cause| {
             let phase = phase.clone();
-            move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| {
+            move |t, q: &SVector<S, N>, qdot: &SVector<S, N>| {
                 phase.switch(&settings, i, cause, t, (*q, *qdot))
             }
         };
@@ -458,10 +455,7 @@ where
         // a rebound on, when `g` itself is zero: a bounce shorter than a
         // step is not lost to an unarmed start.
         let p = phase.clone();
-        let arrival = move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| match p
-            .shared
-            .modes()[i]
-        {
+        let arrival = move |t, q: &SVector<S, N>, qdot: &SVector<S, N>| match p.shared.modes()[i] {
             Mode::Open => {
                 let rate = p.model.gap_velocities(t, q, qdot)[i];
                 p.model.gaps(t, q)[i] + rate.max(nalgebra::zero())
@@ -469,7 +463,7 @@ where
             _ => one(),
         };
         let p = phase.clone();
-        let release = move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| {
+        let release = move |t, q: &SVector<S, N>, qdot: &SVector<S, N>| {
             if p.shared.modes()[i].touching() {
                 p.solve(t, q, qdot).map_or(nan(), |(_, f)| f.normal[i])
             } else {
@@ -477,9 +471,7 @@ where
             }
         };
         let p = phase.clone();
-        let slide_stop = move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| match p
-            .shared
-            .modes()[i]
+        let slide_stop = move |t, q: &SVector<S, N>, qdot: &SVector<S, N>| match p.shared.modes()[i]
         {
             Mode::Sliding { forward } => {
                 let v = p.model.slip_velocities(t, q, qdot)[i];
@@ -493,15 +485,13 @@ where
         };
         let mu_s = phase.model.contact_laws()[i].static_friction;
         let p = phase.clone();
-        let stick_limit = move |t, q: &SVector<L::Scalar, N>, qdot: &SVector<L::Scalar, N>| match p
-            .shared
-            .modes()[i]
-        {
-            Mode::Stuck => p
-                .solve(t, q, qdot)
-                .map_or(nan(), |(_, f)| mu_s * f.normal[i] - f.friction[i].abs()),
-            _ => one(),
-        };
+        let stick_limit =
+            move |t, q: &SVector<S, N>, qdot: &SVector<S, N>| match p.shared.modes()[i] {
+                Mode::Stuck => p
+                    .solve(t, q, qdot)
+                    .map_or(nan(), |(_, f)| mu_s * f.normal[i] - f.friction[i].abs()),
+                _ => one(),
+            };
         events = events
             .with(
                 Event::new(name, arrival)
@@ -526,6 +516,10 @@ where
     }
     events
 }
+
+/// The most switches in a row at one time before the run is stopped as
+/// chattering: a scene's simultaneous switches are a few per contact.
+const MAX_SWITCHES_AT_ONCE: usize = 64;
 
 fn nan<S: RealField + Copy>() -> S {
     S::zero() / S::zero()
@@ -588,49 +582,49 @@ where
 /// (for an arrival and at the start), the modes decided, the state
 /// projected onto them, and the switches recorded.
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
-fn decide_switch<L, const N: usize, const K: usize>(
-    model: &L,
-    settings: &ContactSettings<L::Scalar>,
-    t: L::Scalar,
-    (q, mut qdot): (SVector<L::Scalar, N>, SVector<L::Scalar, N>),
+fn decide_switch<S: RealField + Copy, const N: usize, const K: usize>(
+    model: &Erased<'_, S, N, K>,
+    settings: &ContactSettings<S>,
+    t: S,
+    (q, mut qdot): (SVector<S, N>, SVector<S, N>),
     from: &[Mode; K],
     forced: Option<(usize, Mode)>,
     cause: Cause,
-    switches: &mut Vec<Switch<L::Scalar, N>>,
-) -> Result<((SVector<L::Scalar, N>, SVector<L::Scalar, N>), [Mode; K]), ContactError<L::Scalar, N>>
-where
-    L: Contacts<N, K>,
-{
+    switches: &mut Vec<Switch<S, N>>,
+) -> Result<(State<S, N>, [Mode; K]), ContactError<S, N>> {
     let mut impulses = None;
-    let mut energy_lost = nalgebra::zero::<L::Scalar>();
+    let mut energy_lost = nalgebra::zero::<S>();
     let mut settled = false;
     // An impact wherever a touching contact approaches: at an arrival,
     // at the start, and after any other switch that leaves one doing so.
-    if let Some((after, impulse, short)) = impact(model, settings, (t, &q, &qdot))? {
+    if let Some((after, impulse, short)) = impact(model, settings, (t, &q, &qdot), from)? {
         energy_lost = model.kinetic_energy(t, &q, &qdot) - model.kinetic_energy(t, &q, &after);
         qdot = after;
         impulses = Some(impulse);
         settled = short;
     }
-    let to = modes(model, settings, (t, &q, &qdot), forced)?;
+    // The contacts an impact struck are decided by their rates after it,
+    // not held.
+    let held: [Mode; K] = core::array::from_fn(|i| match impulses {
+        Some(p) if p[i].0 != nalgebra::zero::<S>() => Mode::Open,
+        _ => from[i],
+    });
+    let to = modes(model, settings, (t, &q, &qdot), (&held, forced))?;
     // A rebound below the velocity tolerance closes the contact too: the
     // impact settled it.
     let laws = model.contact_laws();
-    let settled_at = |i: usize| {
-        settled || (to[i].touching() && laws[i].restitution > nalgebra::zero::<L::Scalar>())
-    };
+    let settled_at =
+        |i: usize| settled || (to[i].touching() && laws[i].restitution > nalgebra::zero::<S>());
     let state =
         project(model, &to, t, (q, qdot)).ok_or(ContactError::DependentContacts { t, q, qdot })?;
-    let touch = touching(model, settings, t, &q);
+    let touch = touching(model, settings, (t, &q), from);
     record(
         switches,
-        &L::CONTACTS,
+        &model.names,
         (t, state.0, state.1),
         (from, &to),
         |i| {
-            let struck = impulses.is_some_and(|p: [(L::Scalar, L::Scalar); K]| {
-                p[i].0 != nalgebra::zero::<L::Scalar>()
-            });
+            let struck = impulses.is_some_and(|p: [(S, S); K]| p[i].0 != nalgebra::zero::<S>());
             match cause {
                 _ if struck && settled_at(i) => Cause::Settled,
                 _ if struck => Cause::Impact,
@@ -646,21 +640,35 @@ where
     Ok((state, to))
 }
 
-impl<L, const N: usize, const K: usize> Phase<'_, L, N, K>
-where
-    L: Contacts<N, K>,
-{
+impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
     /// An event's reset: the switch decided, the modes changed, the state
     /// after it; NaN (the failure kept) where it cannot be decided.
     fn switch(
         &self,
-        settings: &ContactSettings<L::Scalar>,
+        settings: &ContactSettings<S>,
         i: usize,
         cause: Cause,
-        t: L::Scalar,
-        state: (SVector<L::Scalar, N>, SVector<L::Scalar, N>),
-    ) -> (SVector<L::Scalar, N>, SVector<L::Scalar, N>) {
+        t: S,
+        state: (SVector<S, N>, SVector<S, N>),
+    ) -> (SVector<S, N>, SVector<S, N>) {
         let from = self.shared.modes();
+        {
+            let mut streak = self.shared.streak.lock().unwrap_or_else(|e| e.into_inner());
+            *streak = if streak.1 > 0 && streak.0 == t {
+                (t, streak.1 + 1)
+            } else {
+                (t, 1)
+            };
+            if streak.1 > MAX_SWITCHES_AT_ONCE {
+                self.shared.fail(ContactError::Chattering {
+                    t,
+                    q: state.0,
+                    qdot: state.1,
+                    switches: streak.1,
+                });
+                return (SVector::repeat(nan()), SVector::repeat(nan()));
+            }
+        }
         let forced = match cause {
             Cause::Release => Some((i, Mode::Open)),
             Cause::StickLimit => {
@@ -668,7 +676,7 @@ where
                 let friction = self
                     .solve(t, &state.0, &state.1)
                     .map(|(_, f)| f.friction[i]);
-                let forward = friction.is_some_and(|f| f < nalgebra::zero::<L::Scalar>());
+                let forward = friction.is_some_and(|f| f < nalgebra::zero::<S>());
                 Some((i, Mode::Sliding { forward }))
             }
             _ => None,
@@ -679,7 +687,7 @@ where
             .lock()
             .unwrap_or_else(|e| e.into_inner());
         match decide_switch(
-            self.model,
+            &self.model,
             settings,
             t,
             state,
@@ -702,15 +710,12 @@ where
 
 /// The modes and forces at every sample, the modes replayed from the
 /// switches.
-fn results<L, const N: usize, const K: usize>(
-    model: &L,
-    trajectory: Trajectory<L::Scalar, N>,
-    switches: Vec<Switch<L::Scalar, N>>,
+fn results<S: RealField + Copy, const N: usize, const K: usize>(
+    model: &Erased<'_, S, N, K>,
+    trajectory: Trajectory<S, N>,
+    switches: Vec<Switch<S, N>>,
     start: [Mode; K],
-) -> ContactTrajectory<L::Scalar, N, K>
-where
-    L: Contacts<N, K>,
-{
+) -> ContactTrajectory<S, N, K> {
     let mut current = start;
     let mut next = 0;
     let mut modes = Vec::with_capacity(trajectory.len());

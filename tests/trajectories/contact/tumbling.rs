@@ -27,27 +27,6 @@ fn a_tumbling_box_never_penetrates_and_never_gains_energy() {
         // No corner below the floor beyond the integration's drift of a
         // closed contact (1e-10 at this tolerance) or a located arrival.
         let gaps = lagrange::contact::Contacts::gaps(&boxed, sample.t, &sample.q);
-        if gaps.min() < -1e-9 {
-            for s in run
-                .switches()
-                .iter()
-                .filter(|s| s.t > 0.6 && s.t < sample.t)
-            {
-                let g = lagrange::contact::Contacts::gaps(&boxed, s.t, &s.q);
-                let gd = lagrange::contact::Contacts::gap_velocities(&boxed, s.t, &s.q, &s.qdot);
-                println!(
-                    "{:.12} {} {:?}->{:?} {:?} g={:?} gdot={:?}",
-                    s.t,
-                    s.name,
-                    s.from,
-                    s.to,
-                    s.cause,
-                    g.as_slice(),
-                    gd.as_slice()
-                );
-            }
-            println!("sample t={} g={:?}", sample.t, gaps.as_slice());
-        }
         assert!(
             gaps.min() > -1e-9,
             "a corner at {} at t = {}",
@@ -55,10 +34,11 @@ fn a_tumbling_box_never_penetrates_and_never_gains_energy() {
             sample.t
         );
         // Energy only falls: friction and restitution take it, workless
-        // contacts keep it, to the method's 1e-12 of the 10 J scale.
+        // contacts keep it, to the method's 1e-12 relative (of the 11 J at
+        // the start; 1.8e-15 J was the largest rise when this was written).
         let e = boxed.energy(sample.t, &sample.q, &sample.qdot);
         assert!(
-            e <= previous + 1e-10,
+            e <= previous + 1e-12 * e0,
             "energy rose from {previous} to {e} at t = {}",
             sample.t
         );
