@@ -106,7 +106,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     );
 
     let ball = BallOnFloor::new(1.0, 9.81, 0.5);
-    let bounces = run(&ball, ([1.0], [0.0]), 2.0, 400)?;
+    let bounces = run(&ball, ([0.0, 1.0], [0.0, 0.0]), 2.0, 400)?;
     let rest = bounces.switches().last().unwrap();
     row("ball (e = 1/2): time of rest", ball.rest_time(1.0), rest.t);
     let impacts = bounces
@@ -234,7 +234,7 @@ fn incline() -> Result<(), Box<dyn Error>> {
 fn draw(
     path: &std::path::Path,
     belt: &contact::ContactTrajectory<f64, 2, 1>,
-    ball: &contact::ContactTrajectory<f64, 1, 1>,
+    ball: &contact::ContactTrajectory<f64, 2, 1>,
 ) -> Result<(), Box<dyn Error>> {
     let root = SVGBackend::new(path, (1200, 480)).into_drawing_area();
     root.fill(&WHITE)?;
@@ -290,7 +290,7 @@ fn draw(
             times
                 .iter()
                 .zip(ball.trajectory().positions())
-                .map(|(t, q)| (*t, 10.0 * q[0])),
+                .map(|(t, q)| (*t, 10.0 * q[1])),
             BLUE.stroke_width(2),
         ))?
         .label("z [10 cm]")

@@ -7,12 +7,18 @@
 //! its Jacobian and the bias of its acceleration (as a holonomic
 //! constraint has), optionally a slip velocity `v_t = T(t, q) q̇ + b` along
 //! which friction acts, and its [`ContactLaw`]: restitution, static and
-//! kinetic friction coefficients. [`integrate`] runs it with any
-//! [`Integrator`](crate::integrators::Integrator) through the one run loop: the
+//! kinetic friction coefficients; `lagrangian!` writes all of it from a
+//! `contacts:` section (`floor: y >= 0 { restitution: e, friction: mu,
+//! slip: dot(x) }`). [`integrate`] runs it with any
+//! [`Integrator`](crate::integrators::Integrator) through the one run loop,
+//! and a [`Scene`] advances it frame by frame with a
+//! [`Stepper`](crate::stepper::Stepper) through the same loop: the
 //! contacts' state (their [`Mode`]s) is discrete, it changes only at
 //! events, and between events the model is integrated with the closed
 //! contacts as equality constraints and the sliding ones' friction as known
-//! forces.
+//! forces. The runs see the model through one object-safe interface
+//! ([`Erased`]), so they are compiled once per scalar, `N` and `K`, not
+//! once per model.
 //!
 //! # Modes and switches
 //!
@@ -106,9 +112,12 @@
 //!   treatment is a polygonal cone (a few directions, each a column of the
 //!   same complementarity problem, as `β⁺`, `β⁻` are here), or the exact
 //!   cone as a second-order cone complementarity problem.
-//! - The variational integrator (whose step sees no forces solved from
-//!   the state) is refused through its own check, and so is a model whose
-//!   contact forces it could not represent.
+//! - The variational integrator is refused (its step needs the model's
+//!   momenta, which a run with contact forces solved from the state does
+//!   not offer: `InvalidInput::ModelLacks`).
+//! - Friction acts at contacts, against their own normal force. Friction
+//!   in a joint (a bearing's torque from the joint's reaction) or against
+//!   a given normal force is not built.
 //! - The drift of a closed contact between switches is the integrator's
 //!   error (`g̈ = 0` holds exactly, `g` and `ġ` only as well as the steps
 //!   keep them); at every switch the state is projected back onto the
@@ -133,9 +142,11 @@ pub use run::{integrate, ContactFailure, ContactResult, ContactTrajectory, Scene
 /// A model with `K` unilateral contacts on its `N` coordinates: gaps
 /// `g(t, q) ≥ 0` and, where friction acts, slip velocities `v_t`.
 ///
-/// Written by hand for now (the language's `contacts:` section, which will
-/// generate it, is not built yet); the gap terms are those of a holonomic
-/// constraint (see [`Holonomic`](crate::model::constraints::Holonomic)).
+/// `lagrangian!` implements it for every model with a `contacts:` section
+/// (the language guide's "Contacts"), deriving the gap terms as a holonomic
+/// constraint's (see [`Holonomic`](crate::model::constraints::Holonomic))
+/// and the slip terms as a velocity constraint's; it may be written by
+/// hand too.
 pub trait Contacts<const N: usize, const K: usize>: Lagrangian<N> {
     /// Names of the contacts, for switches and errors.
     const CONTACTS: [&'static str; K];
@@ -318,8 +329,9 @@ pub struct Switch<S: RealField + Copy, const N: usize> {
     /// At an impact: the normal and tangential impulses on this contact
     /// (restitution included); zero otherwise.
     pub impulse: (S, S),
-    /// At an impact: the kinetic energy the whole impact took (the same on
-    /// every contact's switch of that impact); zero otherwise.
+    /// At an impact: the kinetic energy the whole impact took, recorded on
+    /// every contact's switch of that impact (count it once per impact);
+    /// zero otherwise.
     pub energy_lost: S,
     /// The positions after the switch (projected onto the touching
     /// contacts).

@@ -4,19 +4,20 @@
 use crate::lagrangian;
 
 lagrangian! {
-    /// A ball of mass `m` in one dimension, height `z` above a floor it
-    /// cannot pass, under gravity `g`, bouncing with restitution `e`.
+    /// A ball of mass `m` in the vertical plane, `x` along a frictionless
+    /// floor it cannot pass and `z` its height above it, under gravity
+    /// `g`, bouncing with restitution `e`.
     ///
     /// ```
     /// use lagrange::contact::{self, ContactSettings, Mode};
     /// use lagrange::models::BallOnFloor;
     /// use lagrange::prelude::*;
-    /// use lagrange::nalgebra::Vector1;
+    /// use lagrange::nalgebra::Vector2;
     ///
     /// let ball = BallOnFloor::new(1.0, 9.81, 0.5);
     /// let run = contact::integrate(
     ///     &Dop853::new().rtol(1e-12).atol(1e-12), &ball, 0.0,
-    ///     Vector1::new(1.0), Vector1::new(0.0), &[2.0], ContactSettings::default(),
+    ///     Vector2::new(0.0, 1.0), Vector2::new(0.5, 0.0), &[2.0], ContactSettings::default(),
     /// )?;
     /// let rest = run.switches().last().unwrap();
     /// assert_eq!(rest.to, Mode::Closed);
@@ -24,9 +25,9 @@ lagrangian! {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub struct BallOnFloor {
-        coordinates: z;
+        coordinates: x, z;
         parameters: m, g, e;
-        kinetic: m/2*dot(z)^2;
+        kinetic: m/2*(dot(x)^2 + dot(z)^2);
         potential: m*g*z;
         contacts: floor: z >= 0 { restitution: e };
     }

@@ -4,7 +4,7 @@
 
 use lagrange::contact::{ContactSettings, Scene};
 use lagrange::models::{BallOnFloor, BlockOnBelt};
-use lagrange::nalgebra::{Vector1, Vector2};
+use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
 use lagrange::InvalidInput;
 
@@ -22,8 +22,14 @@ fn a_stepper_at_sixty_hertz_reports_the_switches_of_integrate_each_in_its_frame(
         settings,
     )
     .unwrap();
-    let ball_scene =
-        Scene::new(&ball, 0.0, Vector1::new(1.0), Vector1::new(0.0), settings).unwrap();
+    let ball_scene = Scene::new(
+        &ball,
+        0.0,
+        Vector2::new(0.0, 1.0),
+        Vector2::zeros(),
+        settings,
+    )
+    .unwrap();
     let frames = 180;
     let end = frames as f64 / 60.0;
 
@@ -85,7 +91,7 @@ fn compare<const N: usize>(
 #[test]
 fn a_model_with_contacts_is_refused_by_the_runs_that_would_ignore_them() {
     let ball = BallOnFloor::new(1.0, 9.81, 0.5);
-    let (q, v) = (Vector1::new(1.0), Vector1::new(0.0));
+    let (q, v) = (Vector2::new(0.0, 1.0), Vector2::zeros());
     let failure = Rk4::new(1e-3)
         .integrate(&ball, 0.0, q, v, &[1.0])
         .unwrap_err();
