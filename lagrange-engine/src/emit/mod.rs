@@ -192,12 +192,22 @@ pub(crate) fn lets_impl(name: &Ident, types: &Types) -> TokenStream {
 
 /// `impl Actuated<N, K>`, for a model with inputs only.
 fn actuated_impl(cx: &Context) -> TokenStream {
+    let jacobian = forwarding(cx, |t| t == InTrait::Actuated).collect();
+    inputs::actuated_impl(&cx.outline, &cx.types, jacobian)
+}
+
+/// The methods of a capability's impl (`Holonomic`, `Contacts`,
+/// `Actuated`) that the model has, each a call of the inherent one.
+fn forwarding<'a>(
+    cx: &'a Context,
+    of: impl Fn(InTrait) -> bool + 'a,
+) -> impl Iterator<Item = TokenStream> + 'a {
     let name = cx.outline.name;
-    let jacobian = METHODS
+    METHODS
         .iter()
         .zip(&cx.roots)
-        .filter(|(m, roots)| m.in_trait == InTrait::Actuated && roots.is_some())
-        .map(|(m, _)| {
+        .filter(move |(m, roots)| of(m.in_trait) && roots.is_some())
+        .map(move |(m, _)| {
             let signature = m.trait_signature(&cx.types);
             let method = m.ident();
             let args = m.arg_idents();
@@ -208,8 +218,6 @@ fn actuated_impl(cx: &Context) -> TokenStream {
                 }
             }
         })
-        .collect();
-    inputs::actuated_impl(&cx.outline, &cx.types, jacobian)
 }
 
 /// One inherent method: its docs, signature and straight-line body.
@@ -290,21 +298,7 @@ fn holonomic_impl(
     let na = nalgebra();
     let name = cx.outline.name;
     let (n, c) = (&cx.types.n, &cx.types.c);
-    let methods = METHODS
-        .iter()
-        .zip(&cx.roots)
-        .filter(|(m, roots)| matches!(m.in_trait, InTrait::Holonomic { .. }) && roots.is_some())
-        .map(|(m, _)| {
-            let signature = m.trait_signature(&cx.types);
-            let method = m.ident();
-            let args = m.arg_idents();
-            quote! {
-                #[inline]
-                #signature {
-                    #name::#method(self, #(#args),*)
-                }
-            }
-        });
+    let methods = forwarding(cx, |t| matches!(t, InTrait::Holonomic { .. }));
     let regular_on_constraints = singular_mass.then(|| {
         quote! {
             #[inline]
@@ -340,21 +334,7 @@ fn contacts_impl(cx: &Context) -> TokenStream {
     let na = nalgebra();
     let name = cx.outline.name;
     let (n, k) = (&cx.types.n, &cx.types.kc);
-    let methods = METHODS
-        .iter()
-        .zip(&cx.roots)
-        .filter(|(m, roots)| m.in_trait == InTrait::Contacts && roots.is_some())
-        .map(|(m, _)| {
-            let signature = m.trait_signature(&cx.types);
-            let method = m.ident();
-            let args = m.arg_idents();
-            quote! {
-                #[inline]
-                #signature {
-                    #name::#method(self, #(#args),*)
-                }
-            }
-        });
+    let methods = forwarding(cx, |t| t == InTrait::Contacts);
     quote! {
         impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::contact::Contacts<#n, #k> for #name<S> {
             const CONTACTS: [&'static str; #k] = Self::CONTACTS;

@@ -403,15 +403,8 @@ fn parse_constraints(
             lhs,
             rhs,
         });
-        if input.peek(Token![,]) {
-            input.parse::<Token![,]>()?;
-        } else if input.peek(Token![;]) {
-            input.parse::<Token![;]>()?;
+        if section_ends(input, error, "expected an operator, `=`, `,` or `;`")? {
             return Ok(entries);
-        } else if recover_missing_semicolon(input, error) {
-            return Ok(entries);
-        } else {
-            return Err(input.error("expected an operator, `=`, `,` or `;`"));
         }
     }
 }
@@ -479,16 +472,30 @@ fn parse_contacts(
             rhs,
             fields,
         });
-        if input.peek(Token![,]) {
-            input.parse::<Token![,]>()?;
-        } else if input.peek(Token![;]) {
-            input.parse::<Token![;]>()?;
+        if section_ends(input, error, "expected an operator, `{`, `,` or `;`")? {
             return Ok(entries);
-        } else if recover_missing_semicolon(input, error) {
-            return Ok(entries);
-        } else {
-            return Err(input.error("expected an operator, `{`, `,` or `;`"));
         }
+    }
+}
+
+/// After an entry of a comma-separated section: `false` where a `,` says
+/// another entry follows, `true` where the section ends (its `;`, or a
+/// missing one recovered); else the error `expected`.
+fn section_ends(
+    input: ParseStream,
+    error: &mut Option<syn::Error>,
+    expected: &str,
+) -> syn::Result<bool> {
+    if input.peek(Token![,]) {
+        input.parse::<Token![,]>()?;
+        Ok(false)
+    } else if input.peek(Token![;]) {
+        input.parse::<Token![;]>()?;
+        Ok(true)
+    } else if recover_missing_semicolon(input, error) {
+        Ok(true)
+    } else {
+        Err(input.error(expected))
     }
 }
 
