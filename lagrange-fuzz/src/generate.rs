@@ -143,6 +143,9 @@ impl Gen<'_> {
         if self.rng.chance(0.15) {
             energy.push(self.inputs());
         }
+        if self.rng.chance(0.1) {
+            energy.push(self.contacts());
+        }
 
         // Sections may come in any order, `let`s in theirs.
         let mut items = early;

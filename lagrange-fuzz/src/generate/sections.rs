@@ -1,6 +1,6 @@
 //! The sections a generated model carries beside its energies: holonomic
-//! constraints and control inputs (forces are in the parent, with the
-//! positions they act along).
+//! constraints, unilateral contacts and control inputs (forces are in the
+//! parent, with the positions they act along).
 
 use super::Gen;
 
@@ -27,6 +27,38 @@ impl Gen<'_> {
             });
         }
         format!("constraints: {};", entries.join(", "))
+    }
+
+    /// `contacts:` of a coordinate against an expression in t and q, each
+    /// with or without a law (restitution, friction with a slip velocity):
+    /// the coefficients are drawn as any expression, so some depend on the
+    /// state, one of the spanned errors the checks give.
+    pub(super) fn contacts(&mut self) -> String {
+        let mut entries = Vec::new();
+        for name in ["k1", "k2"].iter().take(self.rng.range(1, 2)) {
+            let c = self.rng.pick(&self.scope.coordinates).clone();
+            let target = self.reference(&c);
+            let d = self.depth();
+            let bound = self.expr(d, false);
+            let op = if self.rng.chance(0.5) { ">=" } else { "<=" };
+            let mut law = Vec::new();
+            if self.rng.chance(0.5) {
+                law.push(format!("restitution: {}", self.expr(1, false)));
+            }
+            if self.rng.chance(0.4) {
+                let s = self.rng.pick(&self.scope.coordinates).clone();
+                let slip = format!("dot({})", self.reference(&s));
+                law.push(format!("friction: {}", self.expr(1, false)));
+                law.push(format!("slip: {slip}"));
+            }
+            let law = if law.is_empty() {
+                String::new()
+            } else {
+                format!(" {{ {} }}", law.join(", "))
+            };
+            entries.push(format!("{name}: {target} {op} {bound}{law}"));
+        }
+        format!("contacts: {};", entries.join(", "))
     }
 
     /// `inputs:` (scalar or indexed) and a force on a coordinate scaled by
