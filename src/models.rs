@@ -12,11 +12,12 @@
 //! [`FreeBody`] and [`HeavyTop`] (the functions of [`quaternion`] convert
 //! their states). Three roll, under constraints on their velocities:
 //! [`ChaplyginSleigh`], [`RollingDisk`] and [`RollingBall`], the last in
-//! quaternions too. Eight have unilateral contacts (`contacts:`), run by
+//! quaternions too. Nine have unilateral contacts or friction
+//! (`contacts:`), run by
 //! [`contact::integrate`](lagrange_runtime::contact::integrate):
 //! [`BallOnFloor`], [`ParticleOnSphere`], [`Ladder`], [`BobOnString`],
-//! [`SlidingBall`], [`BlockOnIncline`], [`BlockOnBelt`] and
-//! [`TumblingBox`].
+//! [`SlidingBall`], [`BlockOnIncline`], [`BlockOnBelt`], [`TumblingBox`]
+//! and [`TorsionBearing`] (friction in a joint, against a given load).
 
 mod bicycle;
 mod bouncing_ball;
@@ -48,7 +49,7 @@ pub use chain::Chain;
 pub use chaplygin_sleigh::ChaplyginSleigh;
 pub use contact::{
     BallOnFloor, BlockOnBelt, BlockOnIncline, BobOnString, Ladder, ParticleOnSphere, SlidingBall,
-    StickSlip, TumblingBox,
+    StickSlip, Swing, TorsionBearing, TumblingBox,
 };
 pub use double_pendulum::DoublePendulum;
 pub use four_bar::FourBar;

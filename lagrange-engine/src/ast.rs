@@ -213,6 +213,10 @@ pub struct ContactDef {
     pub at_least: bool,
     /// The right-hand side.
     pub rhs: Expr,
+    /// Whether the entry has a gap; without one (`name: { normal: F, .. }`,
+    /// friction against a given normal force) both sides are the number 0
+    /// at the name.
+    pub has_gap: bool,
     /// The law's entries, `key: value`, in the order written.
     pub fields: Vec<(Ident, Expr)>,
 }

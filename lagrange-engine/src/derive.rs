@@ -76,8 +76,9 @@ pub struct ContactEquations {
     pub gaps: ConstraintEquations,
     /// The slip velocities' terms.
     pub slips: ConstraintEquations,
-    /// `[e, μ_s, μ_k]` per contact.
-    pub laws: Vec<[ExprId; 3]>,
+    /// `[e, μ_s, μ_k, N]` per contact, `N` its given normal force (zero
+    /// where it has none).
+    pub laws: Vec<[ExprId; 4]>,
 }
 
 /// What the constraints contribute, each vector in the order of `φ`:
@@ -126,10 +127,17 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         .iter()
         .map(|c| c.slip.unwrap_or(Pool::ZERO))
         .collect();
-    let laws: Vec<[ExprId; 3]> = model
+    let laws: Vec<[ExprId; 4]> = model
         .contacts
         .iter()
-        .map(|c| [c.restitution, c.static_friction, c.kinetic_friction])
+        .map(|c| {
+            [
+                c.restitution,
+                c.static_friction,
+                c.kinetic_friction,
+                c.normal.unwrap_or(Pool::ZERO),
+            ]
+        })
         .collect();
     let pool = &mut model.pool;
 

@@ -72,8 +72,8 @@ impl Stub {
         let na = nalgebra();
         let name = &self.name;
         let k: usize = self.inputs.iter().map(|f| f.len.unwrap_or(1)).sum();
-        let types =
-            Types::new(self.dof, self.constraints, k, self.lets).with_contacts(self.contacts);
+        let types = Types::new(self.dof, self.constraints, k, self.lets)
+            .with_contacts(&vec![false; self.contacts]);
         let n = &types.n;
         let stop = quote!(::core::unreachable!(
             "`lagrangian!` reported a compile error for this model"

@@ -15,7 +15,7 @@
 use lagrange::contact::{self, Cause, ContactResult, ContactSettings, Contacts, Mode};
 use lagrange::models::{
     BallOnFloor, BlockOnBelt, BlockOnIncline, BobOnString, Ladder, ParticleOnSphere, SlidingBall,
-    TumblingBox,
+    TorsionBearing, TumblingBox,
 };
 use lagrange::nalgebra::SVector;
 use lagrange::prelude::*;
@@ -157,6 +157,26 @@ fn main() -> Result<(), Box<dyn Error>> {
         cycle.slips_at / 0.3 + cycle.slip_duration + cycle.stick_duration,
         switches[2].t,
     );
+
+    // Friction in a joint, against a given load: the torsion pendulum's
+    // turning points lose 2 μ_k F r / κ each, and it sticks where static
+    // friction holds the spring.
+    let bearing = TorsionBearing::new(0.5, 2.0, 1.0, 0.1, 0.4, 0.3);
+    let swings = bearing.swings(0.205);
+    let damped = run(&bearing, ([0.205], [0.0]), 14.0, 140)?;
+    let turns: Vec<_> = damped
+        .switches()
+        .iter()
+        .filter(|s| s.cause == Cause::SlideStopped)
+        .collect();
+    let last = swings.last().expect("it slips");
+    let stuck = turns.last().expect("it sticks");
+    row(
+        "bearing: sticks at (time)",
+        last.start + core::f64::consts::FRAC_PI_2,
+        stuck.t,
+    );
+    row("         sticks at (angle)", last.to, stuck.q[0]);
 
     // The box: no penetration, energy only lost.
     let tumbling = TumblingBox::new(2.0, 0.6, 0.3, 9.81, 0.4, 0.5);

@@ -1,7 +1,8 @@
 //! The checks of `contacts:`: each gap a function of `t` and `q` that
 //! names some coordinate; each slip velocity linear in the velocities and
-//! naming one; each coefficient a constant of the parameters; friction
-//! only along a slip velocity, and a slip velocity only with friction; no
+//! naming one; each coefficient (and a given normal force) a constant of
+//! the parameters; friction only along a slip velocity, and a slip
+//! velocity only with friction; friction for a given normal force; no
 //! `constraints:` beside them (the runtime's contact runs take models
 //! without constraints of their own).
 
@@ -87,7 +88,8 @@ pub fn contacts_are_admissible(model: &mut Model) -> syn::Result<()> {
                  `{{ slip: dot(x) }}`"
             )));
         }
-        if !coordinates.iter().any(|&q| model.pool.depends_on(gap, q)) {
+        let has_gap = model.contact_defs[model.contacts[k].entry].has_gap;
+        if has_gap && !coordinates.iter().any(|&q| model.pool.depends_on(gap, q)) {
             let def = &model.contact_defs[model.contacts[k].entry];
             return Err(def.range().error(format!(
                 "contact `{label}`'s gap names no coordinate: it can never open or close (a gap is a \
@@ -100,6 +102,7 @@ pub fn contacts_are_admissible(model: &mut Model) -> syn::Result<()> {
             "friction",
             "static_friction",
             "kinetic_friction",
+            "normal",
         ] {
             let Some((_, e, id)) = law_entry(model, k, key) else {
                 continue;
@@ -115,7 +118,13 @@ pub fn contacts_are_admissible(model: &mut Model) -> syn::Result<()> {
                 let range = model.locate(&e, &varies);
                 return Err(range.error(format!(
                     "contact `{label}`'s `{key}` depends on the state: it is a constant of the contact, \
-                     written with parameters and numbers"
+                     written with parameters and numbers{}",
+                    if key == "normal" {
+                        " (a normal force that varies with the state is a contact's reaction: write \
+                         the gap it keeps instead)"
+                    } else {
+                        ""
+                    }
                 )));
             }
         }
@@ -132,6 +141,13 @@ pub fn contacts_are_admissible(model: &mut Model) -> syn::Result<()> {
                          `{{ friction: mu, slip: dot(x) }}`)"
                     ),
                 ))
+            }
+            (None, None) if !has_gap => {
+                let def = &model.contact_defs[model.contacts[k].entry];
+                return Err(def.range().error(format!(
+                    "contact `{label}` has a given normal force but no friction: it would do nothing; \
+                     add `friction: mu` and the `slip:` velocity it acts against"
+                )));
             }
             (Some(_), None) => {
                 let (span, _, _) = law_entry(model, k, "slip").expect("written");

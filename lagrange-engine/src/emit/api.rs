@@ -83,8 +83,9 @@ pub enum Returns {
     ContactVector,
     /// `SMatrix<S, K, N>`: `K·N` roots.
     ContactMatrix,
-    /// `[ContactLaw<S>; K]`: `3K` roots, each contact's restitution, static
-    /// and kinetic friction.
+    /// `[ContactLaw<S>; K]`: `4K` roots, each contact's restitution, static
+    /// and kinetic friction, and its given normal force (zero, unused,
+    /// where it has none).
     ContactLaws,
 }
 
@@ -172,13 +173,19 @@ impl Returns {
                 quote!(#new(&[#(#outs),*]))
             }
             Returns::ContactLaws => {
-                let laws = outs.chunks(3).map(|law| {
-                    let (e, s, k) = (&law[0], &law[1], &law[2]);
+                let laws = outs.chunks(4).enumerate().map(|(i, law)| {
+                    let (e, s, k, n) = (&law[0], &law[1], &law[2], &law[3]);
+                    let normal = if ty.given_normals.get(i).copied().unwrap_or(false) {
+                        quote!(::core::option::Option::Some(#n))
+                    } else {
+                        quote!(::core::option::Option::None)
+                    };
                     quote! {
                         ::lagrange::contact::ContactLaw {
                             restitution: #e,
                             static_friction: #s,
                             kinetic_friction: #k,
+                            normal: #normal,
                         }
                     }
                 });

@@ -55,7 +55,13 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
             model.inputs.len(),
             model.lets.len(),
         )
-        .with_contacts(model.contacts.len()),
+        .with_contacts(
+            &model
+                .contacts
+                .iter()
+                .map(|c| c.normal.is_some())
+                .collect::<Vec<_>>(),
+        ),
         namer: Namer::new(model),
         roots: METHODS.iter().map(|m| (m.roots)(model, eq)).collect(),
     };

@@ -48,6 +48,8 @@ pub struct Types {
     pub contacts: usize,
     /// The number of contacts as a literal.
     pub kc: Literal,
+    /// Per contact, whether its law gives its normal force (`normal:`).
+    pub given_normals: Vec<bool>,
     /// `SVector<S, K>`, `K` the number of contacts.
     pub contact_vector: TokenStream,
     /// `SMatrix<S, K, N>`.
@@ -89,6 +91,7 @@ impl Types {
             new_constraint_matrix: quote!(#na::SMatrix::<S, #c, #n>::from_column_slice),
             contacts: 0,
             kc: Literal::usize_unsuffixed(0),
+            given_normals: Vec::new(),
             contact_vector: quote!(#na::SVector<S, 0>),
             contact_matrix: quote!(#na::SMatrix<S, 0, #n>),
             new_contact_vector: quote!(#na::SVector::<S, 0>::from_column_slice),
@@ -104,8 +107,11 @@ impl Types {
         }
     }
 
-    /// The same types for a model with `contacts` contacts.
-    pub fn with_contacts(mut self, contacts: usize) -> Self {
+    /// The same types for a model with contacts, `given_normals` saying of
+    /// each whether its law gives its normal force.
+    pub fn with_contacts(mut self, given_normals: &[bool]) -> Self {
+        let contacts = given_normals.len();
+        self.given_normals = given_normals.to_vec();
         let na = nalgebra();
         let (n, k) = (&self.n, Literal::usize_unsuffixed(contacts));
         self.contact_vector = quote!(#na::SVector<S, #k>);

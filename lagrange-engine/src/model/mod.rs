@@ -145,6 +145,8 @@ pub struct Contact {
     pub static_friction: ExprId,
     /// The kinetic friction coefficient (zero without friction).
     pub kinetic_friction: ExprId,
+    /// The given normal force (`normal:`) of a contact without a gap.
+    pub normal: Option<ExprId>,
 }
 
 /// The lowered model.

@@ -353,13 +353,16 @@ pub(super) fn sections(items: Vec<Item>, name: &Ident, cx: &mut Lowering) -> syn
 
 /// The keys of a contact's law.
 const CONTACT_KEYS: &str =
-    "`restitution`, `friction`, `static_friction`, `kinetic_friction` or `slip`";
+    "`restitution`, `friction`, `static_friction`, `kinetic_friction`, `slip` or `normal`";
 
-/// The contact of one entry `name: lhs >= rhs { law }` (the `entry`-th).
+/// The contact of one entry `name: lhs >= rhs { law }` or `name: { normal:
+/// F, .. }` (the `entry`-th).
 fn contact(cx: &mut Lowering, def: &ContactDef, entry: usize) -> syn::Result<Contact> {
     let lhs = cx.lower(&def.lhs)?;
     let rhs = cx.lower(&def.rhs)?;
-    let gap = if def.at_least {
+    let gap = if !def.has_gap {
+        Pool::ZERO
+    } else if def.at_least {
         cx.pool.sub(lhs, rhs)
     } else {
         cx.pool.sub(rhs, lhs)
@@ -370,7 +373,7 @@ fn contact(cx: &mut Lowering, def: &ContactDef, entry: usize) -> syn::Result<Con
         let name = key.to_string();
         if !matches!(
             name.as_str(),
-            "restitution" | "friction" | "static_friction" | "kinetic_friction" | "slip"
+            "restitution" | "friction" | "static_friction" | "kinetic_friction" | "slip" | "normal"
         ) {
             return Err(syn::Error::new(
                 key.span(),
@@ -393,9 +396,41 @@ fn contact(cx: &mut Lowering, def: &ContactDef, entry: usize) -> syn::Result<Con
                 ),
             ));
         }
+        if def.has_gap && name == "normal" {
+            return Err(syn::Error::new(
+                key.span(),
+                format!(
+                    "contact `{}` has a gap, so its normal force is the reaction that keeps the gap \
+                     non-negative: `normal:` gives the force of a contact written without a gap, \
+                     friction against a given load (`brake: {{ normal: F, friction: mu, slip: \
+                     r*dot(theta) }}`)",
+                    def.name
+                ),
+            ));
+        }
+        if !def.has_gap && name == "restitution" {
+            return Err(syn::Error::new(
+                key.span(),
+                format!(
+                    "contact `{}` has no gap, so it has no impacts and no restitution: drop \
+                     `restitution:` (or write the gap, as in `{}: y >= 0 {{ restitution: e }}`)",
+                    def.name, def.name
+                ),
+            ));
+        }
         let lowered = cx.lower(value)?;
         fields.push(lowered);
         law.insert(name, lowered);
+    }
+    if !def.has_gap && !law.contains_key("normal") {
+        return Err(syn::Error::new(
+            def.name.span(),
+            format!(
+                "contact `{}` has no gap: write its gap (`{}: y >= 0 {{ .. }}`), or give the normal \
+                 force its friction acts against (`{}: {{ normal: F, friction: mu, slip: dot(x) }}`)",
+                def.name, def.name, def.name
+            ),
+        ));
     }
     let (static_friction, kinetic_friction) = match (
         law.get("friction"),
@@ -432,6 +467,7 @@ fn contact(cx: &mut Lowering, def: &ContactDef, entry: usize) -> syn::Result<Con
         restitution: law.get("restitution").copied().unwrap_or(Pool::ZERO),
         static_friction,
         kinetic_friction,
+        normal: law.get("normal").copied(),
     })
 }
 

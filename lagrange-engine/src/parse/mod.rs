@@ -428,20 +428,31 @@ fn parse_contacts(
             ));
         }
         input.parse::<Token![:]>()?;
-        let lhs = parse_expr(input)?;
-        let at_least = if input.peek(Token![>=]) {
-            input.parse::<Token![>=]>()?;
-            true
-        } else if input.peek(Token![<=]) {
-            input.parse::<Token![<=]>()?;
-            false
-        } else {
-            return Err(input.error(
-                "expected `>=` or `<=`: a contact is a gap that stays non-negative, as in `floor: y >= 0` \
-                 (an equation `=` is a constraint, in `constraints:`)",
-            ));
+        // Without a gap, friction against a given normal force:
+        // `brake: { normal: F, friction: mu, slip: r*dot(theta) }`.
+        let has_gap = !input.peek(syn::token::Brace);
+        let zero = || Expr::Num {
+            value: 0.0,
+            span: name.span(),
         };
-        let rhs = parse_expr(input)?;
+        let (lhs, at_least, rhs) = if has_gap {
+            let lhs = parse_expr(input)?;
+            let at_least = if input.peek(Token![>=]) {
+                input.parse::<Token![>=]>()?;
+                true
+            } else if input.peek(Token![<=]) {
+                input.parse::<Token![<=]>()?;
+                false
+            } else {
+                return Err(input.error(
+                    "expected `>=` or `<=`: a contact is a gap that stays non-negative, as in `floor: y >= 0` \
+                     (an equation `=` is a constraint, in `constraints:`)",
+                ));
+            };
+            (lhs, at_least, parse_expr(input)?)
+        } else {
+            (zero(), true, zero())
+        };
         let mut fields = Vec::new();
         if input.peek(syn::token::Brace) {
             let inner;
@@ -470,6 +481,7 @@ fn parse_contacts(
             lhs,
             at_least,
             rhs,
+            has_gap,
             fields,
         });
         if section_ends(input, error, "expected an operator, `{`, `,` or `;`")? {

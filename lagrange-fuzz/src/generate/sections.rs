@@ -30,7 +30,8 @@ impl Gen<'_> {
     }
 
     /// `contacts:` of a coordinate against an expression in t and q, each
-    /// with or without a law (restitution, friction with a slip velocity):
+    /// with or without a law (restitution, friction with a slip velocity),
+    /// or without a gap (friction against a given normal force):
     /// the coefficients are drawn as any expression, so some depend on the
     /// state, one of the spanned errors the checks give.
     pub(super) fn contacts(&mut self) -> String {
@@ -38,6 +39,15 @@ impl Gen<'_> {
         for name in ["k1", "k2"].iter().take(self.rng.range(1, 2)) {
             let c = self.rng.pick(&self.scope.coordinates).clone();
             let target = self.reference(&c);
+            if self.rng.chance(0.2) {
+                // Without a gap: friction against a given normal force.
+                let normal = self.expr(1, false);
+                let mu = self.expr(1, false);
+                entries.push(format!(
+                    "{name}: {{ normal: {normal}, friction: {mu}, slip: dot({target}) }}"
+                ));
+                continue;
+            }
             let d = self.depth();
             let bound = self.expr(d, false);
             let op = if self.rng.chance(0.5) { ">=" } else { "<=" };

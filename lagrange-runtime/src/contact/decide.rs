@@ -13,11 +13,14 @@ use super::{Cause, ContactError, ContactLaw, ContactSettings, Contacts, Mode, Sw
 /// One touching contact's unknowns in a complementarity problem: a normal
 /// force along a known direction (frictionless, or sliding with known
 /// friction), or a normal force with the planar friction cone of
-/// coefficient `mu` (four unknowns: `N`, `β⁺`, `β⁻`, `σ`).
+/// coefficient `mu` (four unknowns: `N`, `β⁺`, `β⁻`, `σ`), or a contact
+/// with a given normal force `normal` sticking or not (the cone with `N`
+/// known: three unknowns, `β⁺`, `β⁻`, `σ`).
 #[derive(Clone, Copy)]
 enum Entry<S> {
     Normal { contact: usize, mode: Mode },
     Cone { contact: usize, mu: S },
+    Given { contact: usize, mu: S, normal: S },
 }
 
 /// The solution of a contact complementarity problem: per contact, its
@@ -50,8 +53,10 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
         base: S,
     }
     let mut columns: Vec<Column<S, N>> = Vec::new();
-    // For a cone at column c: its σ couples c+1, c+2 (β±) and c+3 (σ).
+    // For a cone at column c: its σ couples c+1, c+2 (β±) and c+3 (σ);
+    // for a given normal force's at c, c and c+1 (β±) and c+2 (σ).
     let mut cones = Vec::new();
+    let mut given = Vec::new();
     for entry in entries {
         match *entry {
             Entry::Normal { contact, mode } => columns.push(Column {
@@ -91,6 +96,30 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
                     base: S::zero(),
                 });
             }
+            Entry::Given {
+                contact,
+                mu,
+                normal,
+            } => {
+                let t = terms.t.row(contact).transpose();
+                given.push(columns.len());
+                columns.push(Column {
+                    direction: Some(t),
+                    row: Some((t, S::one())),
+                    base: base_t[contact],
+                });
+                columns.push(Column {
+                    direction: Some(-t),
+                    row: Some((t, -S::one())),
+                    base: -base_t[contact],
+                });
+                // σ row: μ N − β⁺ − β⁻, with μ N known.
+                columns.push(Column {
+                    direction: None,
+                    row: None,
+                    base: mu * normal,
+                });
+            }
         }
     }
     let m = columns.len();
@@ -124,6 +153,12 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
         a[(c + 3, c + 1)] = -S::one();
         a[(c + 3, c + 2)] = -S::one();
     }
+    for &c in &given {
+        a[(c, c + 2)] = S::one();
+        a[(c + 1, c + 2)] = S::one();
+        a[(c + 2, c)] = -S::one();
+        a[(c + 2, c + 1)] = -S::one();
+    }
     let z = lemke(&a, &b).map_err(|_| ())?;
     let mut solution = Solution {
         normal: SVector::zeros(),
@@ -156,6 +191,16 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
                 }
                 c += 4;
             }
+            Entry::Given {
+                contact, normal, ..
+            } => {
+                solution.normal[contact] = normal;
+                solution.friction[contact] = z[c] - z[c + 1];
+                if z[c + 2] > S::zero() {
+                    solution.slips[contact] = Some(z[c + 1] > z[c]);
+                }
+                c += 3;
+            }
         }
     }
     Ok(Some(solution))
@@ -163,7 +208,8 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
 
 /// Which contacts touch: a gap within the tolerance, or a contact that
 /// was touching until now (its gap drifted by the integration's error, at
-/// most, which the projection after the decision takes back).
+/// most, which the projection after the decision takes back), or one with
+/// a given normal force (always).
 pub(crate) fn touching<L, const N: usize, const K: usize>(
     model: &L,
     settings: &ContactSettings<L::Scalar>,
@@ -174,7 +220,10 @@ where
     L: Contacts<N, K>,
 {
     let gaps = model.gaps(t, q);
-    core::array::from_fn(|i| current[i].touching() || gaps[i] <= settings.gap_tolerance)
+    let laws = model.contact_laws();
+    core::array::from_fn(|i| {
+        laws[i].normal.is_some() || current[i].touching() || gaps[i] <= settings.gap_tolerance
+    })
 }
 
 /// The modes after a decision at `(t, q, q̇)`: every touching contact at
@@ -198,8 +247,27 @@ where
         q: *q,
         qdot: *qdot,
     })?;
+    // The contacts with a given normal force first: each slides on (a
+    // known force), or is a candidate to stick, decided with the others.
+    let mut given = [Mode::Open; K];
+    for i in 0..K {
+        if laws[i].normal.is_none() {
+            continue;
+        }
+        given[i] = match forced {
+            Some((j, mode)) if j == i && mode.touching() => mode,
+            _ if !laws[i].has_friction() => Mode::Closed,
+            _ if current[i] == Mode::Stuck || slip[i].abs() <= settings.velocity_tolerance => {
+                Mode::Stuck
+            }
+            _ => Mode::Sliding {
+                forward: slip[i] > nalgebra::zero::<L::Scalar>(),
+            },
+        };
+    }
+    let (_, known) = super::phase::given_friction(&terms, &laws, &given);
     let free = terms
-        .solve(&terms.forcing)
+        .solve(&(terms.forcing + known))
         .ok_or(ContactError::DependentContacts {
             t,
             q: *q,
@@ -209,6 +277,16 @@ where
     let base_t = terms.t * free + terms.gamma_t;
     let mut entries = Vec::new();
     for i in 0..K {
+        if let Some(normal) = laws[i].normal {
+            if given[i] == Mode::Stuck {
+                entries.push(Entry::Given {
+                    contact: i,
+                    mu: laws[i].static_friction,
+                    normal,
+                });
+            }
+            continue;
+        }
         match forced {
             Some((j, Mode::Open)) if j == i => continue,
             Some((j, mode)) if j == i => {
@@ -253,11 +331,19 @@ where
     };
     let solution =
         complementarity(&terms, &laws, &entries, &base_n, &base_t).map_err(|()| no_mode)?;
-    let mut modes = [Mode::Open; K];
+    // The contacts with a given normal force touch whatever the solution.
+    let mut modes = given;
     if let Some(solution) = solution {
         for entry in &entries {
             let (i, mode) = match *entry {
                 Entry::Normal { contact, mode } => (contact, mode),
+                Entry::Given { contact, .. } => {
+                    modes[contact] = match solution.slips[contact] {
+                        Some(forward) => Mode::Sliding { forward },
+                        None => Mode::Stuck,
+                    };
+                    continue;
+                }
                 Entry::Cone { contact, .. } => (
                     contact,
                     match solution.slips[contact] {
@@ -296,7 +382,9 @@ where
     let rate = model.gap_velocities(t, q, qdot);
     // An impact needs an arriving contact: one held until now approaches
     // only by the integration's drift, which the projection takes back.
-    let arriving = |i: usize| !current[i].touching() && rate[i] < -settings.velocity_tolerance;
+    let arriving = |i: usize| {
+        laws[i].normal.is_none() && !current[i].touching() && rate[i] < -settings.velocity_tolerance
+    };
     if !(0..K).any(|i| touch[i] && arriving(i)) {
         return Ok(None);
     }
@@ -307,8 +395,9 @@ where
     };
     let terms = Terms::new(model, t, q, qdot).ok_or(dependent.clone())?;
     let slip = model.slip_velocities(t, q, qdot);
+    // A given normal force is finite: no impulse, no part in an impact.
     let entries: Vec<Entry<L::Scalar>> = (0..K)
-        .filter(|&i| touch[i])
+        .filter(|&i| touch[i] && laws[i].normal.is_none())
         .map(|i| {
             if laws[i].has_friction() {
                 Entry::Cone {
@@ -388,8 +477,14 @@ pub(crate) fn project<L, const N: usize, const K: usize>(
 where
     L: Contacts<N, K>,
 {
-    let touching: Vec<usize> = (0..K).filter(|&i| modes[i].touching()).collect();
-    if touching.is_empty() {
+    // The gaps of the touching contacts (a given normal force has none),
+    // and the slip of every stuck one.
+    let laws = model.contact_laws();
+    let touching: Vec<usize> = (0..K)
+        .filter(|&i| modes[i].touching() && laws[i].normal.is_none())
+        .collect();
+    let stuck: Vec<usize> = (0..K).filter(|&i| modes[i] == Mode::Stuck).collect();
+    if touching.is_empty() && stuck.is_empty() {
         return Some((q, qdot));
     }
     let correct = |rows: &[SVector<L::Scalar, N>],
@@ -411,6 +506,9 @@ where
         Some(dx)
     };
     for _ in 0..3 {
+        if touching.is_empty() {
+            break;
+        }
         let gaps = model.gaps(t, &q);
         let residual = DVector::from_iterator(touching.len(), touching.iter().map(|&i| gaps[i]));
         if residual.iter().all(|g| *g == nalgebra::zero::<L::Scalar>()) {
@@ -430,6 +528,12 @@ where
         rows.push(g.row(i).transpose());
         residual.push(rate[i]);
         if modes[i] == Mode::Stuck {
+            rows.push(tt.row(i).transpose());
+            residual.push(slip[i]);
+        }
+    }
+    for &i in &stuck {
+        if laws[i].normal.is_some() {
             rows.push(tt.row(i).transpose());
             residual.push(slip[i]);
         }

@@ -55,6 +55,21 @@
 //! A contact forced by its own event (a release, a stick limit) takes the
 //! mode the event says, and the others are decided around it.
 //!
+//! # Friction against a given normal force: brakes and joints
+//!
+//! A contact whose law gives its normal force ([`ContactLaw::normal`],
+//! `contacts: brake: { normal: F, friction: mu, slip: r*dot(theta) }` in
+//! the language) has no gap: it always touches with that normal force, and
+//! only its friction switches. It slides with the known force `−μ_k N
+//! sign(v_t)` (added to the forcing, not an unknown), and sticks with a
+//! friction force solved in the same complementarity problem as the other
+//! contacts' (the cone's two pairs and slip rate, with `N` known), released
+//! where it reaches `μ_s N`. It takes no part in impacts (a finite force
+//! gives no impulse), and a stuck one that an impact sets slipping slides.
+//! This is Coulomb friction in a joint: a bearing or a brake on a
+//! coordinate, whose slip velocity is the joint's rate times the radius the
+//! friction acts at.
+//!
 //! # Impacts
 //!
 //! A contact arriving with `ġ < 0` makes all touching contacts collide at
@@ -115,9 +130,12 @@
 //! - The variational integrator is refused (its step needs the model's
 //!   momenta, which a run with contact forces solved from the state does
 //!   not offer: `InvalidInput::ModelLacks`).
-//! - Friction acts at contacts, against their own normal force. Friction
-//!   in a joint (a bearing's torque from the joint's reaction) or against
-//!   a given normal force is not built.
+//! - Friction against a given normal force (a brake, a bearing under a
+//!   known load: [`ContactLaw::normal`]) takes that force as constant: a
+//!   normal force that depends on the state is a contact's reaction, and
+//!   needs the gap it keeps (a bearing's friction from the joint's own
+//!   reaction needs the joint as a constraint, which contacts do not take
+//!   yet).
 //! - The drift of a closed contact between switches is the integrator's
 //!   error (`g̈ = 0` holds exactly, `g` and `ġ` only as well as the steps
 //!   keep them); at every switch the state is projected back onto the
@@ -227,6 +245,14 @@ pub struct ContactLaw<S> {
     /// The kinetic friction coefficient `μ_k ≥ 0`: a sliding contact feels
     /// `μ_k N` against its slip.
     pub kinetic_friction: S,
+    /// A given normal force `N ≥ 0`, for friction that acts against a
+    /// known load instead of a contact's reaction (a brake pad pressed by a
+    /// known force, a bearing under a known load: friction in a joint).
+    /// Such a contact has no gap (its rows of `g`, `G`, `ġ` and `γ` are not
+    /// used): it always touches, never strikes, and only its friction
+    /// switches, between sliding and stuck. `None`: the normal force is the
+    /// reaction that keeps the gap non-negative.
+    pub normal: Option<S>,
 }
 
 impl<S: RealField + Copy> ContactLaw<S> {
@@ -236,6 +262,19 @@ impl<S: RealField + Copy> ContactLaw<S> {
             restitution,
             static_friction: S::zero(),
             kinetic_friction: S::zero(),
+            normal: None,
+        }
+    }
+
+    /// Friction against a given normal force `normal` (see
+    /// [`normal`](Self::normal)), with static friction `μ_s` and kinetic
+    /// friction `μ_k`; no gap, no impacts.
+    pub fn given_normal(normal: S, static_friction: S, kinetic_friction: S) -> Self {
+        Self {
+            restitution: S::zero(),
+            static_friction,
+            kinetic_friction,
+            normal: Some(normal),
         }
     }
 

@@ -7,7 +7,7 @@ use std::sync::{Arc, Mutex};
 use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::erased::Erased;
-use super::{ContactError, ContactForces, Contacts, Mode, Switch};
+use super::{ContactError, ContactForces, ContactLaw, Contacts, Mode, Switch};
 use crate::linalg::solve::{factor_mass_matrix, MassFactor};
 use crate::model::Lagrangian;
 
@@ -87,6 +87,27 @@ pub(crate) fn normal_direction<S: RealField + Copy, const N: usize, const K: usi
     }
 }
 
+/// The friction of the sliding contacts with a given normal force (see
+/// [`ContactLaw::normal`](super::ContactLaw::normal)), a known force:
+/// each one's friction force `∓μ_k N`, and all of them as generalized
+/// forces `Σ Tᵢᵀ Fᵢ`.
+pub(crate) fn given_friction<S: RealField + Copy, const N: usize, const K: usize>(
+    terms: &Terms<S, N, K>,
+    laws: &[ContactLaw<S>; K],
+    modes: &[Mode; K],
+) -> (SVector<S, K>, SVector<S, N>) {
+    let mut friction = SVector::<S, K>::zeros();
+    let mut generalized = SVector::<S, N>::zeros();
+    for i in 0..K {
+        if let (Some(normal), Mode::Sliding { forward }) = (laws[i].normal, modes[i]) {
+            let f = laws[i].kinetic_friction * normal;
+            friction[i] = if forward { -f } else { f };
+            generalized += terms.t.row(i).transpose() * friction[i];
+        }
+    }
+    (friction, generalized)
+}
+
 /// The accelerations and contact forces in `modes`: `M q̈ = f + Dᵀ λ` with
 /// `g̈ᵢ = 0` for every touching contact and `v̇_t = 0` for every stuck one.
 /// `None` where the system is singular.
@@ -99,10 +120,19 @@ where
     L: Contacts<N, K>,
 {
     let laws = model.contact_laws();
-    let free = terms.solve(&terms.forcing)?;
+    let (known_friction, known) = given_friction(terms, &laws, modes);
+    let free = terms.solve(&(terms.forcing + known))?;
+    let mut forces = ContactForces::zero();
+    for (i, law) in laws.iter().enumerate() {
+        if let Some(normal) = law.normal {
+            forces.normal[i] = normal;
+            forces.friction[i] = known_friction[i];
+        }
+    }
+    forces.generalized = known;
     let mut unknowns = Vec::new();
     for (i, mode) in modes.iter().enumerate() {
-        if mode.touching() {
+        if mode.touching() && laws[i].normal.is_none() {
             unknowns.push(Unknown {
                 contact: i,
                 tangential: false,
@@ -115,7 +145,6 @@ where
             });
         }
     }
-    let mut forces = ContactForces::zero();
     if unknowns.is_empty() {
         return Some((free, forces));
     }
@@ -154,7 +183,7 @@ where
     }
     let lambda = min_norm_solve(a, &b)?;
     let mut qddot = free;
-    let mut force = SVector::zeros();
+    let mut force = known;
     for c in 0..m {
         qddot += responses[c] * lambda[c];
         force += directions[c] * lambda[c];

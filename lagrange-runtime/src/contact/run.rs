@@ -288,8 +288,9 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
             )));
         }
         let gaps = model.gaps(t0, &q0);
+        let laws = model.contact_laws();
         for i in 0..K {
-            if gaps[i] < -settings.gap_tolerance {
+            if laws[i].normal.is_none() && gaps[i] < -settings.gap_tolerance {
                 return Err(ContactError::Penetrating {
                     contact: L::CONTACTS[i],
                     gap: gaps[i],
@@ -462,9 +463,11 @@ fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
             }
             _ => one(),
         };
+        // A given normal force never releases.
+        let given = phase.model.contact_laws()[i].normal.is_some();
         let p = phase.clone();
         let release = move |t, q: &SVector<S, N>, qdot: &SVector<S, N>| {
-            if p.shared.modes()[i].touching() {
+            if p.shared.modes()[i].touching() && !given {
                 p.solve(t, q, qdot).map_or(nan(), |(_, f)| f.normal[i])
             } else {
                 one()
@@ -573,6 +576,11 @@ where
                 law.static_friction,
                 "finite and at least the kinetic friction",
             );
+        }
+        if let Some(normal) = law.normal {
+            if !(normal.is_finite() && normal >= zero) {
+                return bad("normal", normal, "non-negative and finite");
+            }
         }
     }
     Ok(())

@@ -3,6 +3,7 @@
 //! [`contact::integrate`](lagrange_runtime::contact::integrate).
 
 mod ball_on_floor;
+mod bearing;
 mod belt;
 mod incline;
 mod ladder;
@@ -12,6 +13,7 @@ mod string;
 mod tumbling_box;
 
 pub use ball_on_floor::BallOnFloor;
+pub use bearing::{Swing, TorsionBearing};
 pub use belt::{BlockOnBelt, StickSlip};
 pub use incline::BlockOnIncline;
 pub use ladder::Ladder;

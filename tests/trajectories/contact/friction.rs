@@ -2,8 +2,8 @@
 //! stays put below its friction angle and slides above it, and a block
 //! on a belt that sticks and slips.
 
-use lagrange::contact::{Cause, Mode};
-use lagrange::models::{BlockOnBelt, BlockOnIncline, SlidingBall};
+use lagrange::contact::{Cause, ContactError, Mode};
+use lagrange::models::{BlockOnBelt, BlockOnIncline, SlidingBall, TorsionBearing};
 
 use super::{run, times};
 
@@ -183,4 +183,90 @@ fn painleves_rod_sliding_with_too_much_friction_is_a_typed_error_at_its_state() 
     let rod = PainleveRod::new(1.0, l, 9.81, 1.0);
     let slides = run(&rod, start(-1.0), &[0.1]).unwrap();
     assert_eq!(slides.switches()[0].to, Mode::Sliding { forward: false });
+}
+
+#[test]
+fn a_torsion_pendulum_in_a_loaded_bearing_loses_two_d_per_swing_and_sticks_where_static_friction_holds(
+) {
+    // Friction in a joint, against a given normal force (the bearing's
+    // load): no gap, no reaction. ω = √(κ/I) = 2, d = μ_k F r / κ = 0.015,
+    // static friction holds the spring within μ_s F r / κ = 0.02: from rest
+    // at 0.205 it turns at 0.205, −0.175, 0.145, −0.115, 0.085, −0.055,
+    // 0.025 and sticks at 0.005 (the last swing stays on one side).
+    let bearing = TorsionBearing::new(0.5, 2.0, 1.0, 0.1, 0.4, 0.3);
+    // A negative load is no normal force: refused before any work.
+    let pulling = TorsionBearing::new(0.5, 2.0, -1.0, 0.1, 0.4, 0.3);
+    let refused = run(&pulling, ([0.205], [0.0]), &[1.0]).unwrap_err();
+    assert!(
+        matches!(
+            refused.error,
+            ContactError::InvalidSetting {
+                setting: "normal",
+                ..
+            }
+        ),
+        "{refused}"
+    );
+    let swings = bearing.swings(0.205);
+    assert_eq!(swings.len(), 7);
+    let stop = swings.last().unwrap();
+    let end = stop.start + 2.0 * core::f64::consts::FRAC_PI_2;
+    let run = run(&bearing, ([0.205], [0.0]), &times(end + 3.0, 140)).unwrap();
+    // The start: at rest, the spring's torque beyond static friction's.
+    assert_eq!(run.switches()[0].to, Mode::Sliding { forward: false });
+    let turns: Vec<_> = run
+        .switches()
+        .iter()
+        .filter(|s| s.cause == Cause::SlideStopped)
+        .collect();
+    assert_eq!(turns.len(), swings.len(), "{:?}", run.switches());
+    for (k, (turn, swing)) in turns.iter().zip(&swings).enumerate() {
+        // Each turning point where and when the closed form puts it: the
+        // slip velocity crosses zero with the acceleration κ |θ| / I away
+        // from zero, so the location is a few ulps of t; the angle is the
+        // trajectory's (Dop853 at 1e-12 over 12 s: about 1e-12).
+        let t_turn = swing.start + core::f64::consts::FRAC_PI_2;
+        assert!(
+            (turn.t - t_turn).abs() < 1e-10,
+            "turn {k}: {} against {t_turn}",
+            turn.t
+        );
+        assert!(
+            (turn.q[0] - swing.to).abs() < 1e-10,
+            "turn {k}: {} against {}",
+            turn.q[0],
+            swing.to
+        );
+        let expected = if k + 1 == swings.len() {
+            Mode::Stuck
+        } else {
+            Mode::Sliding {
+                forward: swing.to < 0.0,
+            }
+        };
+        assert_eq!(turn.to, expected, "turn {k}");
+    }
+    for ((sample, forces), modes) in run.trajectory().iter().zip(run.forces()).zip(run.modes()) {
+        // The normal force is the load throughout.
+        assert_eq!(forces.normal[0], 1.0);
+        let swing = swings.iter().rev().find(|s| s.start <= sample.t);
+        match swing {
+            Some(swing) if sample.t < swing.start + core::f64::consts::FRAC_PI_2 => {
+                // Sliding: harmonic about the friction's balance point, the
+                // friction force μ_k F against the slip.
+                let theta = bearing.angle(swing, sample.t);
+                assert!((sample.q[0] - theta).abs() < 1e-10, "t = {}", sample.t);
+                assert!(matches!(modes[0], Mode::Sliding { .. }));
+                assert!((forces.friction[0].abs() - 0.3).abs() < 1e-15);
+            }
+            _ => {
+                // Stuck at 0.005 for good: the friction force holds the
+                // spring's torque, F r = κ θ, within μ_s F.
+                assert_eq!(modes[0], Mode::Stuck);
+                assert!((sample.q[0] - 0.005).abs() < 1e-10);
+                assert!(sample.qdot[0].abs() < 1e-12);
+                assert!((forces.friction[0] * 0.1 - 2.0 * sample.q[0]).abs() < 1e-12);
+            }
+        }
+    }
 }

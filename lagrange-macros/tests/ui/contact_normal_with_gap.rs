@@ -1,0 +1,15 @@
+use lagrange::prelude::*;
+
+lagrangian! {
+    pub struct Block {
+        coordinates: x, y;
+        parameters: m, g, mu;
+        kinetic: m/2*(dot(x)^2 + dot(y)^2);
+        potential: m*g*y;
+        contacts: floor: y >= 0 { normal: m*g, friction: mu, slip: dot(x) };
+    }
+}
+
+fn main() {
+    let _ = Block::<f64>::CONTACTS;
+}
