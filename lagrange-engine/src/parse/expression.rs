@@ -36,7 +36,7 @@ fn deeper(input: ParseStream, depth: usize) -> syn::Result<usize> {
     Ok(depth + 1)
 }
 
-fn too_deep(span: proc_macro2::Span) -> syn::Error {
+pub(super) fn too_deep(span: proc_macro2::Span) -> syn::Error {
     syn::Error::new(
         span,
         format!(

@@ -85,7 +85,37 @@ pub fn parse(tokens: TokenStream) -> syn::Result<Parsed> {
             error,
         })
     };
+    groups_nest_within_the_limit(&tokens)?;
     parser.parse2(tokens)
+}
+
+/// The brackets of `tokens` nested no deeper than an expression may nest
+/// (a few levels more, for the model's braces and a law's), checked
+/// without recursion before syn reads them: syn's token buffer recurses
+/// into every group, at every depth, before the parser can stop at its
+/// limit, and at opt-level 0 (as rustc's proc-macro builds compile syn by
+/// default) thousands of nested parentheses took more than 4 MiB of stack.
+/// The error is the parser's own, on the first bracket past the limit.
+fn groups_nest_within_the_limit(tokens: &TokenStream) -> syn::Result<()> {
+    // The model's braces, a section's, a contact law's, an index: levels
+    // the expression parser does not count.
+    const ENCLOSING: usize = 4;
+    let mut open = vec![tokens.clone().into_iter()];
+    while let Some(level) = open.last_mut() {
+        match level.next() {
+            Some(proc_macro2::TokenTree::Group(group)) => {
+                if open.len() > expression::MAX_NESTING + ENCLOSING {
+                    return Err(expression::too_deep(group.span_open()));
+                }
+                open.push(group.stream().into_iter());
+            }
+            Some(_) => {}
+            None => {
+                open.pop();
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Removes the `#[lagrange(...)]` attributes and reads their options, with
