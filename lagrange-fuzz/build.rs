@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 const DIRS: [&str; 6] = [
     "lagrange-studies",
     "tests",
-    "lagrange-macros/tests",
+    "lagrange-ui/tests",
     "src",
     "lagrange-engine/src",
     "lagrange-engine/tests",

@@ -102,7 +102,7 @@ fn expansions() -> BTreeMap<String, String> {
         "src",
         "tests",
         "lagrange-studies",
-        "lagrange-macros/tests",
+        "lagrange-ui/tests",
         "lagrange-runtime",
     ] {
         rust_files(&root.join(dir), &mut files);

@@ -1,11 +1,11 @@
-//! Every compile error of `lagrange-macros/tests/ui/`, checked without
+//! Every compile error of `lagrange-ui/tests/ui/`, checked without
 //! rustc: the engine expands the case's `lagrangian!` invocation, and the
 //! expansion must hold exactly one `compile_error!`, with the message and
 //! the span (line and column, start and end on one line) that the case's
 //! `.stderr` records from rustc.
 //!
 //! This checks every case in a second, without building the runtime;
-//! `lagrange-macros/tests/ui.rs` runs them through rustc itself
+//! `lagrange-ui/tests/ui.rs` runs them through rustc itself
 //! (trybuild), where what matters is rustc's own view: one error and no
 //! other, the stub standing in for the model so that code using it still
 //! compiles.
@@ -107,7 +107,7 @@ fn recorded(stderr: &str) -> Recorded {
 
 #[test]
 fn every_ui_case_expands_to_its_one_recorded_error() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../lagrange-macros/tests/ui");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../lagrange-ui/tests/ui");
     let mut cases: Vec<_> = std::fs::read_dir(&dir)
         .expect("tests/ui")
         .map(|e| e.expect("an entry").path())

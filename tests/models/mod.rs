@@ -1,7 +1,7 @@
 //! What `lagrangian!` generates: the derived equations of textbook models
 //! against closed forms, the indexed language, the derivatives beyond `M`
 //! and `f`, the README's generated code. (The compile errors are the
-//! macro crate's UI tests, `lagrange-macros/tests/ui.rs`.)
+//! macro crate's UI tests, `lagrange-ui/tests/ui.rs`.)
 
 mod constrained_models;
 mod generated_derivatives;
