@@ -277,6 +277,25 @@ pub fn constraint_roots(eq: &Equations) -> Vec<ExprId> {
     roots
 }
 
+/// The contacts' gaps, slip velocities and given normal forces, each where
+/// the contact has one (none for a model without contacts).
+pub fn contact_roots(model: &Model, eq: &Equations) -> Vec<ExprId> {
+    let Some(ce) = &eq.contacts else {
+        return Vec::new();
+    };
+    let mut roots = Vec::new();
+    for (i, contact) in model.contacts.iter().enumerate() {
+        match contact.normal {
+            Some(normal) => roots.push(normal),
+            None => roots.push(ce.gaps.values[i]),
+        }
+        if contact.slip.is_some() {
+            roots.push(ce.slips.velocities[i]);
+        }
+    }
+    roots
+}
+
 /// The entries of `∂f/∂u` row by row (none for a model without inputs).
 pub fn input_roots(eq: &Equations) -> Vec<ExprId> {
     eq.input_jacobian
@@ -294,8 +313,9 @@ pub fn render(model: &Model, eq: &Equations) -> String {
 }
 
 /// The equations as LaTeX: one `aligned` block, shared subexpressions
-/// `e_{k}` first, then `M`, `f`, and `φ`, `G`, `γ` or `∂f/∂u` where the
-/// model has them; the same entries as [`render`].
+/// `e_{k}` first, then `M`, `f`, and `φ`, `G`, `γ`, the contacts' gaps
+/// `g`, slip velocities `v_t` and given normal forces `N`, or `∂f/∂u`
+/// where the model has them; the same entries as [`render`].
 pub fn render_latex(model: &Model, eq: &Equations) -> String {
     render_with(model, eq, true)
 }
@@ -310,6 +330,7 @@ fn render_with(model: &Model, eq: &Equations, latex: bool) -> String {
     }
     roots.extend(&eq.forcing);
     roots.extend(constraint_roots(eq));
+    roots.extend(contact_roots(model, eq));
     roots.extend(input_roots(eq));
     let (order, uses) = dag_uses(&model.pool, &roots);
     let mut r = Renderer {
@@ -351,6 +372,7 @@ fn render_with(model: &Model, eq: &Equations, latex: bool) -> String {
             let symbol = match symbol {
                 "φ" => "\\varphi",
                 "γ" => "\\gamma",
+                "v_t" => "v_{t}",
                 "∂f/∂u" => "\\frac{\\partial f}{\\partial u}",
                 other => other,
             };
@@ -395,6 +417,19 @@ fn render_with(model: &Model, eq: &Equations, latex: bool) -> String {
                 entry("γ", std::slice::from_ref(name)),
                 r.text(gamma, 0),
             );
+        }
+    }
+    if let Some(ce) = &eq.contacts {
+        for (i, contact) in model.contacts.iter().enumerate() {
+            let name = std::slice::from_ref(&contact.label);
+            match contact.normal {
+                Some(normal) => line(&mut out, entry("N", name), r.text(normal, 0)),
+                None => line(&mut out, entry("g", name), r.text(ce.gaps.values[i], 0)),
+            }
+            if contact.slip.is_some() {
+                let lhs = entry("v_t", name);
+                line(&mut out, lhs, r.text(ce.slips.velocities[i], 0));
+            }
         }
     }
     if let Some(rows) = &eq.input_jacobian {

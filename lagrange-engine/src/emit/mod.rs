@@ -109,6 +109,7 @@ pub fn charge(model: &Model, eq: &Equations) {
         .map(|(i, j)| eq.mass[i][j])
         .chain(eq.forcing.iter().copied())
         .chain(crate::render::constraint_roots(eq))
+        .chain(crate::render::contact_roots(model, eq))
         .chain(crate::render::input_roots(eq))
         .collect();
     // The text is written twice: `EQUATIONS` and `LATEX`.

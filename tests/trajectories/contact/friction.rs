@@ -207,6 +207,12 @@ fn a_torsion_pendulum_in_a_loaded_bearing_loses_two_d_per_swing_and_sticks_where
         ),
         "{refused}"
     );
+    // The equations' text lists the given normal force and the slip
+    // velocity (and a gap where a contact has one).
+    let text = TorsionBearing::<f64>::EQUATIONS;
+    assert!(text.contains("N[bearing] = load"), "{text}");
+    assert!(text.contains("v_t[bearing] = "), "{text}");
+    assert!(SlidingBall::<f64>::EQUATIONS.contains("g[table] = "));
     let swings = bearing.swings(0.205);
     assert_eq!(swings.len(), 7);
     let stop = swings.last().unwrap();
