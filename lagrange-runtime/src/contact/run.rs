@@ -612,15 +612,17 @@ fn decide_switch<S: RealField + Copy, const N: usize, const K: usize>(
         settled = short;
     }
     // The contacts an impact struck are decided by their rates after it,
-    // not held.
+    // not held; so are those with a given normal force, whose slip the
+    // impact may have set going (a stuck one sticks again only if its
+    // slip velocity is at rest).
+    let laws = model.contact_laws();
     let held: [Mode; K] = core::array::from_fn(|i| match impulses {
-        Some(p) if p[i].0 != nalgebra::zero::<S>() => Mode::Open,
+        Some(p) if p[i].0 != nalgebra::zero::<S>() || laws[i].normal.is_some() => Mode::Open,
         _ => from[i],
     });
     let to = modes(model, settings, (t, &q, &qdot), (&held, forced))?;
     // A rebound below the velocity tolerance closes the contact too: the
     // impact settled it.
-    let laws = model.contact_laws();
     let settled_at =
         |i: usize| settled || (to[i].touching() && laws[i].restitution > nalgebra::zero::<S>());
     let state =

@@ -1,6 +1,8 @@
 //! Coulomb friction: a ball that slides until it rolls, a block that
-//! stays put below its friction angle and slides above it, and a block
-//! on a belt that sticks and slips.
+//! stays put below its friction angle and slides above it, a block on a
+//! belt that sticks and slips, Painlevé's rod; and friction against a
+//! given normal force: a torsion pendulum in a loaded bearing, and a
+//! braked cart set sliding by an impact elsewhere.
 
 use lagrange::contact::{Cause, ContactError, Mode};
 use lagrange::models::{BlockOnBelt, BlockOnIncline, SlidingBall, TorsionBearing};
@@ -275,4 +277,70 @@ fn a_torsion_pendulum_in_a_loaded_bearing_loses_two_d_per_swing_and_sticks_where
             }
         }
     }
+}
+
+lagrange::lagrangian! {
+    /// A cart of mass `mc` on rails, held by a brake pressed with the given
+    /// force `fb` (friction `mu`), carrying a pendulum (a bob of mass `m` on
+    /// a rod of length `l`) that strikes a stop at `theta = -limit` with
+    /// restitution `e`.
+    struct BrakedCart {
+        coordinates: x, theta;
+        parameters: mc, m, l, g, e, fb, mu, limit;
+        let bob_x = x + l*sin(theta);
+        let bob_y = -l*cos(theta);
+        kinetic: mc/2*dot(x)^2 + m/2*(dot(bob_x)^2 + dot(bob_y)^2);
+        potential: m*g*bob_y;
+        contacts: stop: theta >= -limit { restitution: e },
+                  brake: { normal: fb, friction: mu, slip: dot(x) };
+    }
+}
+
+#[test]
+fn an_impact_elsewhere_sets_a_braked_cart_sliding_with_the_momentum_the_impact_gives_it() {
+    // The brake (50 N at most) holds the cart while the pendulum swings
+    // down from rest at 0.5 rad (its pull on the cart stays below 15 N):
+    // θ̇⁻² = 2 g/l (cos θ_s − cos θ₀) at the stop, θ_s = −0.2. The stop's
+    // impulse acts on θ alone, so the cart's horizontal momentum
+    // (mc + m) ẋ + m l cos θ θ̇ is kept through the impact, and the brake,
+    // a finite force, gives no impulse: from ẋ⁻ = 0 and θ̇⁺ = −e θ̇⁻, the
+    // cart leaves at ẋ⁺ = (1 + e) m l cos θ_s θ̇⁻ / (mc + m), sliding.
+    let cart = BrakedCart::new(2.0, 1.0, 1.0, 9.81, 0.5, 100.0, 0.5, 0.2);
+    let run = run(&cart, ([0.0, 0.5], [0.0, 0.0]), &times(1.0, 20)).unwrap();
+    assert_eq!(
+        run.switches()[0].to,
+        Mode::Stuck,
+        "the brake holds at the start"
+    );
+    let impact = run
+        .switches()
+        .iter()
+        .find(|s| s.cause == Cause::Impact)
+        .expect("the pendulum strikes the stop");
+    let (theta_s, e) = (-0.2f64, 0.5);
+    let before = -(2.0 * 9.81 * (theta_s.cos() - 0.5f64.cos())).sqrt();
+    let brake = run
+        .switches()
+        .iter()
+        .find(|s| s.contact == 1 && s.t == impact.t)
+        .expect("the brake switches at the impact");
+    let cart_after = (1.0 + e) * theta_s.cos() * before / 3.0;
+    assert_eq!(
+        (brake.from, brake.to),
+        (Mode::Stuck, Mode::Sliding { forward: false })
+    );
+    // The angle is the stop's to the location tolerance; the velocities are
+    // the trajectory's (Dop853 at 1e-12 over half a second: about 1e-12).
+    assert!((impact.q[1] - theta_s).abs() < 1e-10);
+    assert!(
+        (impact.qdot[1] + e * before).abs() < 1e-9,
+        "θ̇⁺ = {}, −e θ̇⁻ = {}",
+        impact.qdot[1],
+        -e * before
+    );
+    assert!(
+        (impact.qdot[0] - cart_after).abs() < 1e-9,
+        "ẋ⁺ = {}, closed form {cart_after}",
+        impact.qdot[0]
+    );
 }
