@@ -57,6 +57,26 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
     // for a given normal force's at c, c and c+1 (β±) and c+2 (σ).
     let mut cones = Vec::new();
     let mut given = Vec::new();
+    // A friction force as β⁺ and β⁻ along the slip row, and the slip rate
+    // σ, whose row's known part is `sigma` (μ N where N is given).
+    let friction = |columns: &mut Vec<Column<S, N>>, contact: usize, sigma: S| {
+        let t = terms.t.row(contact).transpose();
+        columns.push(Column {
+            direction: Some(t),
+            row: Some((t, S::one())),
+            base: base_t[contact],
+        });
+        columns.push(Column {
+            direction: Some(-t),
+            row: Some((t, -S::one())),
+            base: -base_t[contact],
+        });
+        columns.push(Column {
+            direction: None,
+            row: None,
+            base: sigma,
+        });
+    };
     for entry in entries {
         match *entry {
             Entry::Normal { contact, mode } => columns.push(Column {
@@ -70,55 +90,23 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
                 base: base_n[contact],
             }),
             Entry::Cone { contact, mu } => {
-                let (g, t) = (
-                    terms.g.row(contact).transpose(),
-                    terms.t.row(contact).transpose(),
-                );
+                let g = terms.g.row(contact).transpose();
                 cones.push((columns.len(), mu));
                 columns.push(Column {
                     direction: Some(g),
                     row: Some((g, S::one())),
                     base: base_n[contact],
                 });
-                columns.push(Column {
-                    direction: Some(t),
-                    row: Some((t, S::one())),
-                    base: base_t[contact],
-                });
-                columns.push(Column {
-                    direction: Some(-t),
-                    row: Some((t, -S::one())),
-                    base: -base_t[contact],
-                });
-                columns.push(Column {
-                    direction: None,
-                    row: None,
-                    base: S::zero(),
-                });
+                friction(&mut columns, contact, S::zero());
             }
             Entry::Given {
                 contact,
                 mu,
                 normal,
             } => {
-                let t = terms.t.row(contact).transpose();
                 given.push(columns.len());
-                columns.push(Column {
-                    direction: Some(t),
-                    row: Some((t, S::one())),
-                    base: base_t[contact],
-                });
-                columns.push(Column {
-                    direction: Some(-t),
-                    row: Some((t, -S::one())),
-                    base: -base_t[contact],
-                });
                 // σ row: μ N − β⁺ − β⁻, with μ N known.
-                columns.push(Column {
-                    direction: None,
-                    row: None,
-                    base: mu * normal,
-                });
+                friction(&mut columns, contact, mu * normal);
             }
         }
     }
