@@ -304,3 +304,89 @@ fn a_singular_mass_matrix_is_accepted_only_where_the_constraints_fix_what_it_mis
     let d = derive(CARTESIAN_PENDULUM);
     assert!(!constraints(&d).mass_regular_on_constraints_only);
 }
+
+#[test]
+fn contact_mistakes_are_errors_in_physics_terms() {
+    // Contacts derive as constraints do (`check/contacts.rs`); their own
+    // mistakes, one error each, in the words of the contact.
+    let model = |contacts: &str| {
+        format!(
+            "pub struct B {{
+                coordinates: x, y;
+                parameters: m, g, mu, e, f;
+                kinetic: m/2*(dot(x)^2 + dot(y)^2);
+                potential: m*g*y;
+                contacts: {contacts};
+            }}"
+        )
+    };
+    for (contacts, expected) in [
+        (
+            "floor: y + dot(y) >= 0",
+            "contact `floor`'s gap depends on a velocity",
+        ),
+        ("floor: m >= 0", "contact `floor`'s gap names no coordinate"),
+        (
+            "floor: y >= 0 { friction: mu }",
+            "has friction but no slip velocity",
+        ),
+        (
+            "floor: y >= 0 { slip: dot(x) }",
+            "has a slip velocity but no friction",
+        ),
+        (
+            "floor: y >= 0 { friction: mu, slip: dot(x)^2 }",
+            "must be linear in the velocities",
+        ),
+        (
+            "floor: y >= 0 { restitution: y }",
+            "`restitution` depends on the state",
+        ),
+        ("floor: y >= 0 { bounce: e }", "unknown entry `bounce`"),
+        (
+            "floor: y >= 0 { friction: mu, kinetic_friction: mu }",
+            "gives `kinetic_friction` twice",
+        ),
+        (
+            "floor: y >= 0 { static_friction: mu, slip: dot(x) }",
+            "gives one friction coefficient",
+        ),
+        ("floor: y = 0", "expected `>=` or `<=`"),
+        (
+            "floor: y >= 0 { normal: f, friction: mu, slip: dot(x) }",
+            "has a gap, so its normal force is the reaction",
+        ),
+        (
+            "brake: { friction: mu, slip: dot(x) }",
+            "contact `brake` has no gap: write its gap",
+        ),
+        (
+            "brake: { normal: f, restitution: e, friction: mu, slip: dot(x) }",
+            "has no gap, so it has no impacts",
+        ),
+        (
+            "brake: { normal: f }",
+            "has a given normal force but no friction",
+        ),
+        (
+            "brake: { normal: m*g*y, friction: mu, slip: dot(x) }",
+            "`normal` depends on the state",
+        ),
+    ] {
+        let e = error(&model(contacts));
+        assert!(e.contains(expected), "`{contacts}`: {e}");
+    }
+    // Without a gap, with a given normal force: it derives, its gap rows
+    // zero, its slip velocity as written.
+    let d = derive(&model("brake: { normal: f, friction: mu, slip: dot(x) }"));
+    assert!(
+        d.equations_text().contains("N[brake] = f"),
+        "{}",
+        d.equations_text()
+    );
+    assert!(
+        d.equations_text().contains("v_t[brake] = "),
+        "{}",
+        d.equations_text()
+    );
+}
