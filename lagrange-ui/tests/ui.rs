@@ -6,14 +6,14 @@
 //! this crate's dependencies (about 40 s from a fresh target on 2 cores),
 //! not the facade's dev-dependencies.
 //!
-//! `lagrange-engine/tests/ui_messages.rs` checks the same messages and
+//! `lagrange-engine/tests/engine/ui_messages.rs` checks the same messages and
 //! spans without rustc, in a second, from the engine alone, in every
 //! `cargo test`. This run through rustc (about 35 s more: trybuild builds
-//! its own copy of `lagrange`) is left to CI, which runs it by name:
-//! `cargo test --test ui -- --ignored`.
+//! its own copy of `lagrange`) is left to CI: this crate is not a default
+//! member of the workspace, and CI runs it over the default members'
+//! features, `cargo test --workspace --exclude lagrange-studies --test ui`.
 
 #[test]
-#[ignore = "rustc on every case (~35 s): CI runs it with `cargo test --test ui -- --ignored`; the engine's ui_messages test checks the same messages and spans in every `cargo test`"]
 fn ui() {
     let t = trybuild::TestCases::new();
     t.compile_fail("tests/ui/*.rs");

@@ -1,7 +1,8 @@
 //! What `lagrangian!` generates: the derived equations of textbook models
 //! against closed forms, the indexed language, the derivatives beyond `M`
-//! and `f`, the README's generated code. (The compile errors are the
-//! macro crate's UI tests, `lagrange-ui/tests/ui.rs`.)
+//! and `f`. (The compile errors are the UI tests, `lagrange-ui/tests/ui.rs`;
+//! the README's generated code is checked by the engine's tests,
+//! `lagrange-engine/tests/engine/readme.rs`.)
 
 mod constrained_models;
 mod generated_derivatives;
@@ -13,7 +14,6 @@ mod linearization;
 mod more_models;
 mod named_lets;
 mod physics_names;
-mod readme;
 mod textbook_models;
 mod trigonometry;
 mod vectors;

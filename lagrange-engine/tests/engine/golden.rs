@@ -8,7 +8,7 @@
 //! `tests/data/golden.txt` holds the fingerprints of the last deliberate
 //! change: every model found must expand exactly as recorded there. A change
 //! meant to alter the generated code updates the file with
-//! `LAGRANGE_BLESS=1 cargo test -p lagrange-engine --test golden` and says why
+//! `LAGRANGE_BLESS=1 cargo test -p lagrange-engine --test engine -- golden::` and says why
 //! in its commit. Recorded models no longer in the repository, and models new
 //! since the last bless, are listed, not failed (tests move and merge), but
 //! the double pendulum and the 20-link chain are always checked.

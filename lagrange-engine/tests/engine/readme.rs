@@ -1,6 +1,8 @@
-//! The README shows a model and the code `lagrangian!` generates for it; this
-//! keeps the two true. `UPDATE_README=1 cargo test --test suite -- models::readme::` rewrites
-//! the generated block after an intended change to the emitted code.
+//! The workspace's README shows a model and the code `lagrangian!`
+//! generates for it; this keeps the two true, from the engine alone.
+//! `UPDATE_README=1 cargo test -p lagrange-engine --test engine -- readme::`
+//! rewrites the generated block after an intended change to the emitted
+//! code.
 
 use std::path::Path;
 
@@ -45,7 +47,7 @@ fn generated_hot_path(model_source: &str) -> String {
 
 #[test]
 fn readme_shows_the_code_generated_for_its_model() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../README.md");
     let readme = std::fs::read_to_string(&path).unwrap();
     let (_, model) = block(&readme, MODEL_START);
     let expected = generated_hot_path(model);
@@ -62,6 +64,6 @@ fn readme_shows_the_code_generated_for_its_model() {
     }
     assert_eq!(
         shown, expected,
-        "README's generated code is stale: run `UPDATE_README=1 cargo test --test suite -- models::readme::`"
+        "README's generated code is stale: run `UPDATE_README=1 cargo test -p lagrange-engine --test engine -- readme::`"
     );
 }
