@@ -8,11 +8,10 @@
 
 use nalgebra::RealField;
 
-use super::record::{finite_state, Project, Recorder};
+use super::record::{finite_state, Evaluate, Project, Recorder};
 use super::run::Segment;
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::events::{evaluate_into, first_crossing, Events, Hermite, Watch};
-use crate::model::Lagrangian;
 use crate::trajectory::EventRecord;
 use crate::trajectory::State;
 
@@ -114,9 +113,9 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     /// right-hand side per step while events are watched) and kept as the
     /// next step's start, whose own is evaluated only after the state was
     /// changed in between (a reset, a projection, a new segment).
-    pub(crate) fn watch_hermite<L: Lagrangian<N, Scalar = S>>(
+    pub(crate) fn watch_hermite<E: Evaluate<S, N> + ?Sized>(
         &mut self,
-        model: &L,
+        model: &E,
         (t, start): (S, &State<S, N>),
         (t_new, end): (S, &State<S, N>),
     ) -> Result<Option<Segment<S, N>>, IntegrationError<S, N>> {
@@ -132,13 +131,14 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
             }
             let hermite = Hermite::new((t, *start, qddot0), (t_new, *end, qddot1));
             let mut interpolant = |s| hermite.at(s);
-            if let Some(ended) = self.act(model, (t, t_new), end, g_end, &mut interpolant)? {
+            let projector = model.projector();
+            if let Some(ended) = self.act(projector, (t, t_new), end, g_end, &mut interpolant)? {
                 return Ok(Some(ended));
             }
         }
         // A fixed step ends on every sample time: no sample lies strictly
         // inside it for the observer's stop to interpolate.
-        self.observe(model, t_new, end, &mut |_| *end)
+        self.observe(model.projector(), t_new, end, &mut |_| *end)
     }
 
     /// The observer, if any, at an accepted step's end `(t_new, end)`: when

@@ -6,7 +6,7 @@
 use nalgebra::{RealField, SVector};
 
 use super::growth::GrowthGuard;
-use super::record::{finite_state, Recorder};
+use super::record::{finite_state, Evaluate, Recorder};
 use super::run::{Advanced, Flow, Fresh, Run, Walk};
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::model::Lagrangian;
@@ -39,10 +39,20 @@ pub trait FixedStep<S: RealField + Copy, const N: usize> {
 /// against `max_steps` (per call). A constrained model's state is brought
 /// back onto its constraints after each step
 /// ([`Recorder::control_drift`]).
+///
+/// The loop itself ([`Course::advance`]) sees the method's step and the
+/// model only behind a `dyn` ([`Stepping`], [`Evaluate`]): it is compiled
+/// once per scalar and size, not once per model and method. Only the
+/// step, where the model is evaluated, keeps both types.
 pub struct FixedWalk<S, F> {
     pub(crate) step: F,
-    pub(crate) h: S,
-    pub(crate) max_steps: usize,
+    course: Course<S>,
+}
+
+/// The fixed-step loop's own state between calls.
+struct Course<S> {
+    h: S,
+    max_steps: usize,
     /// `h` bounded by the events' `max_step`, for the current segment.
     bounded: S,
     growth: Option<GrowthGuard<S>>,
@@ -52,11 +62,59 @@ impl<S: RealField + Copy, F> FixedWalk<S, F> {
     pub(crate) fn new(step: F, h: S, max_steps: usize) -> Self {
         Self {
             step,
-            h,
-            max_steps,
-            bounded: h,
-            growth: None,
+            course: Course {
+                h,
+                max_steps,
+                bounded: h,
+                growth: None,
+            },
         }
+    }
+}
+
+/// A method's step bound to the model it steps, as the loop calls it.
+trait Stepping<S: RealField + Copy, const N: usize> {
+    /// [`FixedStep::step`] from `t` to `t_next = t + h`, then the drift
+    /// control at its end.
+    fn step(
+        &mut self,
+        rec: &mut Recorder<'_, S, N>,
+        t: S,
+        state: (&SVector<S, N>, &SVector<S, N>),
+        h: S,
+        t_next: S,
+    ) -> Result<State<S, N>, IntegrationError<S, N>>;
+
+    /// [`FixedStep::restart`].
+    fn restart(&mut self);
+}
+
+struct Bound<'a, F, L> {
+    step: &'a mut F,
+    model: &'a L,
+}
+
+impl<S, F, L, const N: usize> Stepping<S, N> for Bound<'_, F, L>
+where
+    S: RealField + Copy,
+    F: FixedStep<S, N>,
+    L: Lagrangian<N, Scalar = S>,
+{
+    fn step(
+        &mut self,
+        rec: &mut Recorder<'_, S, N>,
+        t: S,
+        state: (&SVector<S, N>, &SVector<S, N>),
+        h: S,
+        t_next: S,
+    ) -> Result<State<S, N>, IntegrationError<S, N>> {
+        self.step
+            .step(rec, self.model, t, state, h)
+            .and_then(|(q, qdot)| rec.control_drift(self.model, t_next, q, qdot))
+    }
+
+    fn restart(&mut self) {
+        self.step.restart();
     }
 }
 
@@ -69,6 +127,22 @@ where
         &mut self,
         run: &mut Run<'_, S, N>,
         model: &L,
+        target: S,
+    ) -> Result<Advanced, IntegrationError<S, N>> {
+        let mut bound = Bound {
+            step: &mut self.step,
+            model,
+        };
+        self.course.advance(run, model, &mut bound, target)
+    }
+}
+
+impl<S: RealField + Copy> Course<S> {
+    fn advance<const N: usize>(
+        &mut self,
+        run: &mut Run<'_, S, N>,
+        model: &dyn Evaluate<S, N>,
+        stepping: &mut dyn Stepping<S, N>,
         target: S,
     ) -> Result<Advanced, IntegrationError<S, N>> {
         let max_steps = self.max_steps;
@@ -85,7 +159,7 @@ where
                 } else {
                     run.arm()?;
                 }
-                self.step.restart();
+                stepping.restart();
                 run.fresh = Fresh::No;
             }
             if run.t >= target {
@@ -128,10 +202,8 @@ where
                 }
                 let t_next = interval.time(k, steps);
                 let dt = t_next - t;
-                let (q, qdot) = self
-                    .step
-                    .step(&mut run.rec, model, t, (&before.0, &before.1), dt)
-                    .and_then(|(q, qdot)| run.rec.control_drift(model, t_next, q, qdot))?;
+                let (q, qdot) =
+                    stepping.step(&mut run.rec, t, (&before.0, &before.1), dt, t_next)?;
                 // The step's end is not evaluated by the model: check it
                 // before it becomes the state.
                 if !finite_state(&q, &qdot) {

@@ -9,7 +9,7 @@
 use nalgebra::{RealField, SVector};
 
 use super::growth::GrowthGuard;
-use super::record::Recorder;
+use super::record::{Evaluate, Recorder};
 use super::run::{Advanced, Flow, Fresh, Run, Walk};
 use super::step_control::{advances, initial_step};
 use crate::error::IntegrationError;
@@ -181,14 +181,28 @@ pub trait Embedded<S: RealField + Copy, const N: usize> {
 /// and the pair's carried slope are kept. A step shortened to land on a
 /// frame's end says little about the step the solution allows: the next
 /// one is not shorter than the control had chosen before it.
+///
+/// The loop itself ([`Course::advance`]) sees the pair and the model only
+/// behind a `dyn` ([`Pairing`], [`Evaluate`]): it is compiled once per
+/// scalar and size, not once per model and method. Only the pair's
+/// attempts, where the model is evaluated, keep both types.
 pub struct PairWalk<S, M: Embedded<S, N>, const N: usize>
 where
     S: RealField + Copy,
 {
     method: M,
+    pair: Option<M::Pair>,
+    course: Course<S>,
+}
+
+/// The embedded pairs' loop's own state between calls.
+struct Course<S> {
     gains: Gains<S>,
     settings: Tolerances<S>,
-    pair: Option<M::Pair>,
+    /// The controller's [`order`](Controller::order) and
+    /// [`stretch`](Controller::stretch).
+    order: u8,
+    stretch: S,
     /// The step size the control chose; `None` before the first guess.
     h: Option<S>,
     err_old: S,
@@ -199,15 +213,123 @@ where
 impl<S: RealField + Copy, M: Embedded<S, N>, const N: usize> PairWalk<S, M, N> {
     pub(crate) fn new(method: M) -> Self {
         Self {
-            gains: M::CONTROL.gains(),
-            settings: method.tolerances(),
+            course: Course {
+                gains: M::CONTROL.gains(),
+                settings: method.tolerances(),
+                order: M::CONTROL.order,
+                stretch: nalgebra::convert(M::CONTROL.stretch),
+                h: None,
+                err_old: nalgebra::convert(1e-4),
+                rejected_last: false,
+                growth: None,
+            },
             method,
             pair: None,
-            h: None,
-            err_old: nalgebra::convert(1e-4),
-            rejected_last: false,
-            growth: None,
         }
+    }
+}
+
+/// A method's pair bound to the model it steps, as the loop calls it: the
+/// accepted step and its continuous extension are kept here between the
+/// loop's calls.
+trait Pairing<S: RealField + Copy, const N: usize> {
+    /// The pair anew from `(q̇, q̈)` at a start ([`Embedded::pair`]).
+    fn start(&mut self, qdot: &SVector<S, N>, qddot: &SVector<S, N>);
+
+    /// [`EmbeddedPair::attempt`], keeping an accepted step.
+    fn attempt(
+        &mut self,
+        rec: &mut Recorder<'_, S, N>,
+        times: (S, S, S),
+        state: (&SVector<S, N>, &SVector<S, N>),
+    ) -> Result<Outcome<S, ()>, IntegrationError<S, N>>;
+
+    /// The state at the end of the accepted step.
+    fn end(&self) -> State<S, N>;
+
+    /// The accepted step's continuous extension at `θ`, built on first use
+    /// from the step of size `h` from `state`.
+    fn dense_at(&mut self, h: S, state: (&SVector<S, N>, &SVector<S, N>), theta: S) -> State<S, N>;
+
+    /// Moves the pair on past the accepted step ([`EmbeddedPair::advance`]).
+    fn advance(&mut self);
+}
+
+struct Bound<'a, S, M, L, const N: usize>
+where
+    S: RealField + Copy,
+    M: Embedded<S, N>,
+{
+    method: &'a M,
+    pair: &'a mut Option<M::Pair>,
+    model: &'a L,
+    step: Option<<M::Pair as EmbeddedPair<S, N>>::Step>,
+    dense: Option<<M::Pair as EmbeddedPair<S, N>>::Dense>,
+}
+
+impl<S, M, L, const N: usize> Bound<'_, S, M, L, N>
+where
+    S: RealField + Copy,
+    M: Embedded<S, N>,
+{
+    fn pair(&mut self) -> &mut M::Pair {
+        self.pair
+            .as_mut()
+            .expect("the pair is built at every start")
+    }
+
+    fn step(&self) -> &<M::Pair as EmbeddedPair<S, N>>::Step {
+        self.step.as_ref().expect("read after an accepted step")
+    }
+}
+
+impl<S, M, L, const N: usize> Pairing<S, N> for Bound<'_, S, M, L, N>
+where
+    S: RealField + Copy,
+    M: Embedded<S, N>,
+    L: Lagrangian<N, Scalar = S>,
+{
+    fn start(&mut self, qdot: &SVector<S, N>, qddot: &SVector<S, N>) {
+        *self.pair = Some(self.method.pair(qdot, qddot));
+    }
+
+    fn attempt(
+        &mut self,
+        rec: &mut Recorder<'_, S, N>,
+        times: (S, S, S),
+        state: (&SVector<S, N>, &SVector<S, N>),
+    ) -> Result<Outcome<S, ()>, IntegrationError<S, N>> {
+        let model = self.model;
+        Ok(match self.pair().attempt(rec, model, times, state)? {
+            Outcome::Rejected { err } => Outcome::Rejected { err },
+            Outcome::Accepted { step, err } => {
+                self.step = Some(step);
+                self.dense = None;
+                Outcome::Accepted { step: (), err }
+            }
+        })
+    }
+
+    fn end(&self) -> State<S, N> {
+        M::Pair::end(self.step())
+    }
+
+    fn dense_at(&mut self, h: S, state: (&SVector<S, N>, &SVector<S, N>), theta: S) -> State<S, N> {
+        if self.dense.is_none() {
+            let pair = self
+                .pair
+                .as_ref()
+                .expect("the pair is built at every start");
+            self.dense = Some(pair.dense(h, state, self.step()));
+        }
+        let dense = self.dense.as_ref().expect("built above");
+        M::Pair::dense_at(dense, theta)
+    }
+
+    fn advance(&mut self) {
+        let step = self.step.take().expect("advanced after an accepted step");
+        self.dense = None;
+        self.pair().advance(&step);
     }
 }
 
@@ -222,14 +344,31 @@ where
         model: &L,
         target: S,
     ) -> Result<Advanced, IntegrationError<S, N>> {
+        let mut bound = Bound {
+            method: &self.method,
+            pair: &mut self.pair,
+            model,
+            step: None,
+            dense: None,
+        };
+        self.course.advance(run, model, &mut bound, target)
+    }
+}
+
+impl<S: RealField + Copy> Course<S> {
+    fn advance<const N: usize>(
+        &mut self,
+        run: &mut Run<'_, S, N>,
+        model: &dyn Evaluate<S, N>,
+        pairing: &mut dyn Pairing<S, N>,
+        target: S,
+    ) -> Result<Advanced, IntegrationError<S, N>> {
         let c = |x: f64| -> S { nalgebra::convert(x) };
         let Tolerances {
             rtol,
             atol,
             max_steps,
         } = self.settings;
-        let control = &M::CONTROL;
-        let gains = &self.gains;
         let attempts_before = run.rec.stats.steps_accepted + run.rec.stats.steps_rejected;
         // The evaluation failure that made us shrink h, reported if h
         // underflows before we get past it.
@@ -252,7 +391,7 @@ where
                         h_max,
                         rtol,
                         atol,
-                        control.order,
+                        self.order,
                     ));
                 }
                 if run.fresh == Fresh::Segment || self.growth.is_none() {
@@ -260,11 +399,11 @@ where
                     self.err_old = c(1e-4);
                     self.rejected_last = false;
                 }
-                self.pair = Some(self.method.pair(&qdot, &qddot));
+                pairing.start(&qdot, &qddot);
                 run.fresh = Fresh::No;
             }
-            let (Some(pair), Some(h), Some(growth)) = (&mut self.pair, self.h, &mut self.growth)
-            else {
+            let gains = &self.gains;
+            let (Some(h), Some(growth)) = (self.h, &mut self.growth) else {
                 unreachable!("built above");
             };
             let h = run.rec.bound_step(h);
@@ -284,7 +423,7 @@ where
                     .unwrap_or(IntegrationError::StepSizeUnderflow { t, h, q, qdot }));
             }
             // Land on the target rather than leave a sliver before it.
-            let last = t + h * c(control.stretch) >= target;
+            let last = t + h * self.stretch >= target;
             let t_new = if last { target } else { t + h };
             // The state advances by exactly the time the clock does: `t + h`
             // rounds, so the step taken is the representable `fl(t + h) − t`
@@ -292,23 +431,22 @@ where
             // `t` per step, 1e-10 s after 5e5 steps at t ≈ 70).
             let h_try = t_new - t;
 
-            let (step, err) =
-                match pair.attempt(&mut run.rec, model, (t, t_new, h_try), (&q, &qdot)) {
-                    Ok(Outcome::Accepted { step, err }) => (step, err),
-                    Ok(Outcome::Rejected { err }) => {
-                        run.rec.stats.steps_rejected += 1;
-                        self.rejected_last = true;
-                        self.h = Some(gains.after_rejection(h_try, err));
-                        continue;
-                    }
-                    Err(error) => {
-                        stage_failure = Some(error);
-                        run.rec.stats.steps_rejected += 1;
-                        self.rejected_last = true;
-                        self.h = Some(h_try * gains.fac_min);
-                        continue;
-                    }
-                };
+            let err = match pairing.attempt(&mut run.rec, (t, t_new, h_try), (&q, &qdot)) {
+                Ok(Outcome::Accepted { step: (), err }) => err,
+                Ok(Outcome::Rejected { err }) => {
+                    run.rec.stats.steps_rejected += 1;
+                    self.rejected_last = true;
+                    self.h = Some(gains.after_rejection(h_try, err));
+                    continue;
+                }
+                Err(error) => {
+                    stage_failure = Some(error);
+                    run.rec.stats.steps_rejected += 1;
+                    self.rejected_last = true;
+                    self.h = Some(h_try * gains.fac_min);
+                    continue;
+                }
+            };
             let mut h_new = gains.after_acceptance(h_try, err, self.err_old);
             if self.rejected_last {
                 h_new = h_new.min(h_try);
@@ -323,7 +461,7 @@ where
 
             // A constrained model's end state is projected; the pair keeps
             // its last slope, evaluated before that (see `constraints`).
-            let (q_end, qdot_end) = M::Pair::end(&step);
+            let (q_end, qdot_end) = pairing.end();
             let (q_new, qdot_new) = run.rec.control_drift(model, t_new, q_end, qdot_end)?;
             if let Some(steps) = growth.unstable((q, qdot), (&q_new, &qdot_new), h_try) {
                 return Err(IntegrationError::Unstable {
@@ -338,29 +476,26 @@ where
             // The dense output is built from the step's slopes before the
             // pair moves on (its last slope becomes the next step's first),
             // only when a sample or an event needs it.
-            let mut dense = None;
             let crossed = if run.rec.watching() {
-                let dense = &*dense.get_or_insert_with(|| pair.dense(h_try, (&q, &qdot), &step));
-                let mut interpolant = |ts: S| M::Pair::dense_at(dense, (ts - t) / h_try);
+                let mut interpolant =
+                    |ts: S| pairing.dense_at(h_try, (&q, &qdot), (ts - t) / h_try);
                 let end = (q_new, qdot_new);
                 run.rec
-                    .watch_dense(model, (t, t_new), &end, &mut interpolant)?
+                    .watch_dense(model.projector(), (t, t_new), &end, &mut interpolant)?
             } else {
                 None
             };
             if crossed.is_none() {
                 while let Some(ts) = run.rec.pending().filter(|&ts| ts <= t_new) {
                     if ts < t_new {
-                        let dense =
-                            dense.get_or_insert_with(|| pair.dense(h_try, (&q, &qdot), &step));
-                        let (qs, qdots) = M::Pair::dense_at(dense, (ts - t) / h_try);
-                        run.rec.record_dense(model, ts, qs, qdots)?;
+                        let (qs, qdots) = pairing.dense_at(h_try, (&q, &qdot), (ts - t) / h_try);
+                        run.rec.record_dense(model.projector(), ts, qs, qdots)?;
                     } else {
                         run.rec.record(ts, q_new, qdot_new);
                     }
                 }
             }
-            pair.advance(&step);
+            pairing.advance();
             match run.take((t_new, q_new, qdot_new), crossed, target) {
                 Flow::Go => {}
                 Flow::Stopped => return Ok(Advanced::Stopped),

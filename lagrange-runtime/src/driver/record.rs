@@ -80,36 +80,28 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     }
 
     /// One counted right-hand side evaluation.
-    pub(crate) fn rhs<L: Lagrangian<N, Scalar = S>>(
+    pub(crate) fn rhs<E: Evaluate<S, N> + ?Sized>(
         &mut self,
-        model: &L,
+        model: &E,
         t: S,
         q: &SVector<S, N>,
         qdot: &SVector<S, N>,
     ) -> Result<SVector<S, N>, IntegrationError<S, N>> {
         self.stats.rhs_evals += 1;
-        acceleration(model, t, q, qdot)
+        model.qddot(t, q, qdot)
     }
 
     /// The end of an accepted step of a constrained model: its residuals
     /// recorded, then the state projected if its drift control says so.
     /// `(q, q̇)` unchanged for a model in minimal coordinates.
-    pub(crate) fn control_drift<L: Lagrangian<N, Scalar = S>>(
+    pub(crate) fn control_drift<E: Evaluate<S, N> + ?Sized>(
         &mut self,
-        model: &L,
+        model: &E,
         t: S,
         q: SVector<S, N>,
         qdot: SVector<S, N>,
     ) -> Result<State<S, N>, IntegrationError<S, N>> {
-        let stats = &mut self.stats;
-        let control = DriftControl {
-            t,
-            q,
-            qdot,
-            stats,
-            project: true,
-        };
-        model.visit_constraints(control).unwrap_or(Ok((q, qdot)))
+        model.drift(&mut self.stats, t, q, qdot)
     }
 
     /// The residuals of a constrained model's state, recorded without any
@@ -212,5 +204,64 @@ impl<S: RealField + Copy, L: Lagrangian<N, Scalar = S>, const N: usize> Project<
     ) -> Result<State<S, N>, IntegrationError<S, N>> {
         let sample = ProjectSample { t, q, qdot, stats };
         self.visit_constraints(sample).unwrap_or(Ok((q, qdot)))
+    }
+}
+
+/// What the run loops ask of a model (its accelerations, the drift control
+/// after a step, the projection of a sample), object-safe: a loop that
+/// takes the model as `&dyn Evaluate` is compiled once per scalar and
+/// size, not once per model and method. The steps themselves, where the
+/// model is evaluated several times a step, keep the model's own type.
+pub(crate) trait Evaluate<S: RealField + Copy, const N: usize> {
+    /// `q̈` at `(t, q, q̇)` (not counted: [`Recorder::rhs`] counts).
+    fn qddot(
+        &self,
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) -> Result<SVector<S, N>, IntegrationError<S, N>>;
+
+    /// [`Recorder::control_drift`].
+    fn drift(
+        &self,
+        stats: &mut Stats,
+        t: S,
+        q: SVector<S, N>,
+        qdot: SVector<S, N>,
+    ) -> Result<State<S, N>, IntegrationError<S, N>>;
+
+    /// The model as sampling and event location take it.
+    fn projector(&self) -> &dyn Project<S, N>;
+}
+
+impl<S: RealField + Copy, L: Lagrangian<N, Scalar = S>, const N: usize> Evaluate<S, N> for L {
+    fn qddot(
+        &self,
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) -> Result<SVector<S, N>, IntegrationError<S, N>> {
+        acceleration(self, t, q, qdot)
+    }
+
+    fn drift(
+        &self,
+        stats: &mut Stats,
+        t: S,
+        q: SVector<S, N>,
+        qdot: SVector<S, N>,
+    ) -> Result<State<S, N>, IntegrationError<S, N>> {
+        let control = DriftControl {
+            t,
+            q,
+            qdot,
+            stats,
+            project: true,
+        };
+        self.visit_constraints(control).unwrap_or(Ok((q, qdot)))
+    }
+
+    fn projector(&self) -> &dyn Project<S, N> {
+        self
     }
 }

@@ -4,8 +4,7 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::record::Recorder;
-use crate::model::Lagrangian;
+use super::record::{Evaluate, Recorder};
 
 /// The adaptive methods' default `rtol = atol`: `1e-8`, raised to `100 ε`
 /// for scalar types with fewer digits (`1.2e-5` for `f32`).
@@ -17,9 +16,9 @@ pub(crate) fn default_tolerance<S: RealField + Copy>() -> S {
 /// a method of order `order` would roughly meet the tolerance, from
 /// estimates of the first and second derivative at `start = (t, q, q̇, q̈)`.
 /// Costs one right-hand side (an explicit Euler probe).
-pub(crate) fn initial_step<S, L, const N: usize>(
+pub(crate) fn initial_step<S, E, const N: usize>(
     rec: &mut Recorder<'_, S, N>,
-    model: &L,
+    model: &E,
     (t, q, qdot, qddot): (S, &SVector<S, N>, &SVector<S, N>, &SVector<S, N>),
     h_max: S,
     rtol: S,
@@ -28,7 +27,7 @@ pub(crate) fn initial_step<S, L, const N: usize>(
 ) -> S
 where
     S: RealField + Copy,
-    L: Lagrangian<N, Scalar = S>,
+    E: Evaluate<S, N> + ?Sized,
 {
     let c = |x: f64| -> S { nalgebra::convert(x) };
     let scale = |y: S| atol + rtol * y.abs();
