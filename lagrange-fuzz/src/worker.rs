@@ -59,7 +59,8 @@ unsafe impl GlobalAlloc for Counting {
         if !reserve(layout.size()) {
             return std::ptr::null_mut();
         }
-        let p = System.alloc(layout);
+        // SAFETY: the caller's layout, as `GlobalAlloc::alloc` requires.
+        let p = unsafe { System.alloc(layout) };
         if p.is_null() {
             CURRENT.fetch_sub(layout.size(), Relaxed);
             out_of_memory();
@@ -71,7 +72,8 @@ unsafe impl GlobalAlloc for Counting {
         if !reserve(layout.size()) {
             return std::ptr::null_mut();
         }
-        let p = System.alloc_zeroed(layout);
+        // SAFETY: the caller's layout, as `GlobalAlloc::alloc_zeroed` requires.
+        let p = unsafe { System.alloc_zeroed(layout) };
         if p.is_null() {
             CURRENT.fetch_sub(layout.size(), Relaxed);
             out_of_memory();
@@ -80,7 +82,9 @@ unsafe impl GlobalAlloc for Counting {
     }
 
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout);
+        // SAFETY: `ptr` came from `System` with this layout (every
+        // allocation above is forwarded to it).
+        unsafe { System.dealloc(ptr, layout) };
         CURRENT.fetch_sub(layout.size(), Relaxed);
     }
 
@@ -89,7 +93,8 @@ unsafe impl GlobalAlloc for Counting {
         if new_size > old && !reserve(new_size - old) {
             return std::ptr::null_mut();
         }
-        let p = System.realloc(ptr, layout, new_size);
+        // SAFETY: `ptr` came from `System` with this layout, as above.
+        let p = unsafe { System.realloc(ptr, layout, new_size) };
         if p.is_null() {
             if new_size > old {
                 CURRENT.fetch_sub(new_size - old, Relaxed);

@@ -219,7 +219,7 @@ fn assert_dense_order<I: Integrator<f64>>(
     let ends_fit: Vec<(f64, f64)> = phases
         .iter()
         .zip(&ends)
-        .filter(|(_, &e)| e > floor(1))
+        .filter(|&(_, &e)| e > floor(1))
         .map(|(&p, &e)| (p, e))
         .collect();
     let (fit_phases, fit_ends): (Vec<f64>, Vec<f64>) = ends_fit.into_iter().unzip();

@@ -54,7 +54,7 @@ impl<S: RealField + Copy> Neutral<S> {
             .singular_values
             .iter()
             .enumerate()
-            .filter(|(_, &sigma)| sigma <= self.cutoff)
+            .filter(|&(_, &sigma)| sigma <= self.cutoff)
             .map(|(i, _)| v_t.row(i).transpose())
             .collect()
     }
