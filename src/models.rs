@@ -61,6 +61,6 @@ pub use pendulum::Pendulum;
 pub use pendulum_wall::PendulumWall;
 pub use rolling_ball::RollingBall;
 pub use rolling_disk::RollingDisk;
-pub use slider_crank::{slider_crank_kinematics, MinimalSliderCrank, SliderCrank};
+pub use slider_crank::{MinimalSliderCrank, SliderCrank, slider_crank_kinematics};
 pub use stiff_chain::StiffChain;
 pub use two_mass_chain::{RayleighTwoMassChain, TwoMassChain};

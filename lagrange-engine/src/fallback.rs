@@ -10,10 +10,10 @@
 //! and set them and the `Actuated` impl.
 
 use crate::ast::ModelDef;
-use crate::emit::api::{InTrait, CONSTS, METHODS};
+use crate::emit::api::{CONSTS, InTrait, METHODS};
 use crate::emit::inputs;
-use crate::emit::outline::{nalgebra, Outline, Types};
-use crate::model::{declared_shape, Field};
+use crate::emit::outline::{Outline, Types, nalgebra};
+use crate::model::{Field, declared_shape};
 use proc_macro2::TokenStream;
 use quote::quote;
 use syn::{Attribute, Ident, Visibility};

@@ -218,7 +218,11 @@ fn extreme_integers(rng: &mut Rng) -> String {
             "struct M {{ const N = {a}; coordinates: q[N]; kinetic: sum(i in 0..N, dot(q[i])^2); potential: 0; }}"
         ),
         2 | 3 => {
-            let use_it = if rng.chance(0.5) { format!("y[{c}]") } else { "y".into() };
+            let use_it = if rng.chance(0.5) {
+                format!("y[{c}]")
+            } else {
+                "y".into()
+            };
             format!(
                 "struct M {{ coordinates: x; let y[i in {a}..{b}] = 0; kinetic: dot(x)^2; potential: {use_it}; }}"
             )

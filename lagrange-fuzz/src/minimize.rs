@@ -3,7 +3,7 @@
 //! length) while the delimiters stay balanced and the outcome keeps its class
 //! and, for a panic, its location.
 
-use crate::mutate::{balanced, join, lex, partners, sections, Tok};
+use crate::mutate::{Tok, balanced, join, lex, partners, sections};
 use crate::supervisor::Worker;
 use crate::worker::{Class, Outcome};
 

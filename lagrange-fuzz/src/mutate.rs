@@ -5,7 +5,7 @@
 //! signs, calls or method chains, unwrap a group, stretch a range, repeat a
 //! term). Delimiters stay balanced, as rustc guarantees a macro's input.
 
-use crate::families::{INTEGERS, INT_ATOMS};
+use crate::families::{INT_ATOMS, INTEGERS};
 use crate::rng::Rng;
 
 /// A token and whether whitespace preceded it (kept, so that `..=` and

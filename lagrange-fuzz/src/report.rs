@@ -211,7 +211,7 @@ impl Report {
             );
         }
         let mut kinds: Vec<(&String, &(usize, u64))> = self.by_kind.iter().collect();
-        kinds.sort_by(|a, b| b.1 .1.cmp(&a.1 .1).then(a.0.cmp(b.0)));
+        kinds.sort_by(|a, b| b.1.1.cmp(&a.1.1).then(a.0.cmp(b.0)));
         let line: Vec<String> = kinds
             .iter()
             .map(|(k, (n, t))| format!("{k} {n} in {:.1} s", *t as f64 / 1e9))

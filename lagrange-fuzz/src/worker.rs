@@ -10,9 +10,9 @@
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::io::{BufRead, Read, Write};
-use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use std::time::Instant;
 
 use proc_macro2::{TokenStream, TokenTree};

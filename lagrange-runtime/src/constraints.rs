@@ -120,11 +120,11 @@
 //! step in `integrators/variational/` (`constrained.rs`, `rattle.rs`). This
 //! module gathers what a user names.
 
-pub use crate::dynamics::annotate::{annotate, ConstrainedSample};
+pub use crate::dynamics::annotate::{ConstrainedSample, annotate};
 pub use crate::dynamics::saddle::Multipliers;
+#[doc(no_inline)]
+pub use crate::model::Lagrangian;
 pub use crate::model::constraints::{Holonomic, Visitor};
 pub use crate::model::settings::{
     Constrained, ConstraintHandling, ConstraintSettings, Drift, InitialConditions,
 };
-#[doc(no_inline)]
-pub use crate::model::Lagrangian;

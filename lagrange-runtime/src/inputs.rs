@@ -35,4 +35,4 @@
 //! The compiled example is on `lagrange::models::CartPole`.
 
 pub use crate::model::controller::{Controlled, Controller};
-pub use crate::model::inputs::{unset, unset_array, Actuated, Inputs, KeepsInputs, Visitor};
+pub use crate::model::inputs::{Actuated, Inputs, KeepsInputs, Visitor, unset, unset_array};

@@ -306,10 +306,10 @@ pub use error::{
 };
 pub use events::{Event, Events};
 pub use inputs::Actuated;
-pub use integrators::all::*;
 pub use integrators::StepMethod;
-pub use integrators::{integrate, AnyIntegrator, Integrator, Method};
-pub use model::{lets, Lagrangian};
+pub use integrators::all::*;
+pub use integrators::{AnyIntegrator, Integrator, Method, integrate};
+pub use model::{Lagrangian, lets};
 pub use nalgebra;
 /// The ode_solvers crate (feature `ode_solvers`), for its solvers beside
 /// [`interop::ode_solvers`].
@@ -323,7 +323,7 @@ pub mod prelude {
     pub use crate::constraints::{Drift, InitialConditions, Multipliers};
     pub use crate::integrators::all::*;
     pub use crate::{
-        integrate, Actuated, Event, Events, Failure, Holonomic, IntegrationError, Integrator,
-        Lagrangian, StepMethod, Stepper, Trajectory,
+        Actuated, Event, Events, Failure, Holonomic, IntegrationError, Integrator, Lagrangian,
+        StepMethod, Stepper, Trajectory, integrate,
     };
 }

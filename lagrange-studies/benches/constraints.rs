@@ -5,7 +5,7 @@
 //!
 //! `cargo bench -p lagrange-studies --bench constraints`
 
-use criterion::{criterion_group, Criterion};
+use criterion::{Criterion, criterion_group};
 use lagrange::dynamics::acceleration;
 use lagrange::models::{CartesianPendulum, FourBar, Pendulum, SliderCrank};
 use lagrange::nalgebra::{Vector1, Vector3};

@@ -3,7 +3,7 @@
 //!
 //! `cargo bench -p lagrange-studies --bench double_pendulum`
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::{Criterion, criterion_group, criterion_main};
 use lagrange::models::DoublePendulum;
 use lagrange::nalgebra::{Matrix2, Vector2};
 use std::hint::black_box;

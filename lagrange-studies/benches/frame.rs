@@ -11,11 +11,11 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use criterion::{criterion_group, Criterion};
-use lagrange::models::Chain;
-use lagrange::nalgebra::{convert, RealField, SVector};
-use lagrange::prelude::*;
+use criterion::{Criterion, criterion_group};
 use lagrange::StepMethod;
+use lagrange::models::Chain;
+use lagrange::nalgebra::{RealField, SVector, convert};
+use lagrange::prelude::*;
 
 const N: usize = Chain::<f64>::DOF;
 const HZ: f64 = 60.0;
@@ -105,7 +105,9 @@ fn row(what: &str, (stepped, stepped_evals): (f64, f64), (called, called_evals):
 
 fn table() {
     println!("5-link chain, {FRAMES} frames at {HZ} Hz:");
-    println!("| method, scalar | Stepper µs/frame | rhs/frame | integrate per frame µs/frame | rhs/frame | ratio |");
+    println!(
+        "| method, scalar | Stepper µs/frame | rhs/frame | integrate per frame µs/frame | rhs/frame | ratio |"
+    );
     println!("|---|---:|---:|---:|---:|---:|");
     let h = 1.0 / HZ;
     row(

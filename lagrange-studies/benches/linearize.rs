@@ -13,13 +13,13 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use criterion::{criterion_group, Criterion};
+use criterion::{Criterion, criterion_group};
+use lagrange::Lagrangian;
 use lagrange::analysis::linearize;
 use lagrange::dynamics::acceleration;
 use lagrange::lagrangian;
 use lagrange::nalgebra::{SMatrix, SVector};
-use lagrange::Lagrangian;
-use num_dual::{jacobian, DualSVec64};
+use num_dual::{DualSVec64, jacobian};
 
 lagrangian! {
     /// The 10-link chain of `src/models/chain.rs`, with exact Jacobians.

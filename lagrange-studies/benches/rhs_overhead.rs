@@ -176,19 +176,26 @@ fn row<L: Lagrangian<N, Scalar = f64>, const N: usize>(
     );
     let (mut dop853, dop853_evals) = per_evaluation(&dop853, model, start);
     let (mut dopri5, dopri5_evals) = per_evaluation(&dopri5, model, start);
-    let [mf, independent_inlined, independent_called, chained_inlined, chained_called, dop853, dopri5] =
-        best_interleaved(
-            15,
-            [
-                &mut mf,
-                &mut independent_inlined,
-                &mut independent_called,
-                &mut chained_inlined,
-                &mut chained_called,
-                &mut dop853,
-                &mut dopri5,
-            ],
-        );
+    let [
+        mf,
+        independent_inlined,
+        independent_called,
+        chained_inlined,
+        chained_called,
+        dop853,
+        dopri5,
+    ] = best_interleaved(
+        15,
+        [
+            &mut mf,
+            &mut independent_inlined,
+            &mut independent_called,
+            &mut chained_inlined,
+            &mut chained_called,
+            &mut dop853,
+            &mut dopri5,
+        ],
+    );
     let rhs = independent_inlined.min(independent_called);
     let chained = chained_inlined.min(chained_called);
     for (method, evals, per_eval) in [
@@ -234,7 +241,9 @@ fn main() {
     println!();
     println!("Both methods at rtol = atol = 1e-10.");
     println!();
-    println!("| model | method | evaluations | M + f (ns) | M + f + solve, independent (ns) | M + f + solve, chained (ns) | method per evaluation (ns) | per evaluation / independent | per evaluation / chained |");
+    println!(
+        "| model | method | evaluations | M + f (ns) | M + f + solve, independent (ns) | M + f + solve, chained (ns) | method per evaluation (ns) | per evaluation / independent | per evaluation / chained |"
+    );
     println!("|---|---|---:|---:|---:|---:|---:|---:|---:|");
     let dp = DoublePendulum::unit();
     row(

@@ -11,7 +11,7 @@
 #[path = "../../tests/support/reference.rs"]
 mod reference;
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::{Criterion, criterion_group, criterion_main};
 use lagrange::dynamics::acceleration;
 use lagrange::models::DoublePendulum;
 use lagrange::nalgebra::Vector2;

@@ -89,7 +89,11 @@ fn main() -> Result<(), Box<dyn Error>> {
     match build_time(&repo) {
         Ok((secs, cold)) => println!(
             "| `cargo build --release` of a crate holding the model | {secs:.1} s{} | its Cython build: over 12 hours (pydy#122) |",
-            if cold { " (dependencies built first, not counted)" } else { "" }
+            if cold {
+                " (dependencies built first, not counted)"
+            } else {
+                ""
+            }
         ),
         Err(e) => println!("| `cargo build --release` | failed: {e} | |"),
     }
@@ -118,7 +122,9 @@ fn main() -> Result<(), Box<dyn Error>> {
         }
         ours_points.extend(e.iter().map(|&(re, im)| (v, re, im)));
     }
-    println!("\nState matrices: largest difference {worst:.1e} of the benchmark's largest entry, 0–10 m/s.");
+    println!(
+        "\nState matrices: largest difference {worst:.1e} of the benchmark's largest entry, 0–10 m/s."
+    );
 
     // M from the kinetic energy on the allowed rates; C1, K0, K2 from the
     // state matrices at rest and at 5 m/s.
@@ -158,7 +164,9 @@ fn main() -> Result<(), Box<dyn Error>> {
     let weave_ref = crossing(3.0, 5.0, |v| growth(&bike.benchmark_state_matrix(v)));
     let capsize = crossing(5.5, 7.0, |v| growth(&linearized(&bike, v).expect("steady")));
     let capsize_ref = crossing(5.5, 7.0, |v| growth(&bike.benchmark_state_matrix(v)));
-    println!("\n| speed | ours [m/s] | benchmark's closed form | published (table 2) | ours against the closed form |");
+    println!(
+        "\n| speed | ours [m/s] | benchmark's closed form | published (table 2) | ours against the closed form |"
+    );
     println!("|---|---:|---:|---:|---:|");
     for (name, ours, theirs, published) in [
         ("weave", weave, weave_ref, 4.29238253634111),
@@ -171,7 +179,9 @@ fn main() -> Result<(), Box<dyn Error>> {
     }
 
     println!("\n## Released at a lean of 0.01 rad\n");
-    println!("| v [m/s] | growth rate (eigenvalues) [1/s] | lean at t [rad] | linear motion | largest difference | energy drift | Dop853 at 1e-11 |");
+    println!(
+        "| v [m/s] | growth rate (eigenvalues) [1/s] | lean at t [rad] | linear motion | largest difference | energy drift | Dop853 at 1e-11 |"
+    );
     println!("|---:|---:|---|---:|---:|---:|---:|");
     for (v, end) in [(5.0, 4.0), (3.0, 1.0)] {
         let (mut q, qdot) = bike.upright(0.0, v);
@@ -242,7 +252,10 @@ fn build_time(repo: &Path) -> Result<(f64, bool), Box<dyn Error>> {
          pub fn system(p: [f64; 26], q: &SVector<f64, 8>, v: &SVector<f64, 8>) -> (SMatrix<f64, 8, 8>, SVector<f64, 8>, SMatrix<f64, 5, 8>, SVector<f64, 5>) {{\n    \
          let b = WhippleBicycle::<f64>::new({});\n    b.constrained_system(0.0, q, v)\n}}\n",
         invocation(),
-        (0..26).map(|i| format!("p[{i}]")).collect::<Vec<_>>().join(", ")
+        (0..26)
+            .map(|i| format!("p[{i}]"))
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     let build = |touch: bool| -> Result<f64, Box<dyn Error>> {
         if touch {

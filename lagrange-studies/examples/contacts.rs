@@ -48,7 +48,9 @@ where
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
-    println!("scene                                   closed form              lagrange                 error");
+    println!(
+        "scene                                   closed form              lagrange                 error"
+    );
     let row = |scene: &str, exact: f64, ours: f64| {
         println!(
             "{scene:<39} {exact:<24.16} {ours:<24.16} {:.1e}",

@@ -14,11 +14,11 @@
 #[path = "support/csv_option.rs"]
 mod csv_option;
 
-use lagrange::constraints::{annotate, Drift};
+use lagrange::Method;
+use lagrange::constraints::{Drift, annotate};
 use lagrange::models::FourBar;
 use lagrange::nalgebra::Vector3;
 use lagrange::prelude::*;
-use lagrange::Method;
 use plotters::prelude::*;
 use std::error::Error;
 use std::time::Instant;

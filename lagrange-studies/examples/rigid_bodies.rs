@@ -22,7 +22,7 @@
 mod elliptic;
 
 use lagrange::analysis::linearize_steady_motion;
-use lagrange::models::{quaternion, ChaplyginSleigh, EulerTop, FreeBody, HeavyTop, RollingDisk};
+use lagrange::models::{ChaplyginSleigh, EulerTop, FreeBody, HeavyTop, RollingDisk, quaternion};
 use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3};
 use lagrange::prelude::*;
 use plotters::prelude::*;
@@ -114,7 +114,9 @@ fn dzhanibekov() -> Result<Vec<Rates>, Box<dyn Error>> {
     println!(
         "\nThe same by the variational integrator (fixed step h, RATTLE on |q| = 1), ten flips:\n"
     );
-    println!("| h [s] | steps | angular momentum in space, largest drift | energy, largest error | largest flip time error [s] | ms |");
+    println!(
+        "| h [s] | steps | angular momentum in space, largest drift | energy, largest error | largest flip time error [s] | ms |"
+    );
     println!("|---:|---:|---:|---:|---:|---:|");
     for h in [0.02, 0.01, 0.005] {
         let flip = Event::new("flip", |_t, q: &SVector<f64, 4>, qdot: &SVector<f64, 4>| {

@@ -13,10 +13,10 @@
 //!
 //! `cargo run --release -p lagrange-studies --example scene`
 
+use lagrange::StepMethod;
 use lagrange::models::{Chain, DoublePendulum};
 use lagrange::nalgebra::SVector;
 use lagrange::prelude::*;
-use lagrange::StepMethod;
 use plotters::prelude::*;
 use std::error::Error;
 use std::time::Instant;
@@ -385,9 +385,5 @@ fn plot(
 /// Line width of a run in the error plot: `f64` runs wide, under the `f32`
 /// ones they may hide.
 fn width(run: &Run) -> u32 {
-    if run.label.contains("f64") {
-        6
-    } else {
-        2
-    }
+    if run.label.contains("f64") { 6 } else { 2 }
 }

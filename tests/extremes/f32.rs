@@ -123,11 +123,13 @@ fn adaptive_methods_refuse_f32_tolerances_below_ten_epsilon() {
             .integrate(&model, 0.0, q0, v0, &times),
         "Radau5",
     );
-    assert!(Dopri5::new()
-        .rtol(min)
-        .atol(min)
-        .integrate(&model, 0.0, q0, v0, &times)
-        .is_ok());
+    assert!(
+        Dopri5::new()
+            .rtol(min)
+            .atol(min)
+            .integrate(&model, 0.0, q0, v0, &times)
+            .is_ok()
+    );
     assert_eq!(
         Dopri5::<f32>::new(),
         Dopri5::new().rtol(1.1920929e-5).atol(1.1920929e-5)

@@ -18,11 +18,11 @@ use std::cell::Cell;
 use std::f64::consts::PI;
 use std::time::Instant;
 
+use lagrange::IntegrationResult;
+use lagrange::Method;
 use lagrange::models::Kepler;
 use lagrange::nalgebra::{SVector, Vector2};
 use lagrange::prelude::*;
-use lagrange::IntegrationResult;
-use lagrange::Method;
 
 struct CountingAllocator;
 

@@ -10,9 +10,9 @@
 //! Every test prints its figures; `cargo test --release --test suite --
 //! extremes::nonfinite:: --nocapture --test-threads=1` shows them in order.
 
+use lagrange::Method;
 use lagrange::nalgebra::Vector1;
 use lagrange::prelude::*;
-use lagrange::Method;
 use lagrange::{IntegrationResult, InvalidInput, NonFiniteValue, Stats};
 
 lagrangian! {
@@ -97,7 +97,9 @@ fn non_finite_initial_state_or_parameters_are_refused_before_any_work() {
         check(run(method, &good, 1.0, 0.0, &[1.0, f64::NAN]), &|e| {
             matches!(e, InvalidInput::NonFiniteSampleTime { index: 1, .. })
         });
-        println!("nonfinite | {name} | {refused} non-finite inputs refused as InvalidInput, 0 evaluations");
+        println!(
+            "nonfinite | {name} | {refused} non-finite inputs refused as InvalidInput, 0 evaluations"
+        );
         assert_eq!(refused, 10);
     }
 }

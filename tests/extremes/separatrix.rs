@@ -22,12 +22,12 @@
 //! Every test prints the figures quoted in STABILITY.md; run with
 //! `cargo test --release --test suite -- extremes::separatrix:: --nocapture`.
 
-use crate::support::elliptic::{complete_k, jacobi, Swing};
+use crate::support::elliptic::{Swing, complete_k, jacobi};
+use lagrange::IntegrationResult;
+use lagrange::Method;
 use lagrange::models::Pendulum;
 use lagrange::nalgebra::Vector1;
 use lagrange::prelude::*;
-use lagrange::IntegrationResult;
-use lagrange::Method;
 
 /// `g = l = 1`: `ω₀ = 1`, energies in units of `m g l`.
 fn pendulum() -> Pendulum {

@@ -8,10 +8,10 @@
 //! Every test prints its figures; `cargo test --release --test suite --
 //! extremes::steps:: --nocapture --test-threads=1` shows them in order.
 
+use lagrange::Method;
 use lagrange::models::Oscillator;
 use lagrange::nalgebra::{SVector, Vector1, Vector2};
 use lagrange::prelude::*;
-use lagrange::Method;
 use lagrange::{IntegrationResult, InvalidInput};
 use std::time::Instant;
 
@@ -214,10 +214,12 @@ fn explicit_euler_slow_gain_below_the_guard_overflows_into_non_finite_state() {
     // in n ≈ 16 000 steps of 3e-4: t ≈ 4.9.
     assert!((4.0..6.0).contains(&t), "t = {t}");
     assert_eq!(failure.trajectory.times(), &times[..kept]);
-    assert!(failure
-        .trajectory
-        .iter()
-        .all(|s| s.q[0].is_finite() && s.qdot[0].is_finite()));
+    assert!(
+        failure
+            .trajectory
+            .iter()
+            .all(|s| s.q[0].is_finite() && s.qdot[0].is_finite())
+    );
 }
 
 /// A step so small that `t + h == t` cannot move the integration: every

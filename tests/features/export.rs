@@ -193,9 +193,11 @@ fn a_models_parameters_load_from_a_file() {
     assert!(chain.torque.is_nan(), "inputs come back unset");
     let q0 = lagrange::nalgebra::SVector::<f64, 3>::new(0.3, 0.2, 0.1);
     let v0 = lagrange::nalgebra::SVector::zeros();
-    assert!(Dopri5::new()
-        .integrate(&chain, 0.0, q0, v0, &[1.0])
-        .is_err());
+    assert!(
+        Dopri5::new()
+            .integrate(&chain, 0.0, q0, v0, &[1.0])
+            .is_err()
+    );
 
     let driven = chain.with_inputs(&lagrange::nalgebra::Vector1::new(0.5));
     let written = serde_json::to_string(&driven).unwrap();

@@ -4,10 +4,10 @@
 //! against the separate methods, and the `Holonomic` impl reached through
 //! `Lagrangian::visit_constraints`.
 
+use lagrange::Holonomic;
 use lagrange::constraints::{ConstraintSettings, Visitor};
 use lagrange::nalgebra::Vector3;
 use lagrange::prelude::*;
-use lagrange::Holonomic;
 
 lagrangian! {
     /// A bead on a rotating, bobbing ring (rheonomic) that is also held on

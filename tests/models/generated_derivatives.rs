@@ -2,10 +2,10 @@
 //! non-conservative forces (for variational integrators), and on request the
 //! exact Jacobians of the residual `r = M q̈ − f` (for implicit integrators).
 
+use lagrange::Stats;
 use lagrange::nalgebra::{SMatrix, Vector2};
 use lagrange::prelude::*;
-use lagrange::Stats;
-use rand::{rngs::StdRng, Rng, SeedableRng};
+use rand::{Rng, SeedableRng, rngs::StdRng};
 
 lagrangian! {
     /// A double pendulum hanging from a support driven along x (rheonomic),

@@ -11,7 +11,7 @@
 use lagrange::models::Chain;
 use lagrange::nalgebra::SVector;
 use lagrange::prelude::*;
-use rand::{rngs::StdRng, Rng, SeedableRng};
+use rand::{Rng, SeedableRng, rngs::StdRng};
 
 const TOL: f64 = 1e-10;
 

@@ -3,11 +3,11 @@
 //! constant input against the hand-computed acceleration, a feedback
 //! controller run and counted, a controller's NaN reported where it happened.
 
-use lagrange::analysis::{equilibrium, linearize, modes, AnalysisError};
+use lagrange::Method;
+use lagrange::analysis::{AnalysisError, equilibrium, linearize, modes};
 use lagrange::models::CartPole;
 use lagrange::nalgebra::{Matrix2, Vector1, Vector2};
 use lagrange::prelude::*;
-use lagrange::Method;
 use lagrange::{InvalidInput, NonFiniteValue};
 
 fn cart() -> CartPole {

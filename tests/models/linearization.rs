@@ -3,7 +3,7 @@
 //! own right-hand side anywhere.
 
 use crate::support::closed_form::{rng, uniform};
-use lagrange::analysis::{linearize_with_inputs, Derivatives};
+use lagrange::analysis::{Derivatives, linearize_with_inputs};
 use lagrange::dynamics::acceleration;
 use lagrange::models::CartPole;
 use lagrange::nalgebra::{Vector1, Vector2};

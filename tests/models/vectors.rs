@@ -3,7 +3,7 @@
 //! vectors against the same bodies written out by components
 //! (`lagrange::models`).
 
-use lagrange::models::{quaternion, FreeBody, HeavyTop};
+use lagrange::models::{FreeBody, HeavyTop, quaternion};
 use lagrange::nalgebra::{Rotation3, SVector, UnitQuaternion, Vector1, Vector3, Vector4};
 use lagrange::prelude::*;
 use rand::{Rng, SeedableRng};

@@ -1,7 +1,7 @@
 //! What the model tests share: seeded random states, closed forms
 //! written as lists of terms, and a comparison scaled to those terms.
-use lagrange::nalgebra::{SMatrix, SVector};
 use lagrange::Lagrangian;
+use lagrange::nalgebra::{SMatrix, SVector};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::f64::consts::PI;

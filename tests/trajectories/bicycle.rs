@@ -135,7 +135,9 @@ fn the_weave_and_capsize_speeds_are_the_benchmarks() {
             (theirs - published).abs() < 1e-11 * published,
             "{what}: the closed form gives {theirs}"
         );
-        println!("{what} speed {ours:.10} m/s (closed form {theirs:.10}, relative difference {error:.1e})");
+        println!(
+            "{what} speed {ours:.10} m/s (closed form {theirs:.10}, relative difference {error:.1e})"
+        );
     }
 }
 

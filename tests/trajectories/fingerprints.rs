@@ -14,6 +14,7 @@
 
 use std::fmt::Write as _;
 
+use lagrange::Method;
 use lagrange::constraints::Drift;
 use lagrange::models::{
     BouncingBall, CartPole, CartesianPendulum, Chain, DoublePendulum, FourBar, Kepler, Oscillator,
@@ -21,7 +22,6 @@ use lagrange::models::{
 };
 use lagrange::nalgebra::{SVector, Vector1, Vector2};
 use lagrange::prelude::*;
-use lagrange::Method;
 use lagrange::{IntegrationResult, StepMethod};
 
 /// FNV-1a over 64-bit words: small, deterministic, no dependency.

@@ -9,7 +9,7 @@
 //! `L_z = p_φ` and about the symmetry axis `L_3 = C ω3 = p_ψ` (Goldstein,
 //! Classical Mechanics, §5.7).
 
-use lagrange::models::{quaternion, EulerTop, HeavyTop};
+use lagrange::models::{EulerTop, HeavyTop, quaternion};
 use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3, Vector4};
 use lagrange::prelude::*;
 
@@ -220,7 +220,9 @@ fn the_variational_integrator_keeps_the_tops_momenta_and_its_energy_at_second_or
         .map(|&h| (h, variational_through_the_pole(h)))
         .collect();
     for (h, ([energy, lz, l3], first_half)) in &results {
-        println!("h = {h}: energy {energy:.3e} ({first_half:.3e} over the first 5 s), L_z {lz:.1e}, L_3 {l3:.1e}");
+        println!(
+            "h = {h}: energy {energy:.3e} ({first_half:.3e} over the first 5 s), L_z {lz:.1e}, L_3 {l3:.1e}"
+        );
         assert!(
             *lz < 1e-12 && *l3 < 1e-12,
             "h = {h}: L_z {lz:e}, L_3 {l3:e}"
@@ -231,7 +233,7 @@ fn the_variational_integrator_keeps_the_tops_momenta_and_its_energy_at_second_or
         );
     }
     for pair in results.windows(2) {
-        let ratio = pair[0].1 .0[0] / pair[1].1 .0[0];
+        let ratio = pair[0].1.0[0] / pair[1].1.0[0];
         assert!(
             (3.5..4.5).contains(&ratio),
             "energy error ratio {ratio} between h = {} and {}",

@@ -18,7 +18,7 @@
 //! intermediate axis, reverses (the body flips) every `2K(k)/λ`.
 
 use crate::support::elliptic::jacobi;
-use lagrange::models::{quaternion, FreeBody};
+use lagrange::models::{FreeBody, quaternion};
 use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3};
 use lagrange::prelude::*;
 
@@ -238,7 +238,7 @@ fn the_variational_integrator_keeps_the_angular_momentum_and_flips_at_second_ord
         assert!(unit < 1e-14, "h = {h}: |q| off by {unit:e}");
     }
     for pair in results.windows(2) {
-        let phase = pair[0].1 .3 / pair[1].1 .3;
+        let phase = pair[0].1.3 / pair[1].1.3;
         assert!(
             (3.5..4.5).contains(&phase),
             "flip time error ratio {phase} between h = {} and {}",

@@ -140,7 +140,7 @@ pub fn contacts_are_admissible(model: &mut Model) -> syn::Result<()> {
                          `slip: ...`, the velocity of the contact point along the surface (as in \
                          `{{ friction: mu, slip: dot(x) }}`)"
                     ),
-                ))
+                ));
             }
             (None, None) if !has_gap => {
                 let def = &model.contact_defs[model.contacts[k].entry];

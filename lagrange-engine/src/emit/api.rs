@@ -11,7 +11,7 @@
 //! `Lagrangian` impl and the stub follow. (A method new to the `Lagrangian`
 //! trait is also declared there, in `lagrange-runtime`.)
 
-pub use super::consts::{Const, ConstValue, Doc, CONSTS};
+pub use super::consts::{CONSTS, Const, ConstValue, Doc};
 use super::outline::Types;
 use crate::derive::{Equations, ExprMatrix};
 use crate::expr::ExprId;

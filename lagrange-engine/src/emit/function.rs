@@ -16,7 +16,7 @@
 
 use super::names::Namer;
 use super::outline::{nalgebra, trig};
-use crate::expr::cse::{expands_to_product, fused_term, schedule, Schedule};
+use crate::expr::cse::{Schedule, expands_to_product, fused_term, schedule};
 use crate::expr::{ExprId, Func, Node, Pool};
 use crate::model::Model;
 use proc_macro2::{Ident, Literal, TokenStream};

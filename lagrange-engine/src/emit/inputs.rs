@@ -3,7 +3,7 @@
 //! `Actuated<N, K>` impl. They depend on the fields alone, so the error
 //! stub writes the same ones.
 
-use super::outline::{nalgebra, Outline, Types};
+use super::outline::{Outline, Types, nalgebra};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 

@@ -16,9 +16,9 @@ pub mod outline;
 use crate::derive::Equations;
 use crate::expr::ExprId;
 use crate::model::Model;
-use api::{Doc, InTrait, Method, CONSTS, METHODS};
+use api::{CONSTS, Doc, InTrait, METHODS, Method};
 use names::Namer;
-use outline::{nalgebra, Outline, Types};
+use outline::{Outline, Types, nalgebra};
 use proc_macro2::{Ident, TokenStream};
 use quote::quote;
 

@@ -106,11 +106,7 @@ impl Pool {
                 let r = self.sub(one, a2);
                 let mhalf = self.num(-0.5);
                 let inv = self.pow(r, mhalf);
-                if f == Func::Asin {
-                    inv
-                } else {
-                    self.neg(inv)
-                }
+                if f == Func::Asin { inv } else { self.neg(inv) }
             }
             Func::Atan => {
                 let a2 = self.pow(a, two);

@@ -24,7 +24,7 @@ pub mod pool;
 pub mod simplify;
 pub mod substitute;
 
-pub use pool::{Exceeded, Pool, DEFAULT_BUDGET, MAX_DEPTH};
+pub use pool::{DEFAULT_BUDGET, Exceeded, MAX_DEPTH, Pool};
 
 /// A node of the [`Pool`]. Ids are handed out in creation order, which is
 /// deterministic, so ordering by id gives deterministic output.

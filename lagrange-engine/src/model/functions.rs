@@ -1,7 +1,7 @@
 //! The functions a model may call, and their lowering.
 
 use super::lowering::Lowering;
-use super::vectors::{describe, Value, VECTOR_FUNCTIONS};
+use super::vectors::{VECTOR_FUNCTIONS, Value, describe};
 use crate::ast::{Expr, SpanRange};
 use crate::expr::{ExprId, Func};
 use syn::Ident;
@@ -106,7 +106,7 @@ impl Lowering {
                              or to `norm(r)` or `inner(a, b)`",
                         describe(v)
                     ))
-                    }))
+                    }));
                 }
             }
         }

@@ -2,8 +2,8 @@
 //! subexpression is lowered again (the pool returns the nodes it already
 //! holds) and the search descends into the smallest piece that is at fault.
 
-use super::lowering::Lowering;
 use super::Model;
+use super::lowering::Lowering;
 use crate::ast::{Expr, SpanRange};
 use crate::expr::{ExprId, Pool};
 

@@ -3,10 +3,10 @@
 
 use super::functions::FUNCTIONS;
 use super::scope::{Binding, Role};
-use super::vectors::{describe, Value};
-use super::{limit_error, SymKind, Symbols};
+use super::vectors::{Value, describe};
+use super::{SymKind, Symbols, limit_error};
 use crate::ast::{BinOp, Expr};
-use crate::expr::{Exceeded, ExprId, Pool, MAX_DEPTH};
+use crate::expr::{Exceeded, ExprId, MAX_DEPTH, Pool};
 use std::collections::{HashMap, HashSet};
 use syn::Ident;
 
@@ -120,7 +120,7 @@ impl Lowering {
                         Value::Vector(components)
                     }
                     Some(Binding::Array { .. }) => {
-                        return Err(self.array_written_bare(name).expect("an array"))
+                        return Err(self.array_written_bare(name).expect("an array"));
                     }
                     None => return Err(self.unknown_name(name)),
                 }
@@ -202,7 +202,7 @@ impl Lowering {
                                 "a power of {}: |r|² is `inner(r, r)`, |r| is `norm(r)`",
                                 describe(&v)
                             ))
-                        }))
+                        }));
                     }
                 };
                 let b = self.lower(exponent)?;
@@ -235,7 +235,7 @@ impl Lowering {
                                  e.g. `{s}[{lo}]`, or a number made of it, `inner({s}, {s})` or `norm({s})`",
                                 elements(&s, *lo, *hi)
                             ),
-                        ))
+                        ));
                     }
                 };
                 let message = if hi > lo {
@@ -276,13 +276,13 @@ impl Lowering {
                 return Err(syn::Error::new(
                     base.span(),
                     format!("`{s}` is a `const`, not indexed: write `{s}`"),
-                ))
+                ));
             }
             Some(_) => {
                 return Err(syn::Error::new(
                     base.span(),
                     format!("`{s}` is not indexed: write `{s}` (declare `{s}[N]` to index it)"),
-                ))
+                ));
             }
             None => return Err(self.unknown_name(base)),
         };
@@ -334,21 +334,20 @@ impl Lowering {
                  (a `let` of the coordinates), e.g. `x = F` or `x[N-1] = F`"
             ))
         };
-        let position = match binding {
-            Binding::Symbol(s) if s == self.symbols.time => return Err(not_a_position("time")),
-            Binding::Symbol(s) => match self.symbols.kind(s) {
-                SymKind::Coordinate(_) => self.pool.sym(s),
-                SymKind::Input(_) => return Err(not_a_position("an input")),
-                _ => return Err(not_a_position("a parameter")),
-            },
-            Binding::Const(_) => return Err(not_a_position("a `const`")),
-            Binding::Array { .. } => {
-                return Err(target.range().error(format!(
+        let position =
+            match binding {
+                Binding::Symbol(s) if s == self.symbols.time => return Err(not_a_position("time")),
+                Binding::Symbol(s) => match self.symbols.kind(s) {
+                    SymKind::Coordinate(_) => self.pool.sym(s),
+                    SymKind::Input(_) => return Err(not_a_position("an input")),
+                    _ => return Err(not_a_position("a parameter")),
+                },
+                Binding::Const(_) => return Err(not_a_position("a `const`")),
+                Binding::Array { .. } => return Err(target.range().error(format!(
                     "`{label}` is indexed: apply the force to one element, e.g. `{label}[0] = F`"
-                )))
-            }
-            Binding::Let(id) => id,
-        };
+                ))),
+                Binding::Let(id) => id,
+            };
         let s = &self.symbols;
         if s.velocities
             .iter()

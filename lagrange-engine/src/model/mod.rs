@@ -22,12 +22,12 @@ mod vectors;
 
 pub use functions::FUNCTIONS;
 pub use index::MAX_RANGE;
-pub use passes::{declared_shape, Shape};
+pub use passes::{Shape, declared_shape};
 pub use symbols::{SymKind, Symbols};
 
 use crate::ast::MAX_BUDGET;
 use crate::ast::{Expr, ModelDef, SpanRange};
-use crate::expr::{Exceeded, ExprId, Pool, MAX_DEPTH};
+use crate::expr::{Exceeded, ExprId, MAX_DEPTH, Pool};
 use lowering::Lowering;
 use scope::{Binding, Declared};
 use std::collections::HashMap;

@@ -5,8 +5,8 @@
 
 use super::lowering::Lowering;
 use super::scope::{Binding, Declared, Role};
-use super::vectors::{describe, Value};
-use super::{limit_error, Constraint, Contact, Field, Force, Scalar, Section, Symbols};
+use super::vectors::{Value, describe};
+use super::{Constraint, Contact, Field, Force, Scalar, Section, Symbols, limit_error};
 use crate::ast::{BinOp, ConstraintDef, ContactDef, Expr, Item, ModelDef};
 use crate::expr::{ExprId, Pool};
 use std::collections::{HashMap, HashSet};
@@ -540,13 +540,11 @@ fn force(
         Value::Vector(c) if c.len() as i64 == hi - lo => c,
         // A number along an indexed name: the error of `one_force`.
         Value::Scalar(_) => return Ok(vec![one_force(targets, cx, target, value)?]),
-        v => {
-            return Err(value.range().error(format!(
+        v => return Err(value.range().error(format!(
             "a force along `{base}`, which has {} components, is a vector of as many; this is {}",
             hi - lo,
             describe(&v)
-        )))
-        }
+        ))),
     };
     let mut out = Vec::with_capacity(components.len());
     for (k, id) in (lo..hi).zip(components) {

@@ -61,7 +61,7 @@ impl Lowering {
                             return Err(a.range().error(format!(
                                 "a component of `vector` is {}: each component is a number",
                                 describe(&v)
-                            )))
+                            )));
                         }
                     }
                 }

@@ -19,7 +19,7 @@
 use super::plain_name;
 use crate::ast::{BinOp, Expr, IndexRange, SpanRange};
 use syn::parse::ParseStream;
-use syn::{bracketed, parenthesized, Ident, LitFloat, LitInt, Token};
+use syn::{Ident, LitFloat, LitInt, Token, bracketed, parenthesized};
 
 /// The deepest an expression may nest. A textbook model nests a few levels.
 /// At this depth parsing and lowering take at most about 1.5 MiB of stack in

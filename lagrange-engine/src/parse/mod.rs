@@ -17,18 +17,17 @@ pub mod expression;
 pub use expression::parse_expr;
 
 use crate::ast::{
-    ConstraintDef, ContactDef, Decl, Expr, IndexRange, Item, ModelDef, Options, SpanRange,
-    MAX_BUDGET,
+    ConstraintDef, ContactDef, Decl, Expr, IndexRange, Item, MAX_BUDGET, ModelDef, Options,
+    SpanRange,
 };
 use crate::expr::DEFAULT_BUDGET;
 use expression::{drain_on_error, parse_bracket, parse_index_range};
 use proc_macro2::{TokenStream, TokenTree};
 use syn::parse::{ParseStream, Parser};
-use syn::{braced, bracketed, Attribute, Ident, LitInt, Token, Visibility};
+use syn::{Attribute, Ident, LitInt, Token, Visibility, braced, bracketed};
 
 /// The sections a model may contain, for error messages.
-pub const SECTIONS: &str =
-    "`const`, `coordinates:`, `parameters:`, `inputs:`, `constants:`, `let`, `kinetic:`, \
+pub const SECTIONS: &str = "`const`, `coordinates:`, `parameters:`, `inputs:`, `constants:`, `let`, `kinetic:`, \
      `potential:`, `dissipation:`, `forces:`, `constraints:` or `contacts:`";
 
 /// A parsed model and the first error met inside its body, if any.

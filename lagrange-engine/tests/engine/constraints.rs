@@ -2,8 +2,8 @@
 //! `G = ∂φ/∂q`, `φ̇`, `γ`) against closed forms, the items it adds, the
 //! errors it gives, and that it changes nothing for a model without it.
 
-use lagrange_engine::derive::ConstraintEquations;
 use lagrange_engine::Derived;
+use lagrange_engine::derive::ConstraintEquations;
 
 fn derive(src: &str) -> Derived {
     match lagrange_engine::derive(src.parse().unwrap()) {
@@ -195,20 +195,35 @@ fn constraint_mistakes_are_errors_in_physics_terms() {
         )
     };
     for (constraints, expected) in [
-        ("a: dot(x)*dot(y) - y", "constraint `a` is not linear in the velocities: ∂φ/∂dot(x) depends on `dot(y)`"),
+        (
+            "a: dot(x)*dot(y) - y",
+            "constraint `a` is not linear in the velocities: ∂φ/∂dot(x) depends on `dot(y)`",
+        ),
         ("a: l - 1", "names no coordinate: it constrains nothing"),
-        ("a: x, b: y, c: z", "3 constraints on 3 coordinates leave no motion (`c` removes"),
+        (
+            "a: x, b: y, c: z",
+            "3 constraints on 3 coordinates leave no motion (`c` removes",
+        ),
         ("a: x - y, b: 2*x = 2*y", "constraint `b` is redundant"),
         ("a: x, a: y", "`a` is declared twice as a constraint"),
-        ("x: y", "`x` is declared twice, as a coordinate and as a constraint"),
+        (
+            "x: y",
+            "`x` is declared twice, as a coordinate and as a constraint",
+        ),
         ("l: y", "as a parameter and as a constraint"),
         ("r: y", "as a `let` and as a constraint"),
         ("c0: y", "as a constant and as a constraint"),
         ("a: x/c0", "infinite or undefined constant"),
         ("a: r = ", "expected"),
-        ("x^2 + y^2 = l^2", "expected `:` after the constraint's name"),
+        (
+            "x^2 + y^2 = l^2",
+            "expected `:` after the constraint's name",
+        ),
         ("a[i in 0..4]: x - i", "4 constraints on 3 coordinates"),
-        ("a: x - y, b: y - x + l", "at every state its gradient ∂φ/∂q is a combination of the gradients of the constraints before it (`a`)"),
+        (
+            "a: x - y, b: y - x + l",
+            "at every state its gradient ∂φ/∂q is a combination of the gradients of the constraints before it (`a`)",
+        ),
         ("t: x", "`t` is time and is reserved"),
     ] {
         let e = error(&model(constraints));

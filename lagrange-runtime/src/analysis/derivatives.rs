@@ -5,8 +5,8 @@ use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use super::{AnalysisError, Derivatives};
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::model::constraints::is_constrained;
 use crate::model::Lagrangian;
+use crate::model::constraints::is_constrained;
 
 /// The central-difference step for a variable of size `x`:
 /// `ε^(1/3) max(1, |x|)`, which balances the truncation error `h² |F'''| / 6`

@@ -3,10 +3,10 @@
 
 use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
+use super::AnalysisError;
 use super::derivatives::{forcing_at_rest, relative_noise};
 use super::neutral::Neutral;
 use super::rest::{ManifoldSearch, ManifoldTest};
-use super::AnalysisError;
 use crate::model::Lagrangian;
 
 /// An equilibrium, and the directions along which a family of them
@@ -164,7 +164,7 @@ impl<S: RealField + Copy> EquilibriumSearch<S> {
                 Verdict::Diverging => return Err(not_converged),
                 Verdict::Rounding => return family(model, t, next),
                 Verdict::Stalled if within(&f, &jacobian, &q, self.tolerance) => {
-                    return family(model, t, next)
+                    return family(model, t, next);
                 }
                 _ => {}
             }

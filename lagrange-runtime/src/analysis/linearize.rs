@@ -7,9 +7,9 @@ use super::derivatives::{refuse_constrained, shifted};
 use super::{AnalysisError, Derivatives};
 use crate::dynamics::{acceleration, mass_error};
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::solve::{factor_mass_matrix, MassFactor};
-use crate::model::inputs::Actuated;
+use crate::linalg::solve::{MassFactor, factor_mass_matrix};
 use crate::model::Lagrangian;
+use crate::model::inputs::Actuated;
 
 /// The first-order response of the accelerations at a state `(t, q, q̇)`:
 /// `δq̈ = ∂q̈/∂q δq + ∂q̈/∂q̇ δq̇`, the lower blocks of the state matrix

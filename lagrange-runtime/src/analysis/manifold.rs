@@ -6,11 +6,11 @@ use crate::model::settings::ConstraintSettings;
 use nalgebra::{ComplexField, DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::derivatives::{central_step, sqrt_epsilon};
-use super::{linearize, AnalysisError, Derivatives};
+use super::{AnalysisError, Derivatives, linearize};
 use crate::dynamics::saddle::constrained_accelerations;
 use crate::error::{ConstraintLevel, IntegrationError, NonFiniteValue};
-use crate::model::constraints::{Holonomic, Visitor};
 use crate::model::Lagrangian;
+use crate::model::constraints::{Holonomic, Visitor};
 
 /// The tangent space of the constraints at `q`: `T` (`N × D`, `D = N − C`,
 /// orthonormal columns spanning the null space of `G`), and the thin

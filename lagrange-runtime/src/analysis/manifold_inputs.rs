@@ -6,7 +6,7 @@ use crate::dynamics::saddle::saddle_error;
 use crate::model::settings::ConstraintSettings;
 use nalgebra::{ComplexField, DMatrix, RealField, SVector};
 
-use super::{linearize_on_manifold, AnalysisError, ManifoldLinearization};
+use super::{AnalysisError, ManifoldLinearization, linearize_on_manifold};
 use crate::dynamics::mass_error;
 use crate::linalg::schur::Schur;
 use crate::linalg::solve::factor_mass_matrix;

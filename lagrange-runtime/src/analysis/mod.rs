@@ -136,13 +136,13 @@ mod neutral;
 mod rest;
 mod steady;
 
-pub use equilibrium::{equilibrium, is_equilibrium, Equilibrium, EquilibriumSearch};
+pub use equilibrium::{Equilibrium, EquilibriumSearch, equilibrium, is_equilibrium};
 pub use error::AnalysisError;
-pub use linearize::{linearize, linearize_with_inputs, InputLinearization, Linearization};
-pub use manifold::{linearize_on_manifold, ManifoldLinearization};
-pub use manifold_inputs::{linearize_on_manifold_with_inputs, ManifoldInputLinearization};
-pub use modes::{modes, Mode, ModeKind, Modes};
-pub use steady::{linearize_steady_motion, SteadyLinearization};
+pub use linearize::{InputLinearization, Linearization, linearize, linearize_with_inputs};
+pub use manifold::{ManifoldLinearization, linearize_on_manifold};
+pub use manifold_inputs::{ManifoldInputLinearization, linearize_on_manifold_with_inputs};
+pub use modes::{Mode, ModeKind, Modes, modes};
+pub use steady::{SteadyLinearization, linearize_steady_motion};
 
 #[cfg(doc)]
 use crate::model::Lagrangian;

@@ -9,8 +9,8 @@ use nalgebra::{ComplexField, DMatrix, DVector, RealField, SVector};
 
 use super::derivatives::{relative_noise, sqrt_epsilon};
 use super::equilibrium::{Equilibrium, EquilibriumSearch, Progress, Verdict};
-use super::manifold::{along_basis, on_constraints, saddle, Tangent};
-use super::modes::{solve_modes, Modes};
+use super::manifold::{Tangent, along_basis, on_constraints, saddle};
+use super::modes::{Modes, solve_modes};
 use super::neutral::Neutral;
 use super::{AnalysisError, Derivatives};
 use crate::dynamics::mass_error;
@@ -155,7 +155,7 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for ManifoldSearch<'_, S
                 Verdict::Diverging => return Err(not_converged),
                 Verdict::Rounding => return found(next),
                 Verdict::Stalled if rest.within(&q, self.search.tolerance_of()) => {
-                    return found(next)
+                    return found(next);
                 }
                 _ => {}
             }

@@ -9,9 +9,9 @@ use nalgebra::{Complex, DMatrix, DVector, RealField, SVector};
 
 use super::{AnalysisError, Derivatives};
 use crate::dynamics::acceleration;
+use crate::model::Lagrangian;
 use crate::model::constraints::{Holonomic, Visitor};
 use crate::model::settings::ConstraintSettings;
-use crate::model::Lagrangian;
 
 /// The small motions about a steady motion in the states kept:
 /// `δẏ = A δy`, `y` the kept coordinates and velocities, in the order

@@ -5,7 +5,7 @@
 use nalgebra::{ComplexField, DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::lcp::lemke;
-use super::phase::{min_norm_solve, normal_direction, Terms};
+use super::phase::{Terms, min_norm_solve, normal_direction};
 use crate::trajectory::State;
 
 use super::{Cause, ContactError, ContactLaw, ContactSettings, Contacts, Mode, Switch};

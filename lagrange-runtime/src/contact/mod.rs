@@ -155,7 +155,7 @@ mod run;
 
 pub use erased::Erased;
 pub use phase::Phase;
-pub use run::{integrate, ContactFailure, ContactResult, ContactTrajectory, Scene};
+pub use run::{ContactFailure, ContactResult, ContactTrajectory, Scene, integrate};
 
 /// A model with `K` unilateral contacts on its `N` coordinates: gaps
 /// `g(t, q) ≥ 0` and, where friction acts, slip velocities `v_t`.
@@ -506,14 +506,18 @@ impl<S: RealField + Copy, const N: usize> fmt::Display for ContactError<S, N> {
                 at_impact,
             } => {
                 write!(
-                f,
-                "no consistent contact mode {} at t = {t:?} (q = {}, q̇ = {}): the complementarity \
+                    f,
+                    "no consistent contact mode {} at t = {t:?} (q = {}, q̇ = {}): the complementarity \
                  problem of the touching contacts has no solution (with friction, Painlevé's \
                  paradox)",
-                if *at_impact { "for the impact" } else { "between impacts" },
-                Row(q),
-                Row(qdot)
-            )
+                    if *at_impact {
+                        "for the impact"
+                    } else {
+                        "between impacts"
+                    },
+                    Row(q),
+                    Row(qdot)
+                )
             }
             Self::DependentContacts { t, q, qdot } => write!(
                 f,

@@ -7,14 +7,14 @@ use nalgebra::{ComplexField, RealField, SVector};
 
 use super::decide::{impact, modes, project, record, touching};
 use super::erased::Erased;
-use super::phase::{accelerations, Phase, Shared, Terms};
+use super::phase::{Phase, Shared, Terms, accelerations};
 use super::{Cause, ContactError, ContactForces, ContactSettings, Contacts, Mode, Switch};
 use crate::error::IntegrationError;
 use crate::events::{Event, Events};
 use crate::integrators::{Integrator, StepMethod};
+use crate::model::Lagrangian;
 use crate::model::constraints::{Holonomic, Visitor};
 use crate::model::settings::ConstraintSettings;
-use crate::model::Lagrangian;
 use crate::stepper::Stepper;
 use crate::trajectory::{State, Trajectory};
 
@@ -478,11 +478,7 @@ fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
         {
             Mode::Sliding { forward } => {
                 let v = p.model.slip_velocities(t, q, qdot)[i];
-                if forward {
-                    v
-                } else {
-                    -v
-                }
+                if forward { v } else { -v }
             }
             _ => one(),
         };

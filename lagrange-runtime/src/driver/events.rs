@@ -8,10 +8,10 @@
 
 use nalgebra::RealField;
 
-use super::record::{finite_state, Evaluate, Project, Recorder};
+use super::record::{Evaluate, Project, Recorder, finite_state};
 use super::run::Segment;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::events::{evaluate_into, first_crossing, Events, Hermite, Watch};
+use crate::events::{Events, Hermite, Watch, evaluate_into, first_crossing};
 use crate::trajectory::EventRecord;
 use crate::trajectory::State;
 

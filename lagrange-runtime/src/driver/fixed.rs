@@ -6,7 +6,7 @@
 use nalgebra::{RealField, SVector};
 
 use super::growth::GrowthGuard;
-use super::record::{finite_state, Evaluate, Recorder};
+use super::record::{Evaluate, Recorder, finite_state};
 use super::run::{Advanced, Flow, Fresh, Run, Walk};
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::model::Lagrangian;

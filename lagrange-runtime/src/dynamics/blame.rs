@@ -4,8 +4,8 @@
 use nalgebra::{RealField, SVector};
 
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::model::inputs::{Inputs, Visitor};
 use crate::model::Lagrangian;
+use crate::model::inputs::{Inputs, Visitor};
 
 /// The input that explains a non-finite evaluation at `(t, q, q̇)`:
 /// [`NonFiniteValue::Inputs`](NonFiniteValue::Inputs) when the

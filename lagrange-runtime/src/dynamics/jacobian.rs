@@ -12,9 +12,9 @@ use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use super::acceleration;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::solve::{solve_mass_matrix, SolveError};
-use crate::model::constraints::is_constrained;
+use crate::linalg::solve::{SolveError, solve_mass_matrix};
 use crate::model::Lagrangian;
+use crate::model::constraints::is_constrained;
 use crate::trajectory::Stats;
 
 /// `(∂q̈/∂q, ∂q̈/∂q̇)` at `(t, q, q̇)`, where `qddot` is `q̈` there.

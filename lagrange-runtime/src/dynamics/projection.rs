@@ -8,8 +8,8 @@ use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use crate::dynamics::mass_error;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::schur::{regularized, Schur};
-use crate::linalg::solve::{factor_mass_matrix, MassFactor};
+use crate::linalg::schur::{Schur, regularized};
+use crate::linalg::solve::{MassFactor, factor_mass_matrix};
 use crate::model::constraints::{Holonomic, Visitor};
 use crate::trajectory::Stats;
 

@@ -6,8 +6,8 @@ use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use super::mass_error;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::schur::{regularized, solve_saddle, SaddleError};
-use crate::linalg::solve::{factor_mass_matrix, SolveError};
+use crate::linalg::schur::{SaddleError, regularized, solve_saddle};
+use crate::linalg::solve::{SolveError, factor_mass_matrix};
 use crate::model::constraints::{Holonomic, Visitor};
 use crate::model::settings::ConstraintSettings;
 

@@ -294,9 +294,9 @@ impl<'a, S: RealField + Copy, const N: usize> Event<'a, S, N> {
     pub fn reset(
         mut self,
         reset: impl Fn(S, &SVector<S, N>, &SVector<S, N>) -> (SVector<S, N>, SVector<S, N>)
-            + Send
-            + Sync
-            + 'a,
+        + Send
+        + Sync
+        + 'a,
     ) -> Self {
         self.action = Action::Reset(Box::new(reset));
         self

@@ -1,9 +1,9 @@
 //! What a run keeps of its events between steps: the events, their values
 //! at the current time and the Zeno guard.
 
+use super::Events;
 use super::guard::ZenoGuard;
 use super::locate::evaluate_into;
-use super::Events;
 use crate::error::IntegrationError;
 use crate::trajectory::State;
 use nalgebra::{RealField, SVector};

@@ -7,8 +7,8 @@ use std::io;
 use nalgebra::{RealField, SVector};
 
 use crate::error::IntegrationError;
-use crate::model::constraints::{Holonomic, Visitor};
 use crate::model::Lagrangian;
+use crate::model::constraints::{Holonomic, Visitor};
 use crate::trajectory::Trajectory;
 
 /// Why a trajectory could not be written.

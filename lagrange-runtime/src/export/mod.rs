@@ -10,4 +10,4 @@
 mod csv;
 
 #[cfg(feature = "csv")]
-pub use self::csv::{write_csv, CsvError};
+pub use self::csv::{CsvError, write_csv};

@@ -24,7 +24,7 @@
 use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
 use crate::driver::fixed::{FixedStep, FixedWalk};
-use crate::driver::{check_step_size, newton_noise_floor, Recorder};
+use crate::driver::{Recorder, check_step_size, newton_noise_floor};
 use crate::dynamics::acceleration_jacobians;
 use crate::error::{IntegrationError, InvalidInput};
 use crate::linalg::lu::Lu;

@@ -50,7 +50,7 @@ mod stages;
 use nalgebra::{RealField, SVector};
 
 use crate::driver::invalid;
-use crate::driver::run::{integrate as drive, Advanced, Run, Walk};
+use crate::driver::run::{Advanced, Run, Walk, integrate as drive};
 use crate::error::{IntegrationError, IntegrationResult, InvalidInput};
 use crate::events::Events;
 use crate::model::Lagrangian;

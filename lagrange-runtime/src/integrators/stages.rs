@@ -11,8 +11,8 @@
 
 use nalgebra::{RealField, SVector};
 
-use crate::driver::pair::Outcome;
 use crate::driver::Recorder;
+use crate::driver::pair::Outcome;
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::model::Lagrangian;
 

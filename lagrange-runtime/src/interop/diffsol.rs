@@ -79,11 +79,11 @@ pub fn problem<'a, M, const N: usize>(
 ) -> Result<
     OdeSolverProblem<
         impl OdeEquationsImplicit<
-                M = NalgebraMat<f64>,
-                V = NalgebraVec<f64>,
-                T = f64,
-                C = NalgebraContext,
-            > + 'a,
+            M = NalgebraMat<f64>,
+            V = NalgebraVec<f64>,
+            T = f64,
+            C = NalgebraContext,
+        > + 'a,
     >,
     DiffsolError,
 >

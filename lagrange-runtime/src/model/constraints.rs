@@ -4,11 +4,11 @@
 
 use nalgebra::{RealField, SMatrix, SVector};
 
+use super::Lagrangian;
 use super::layer::Layered;
 use super::settings::{
     Constrained, ConstraintHandling, ConstraintSettings, Drift, InitialConditions,
 };
-use super::Lagrangian;
 
 /// A model with `C` holonomic constraints `φ(t, q) = 0` on its `N`
 /// coordinates (`C < N`).

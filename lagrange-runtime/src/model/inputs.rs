@@ -5,10 +5,10 @@
 
 use nalgebra::{RealField, SMatrix, SVector};
 
+use super::Lagrangian;
 use super::controller::{Controlled, Controller};
 use super::layer::{FiniteDifferences, Layer, Layered};
 use super::settings::ConstraintHandling;
-use super::Lagrangian;
 
 /// What the runtime reads of a model's `K` control inputs: their names,
 /// the values the model evaluates with at a state, and the values it

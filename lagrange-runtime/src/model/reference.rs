@@ -4,8 +4,8 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::layer::{FiniteDifferences, Layered};
 use super::Lagrangian;
+use super::layer::{FiniteDifferences, Layered};
 use crate::model::constraints::{Holonomic, Visitor as ConstraintVisitor};
 use crate::model::inputs::Visitor as InputVisitor;
 use crate::model::lets::Visitor as LetVisitor;

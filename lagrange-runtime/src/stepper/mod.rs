@@ -112,8 +112,8 @@
 
 use nalgebra::{ComplexField, SVector};
 
-use crate::driver::run::{Fresh, Run, Walk};
 use crate::driver::Recorder;
+use crate::driver::run::{Fresh, Run, Walk};
 use crate::error::{IntegrationError, InvalidInput};
 use crate::events::Events;
 use crate::integrators::StepMethod;

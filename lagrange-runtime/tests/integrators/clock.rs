@@ -7,9 +7,9 @@
 //! drift that near `t = 70` took 10⁵ steps to show: the harmonic
 //! oscillator's phase, against `cos(t − t0)`.
 
+use lagrange_runtime::StepMethod;
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;
-use lagrange_runtime::StepMethod;
 
 use crate::models::CoupledOscillator;
 

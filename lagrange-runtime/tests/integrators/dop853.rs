@@ -2,7 +2,7 @@
 //! accuracy against the tolerance, cost against DOPRI5, and the dense
 //! output between steps.
 
-use crate::models::{max_difference, max_error, CoupledOscillator};
+use crate::models::{CoupledOscillator, max_difference, max_error};
 use lagrange::models::DoublePendulum;
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;

@@ -2,11 +2,11 @@
 //! on a nonlinear model, and on an oscillator symplectic Euler keeps the
 //! energy where explicit Euler pumps it up.
 
-use crate::models::{max_difference, max_error, observed_order, CoupledOscillator};
+use crate::models::{CoupledOscillator, max_difference, max_error, observed_order};
 use lagrange::models::DoublePendulum;
+use lagrange_runtime::Trajectory;
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;
-use lagrange_runtime::Trajectory;
 
 const OMEGA: f64 = 2.0;
 

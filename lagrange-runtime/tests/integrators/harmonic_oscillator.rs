@@ -1,7 +1,7 @@
 //! Accuracy on a problem with an exact solution: a coupled harmonic
 //! oscillator (`M` full, `q̈ = -ω² q`), in `f64` and `f32`.
 
-use crate::models::{max_error, CoupledOscillator};
+use crate::models::{CoupledOscillator, max_error};
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;
 

@@ -3,13 +3,13 @@
 //! against finite-difference Jacobians, the work they count, and sample
 //! times hit exactly.
 
-use crate::models::{max_error, stages, CartPole, CoupledOscillator};
+use crate::models::{CartPole, CoupledOscillator, max_error, stages};
 use lagrange::Method;
+use lagrange_runtime::Stats;
 use lagrange_runtime::dynamics::acceleration;
 use lagrange_runtime::dynamics::acceleration_jacobians;
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;
-use lagrange_runtime::Stats;
 
 /// The pendulum released from 1.2 rad while the cart is pushed: a large,
 /// nonlinear swing, with both coordinates moving.

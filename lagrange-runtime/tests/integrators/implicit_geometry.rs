@@ -3,12 +3,12 @@
 //! and quadratic invariants to round-off. RK4, which keeps none of them,
 //! runs alongside to show that each test can fail.
 
-use crate::models::{stages, CartPole};
-use lagrange::models::Kepler;
+use crate::models::{CartPole, stages};
 use lagrange::Method;
+use lagrange::models::Kepler;
+use lagrange_runtime::Sample;
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;
-use lagrange_runtime::Sample;
 
 /// The pendulum released from 1.2 rad while the cart is pushed: a large,
 /// nonlinear swing with period ≈ 1.5.

@@ -3,9 +3,9 @@
 
 use crate::models::{BlowUp, StiffChain};
 use lagrange::models::Oscillator;
+use lagrange_runtime::IntegrationResult;
 use lagrange_runtime::nalgebra::{Vector1, Vector2};
 use lagrange_runtime::prelude::*;
-use lagrange_runtime::IntegrationResult;
 
 /// RK4's stability interval on the imaginary axis is |hω| ≤ 2.83; the stiff
 /// chain's fast mode has ω = √(2·10⁶) ≈ 1414, so h = 0.01 (hω ≈ 14) is far
@@ -47,9 +47,11 @@ fn rk4_beyond_its_stability_limit_reports_instability_not_infinity() {
         other => panic!("expected Unstable, got {other}"),
     }
     // The stable step runs to the end.
-    assert!(Rk4::new(0.001)
-        .integrate(&chain, 0.0, q0, v0, &times)
-        .is_ok());
+    assert!(
+        Rk4::new(0.001)
+            .integrate(&chain, 0.0, q0, v0, &times)
+            .is_ok()
+    );
 }
 
 /// Explicit Euler is unstable for any undamped oscillation, but slowly when
@@ -59,9 +61,11 @@ fn rk4_beyond_its_stability_limit_reports_instability_not_infinity() {
 fn slow_growth_of_explicit_euler_is_no_false_alarm() {
     let chain = StiffChain::new();
     let (q0, v0) = (Vector2::new(0.1, 0.1), Vector2::zeros());
-    assert!(ExplicitEuler::new(1e-5)
-        .integrate(&chain, 0.0, q0, v0, &[0.05])
-        .is_ok());
+    assert!(
+        ExplicitEuler::new(1e-5)
+            .integrate(&chain, 0.0, q0, v0, &[0.05])
+            .is_ok()
+    );
 }
 
 /// The undamped chain and its fast angular frequency, `√` of the largest
@@ -129,9 +133,11 @@ fn explicit_methods_just_beyond_their_limit_stop_before_garbage() {
 fn rough_but_bounded_and_smooth_but_growing_are_no_false_alarms() {
     let (chain, omega) = undamped_chain();
     let (q0, v0) = (Vector2::new(0.1, 0.1001), Vector2::zeros());
-    assert!(SymplecticEuler::new(1.9 / omega)
-        .integrate(&chain, 0.0, q0, v0, &[10.0])
-        .is_ok());
+    assert!(
+        SymplecticEuler::new(1.9 / omega)
+            .integrate(&chain, 0.0, q0, v0, &[10.0])
+            .is_ok()
+    );
 
     let blow_up = Rk4::new(1e-6)
         .integrate(

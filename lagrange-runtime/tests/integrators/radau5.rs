@@ -4,8 +4,8 @@
 //! the explicit methods.
 
 use crate::models::{
-    assert_exhausted_budget_keeps_the_samples, max_error, BlowUp, CoupledOscillator,
-    ElasticPendulum, ForcingBreaksDown, InertiaVanishes, StiffChain,
+    BlowUp, CoupledOscillator, ElasticPendulum, ForcingBreaksDown, InertiaVanishes, StiffChain,
+    assert_exhausted_budget_keeps_the_samples, max_error,
 };
 use lagrange_runtime::dynamics::acceleration_jacobians;
 use lagrange_runtime::nalgebra::{SMatrix, SVector, Vector1, Vector2};

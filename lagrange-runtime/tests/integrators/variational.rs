@@ -4,9 +4,9 @@
 
 use crate::models::{CoupledOscillator, DrivenOscillator, ExponentialWell, Without};
 use lagrange::models::{Kepler, Oscillator, Pendulum, PolarKepler};
+use lagrange_runtime::InvalidInput;
 use lagrange_runtime::nalgebra::{Vector1, Vector2};
 use lagrange_runtime::prelude::*;
-use lagrange_runtime::InvalidInput;
 
 const EPS: f64 = f64::EPSILON;
 

@@ -2,8 +2,8 @@
 //! NaN, a solution that blows up in finite time, a well with no discrete
 //! solution for a long step.
 
-use lagrange_runtime::nalgebra::{Matrix2, SMatrix, Vector1, Vector2};
 use lagrange_runtime::Lagrangian;
+use lagrange_runtime::nalgebra::{Matrix2, SMatrix, Vector1, Vector2};
 
 /// Two unit springs; the second mass vanishes at `t_s` (its row of `M`
 /// becomes zero), so `M q̈ = f` stops determining `ÿ` there.

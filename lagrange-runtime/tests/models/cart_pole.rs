@@ -1,7 +1,7 @@
 //! A pendulum on a free cart, with Jacobians derived by hand.
 
-use lagrange_runtime::nalgebra::{Matrix2, Vector2};
 use lagrange_runtime::Lagrangian;
+use lagrange_runtime::nalgebra::{Matrix2, Vector2};
 
 /// A pendulum (bob `m_p`, rod `l`) hanging from a cart (`m_c`) that slides
 /// freely along `x`; `θ` from the downward vertical. The mass matrix

@@ -1,9 +1,9 @@
 //! Models with unilateral contacts, written by hand (`Contacts<N, K>`):
 //! a particle on a sphere, and a ladder between a floor and a wall.
 
+use lagrange_runtime::Lagrangian;
 use lagrange_runtime::contact::{ContactLaw, Contacts};
 use lagrange_runtime::nalgebra::{Matrix2, SMatrix, SVector, Vector2, Vector3};
-use lagrange_runtime::Lagrangian;
 
 use super::CartesianPendulum;
 

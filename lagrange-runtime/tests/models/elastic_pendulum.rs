@@ -1,7 +1,7 @@
 //! A stiff, nonlinear pendulum on a spring, with Jacobians derived by hand.
 
-use lagrange_runtime::nalgebra::{Matrix2, Vector2};
 use lagrange_runtime::Lagrangian;
+use lagrange_runtime::nalgebra::{Matrix2, Vector2};
 
 /// A pendulum bob on a stiff, damped spring, in polar coordinates `(r, θ)`:
 /// `T = ½ m (ṙ² + r² θ̇²)`, `V = −m g r cos θ + ½ k (r − l)²`, and a damper

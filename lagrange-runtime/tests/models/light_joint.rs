@@ -1,7 +1,7 @@
 //! A linearized double pendulum with an ill-conditioned mass matrix.
 
-use lagrange_runtime::nalgebra::{Matrix2, Vector2};
 use lagrange_runtime::Lagrangian;
+use lagrange_runtime::nalgebra::{Matrix2, Vector2};
 
 /// A double pendulum linearized about the bottom (unit rods, `g = 1`) whose
 /// inner bob has mass `mu` and outer bob mass 1:

@@ -1,8 +1,8 @@
 //! Linear oscillators with exact solutions: a coupled pair with a full mass
 //! matrix, and a spring driven through its Lagrangian.
 
-use lagrange_runtime::nalgebra::{Matrix2, RealField, SMatrix, Vector1, Vector2};
 use lagrange_runtime::Lagrangian;
+use lagrange_runtime::nalgebra::{Matrix2, RealField, SMatrix, Vector1, Vector2};
 
 /// Two coordinates with a full, symmetric mass matrix `M = [[2, 1], [1, 2]]`
 /// and stiffness `ω² M`, so `q̈ = -ω² q` exactly while the integrators still

@@ -1,8 +1,8 @@
 //! A stiff, damped two-mass chain with its exact modal solution.
 
+use lagrange_runtime::Lagrangian;
 use lagrange_runtime::nalgebra::Matrix2;
 use lagrange_runtime::nalgebra::Vector2;
-use lagrange_runtime::Lagrangian;
 
 /// Two unit masses on a line: a soft spring `k` from the wall to the first,
 /// a hard spring `K` from the first to the second, each with a light damper

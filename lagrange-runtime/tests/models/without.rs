@@ -1,7 +1,7 @@
 //! A model with some of its optional methods hidden.
 
-use lagrange_runtime::nalgebra::{SMatrix, SVector};
 use lagrange_runtime::Lagrangian;
+use lagrange_runtime::nalgebra::{SMatrix, SVector};
 
 /// `inner` with some of the optional variational methods hidden, as a
 /// hand-written model that skipped them would be.

@@ -2,8 +2,8 @@
 //! takes (with the engine built in release, as this example is), and how
 //! many operations the generated `M` and `f` perform.
 
-use lagrange_engine::expr::cse::{self, OpCount};
 use lagrange_engine::expr::DEFAULT_BUDGET;
+use lagrange_engine::expr::cse::{self, OpCount};
 use proc_macro2::TokenStream;
 use std::time::{Duration, Instant};
 

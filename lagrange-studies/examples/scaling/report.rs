@@ -333,8 +333,7 @@ pub fn targets_table(rows: &[Row]) -> String {
     s
 }
 
-pub const START: &str =
-    "<!-- scaling:start (written by `cargo run --release -p lagrange-studies --example scaling`) -->";
+pub const START: &str = "<!-- scaling:start (written by `cargo run --release -p lagrange-studies --example scaling`) -->";
 pub const END: &str = "<!-- scaling:end -->";
 
 /// Replaces the marked section of `text` (or appends one) with `section`.

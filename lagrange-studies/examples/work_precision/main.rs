@@ -25,10 +25,10 @@ mod plot;
 mod reference;
 mod systems;
 
-use lagrange::models::Kepler;
-use lagrange::prelude::*;
 use lagrange::IntegrationResult;
 use lagrange::Method;
+use lagrange::models::Kepler;
+use lagrange::prelude::*;
 use std::time::Instant;
 use systems::Problem;
 

@@ -50,9 +50,9 @@ pub fn kepler() -> Problem<Kepler, 2> {
     let model = Kepler::new(1.0);
     let (q0, qdot0) = model.pericentre(0.9);
     let energy = -0.5; // −μ / 2a with a = 1
-                       // 20 samples per orbit: the energy error of a symplectic method
-                       // oscillates along the orbit, and one sample per orbit would see only
-                       // one phase.
+    // 20 samples per orbit: the energy error of a symplectic method
+    // oscillates along the orbit, and one sample per orbit would see only
+    // one phase.
     let times: Vec<f64> = (1..=2000).map(|k| period * k as f64 / 20.0).collect();
     Problem {
         name: "kepler_e0.9",

@@ -1,7 +1,7 @@
 //! What each kind of method must show over a long run.
 
-use super::flight::{growth_exponent, Flight};
 use super::EPS;
+use super::flight::{Flight, growth_exponent};
 use lagrange::Method;
 
 /// A symplectic or symmetric method on a reversible orbit: by backward

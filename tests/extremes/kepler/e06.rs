@@ -3,12 +3,12 @@
 use std::sync::OnceLock;
 
 use super::bounds::{assert_bounded, assert_drifts_linearly, assert_momentum_kept};
-use super::flight::{fly, sci, Flight};
+use super::flight::{Flight, fly, sci};
 use super::{
-    cartesian_angular_momentum, cartesian_start, polar_angular_momentum, polar_start, EPS,
+    EPS, cartesian_angular_momentum, cartesian_start, polar_angular_momentum, polar_start,
 };
-use lagrange::models::{Kepler, PolarKepler};
 use lagrange::Method;
+use lagrange::models::{Kepler, PolarKepler};
 
 /// The e = 0.6 orbit in Cartesian coordinates at h = T/100 (pericentre
 /// passage ≈ 0.2 time units, three steps): coarse, but every method here is

@@ -3,8 +3,8 @@
 use super::bounds::{assert_bounded, assert_drifts_linearly, assert_momentum_kept};
 use super::flight::fly;
 use super::{cartesian_angular_momentum, cartesian_start, polar_angular_momentum, polar_start};
-use lagrange::models::{Kepler, PolarKepler};
 use lagrange::Method;
+use lagrange::models::{Kepler, PolarKepler};
 
 /// The e = 0.9 orbit at h = T/1000 (pericentre passage ≈ 0.02 time units,
 /// three steps). Every symplectic or symmetric method keeps a bounded energy

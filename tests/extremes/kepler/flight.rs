@@ -4,8 +4,8 @@ use std::time::Instant;
 
 use super::{EPS, PERIOD, V2};
 use crate::support::fit::log_slope;
-use lagrange::prelude::*;
 use lagrange::Method;
+use lagrange::prelude::*;
 
 /// One long run: the worst relative errors of each completed orbit.
 pub(super) struct Flight {

@@ -1,7 +1,7 @@
 //! The two limits the extremes approach: the light outer bob as a
 //! pendulum on a moving support, the heavy one as a single pendulum.
 
-use super::{chain, heavy_start, light_start, max_distance, reference, sample_times, END, G};
+use super::{END, G, chain, heavy_start, light_start, max_distance, reference, sample_times};
 use lagrange::models::Pendulum;
 use lagrange::nalgebra::{Vector1, Vector2};
 use lagrange::prelude::*;

@@ -74,9 +74,10 @@ impl Extreme {
         let run = self
             .run(method)
             .unwrap_or_else(|failure| panic!("{}: {failure}", self.name));
-        assert!(run
-            .iter()
-            .all(|s| s.q.iter().chain(s.qdot.iter()).all(|x| x.is_finite())));
+        assert!(
+            run.iter()
+                .all(|s| s.q.iter().chain(s.qdot.iter()).all(|x| x.is_finite()))
+        );
         (max_distance(&run, &self.reference), run.stats())
     }
 

@@ -1,9 +1,9 @@
 //! Swings kept off the pole by their azimuthal momentum: energy and `p_φ`
 //! conserved to what each method's errors allow.
 
-use super::methods::Method::Variational;
 use super::methods::ALL;
-use super::{azimuthal_momentum, closest_approach, model, planar, sample_times, start, G, H};
+use super::methods::Method::Variational;
+use super::{G, H, azimuthal_momentum, closest_approach, model, planar, sample_times, start};
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
 

@@ -1,9 +1,9 @@
 //! The methods the scenarios run, by name.
 
-use super::{model, H, TOL};
+use super::{H, TOL, model};
+use lagrange::IntegrationResult;
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
-use lagrange::IntegrationResult;
 
 /// The methods, by name: three adaptive at `TOL`, four fixed-step at `h`.
 #[derive(Debug, Clone, Copy)]

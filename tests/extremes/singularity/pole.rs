@@ -1,11 +1,11 @@
 //! At the pole: a planar swing through it, a release on it, and a swing
 //! closer to it than the solve can resolve.
 
-use super::methods::Method::{Rk4, Variational};
 use super::methods::ALL;
+use super::methods::Method::{Rk4, Variational};
 use super::{
-    azimuthal_momentum, closest_approach, planar, pole_radius, sample_times, start, G, H, THETA0,
-    TOL,
+    G, H, THETA0, TOL, azimuthal_momentum, closest_approach, planar, pole_radius, sample_times,
+    start,
 };
 use crate::support::elliptic;
 use lagrange::nalgebra::Vector2;
@@ -127,9 +127,10 @@ fn release_at_the_pole_is_a_singular_mass_matrix_at_the_start() {
                     run.last().unwrap().q[0]
                 );
                 assert!(matches!(method, Variational(_)), "{method:?} integrated");
-                assert!(run
-                    .iter()
-                    .all(|s| s.qdot[1] == 0.0 && (s.t == 0.0 || s.q[0] > 0.0)));
+                assert!(
+                    run.iter()
+                        .all(|s| s.qdot[1] == 0.0 && (s.t == 0.0 || s.q[0] > 0.0))
+                );
             }
         }
     }
@@ -184,9 +185,10 @@ fn a_swing_closer_to_the_pole_than_sqrt_two_eps_ends_in_a_singular_mass_matrix()
                 matches!(method, Rk4(_) | Variational(_)),
                 "{method:?} did not stop"
             );
-            assert!(run
-                .iter()
-                .all(|s| s.q.iter().chain(s.qdot.iter()).all(|x| x.is_finite())));
+            assert!(
+                run.iter()
+                    .all(|s| s.q.iter().chain(s.qdot.iter()).all(|x| x.is_finite()))
+            );
             if let Variational(_) = method {
                 assert!(drift.abs() <= 8.0 * f64::EPSILON * p, "p_φ drift {drift:e}");
             }

@@ -1,10 +1,10 @@
 //! The explicit methods: fixed steps beyond their stability limit stop,
 //! adaptive ones pay for the fast mode with steps.
 
-use super::modes::{measure, Modes};
-use super::{chain, ratio_name, samples, RATIOS, T};
-use lagrange::prelude::*;
+use super::modes::{Modes, measure};
+use super::{RATIOS, T, chain, ratio_name, samples};
 use lagrange::IntegrationResult;
+use lagrange::prelude::*;
 
 /// Far beyond the explicit stability limit (h = 0.01: hω_fast = 14 and 141,
 /// against 2√2 for RK4, 2 for symplectic Euler, and no interval at all for

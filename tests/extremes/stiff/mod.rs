@@ -58,9 +58,5 @@ fn samples() -> Vec<f64> {
 type C = Complex<f64>;
 
 fn ratio_name(ratio: f64) -> &'static str {
-    if ratio == 1e6 {
-        "1e6"
-    } else {
-        "1e8"
-    }
+    if ratio == 1e6 { "1e6" } else { "1e8" }
 }

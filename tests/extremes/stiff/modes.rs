@@ -1,6 +1,6 @@
 //! The exact solution of the stiff pair, mode by mode, and its check.
 
-use super::{chain, ratio_name, StiffPair, C, EPS, RATIOS, T};
+use super::{C, EPS, RATIOS, StiffPair, T, chain, ratio_name};
 use lagrange::nalgebra::{Matrix2, Matrix4, Vector2, Vector4};
 use lagrange::prelude::*;
 

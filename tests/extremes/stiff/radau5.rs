@@ -1,7 +1,7 @@
 //! Radau5, L-stable: steps that follow the slow mode alone.
 
-use super::modes::{measure, Modes};
-use super::{chain, ratio_name, samples, RATIOS};
+use super::modes::{Modes, measure};
+use super::{RATIOS, chain, ratio_name, samples};
 use lagrange::prelude::*;
 
 /// Radau5 is L-stable: `R(z) → 0` as `|z| → ∞`, so its steps follow the slow

@@ -2,9 +2,9 @@
 //! phase aliased.
 
 use super::modes::Modes;
-use super::{chain, ratio_name, samples, C, EPS, RATIOS, T};
-use lagrange::prelude::*;
+use super::{C, EPS, RATIOS, T, chain, ratio_name, samples};
 use lagrange::IntegrationResult;
+use lagrange::prelude::*;
 use std::f64::consts::PI;
 
 /// `R(z)` of the symmetric methods: the diagonal Padé approximants of `e^z`.

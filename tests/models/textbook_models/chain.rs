@@ -251,11 +251,15 @@ fn chain_models_declare_their_coordinates_and_parameters() {
     assert_eq!(ForcedDampedChain::<f64>::COORDINATES, ["x1", "x2"]);
     assert_eq!(
         ForcedDampedChain::<f64>::PARAMETERS,
-        ["m1", "m2", "k1", "k2", "k3", "c1", "c2", "c3", "f0", "omega"]
+        [
+            "m1", "m2", "k1", "k2", "k3", "c1", "c2", "c3", "f0", "omega"
+        ]
     );
     let p = ForcedDampedChain::new(1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0);
     assert_eq!(
-        [p.m1, p.m2, p.k1, p.k2, p.k3, p.c1, p.c2, p.c3, p.f0, p.omega],
+        [
+            p.m1, p.m2, p.k1, p.k2, p.k3, p.c1, p.c2, p.c3, p.f0, p.omega
+        ],
         [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0]
     );
 }

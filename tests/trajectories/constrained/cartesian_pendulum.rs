@@ -3,10 +3,10 @@
 
 use crate::support::elliptic;
 use crate::support::fit::{log_slope, sci};
+use lagrange::Method;
 use lagrange::models::CartesianPendulum;
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
-use lagrange::Method;
 
 /// Released from rest at 1 rad: far from the small-angle limit, so the
 /// period and the tension are those of the full nonlinear pendulum.

@@ -1,10 +1,10 @@
 //! The four-bar linkage over 100 s with every method, and at its change
 //! point.
 
+use lagrange::Method;
 use lagrange::models::FourBar;
 use lagrange::nalgebra::Vector3;
 use lagrange::prelude::*;
-use lagrange::Method;
 
 /// The crank-rocker, crank at 45° turning at 12 rad/s: about 190 crank
 /// revolutions in 100 s, the flywheel carrying it over the top.

@@ -1,7 +1,7 @@
 //! The slider-crank in redundant coordinates against its closed-form
 //! kinematics and against the same mechanism in its minimal coordinate.
 
-use lagrange::models::{slider_crank_kinematics, SliderCrank};
+use lagrange::models::{SliderCrank, slider_crank_kinematics};
 use lagrange::nalgebra::Vector1;
 use lagrange::prelude::*;
 

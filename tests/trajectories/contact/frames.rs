@@ -2,11 +2,11 @@
 //! `integrate`, each reported in the frame it falls in; and a model with
 //! contacts refused by the runs that would ignore them.
 
+use lagrange::InvalidInput;
 use lagrange::contact::{ContactSettings, Scene};
 use lagrange::models::{BallOnFloor, BlockOnBelt};
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
-use lagrange::InvalidInput;
 
 #[test]
 fn a_stepper_at_sixty_hertz_reports_the_switches_of_integrate_each_in_its_frame() {
@@ -103,9 +103,11 @@ fn a_model_with_contacts_is_refused_by_the_runs_that_would_ignore_them() {
         "{}",
         failure.error
     );
-    assert!(failure
-        .error
-        .to_string()
-        .contains("lagrange::contact::integrate"));
+    assert!(
+        failure
+            .error
+            .to_string()
+            .contains("lagrange::contact::integrate")
+    );
     assert!(Stepper::new(ball, Rk4::new(1e-3), 0.0, q, v).is_err());
 }

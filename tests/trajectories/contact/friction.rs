@@ -188,8 +188,8 @@ fn painleves_rod_sliding_with_too_much_friction_is_a_typed_error_at_its_state() 
 }
 
 #[test]
-fn a_torsion_pendulum_in_a_loaded_bearing_loses_two_d_per_swing_and_sticks_where_static_friction_holds(
-) {
+fn a_torsion_pendulum_in_a_loaded_bearing_loses_two_d_per_swing_and_sticks_where_static_friction_holds()
+ {
     // Friction in a joint, against a given normal force (the bearing's
     // load): no gap, no reaction. ω = √(κ/I) = 2, d = μ_k F r / κ = 0.015,
     // static friction holds the spring within μ_s F r / κ = 0.02: from rest

@@ -6,11 +6,11 @@
 //! them they make every kind of switch (an impact, a settling, a release,
 //! a plastic snap, a stick limit, a slide stopping).
 
+use lagrange::Method;
 use lagrange::contact::{self, Cause, ContactError, ContactSettings, Contacts, Switch};
 use lagrange::models::{BallOnFloor, BlockOnBelt, BobOnString};
 use lagrange::nalgebra::Vector2;
 use lagrange::prelude::*;
-use lagrange::Method;
 
 /// The fixed-step methods' step.
 const H: f64 = 1e-3;

@@ -1,11 +1,11 @@
 //! The ball dropped from 1 m with restitution 0.9: its bounce times against
 //! the closed form, and the Zeno limit where they accumulate.
 
+use lagrange::EventRecord;
+use lagrange::Method;
 use lagrange::models::BouncingBall;
 use lagrange::nalgebra::Vector1;
 use lagrange::prelude::*;
-use lagrange::EventRecord;
-use lagrange::Method;
 
 const HEIGHT: f64 = 1.0;
 const RESTITUTION: f64 = 0.9;

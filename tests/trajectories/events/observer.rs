@@ -5,9 +5,9 @@
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use lagrange::Method;
 use lagrange::models::DoublePendulum;
 use lagrange::prelude::*;
-use lagrange::Method;
 
 #[test]
 fn an_observer_sees_every_step_and_stops_every_method_cleanly() {

@@ -6,10 +6,10 @@
 //! bisection in `f64`, and each new amplitude follows from energy
 //! ([`PendulumWall::amplitude_after`]): no integrator is involved.
 
+use lagrange::Method;
 use lagrange::models::{Pendulum, PendulumWall};
 use lagrange::nalgebra::Vector1;
 use lagrange::prelude::*;
-use lagrange::Method;
 
 use crate::support::elliptic::released_from_rest;
 

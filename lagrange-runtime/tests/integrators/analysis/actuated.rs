@@ -1,9 +1,9 @@
 //! `B = [[0], [M⁻¹ ∂f/∂u]]` of an actuated model, with `A` at the inputs
 //! given.
 
-use lagrange_runtime::analysis::{equilibrium, linearize_with_inputs, Derivatives};
-use lagrange_runtime::nalgebra::Vector1;
 use lagrange_runtime::Actuated;
+use lagrange_runtime::analysis::{Derivatives, equilibrium, linearize_with_inputs};
+use lagrange_runtime::nalgebra::Vector1;
 
 use super::models::PushedSpring;
 

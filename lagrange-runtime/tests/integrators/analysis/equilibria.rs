@@ -2,11 +2,11 @@
 //! there is none to find.
 
 use lagrange::models::{CartPole, CartesianPendulum, DoublePendulum};
+use lagrange_runtime::Lagrangian;
 use lagrange_runtime::analysis::{
-    equilibrium, is_equilibrium, linearize, AnalysisError, EquilibriumSearch,
+    AnalysisError, EquilibriumSearch, equilibrium, is_equilibrium, linearize,
 };
 use lagrange_runtime::nalgebra::{Vector1, Vector2};
-use lagrange_runtime::Lagrangian;
 
 use super::models::{Falling, SaturatingSpring};
 

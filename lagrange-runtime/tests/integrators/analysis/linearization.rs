@@ -2,12 +2,12 @@
 //! accelerations.
 
 use lagrange::models::DoublePendulum;
-use lagrange_runtime::analysis::{linearize, AnalysisError, Derivatives};
+use lagrange_runtime::Lagrangian;
+use lagrange_runtime::analysis::{AnalysisError, Derivatives, linearize};
 use lagrange_runtime::linalg::solve::solve_mass_matrix;
 use lagrange_runtime::nalgebra::{Matrix2, Vector2};
-use lagrange_runtime::Lagrangian;
 
-use super::{differences, Rng};
+use super::{Rng, differences};
 
 /// The differences' own error at a state, `ε^(2/3)` (≈ 4e-11) times the
 /// size of what is differenced and its third derivatives: here

@@ -4,8 +4,8 @@
 
 use lagrange::models::{CartesianPendulum, FourBar, Pendulum};
 use lagrange_runtime::analysis::{
-    equilibrium, is_equilibrium, linearize, linearize_on_manifold, modes, AnalysisError,
-    Derivatives, ModeKind,
+    AnalysisError, Derivatives, ModeKind, equilibrium, is_equilibrium, linearize,
+    linearize_on_manifold, modes,
 };
 use lagrange_runtime::nalgebra::{DVector, Vector2, Vector3};
 use lagrange_runtime::{ConstraintLevel, Dopri5, IntegrationError, Integrator};

@@ -9,9 +9,9 @@ mod manifold;
 mod models;
 mod modes;
 
+use lagrange_runtime::Lagrangian;
 use lagrange_runtime::dynamics::acceleration;
 use lagrange_runtime::nalgebra::{SMatrix, SVector};
-use lagrange_runtime::Lagrangian;
 
 /// `(∂q̈/∂q, ∂q̈/∂q̇)` by central differences of [`acceleration`], written
 /// here independently of the library's own: step `h = ε^(1/3) max(1, |x|)`,

@@ -1,9 +1,9 @@
 //! Normal modes against closed forms; points that have none refused.
 
 use lagrange::models::{DoublePendulum, TwoMassChain};
-use lagrange_runtime::analysis::{modes, AnalysisError, Derivatives, ModeKind, Modes};
-use lagrange_runtime::nalgebra::{Matrix2, Vector2};
 use lagrange_runtime::Lagrangian;
+use lagrange_runtime::analysis::{AnalysisError, Derivatives, ModeKind, Modes, modes};
+use lagrange_runtime::nalgebra::{Matrix2, Vector2};
 
 use super::models::Circulatory;
 

@@ -1,13 +1,13 @@
 //! Drift: projection keeps the constraints at rounding level on every
 //! method, without it they drift away, Baumgarte holds them near.
 
-use super::{angle_reference, every, pendulum, start, THETA0};
+use super::{THETA0, angle_reference, every, pendulum, start};
 use crate::models::CartesianPendulum;
 use lagrange::Method;
-use lagrange_runtime::constraints::{annotate, Drift};
+use lagrange_runtime::Holonomic;
+use lagrange_runtime::constraints::{Drift, annotate};
 use lagrange_runtime::nalgebra::Vector2;
 use lagrange_runtime::prelude::*;
-use lagrange_runtime::Holonomic;
 
 /// Largest `|φ|` over the samples of a run.
 fn residuals(run: &Trajectory<f64, 2>) -> Vec<f64> {

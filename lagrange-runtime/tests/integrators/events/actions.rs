@@ -3,8 +3,8 @@
 
 use std::f64::consts::PI;
 
-use lagrange::models::{CartesianPendulum, Oscillator, Pendulum};
 use lagrange::Method;
+use lagrange::models::{CartesianPendulum, Oscillator, Pendulum};
 use lagrange_runtime::nalgebra::{Vector1, Vector2};
 use lagrange_runtime::prelude::*;
 

@@ -1,8 +1,8 @@
 //! Typed errors of events: bad settings before any work, non-finite
 //! values naming the event.
 
-use lagrange::models::Oscillator;
 use lagrange::Method;
+use lagrange::models::Oscillator;
 use lagrange_runtime::nalgebra::Vector1;
 use lagrange_runtime::prelude::*;
 use lagrange_runtime::{InvalidInput, NonFiniteValue};
@@ -67,11 +67,7 @@ fn a_nan_event_function_is_an_error_naming_the_event() {
         let broken = Event::new(
             "broken",
             |_, q: &Vector1<f64>, _: &_| {
-                if q[0] < 0.5 {
-                    f64::NAN
-                } else {
-                    q[0] - 2.0
-                }
+                if q[0] < 0.5 { f64::NAN } else { q[0] - 2.0 }
             },
         );
         let events = Events::new().with(Event::new("x", x)).with(broken);

@@ -3,8 +3,8 @@
 
 use std::f64::consts::PI;
 
-use lagrange::models::Oscillator;
 use lagrange::Method;
+use lagrange::models::Oscillator;
 use lagrange_runtime::nalgebra::Vector1;
 use lagrange_runtime::prelude::*;
 

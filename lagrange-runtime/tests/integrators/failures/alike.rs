@@ -3,8 +3,8 @@
 
 use super::CLOSE_IN;
 use crate::models::{
-    assert_exhausted_budget_keeps_the_samples, BlowUp, CoupledOscillator, ForcingBreaksDown,
-    InertiaVanishes,
+    BlowUp, CoupledOscillator, ForcingBreaksDown, InertiaVanishes,
+    assert_exhausted_budget_keeps_the_samples,
 };
 use lagrange_runtime::nalgebra::{SVector, Vector1, Vector2};
 use lagrange_runtime::prelude::*;

@@ -2,7 +2,7 @@
 //! refused before any work, or ended by a clean typed error rather than a
 //! hang; and one that only looks impossible, integrated.
 
-use crate::models::{assert_exhausted_budget_keeps_the_samples, CoupledOscillator};
+use crate::models::{CoupledOscillator, assert_exhausted_budget_keeps_the_samples};
 use lagrange::models::Oscillator;
 use lagrange_runtime::nalgebra::{Vector1, Vector2};
 use lagrange_runtime::prelude::*;

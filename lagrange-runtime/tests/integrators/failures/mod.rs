@@ -5,9 +5,9 @@
 //! methods that share a driver failing alike in `alike.rs`.
 
 use crate::models::{BlowUp, ForcingBreaksDown, InertiaVanishes};
+use lagrange_runtime::NonFiniteValue;
 use lagrange_runtime::nalgebra::{Vector1, Vector2};
 use lagrange_runtime::prelude::*;
-use lagrange_runtime::NonFiniteValue;
 
 mod alike;
 mod inputs;

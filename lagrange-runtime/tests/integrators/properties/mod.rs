@@ -15,8 +15,8 @@
 use std::collections::BTreeMap;
 
 use lagrange::Method;
-use lagrange_runtime::prelude::*;
 use lagrange_runtime::IntegrationResult;
+use lagrange_runtime::prelude::*;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestRng, TestRunner};
 

@@ -6,7 +6,7 @@ use lagrange_runtime::prelude::*;
 use lagrange_runtime::{InvalidInput, NonFiniteValue};
 
 use super::models::{DoublePendulum, Pendulum};
-use super::{run, Settings};
+use super::{Settings, run};
 
 fn pendulum() -> Pendulum {
     Pendulum {

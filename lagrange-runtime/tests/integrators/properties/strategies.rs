@@ -26,11 +26,7 @@ fn special() -> impl Strategy<Value = f64> {
 fn magnitude(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
     (lo..hi, any::<bool>()).prop_map(|(e, negative)| {
         let x = 10f64.powf(e);
-        if negative {
-            -x
-        } else {
-            x
-        }
+        if negative { -x } else { x }
     })
 }
 
