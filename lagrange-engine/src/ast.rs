@@ -79,6 +79,9 @@ pub struct Options {
     /// `Deserialize` (through `lagrange::serde`, the facade's `serde`
     /// feature), its control inputs skipped (read back unset).
     pub serde: bool,
+    /// `#[lagrange(parameter_derivatives)]`: `∂M/∂p`, `∂f/∂p` and the
+    /// residual's `∂(M q̈ − f)/∂p`, one column per parameter scalar.
+    pub parameter_derivatives: bool,
 }
 
 /// The largest budget `#[lagrange(budget = N)]` may ask for: the time and

@@ -33,6 +33,14 @@
 //! linearizes. The inputs are symbols like the parameters; the checks keep
 //! them out of the momenta and the constraints, the only places where their
 //! time derivatives would be needed.
+//!
+//! A model that asks (`#[lagrange(parameter_derivatives)]`) also gets the
+//! derivatives by each parameter scalar `p_k` (P of them, an indexed
+//! parameter `m[N]` being N): `∂M/∂p_k` (P matrices N × N), `∂f/∂p`
+//! (N × P) and the residual's `∂r/∂p = (∂M/∂p) q̈ − ∂f/∂p` (N × P), what
+//! forward sensitivities and parameter fits need. The parameters are
+//! symbols of the same pool, so these share their subexpressions with `M`
+//! and `f`.
 
 use crate::expr::{ExprId, Pool};
 use crate::model::{Model, Symbols};
@@ -64,6 +72,19 @@ pub struct Equations {
     pub contacts: Option<ContactEquations>,
     /// `∂f/∂u`, `N × K` row-major, for a model with inputs only.
     pub input_jacobian: Option<ExprMatrix>,
+    /// The derivatives by the parameters, if the model asked.
+    pub parameter_derivatives: Option<ParameterDerivatives>,
+}
+
+/// The derivatives of the equations by each parameter scalar `p_k`, in
+/// the order of the model's parameters (P of them).
+pub struct ParameterDerivatives {
+    /// `∂M/∂p_k`, one full symmetric `N × N` matrix per parameter.
+    pub mass: Vec<ExprMatrix>,
+    /// `∂f/∂p`, `N × P` row-major.
+    pub forcing: ExprMatrix,
+    /// `∂r/∂p` of the residual `r = M q̈ − f`, `N × P` row-major.
+    pub residual: ExprMatrix,
 }
 
 /// What the contacts contribute, each in the order written: the gaps'
@@ -120,6 +141,7 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
     let forces: Vec<(ExprId, ExprId)> =
         model.forces.iter().map(|f| (f.position, f.value)).collect();
     let want_jacobians = model.options.jacobians;
+    let want_parameters = model.options.parameter_derivatives;
     let phi: Vec<ExprId> = model.constraints.iter().map(|c| c.value).collect();
     let gaps: Vec<ExprId> = model.contacts.iter().map(|c| c.gap).collect();
     let slips: Vec<ExprId> = model
@@ -263,6 +285,14 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
             .collect();
         Some(rows)
     };
+    let parameter_derivatives = if want_parameters {
+        match by_parameters(pool, &s, &mass, &forcing) {
+            Some(d) => Some(d),
+            None => return Equations::exhausted(),
+        }
+    } else {
+        None
+    };
     let constraints = if phi.is_empty() {
         None
     } else {
@@ -293,6 +323,7 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         constraints,
         contacts,
         input_jacobian,
+        parameter_derivatives,
     }
 }
 
@@ -352,6 +383,65 @@ fn holonomic(pool: &mut Pool, s: &Symbols, phi: Vec<ExprId>) -> Option<Constrain
     (!pool.exhausted()).then_some(out)
 }
 
+/// `∂M/∂p_k`, `∂f/∂p` and `∂r/∂p` for every parameter scalar; `None` if
+/// the budget ran out on the way.
+#[allow(clippy::needless_range_loop)] // (i, j) index M, symmetric: the clearest form
+fn by_parameters(
+    pool: &mut Pool,
+    s: &Symbols,
+    mass: &ExprMatrix,
+    forcing: &[ExprId],
+) -> Option<ParameterDerivatives> {
+    let n = forcing.len();
+    let p = s.parameters.len();
+    // P matrices and two N × P ones, paid for before they are made.
+    let square = (n as u64).saturating_mul(n as u64);
+    pool.charge(square.saturating_add(2 * n as u64).saturating_mul(p as u64));
+    let mut by_mass = Vec::with_capacity(p);
+    for &pk in &s.parameters {
+        if pool.exhausted() {
+            return None;
+        }
+        let mut dm = vec![vec![Pool::ZERO; n]; n];
+        for i in 0..n {
+            for j in i..n {
+                let d = pool.diff(mass[i][j], pk);
+                let d = pool.factored(d);
+                dm[i][j] = d;
+                dm[j][i] = d;
+            }
+        }
+        by_mass.push(dm);
+    }
+    let mut by_forcing = vec![Vec::with_capacity(p); n];
+    let mut by_residual = vec![Vec::with_capacity(p); n];
+    for (k, &pk) in s.parameters.iter().enumerate() {
+        if pool.exhausted() {
+            return None;
+        }
+        for i in 0..n {
+            let df = pool.diff(forcing[i], pk);
+            let df = pool.factored(df);
+            // (∂M/∂p_k q̈)_i − ∂f_i/∂p_k
+            let mut terms: Vec<ExprId> = (0..n)
+                .map(|j| {
+                    let a = pool.sym(s.accelerations[j]);
+                    pool.mul2(by_mass[k][i][j], a)
+                })
+                .collect();
+            terms.push(pool.neg(df));
+            let dr = pool.add(&terms);
+            by_forcing[i].push(df);
+            by_residual[i].push(dr);
+        }
+    }
+    (!pool.exhausted()).then_some(ParameterDerivatives {
+        mass: by_mass,
+        forcing: by_forcing,
+        residual: by_residual,
+    })
+}
+
 impl Equations {
     /// What a derivation that ran out of budget returns: nothing to read.
     fn exhausted() -> Self {
@@ -366,6 +456,7 @@ impl Equations {
             constraints: None,
             contacts: None,
             input_jacobian: None,
+            parameter_derivatives: None,
         }
     }
 }

@@ -7,7 +7,8 @@
 //! `Lagrangian` impl's required methods; a model that declares constraints
 //! also gets their methods and the `Holonomic` impl's required ones, and a
 //! model that declares inputs their fields, `INPUTS`, the methods that read
-//! and set them and the `Actuated` impl.
+//! and set them and the `Actuated` impl; a model that asks for its
+//! parameter derivatives, those methods and `PARAMETER_SCALARS`.
 
 use crate::ast::ModelDef;
 use crate::emit::api::{CONSTS, InTrait, METHODS};
@@ -30,6 +31,7 @@ pub struct Stub {
     contacts: usize,
     lets: usize,
     serde: bool,
+    parameter_derivatives: bool,
 }
 
 impl Stub {
@@ -47,6 +49,7 @@ impl Stub {
             contacts: shape.contacts,
             lets: shape.lets,
             serde: def.options.serde,
+            parameter_derivatives: def.options.parameter_derivatives,
         }
     }
 
@@ -63,6 +66,7 @@ impl Stub {
             constraints: self.constraints,
             contacts: self.contacts,
             serde: self.serde,
+            parameter_derivatives: self.parameter_derivatives,
             lets: self.lets,
         };
         let item = outline.struct_item();
@@ -72,8 +76,10 @@ impl Stub {
         let na = nalgebra();
         let name = &self.name;
         let k: usize = self.inputs.iter().map(|f| f.len.unwrap_or(1)).sum();
+        let p: usize = self.fields.iter().map(|f| f.len.unwrap_or(1)).sum();
         let types = Types::new(self.dof, self.constraints, k, self.lets)
-            .with_contacts(&vec![false; self.contacts]);
+            .with_contacts(&vec![false; self.contacts])
+            .with_parameters(p);
         let n = &types.n;
         let stop = quote!(::core::unreachable!(
             "`lagrangian!` reported a compile error for this model"
@@ -87,6 +93,7 @@ impl Stub {
             .filter(|m| constrained || !matches!(m.in_trait, InTrait::Holonomic { .. }))
             .filter(|m| self.contacts > 0 || m.in_trait != InTrait::Contacts)
             .filter(|m| actuated || m.in_trait != InTrait::Actuated)
+            .filter(|m| self.parameter_derivatives || m.in_trait != InTrait::ParameterDerivatives)
             .map(|m| {
                 let signature = m.signature(&types);
                 quote!(pub #signature { #stop })

@@ -2,8 +2,8 @@
 //! section the language has (`const`, indexed coordinates and parameters,
 //! constants, scalar and indexed `let`s, sums, `dot`, repeated sections,
 //! dissipation, forces on coordinates and along positions, constraints,
-//! control inputs driving a coordinate, the `jacobians`
-//! and `budget` options, doc comments, visibility). Names are declared before they are
+//! control inputs driving a coordinate, the `jacobians`,
+//! `parameter_derivatives` and `budget` options, doc comments, visibility). Names are declared before they are
 //! drawn and indices stay in range, so that most models expand and the
 //! mutator has valid programs to break.
 
@@ -58,6 +58,9 @@ impl Gen<'_> {
         let mut options = Vec::new();
         if self.rng.chance(0.15) {
             options.push("jacobians".to_string());
+        }
+        if self.rng.chance(0.1) {
+            options.push("parameter_derivatives".to_string());
         }
         if self.rng.chance(0.03) {
             let steps = [

@@ -208,7 +208,7 @@ pub fn sections(toks: &[Tok]) -> Vec<(usize, usize)> {
 }
 
 /// Tokens the mutator inserts (from `sum` on: the words it renames to).
-const VOCABULARY: &str = "+ - * / ^ , ; : = . .. ..= in sum dot t let const kinetic potential dissipation forces constraints inputs coordinates parameters constants x N i 0 1 2.5 sin powi atan2 r#type struct # ! _ & budget jacobians";
+const VOCABULARY: &str = "+ - * / ^ , ; : = . .. ..= in sum dot t let const kinetic potential dissipation forces constraints inputs coordinates parameters constants x N i 0 1 2.5 sin powi atan2 r#type struct # ! _ & budget jacobians parameter_derivatives";
 
 const OPERATORS: [&str; 5] = ["+", "-", "*", "/", "^"];
 

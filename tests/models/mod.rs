@@ -1,7 +1,8 @@
 //! What `lagrangian!` generates: the derived equations of textbook models
 //! against closed forms, the indexed language, the derivatives beyond `M`
-//! and `f`. (The compile errors are the UI tests, `lagrange-ui/tests/ui.rs`;
-//! the README's generated code is checked by the engine's tests,
+//! and `f` (by the state, and by the parameters against dual numbers).
+//! (The compile errors are the UI tests, `lagrange-ui/tests/ui.rs`; the
+//! README's generated code is checked by the engine's tests,
 //! `lagrange-engine/tests/engine/readme.rs`.)
 
 mod constrained_models;
@@ -13,6 +14,7 @@ mod layers;
 mod linearization;
 mod more_models;
 mod named_lets;
+mod parameter_derivatives;
 mod physics_names;
 mod textbook_models;
 mod trigonometry;

@@ -16,7 +16,7 @@ use super::outline::Types;
 use crate::derive::{Equations, ExprMatrix};
 use crate::expr::ExprId;
 use crate::model::Model;
-use proc_macro2::{Ident, Span, TokenStream};
+use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 
 /// An argument of a generated method, after `&self`.
@@ -87,6 +87,10 @@ pub enum Returns {
     /// and kinetic friction, and its given normal force (zero, unused,
     /// where it has none).
     ContactLaws,
+    /// `SMatrix<S, N, P>`, `P` the number of parameter scalars: `N·P` roots.
+    ParameterMatrix,
+    /// `[SMatrix<S, N, N>; P]`: `P·N²` roots, matrix after matrix.
+    ParameterMatrices,
 }
 
 impl Returns {
@@ -112,6 +116,11 @@ impl Returns {
             Returns::ContactLaws => {
                 let k = &ty.kc;
                 quote!([::lagrange::contact::ContactLaw<S>; #k])
+            }
+            Returns::ParameterMatrix => ty.parameter_matrix.clone(),
+            Returns::ParameterMatrices => {
+                let p = Literal::usize_unsuffixed(ty.parameters);
+                quote!([#matrix; #p])
             }
         }
     }
@@ -191,6 +200,16 @@ impl Returns {
                 });
                 quote!([#(#laws),*])
             }
+            Returns::ParameterMatrix => {
+                let new = &ty.new_parameter_matrix;
+                quote!(#new(&[#(#outs),*]))
+            }
+            Returns::ParameterMatrices => {
+                let matrices = outs
+                    .chunks(square.max(1))
+                    .map(|m| quote!(#new_matrix(&[#(#m),*])));
+                quote!([#(#matrices),*])
+            }
         }
     }
 }
@@ -226,6 +245,9 @@ pub enum InTrait {
     /// model with inputs implements: its impl calls the inherent one, and
     /// the stub implements it too.
     Actuated,
+    /// An inherent method of a model that asked for its parameter
+    /// derivatives (`#[lagrange(parameter_derivatives)]`), and of its stub.
+    ParameterDerivatives,
     /// An inherent method only, of every model and of the stub.
     Inherent,
 }
@@ -532,6 +554,60 @@ pub const METHODS: &[Method] = &[
         },
         in_trait: InTrait::Actuated,
     },
+    // Only a model with `#[lagrange(parameter_derivatives)]` has these.
+    Method {
+        name: "mass_matrix_parameter_derivatives",
+        doc: &[
+            "`∂M/∂p_k` at `(t, q)`, one `N × N` matrix per parameter scalar, in",
+            "the order of `PARAMETER_SCALARS`.",
+        ],
+        args: &[Arg::T, Arg::Q],
+        returns: Returns::ParameterMatrices,
+        roots: |_, eq| {
+            Some(
+                eq.parameter_derivatives
+                    .as_ref()?
+                    .mass
+                    .iter()
+                    .flat_map(column_major)
+                    .collect(),
+            )
+        },
+        in_trait: InTrait::ParameterDerivatives,
+    },
+    Method {
+        name: "forcing_parameter_jacobian",
+        doc: &[
+            "`∂f/∂p`, `N × P`: how the forcing at `(t, q, q̇)` responds to each",
+            "parameter scalar, in the order of `PARAMETER_SCALARS`.",
+        ],
+        args: &[Arg::T, Arg::Q, Arg::Qdot],
+        returns: Returns::ParameterMatrix,
+        roots: |model, eq| {
+            Some(column_major_of(
+                &eq.parameter_derivatives.as_ref()?.forcing,
+                model.parameters.len(),
+            ))
+        },
+        in_trait: InTrait::ParameterDerivatives,
+    },
+    Method {
+        name: "residual_parameter_jacobian",
+        doc: &[
+            "`∂r/∂p = (∂M/∂p) q̈ − ∂f/∂p`, `N × P`, of the residual",
+            "`r = M(t, q) q̈ − f(t, q, q̇)`: what a forward sensitivity adds to",
+            "the residual's Jacobians.",
+        ],
+        args: &[Arg::T, Arg::Q, Arg::Qdot, Arg::Qddot],
+        returns: Returns::ParameterMatrix,
+        roots: |model, eq| {
+            Some(column_major_of(
+                &eq.parameter_derivatives.as_ref()?.residual,
+                model.parameters.len(),
+            ))
+        },
+        in_trait: InTrait::ParameterDerivatives,
+    },
 ];
 
 /// The entries of a square matrix, column by column.
@@ -570,6 +646,7 @@ impl Method {
             | InTrait::Holonomic { .. }
             | InTrait::Contacts
             | InTrait::Actuated
+            | InTrait::ParameterDerivatives
             | InTrait::Inherent => self.signature_returning(ty, returns),
         }
     }

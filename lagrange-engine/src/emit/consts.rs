@@ -34,6 +34,11 @@ pub enum ConstValue {
     CoordinateNames,
     /// `[&'static str; P]`: the parameter fields' names (not in the stub).
     ParameterNames,
+    /// `[&'static str; P]`: the parameter scalars' names, an indexed
+    /// parameter flattened (`m[0]`, ...), the columns of the parameter
+    /// derivatives; only with `#[lagrange(parameter_derivatives)]` (empty
+    /// in the stub).
+    ParameterScalarNames,
     /// `[&'static str; K]`: the inputs' names, flattened (`tau[0]`, ...);
     /// empty in the stub, absent from a model without inputs.
     InputNames,
@@ -82,6 +87,15 @@ pub const CONSTS: &[Const] = &[
             "declaration order.",
         ]),
         value: ConstValue::ParameterNames,
+    },
+    Const {
+        name: "PARAMETER_SCALARS",
+        doc: Doc::Lines(&[
+            "Names of the parameter scalars (an indexed parameter `m[N]` is",
+            "`m[0]` … `m[N-1]`), in the order of the columns of the parameter",
+            "derivatives (`#[lagrange(parameter_derivatives)]`).",
+        ]),
+        value: ConstValue::ParameterScalarNames,
     },
     Const {
         name: "INPUTS",
@@ -141,6 +155,19 @@ impl Const {
                 (quote!([&'static str; #p]), quote!([#(#names),*]))
             }
             (ConstValue::ParameterNames, None) => return None,
+            (ConstValue::ParameterScalarNames, _) if !outline.parameter_derivatives => {
+                return None;
+            }
+            (ConstValue::ParameterScalarNames, Some((model, _))) => {
+                let p = Literal::usize_unsuffixed(model.parameters.len());
+                let names = model.parameters.iter().map(|p| p.to_string());
+                (quote!([&'static str; #p]), quote!([#(#names),*]))
+            }
+            (ConstValue::ParameterScalarNames, None) => {
+                let len: usize = outline.fields.iter().map(|f| f.len.unwrap_or(1)).sum();
+                let p = Literal::usize_unsuffixed(len);
+                (quote!([&'static str; #p]), quote!([""; #p]))
+            }
             (ConstValue::InputNames, _) if outline.inputs.is_empty() => return None,
             (ConstValue::InputNames, Some((model, _))) => {
                 let k = Literal::usize_unsuffixed(model.inputs.len());

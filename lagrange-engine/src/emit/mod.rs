@@ -47,6 +47,7 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
             constraints: model.constraints.len(),
             contacts: model.contacts.len(),
             serde: model.options.serde,
+            parameter_derivatives: model.options.parameter_derivatives,
             lets: model.lets.len(),
         },
         types: Types::new(
@@ -61,7 +62,8 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
                 .iter()
                 .map(|c| c.normal.is_some())
                 .collect::<Vec<_>>(),
-        ),
+        )
+        .with_parameters(model.parameters.len()),
         namer: Namer::new(model),
         roots: METHODS.iter().map(|m| (m.roots)(model, eq)).collect(),
     };
@@ -355,7 +357,11 @@ fn contacts_impl(cx: &Context) -> TokenStream {
 fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
     if matches!(
         m.in_trait,
-        InTrait::Holonomic { .. } | InTrait::Contacts | InTrait::Actuated | InTrait::Inherent
+        InTrait::Holonomic { .. }
+            | InTrait::Contacts
+            | InTrait::Actuated
+            | InTrait::ParameterDerivatives
+            | InTrait::Inherent
     ) {
         return TokenStream::new();
     }
@@ -387,6 +393,7 @@ fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
         | InTrait::Holonomic { .. }
         | InTrait::Contacts
         | InTrait::Actuated
+        | InTrait::ParameterDerivatives
         | InTrait::Inherent => {
             quote! {
                 #[inline]

@@ -64,6 +64,13 @@ pub struct Types {
     pub let_count: Literal,
     /// `L`, as a number.
     pub let_total: usize,
+    /// The number of parameter scalars, `P` (an indexed parameter `m[N]`
+    /// counts `N`).
+    pub parameters: usize,
+    /// `SMatrix<S, N, P>`.
+    pub parameter_matrix: TokenStream,
+    /// The constructor of `SMatrix<S, N, P>` from a column-major slice.
+    pub new_parameter_matrix: TokenStream,
 }
 
 impl Types {
@@ -102,9 +109,22 @@ impl Types {
             },
             let_count: Literal::usize_unsuffixed(lets),
             let_total: lets,
+            parameters: 0,
+            parameter_matrix: quote!(#na::SMatrix<S, #n, 0>),
+            new_parameter_matrix: quote!(#na::SMatrix::<S, #n, 0>::from_column_slice),
             n,
             c,
         }
+    }
+
+    /// The same types for a model with `parameters` parameter scalars.
+    pub fn with_parameters(mut self, parameters: usize) -> Self {
+        let na = nalgebra();
+        let (n, p) = (&self.n, Literal::usize_unsuffixed(parameters));
+        self.parameter_matrix = quote!(#na::SMatrix<S, #n, #p>);
+        self.new_parameter_matrix = quote!(#na::SMatrix::<S, #n, #p>::from_column_slice);
+        self.parameters = parameters;
+        self
     }
 
     /// The same types for a model with contacts, `given_normals` saying of
@@ -158,6 +178,8 @@ pub struct Outline<'a> {
     pub constraints: usize,
     /// `#[lagrange(serde)]`.
     pub serde: bool,
+    /// `#[lagrange(parameter_derivatives)]`.
+    pub parameter_derivatives: bool,
     /// The number of `let` values.
     pub lets: usize,
 }

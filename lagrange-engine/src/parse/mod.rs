@@ -133,6 +133,9 @@ fn take_options(attrs: &mut Vec<Attribute>) -> (Options, Option<syn::Error>) {
             } else if meta.path.is_ident("serde") {
                 options.serde = true;
                 Ok(())
+            } else if meta.path.is_ident("parameter_derivatives") {
+                options.parameter_derivatives = true;
+                Ok(())
             } else if meta.path.is_ident("budget") {
                 let lit: LitInt = meta.value()?.parse()?;
                 match lit.base10_parse::<u64>() {
@@ -148,6 +151,7 @@ fn take_options(attrs: &mut Vec<Attribute>) -> (Options, Option<syn::Error>) {
             } else {
                 Err(meta.error(
                     "unknown option: `#[lagrange(...)]` takes `jacobians` (exact residual Jacobians for implicit integrators), \
+                     `parameter_derivatives` (the derivatives of M, f and the residual by the parameters), \
                      `serde` (the struct serializable, with lagrange's `serde` feature) \
                      and `budget = N` (the engine's work budget, in steps)",
                 ))

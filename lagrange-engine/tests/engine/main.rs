@@ -9,5 +9,6 @@ mod golden;
 mod hardening;
 mod inputs;
 mod kernel;
+mod parameters;
 mod readme;
 mod ui_messages;

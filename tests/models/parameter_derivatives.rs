@@ -1,0 +1,205 @@
+//! `#[lagrange(parameter_derivatives)]`: `∂M/∂p`, `∂f/∂p` and the
+//! residual's `∂r/∂p`, derived at compile time, against forward-mode dual
+//! numbers (num-dual's `Dual64`) carried through the generated `M` and `f`
+//! themselves, one parameter scalar at a time: the same derivatives by
+//! another road, on the damped double pendulum and the 5-link chain (an
+//! indexed model, its parameters `m[N]` and `l[N]`).
+
+use lagrange::nalgebra::{SMatrix, SVector};
+use lagrange::prelude::*;
+use num_dual::Dual64;
+use rand::{Rng, SeedableRng, rngs::StdRng};
+
+lagrangian! {
+    /// A double pendulum with a damper in each joint: every parameter
+    /// (masses, lengths, gravity, damping) enters `M` or `f`.
+    #[lagrange(parameter_derivatives)]
+    pub struct DampedDoublePendulum {
+        coordinates: theta1, theta2;
+        parameters: m1, m2, l1, l2, g, c1, c2;
+        let x1 = l1*sin(theta1);
+        let y1 = -l1*cos(theta1);
+        let x2 = x1 + l2*sin(theta2);
+        let y2 = y1 - l2*cos(theta2);
+        kinetic: m1/2*(dot(x1)^2 + dot(y1)^2) + m2/2*(dot(x2)^2 + dot(y2)^2);
+        potential: m1*g*y1 + m2*g*y2;
+        dissipation: c1/2*dot(theta1)^2 + c2/2*(dot(theta2) - dot(theta1))^2;
+    }
+}
+
+lagrangian! {
+    /// The 5-link chain of point masses in absolute angles.
+    #[lagrange(parameter_derivatives)]
+    pub struct ChainOfFive {
+        const N = 5;
+        coordinates: theta[N];
+        parameters: m[N], l[N];
+        constants: g = 9.81;
+        let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));
+        let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));
+        kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2));
+        potential: sum(i in 0..N, m[i]*g*y[i]);
+    }
+}
+
+/// A model built from its parameter scalars in the order of
+/// `PARAMETER_SCALARS`, in `f64` or in dual numbers.
+trait FromScalars<S>: Sized {
+    fn from_scalars(p: &[S]) -> Self;
+}
+
+impl<S: lagrange::nalgebra::RealField + Copy> FromScalars<S> for DampedDoublePendulum<S> {
+    fn from_scalars(p: &[S]) -> Self {
+        Self::new(p[0], p[1], p[2], p[3], p[4], p[5], p[6])
+    }
+}
+
+impl<S: lagrange::nalgebra::RealField + Copy> FromScalars<S> for ChainOfFive<S> {
+    fn from_scalars(p: &[S]) -> Self {
+        Self::new(
+            std::array::from_fn(|i| p[i]),
+            std::array::from_fn(|i| p[5 + i]),
+        )
+    }
+}
+
+/// The generated parameter derivatives of one model at one state.
+struct Generated<const N: usize, const P: usize> {
+    mass: [SMatrix<f64, N, N>; P],
+    forcing: SMatrix<f64, N, P>,
+    residual: SMatrix<f64, N, P>,
+}
+
+/// Every generated parameter derivative against the dual numbers' at
+/// random parameters and states. Both are exact derivatives evaluated in
+/// f64 along different sequences of some hundred operations on values of
+/// O(1) to O(100) (a chain's `M` sums five masses times lengths squared):
+/// each carries rounding of a few hundred ulps of the largest entry at
+/// most, so 1e-13 relative to the largest entry of each derivative bounds
+/// their difference, and a wrong term (an O(1) error) fails.
+fn check<D, const N: usize, const P: usize>(
+    generated: impl Fn(
+        &[f64],
+        f64,
+        &SVector<f64, N>,
+        &SVector<f64, N>,
+        &SVector<f64, N>,
+    ) -> Generated<N, P>,
+    ranges: [(f64, f64); P],
+    seed: u64,
+) where
+    D: Lagrangian<N, Scalar = Dual64> + FromScalars<Dual64>,
+{
+    let mut rng = StdRng::seed_from_u64(seed);
+    for _ in 0..20 {
+        let p: [f64; P] = std::array::from_fn(|k| rng.gen_range(ranges[k].0..ranges[k].1));
+        let t: f64 = rng.gen_range(0.0..10.0);
+        let q = SVector::<f64, N>::from_fn(|_, _| rng.gen_range(-3.0..3.0));
+        let v = SVector::<f64, N>::from_fn(|_, _| rng.gen_range(-3.0..3.0));
+        let a = SVector::<f64, N>::from_fn(|_, _| rng.gen_range(-3.0..3.0));
+        let g = generated(&p, t, &q, &v, &a);
+        let dual = |x: f64| Dual64::new(x, 0.0);
+        let (td, qd, vd, ad) = (dual(t), q.map(dual), v.map(dual), a.map(dual));
+        for k in 0..P {
+            let seeded: Vec<Dual64> = (0..P)
+                .map(|j| Dual64::new(p[j], if j == k { 1.0 } else { 0.0 }))
+                .collect();
+            let model = D::from_scalars(&seeded);
+            let mass = model.mass_matrix(td, &qd);
+            let forcing = model.forcing(td, &qd, &vd);
+            let residual = mass * ad - forcing;
+            let dm = mass.map(|x| x.eps);
+            let df = forcing.map(|x| x.eps);
+            let dr = residual.map(|x| x.eps);
+            let close = |what: &str, exact: f64, by_duals: f64, scale: f64| {
+                assert!(
+                    (exact - by_duals).abs() <= 1e-13 * (1.0 + scale),
+                    "{what} by parameter {k}: generated {exact:e}, dual numbers {by_duals:e}"
+                );
+            };
+            let scale = g.mass[k].amax();
+            for (exact, by_duals) in g.mass[k].iter().zip(dm.iter()) {
+                close("∂M/∂p", *exact, *by_duals, scale);
+            }
+            let scale = g.forcing.column(k).amax();
+            for (exact, by_duals) in g.forcing.column(k).iter().zip(df.iter()) {
+                close("∂f/∂p", *exact, *by_duals, scale);
+            }
+            let scale = g.residual.column(k).amax();
+            for (exact, by_duals) in g.residual.column(k).iter().zip(dr.iter()) {
+                close("∂r/∂p", *exact, *by_duals, scale);
+            }
+        }
+    }
+}
+
+#[test]
+fn the_double_pendulums_parameter_derivatives_match_dual_numbers() {
+    assert_eq!(
+        DampedDoublePendulum::<f64>::PARAMETER_SCALARS,
+        ["m1", "m2", "l1", "l2", "g", "c1", "c2"]
+    );
+    check::<DampedDoublePendulum<Dual64>, 2, 7>(
+        |p, t, q, v, a| {
+            let m = DampedDoublePendulum::from_scalars(p);
+            Generated {
+                mass: m.mass_matrix_parameter_derivatives(t, q),
+                forcing: m.forcing_parameter_jacobian(t, q, v),
+                residual: m.residual_parameter_jacobian(t, q, v, a),
+            }
+        },
+        [
+            (0.5, 2.0),
+            (0.5, 2.0),
+            (0.5, 2.0),
+            (0.5, 2.0),
+            (5.0, 15.0),
+            (0.0, 1.0),
+            (0.0, 1.0),
+        ],
+        1,
+    );
+}
+
+#[test]
+fn the_chains_parameter_derivatives_match_dual_numbers() {
+    assert_eq!(
+        ChainOfFive::<f64>::PARAMETER_SCALARS,
+        [
+            "m[0]", "m[1]", "m[2]", "m[3]", "m[4]", "l[0]", "l[1]", "l[2]", "l[3]", "l[4]"
+        ]
+    );
+    check::<ChainOfFive<Dual64>, 5, 10>(
+        |p, t, q, v, a| {
+            let m = ChainOfFive::from_scalars(p);
+            Generated {
+                mass: m.mass_matrix_parameter_derivatives(t, q),
+                forcing: m.forcing_parameter_jacobian(t, q, v),
+                residual: m.residual_parameter_jacobian(t, q, v, a),
+            }
+        },
+        [(0.5, 2.0); 10],
+        2,
+    );
+}
+
+/// The derivatives are of the equations the model integrates: with the
+/// masses scaled by one factor and no damping, `M` and `f` scale by it, so
+/// `∂M/∂m · m` summed over the masses is `M` itself, and likewise for `f`
+/// (Euler's theorem for functions homogeneous of degree one).
+#[test]
+fn mass_derivatives_sum_to_the_homogeneous_whole() {
+    let model = ChainOfFive::new([1.0, 1.2, 0.8, 1.5, 0.9], [1.0, 0.7, 1.3, 0.6, 1.1]);
+    let q = SVector::<f64, 5>::from([0.3, -0.5, 1.1, 0.2, -0.9]);
+    let v = SVector::<f64, 5>::from([0.4, 1.0, -0.6, 0.8, -1.2]);
+    let dm = model.mass_matrix_parameter_derivatives(0.0, &q);
+    let df = model.forcing_parameter_jacobian(0.0, &q, &v);
+    let (mut m, mut f) = (SMatrix::<f64, 5, 5>::zeros(), SVector::<f64, 5>::zeros());
+    for (k, (dm_k, mass)) in dm.iter().zip(model.m).enumerate() {
+        m += dm_k * mass;
+        f += df.column(k) * mass;
+    }
+    // Sums of five products of O(10) values: rounding of a few ulps.
+    assert!((m - model.mass_matrix(0.0, &q)).amax() <= 1e-13 * m.amax());
+    assert!((f - model.forcing(0.0, &q, &v)).amax() <= 1e-13 * (1.0 + f.amax()));
+}
