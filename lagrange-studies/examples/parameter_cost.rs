@@ -1,0 +1,159 @@
+//! What `#[lagrange(parameter_derivatives)]` costs, on the N-link chain of
+//! point masses (`m[N]`, `l[N]`: P = 2N parameter scalars) at N = 2, 5, 10
+//! and 20. At compile time: the engine's expansion with and without the
+//! option (median time of `expand`, size of the emitted code). At run
+//! time: `∂f/∂p` (N × P), the residual's `∂r/∂p` (N × P) and `∂M/∂p` (P
+//! matrices N × N) against `f` alone, ns per call (median of 7 batches).
+//!
+//! `cargo run --release -p lagrange-studies --example parameter_cost`
+
+#[allow(dead_code)]
+#[path = "scaling/chain.rs"]
+mod chain;
+
+use chain::Form;
+use lagrange::nalgebra::SVector;
+use lagrange::prelude::*;
+use proc_macro2::TokenStream;
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+macro_rules! chain_model {
+    ($name:ident, $n:literal) => {
+        lagrangian! {
+            #[lagrange(parameter_derivatives)]
+            pub struct $name {
+                const N = $n;
+                coordinates: theta[N];
+                parameters: m[N], l[N];
+                constants: g = 9.81;
+                let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));
+                let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));
+                kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2));
+                potential: sum(i in 0..N, m[i]*g*y[i]);
+            }
+        }
+    };
+}
+
+chain_model!(Chain2, 2);
+chain_model!(Chain5, 5);
+chain_model!(Chain10, 10);
+chain_model!(Chain20, 20);
+
+/// The chain's body as the scaling study writes it, with or without the option.
+fn source(n: usize, option: bool) -> TokenStream {
+    let attribute = if option {
+        "#[lagrange(parameter_derivatives)]"
+    } else {
+        ""
+    };
+    format!("{attribute} {}", chain::model_body(n, Form::Indexed))
+        .parse()
+        .expect("the chain lexes")
+}
+
+/// Median expansion time over `reps` runs, and the emitted code's size.
+fn expand(tokens: &TokenStream, reps: usize) -> (Duration, usize) {
+    let mut times = Vec::new();
+    let mut bytes = 0;
+    for _ in 0..reps {
+        let start = Instant::now();
+        let out = lagrange_engine::expand(tokens.clone());
+        times.push(start.elapsed());
+        bytes = out.to_string().len();
+    }
+    times.sort();
+    (times[reps / 2], bytes)
+}
+
+/// Median ns per call of `f` over 7 batches.
+fn ns(mut f: impl FnMut()) -> f64 {
+    let calls = 2_000;
+    let mut times: Vec<f64> = (0..7)
+        .map(|_| {
+            let start = Instant::now();
+            for _ in 0..calls {
+                f();
+            }
+            start.elapsed().as_secs_f64() * 1e9 / calls as f64
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[3]
+}
+
+macro_rules! run_time {
+    ($name:ident, $n:literal) => {{
+        let model = $name::new([1.0; $n], [0.5; $n]);
+        let q = SVector::<f64, $n>::from_fn(|i, _| 0.4 * (0.7 * i as f64).sin());
+        let v = SVector::<f64, $n>::from_fn(|i, _| 0.5 * (1.3 * i as f64).cos());
+        let a = SVector::<f64, $n>::from_fn(|i, _| 0.3 * (0.9 * i as f64).sin());
+        let m = black_box(model);
+        let f = ns(|| {
+            black_box(m.forcing(0.0, black_box(&q), black_box(&v)));
+        });
+        let df = ns(|| {
+            black_box(m.forcing_parameter_jacobian(0.0, black_box(&q), black_box(&v)));
+        });
+        let dr = ns(|| {
+            black_box(m.residual_parameter_jacobian(
+                0.0,
+                black_box(&q),
+                black_box(&v),
+                black_box(&a),
+            ));
+        });
+        let dm = ns(|| {
+            black_box(m.mass_matrix_parameter_derivatives(0.0, black_box(&q)));
+        });
+        (f, df, dr, dm)
+    }};
+}
+
+fn main() {
+    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    println!("load average at the start: {}", load.trim());
+    println!();
+    println!("Compile time: the engine's expansion (median), and the emitted code.");
+    println!();
+    println!(
+        "| N | P | expand (s) | with the option (s) | ratio | code (kB) | with the option (kB) | ratio |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for n in [2, 5, 10, 20] {
+        let reps = if n >= 20 { 3 } else { 7 };
+        let (t0, b0) = expand(&source(n, false), reps);
+        let (t1, b1) = expand(&source(n, true), reps);
+        println!(
+            "| {n} | {} | {:.4} | {:.4} | {:.2} | {:.0} | {:.0} | {:.2} |",
+            2 * n,
+            t0.as_secs_f64(),
+            t1.as_secs_f64(),
+            t1.as_secs_f64() / t0.as_secs_f64(),
+            b0 as f64 / 1e3,
+            b1 as f64 / 1e3,
+            b1 as f64 / b0 as f64
+        );
+    }
+    println!();
+    println!("Run time: ns per call, and each against `f` alone.");
+    println!();
+    println!("| N | P | f | ∂f/∂p | ratio | ∂r/∂p | ratio | ∂M/∂p | ratio |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let rows = [
+        (2, run_time!(Chain2, 2)),
+        (5, run_time!(Chain5, 5)),
+        (10, run_time!(Chain10, 10)),
+        (20, run_time!(Chain20, 20)),
+    ];
+    for (n, (f, df, dr, dm)) in rows {
+        println!(
+            "| {n} | {} | {f:.1} | {df:.1} | {:.1} | {dr:.1} | {:.1} | {dm:.1} | {:.1} |",
+            2 * n,
+            df / f,
+            dr / f,
+            dm / f
+        );
+    }
+}
