@@ -38,7 +38,8 @@
 //! derivatives by each parameter scalar `p_k` (P of them, an indexed
 //! parameter `m[N]` being N): `∂M/∂p_k` (P matrices N × N), `∂f/∂p`
 //! (N × P) and the residual's `∂r/∂p = (∂M/∂p) q̈ − ∂f/∂p` (N × P), what
-//! forward sensitivities and parameter fits need. The parameters are
+//! forward sensitivities and parameter fits need; a constrained model also
+//! `∂φ/∂p`, `∂φ̇/∂p` and `∂(G q̈ + γ)/∂p` (each C × P). The parameters are
 //! symbols of the same pool, so these share their subexpressions with `M`
 //! and `f`.
 
@@ -85,6 +86,10 @@ pub struct ParameterDerivatives {
     pub forcing: ExprMatrix,
     /// `∂r/∂p` of the residual `r = M q̈ − f`, `N × P` row-major.
     pub residual: ExprMatrix,
+    /// A constrained model's `∂φ/∂p`, `∂φ̇/∂p` and `∂(G q̈ + γ)/∂p`, each
+    /// `C × P` row-major (`φ` is zero for a velocity constraint, so is its
+    /// row of `∂φ/∂p`).
+    pub constraints: Option<[ExprMatrix; 3]>,
 }
 
 /// What the contacts contribute, each in the order written: the gaps'
@@ -285,14 +290,6 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
             .collect();
         Some(rows)
     };
-    let parameter_derivatives = if want_parameters {
-        match by_parameters(pool, &s, &mass, &forcing) {
-            Some(d) => Some(d),
-            None => return Equations::exhausted(),
-        }
-    } else {
-        None
-    };
     let constraints = if phi.is_empty() {
         None
     } else {
@@ -311,6 +308,14 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
             (Some(gaps), Some(slips)) => Some(ContactEquations { gaps, slips, laws }),
             _ => return Equations::exhausted(),
         }
+    };
+    let parameter_derivatives = if want_parameters {
+        match by_parameters(pool, &s, &mass, &forcing, constraints.as_ref()) {
+            Some(d) => Some(d),
+            None => return Equations::exhausted(),
+        }
+    } else {
+        None
     };
     Equations {
         mass,
@@ -391,6 +396,7 @@ fn by_parameters(
     s: &Symbols,
     mass: &ExprMatrix,
     forcing: &[ExprId],
+    constraints: Option<&ConstraintEquations>,
 ) -> Option<ParameterDerivatives> {
     let n = forcing.len();
     let p = s.parameters.len();
@@ -435,10 +441,46 @@ fn by_parameters(
             by_residual[i].push(dr);
         }
     }
+    let constraints = constraints.map(|c| {
+        // G q̈ + γ, the constraints at the level of accelerations.
+        let acceleration: Vec<ExprId> = c
+            .jacobian
+            .iter()
+            .zip(&c.bias)
+            .map(|(row, &gamma)| {
+                let mut terms: Vec<ExprId> = row
+                    .iter()
+                    .zip(&s.accelerations)
+                    .map(|(&g, &a)| {
+                        let a = pool.sym(a);
+                        pool.mul2(g, a)
+                    })
+                    .collect();
+                terms.push(gamma);
+                pool.add(&terms)
+            })
+            .collect();
+        pool.charge((3 * acceleration.len() as u64).saturating_mul(p as u64));
+        let mut by = |rows: &[ExprId]| -> ExprMatrix {
+            rows.iter()
+                .map(|&r| {
+                    s.parameters
+                        .iter()
+                        .map(|&pk| {
+                            let d = pool.diff(r, pk);
+                            pool.factored(d)
+                        })
+                        .collect()
+                })
+                .collect()
+        };
+        [by(&c.values), by(&c.velocities), by(&acceleration)]
+    });
     (!pool.exhausted()).then_some(ParameterDerivatives {
         mass: by_mass,
         forcing: by_forcing,
         residual: by_residual,
+        constraints,
     })
 }
 

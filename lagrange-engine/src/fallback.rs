@@ -11,7 +11,7 @@
 //! parameter derivatives, those methods and `PARAMETER_SCALARS`.
 
 use crate::ast::ModelDef;
-use crate::emit::api::{CONSTS, InTrait, METHODS};
+use crate::emit::api::{CONSTS, InTrait, METHODS, Returns};
 use crate::emit::inputs;
 use crate::emit::outline::{Outline, Types, nalgebra};
 use crate::model::{Field, declared_shape};
@@ -94,6 +94,7 @@ impl Stub {
             .filter(|m| self.contacts > 0 || m.in_trait != InTrait::Contacts)
             .filter(|m| actuated || m.in_trait != InTrait::Actuated)
             .filter(|m| self.parameter_derivatives || m.in_trait != InTrait::ParameterDerivatives)
+            .filter(|m| constrained || m.returns != Returns::ConstraintParameterMatrix)
             .map(|m| {
                 let signature = m.signature(&types);
                 quote!(pub #signature { #stop })

@@ -91,6 +91,8 @@ pub enum Returns {
     ParameterMatrix,
     /// `[SMatrix<S, N, N>; P]`: `P·N²` roots, matrix after matrix.
     ParameterMatrices,
+    /// `SMatrix<S, C, P>`: `C·P` roots.
+    ConstraintParameterMatrix,
 }
 
 impl Returns {
@@ -118,6 +120,7 @@ impl Returns {
                 quote!([::lagrange::contact::ContactLaw<S>; #k])
             }
             Returns::ParameterMatrix => ty.parameter_matrix.clone(),
+            Returns::ConstraintParameterMatrix => ty.constraint_parameter_matrix.clone(),
             Returns::ParameterMatrices => {
                 let p = Literal::usize_unsuffixed(ty.parameters);
                 quote!([#matrix; #p])
@@ -202,6 +205,10 @@ impl Returns {
             }
             Returns::ParameterMatrix => {
                 let new = &ty.new_parameter_matrix;
+                quote!(#new(&[#(#outs),*]))
+            }
+            Returns::ConstraintParameterMatrix => {
+                let new = &ty.new_constraint_parameter_matrix;
                 quote!(#new(&[#(#outs),*]))
             }
             Returns::ParameterMatrices => {
@@ -608,7 +615,45 @@ pub const METHODS: &[Method] = &[
         },
         in_trait: InTrait::ParameterDerivatives,
     },
+    // Only a constrained model with `#[lagrange(parameter_derivatives)]`.
+    Method {
+        name: "constraint_parameter_jacobian",
+        doc: &[
+            "`∂φ/∂p`, `C × P`: how the constraints at `(t, q)` move with each",
+            "parameter scalar (a zero row for a velocity constraint).",
+        ],
+        args: &[Arg::T, Arg::Q],
+        returns: Returns::ConstraintParameterMatrix,
+        roots: |model, eq| constraint_parameter_roots(model, eq, 0),
+        in_trait: InTrait::ParameterDerivatives,
+    },
+    Method {
+        name: "constraint_velocity_parameter_jacobian",
+        doc: &["`∂φ̇/∂p`, `C × P`, of the constraint velocities `φ̇` at `(t, q, q̇)`."],
+        args: &[Arg::T, Arg::Q, Arg::Qdot],
+        returns: Returns::ConstraintParameterMatrix,
+        roots: |model, eq| constraint_parameter_roots(model, eq, 1),
+        in_trait: InTrait::ParameterDerivatives,
+    },
+    Method {
+        name: "constraint_acceleration_parameter_jacobian",
+        doc: &[
+            "`∂(G q̈ + γ)/∂p`, `C × P`: the constraints at the level of",
+            "accelerations, `φ̈ = G q̈ + γ`, differentiated by each parameter.",
+        ],
+        args: &[Arg::T, Arg::Q, Arg::Qdot, Arg::Qddot],
+        returns: Returns::ConstraintParameterMatrix,
+        roots: |model, eq| constraint_parameter_roots(model, eq, 2),
+        in_trait: InTrait::ParameterDerivatives,
+    },
 ];
+
+/// One of a constrained model's parameter derivatives (`which`: `∂φ/∂p`,
+/// `∂φ̇/∂p`, `∂(G q̈ + γ)/∂p`), column by column.
+fn constraint_parameter_roots(model: &Model, eq: &Equations, which: usize) -> Option<Vec<ExprId>> {
+    let by = eq.parameter_derivatives.as_ref()?.constraints.as_ref()?;
+    Some(column_major_of(&by[which], model.parameters.len()))
+}
 
 /// The entries of a square matrix, column by column.
 fn column_major(m: &ExprMatrix) -> Vec<ExprId> {

@@ -71,6 +71,10 @@ pub struct Types {
     pub parameter_matrix: TokenStream,
     /// The constructor of `SMatrix<S, N, P>` from a column-major slice.
     pub new_parameter_matrix: TokenStream,
+    /// `SMatrix<S, C, P>`.
+    pub constraint_parameter_matrix: TokenStream,
+    /// The constructor of `SMatrix<S, C, P>` from a column-major slice.
+    pub new_constraint_parameter_matrix: TokenStream,
 }
 
 impl Types {
@@ -112,6 +116,8 @@ impl Types {
             parameters: 0,
             parameter_matrix: quote!(#na::SMatrix<S, #n, 0>),
             new_parameter_matrix: quote!(#na::SMatrix::<S, #n, 0>::from_column_slice),
+            constraint_parameter_matrix: quote!(#na::SMatrix<S, #c, 0>),
+            new_constraint_parameter_matrix: quote!(#na::SMatrix::<S, #c, 0>::from_column_slice),
             n,
             c,
         }
@@ -123,6 +129,9 @@ impl Types {
         let (n, p) = (&self.n, Literal::usize_unsuffixed(parameters));
         self.parameter_matrix = quote!(#na::SMatrix<S, #n, #p>);
         self.new_parameter_matrix = quote!(#na::SMatrix::<S, #n, #p>::from_column_slice);
+        let c = &self.c;
+        self.constraint_parameter_matrix = quote!(#na::SMatrix<S, #c, #p>);
+        self.new_constraint_parameter_matrix = quote!(#na::SMatrix::<S, #c, #p>::from_column_slice);
         self.parameters = parameters;
         self
     }

@@ -31,6 +31,8 @@ fn the_option_adds_the_derivatives_sized_by_the_parameter_scalars() {
     assert!(tokens.contains("pub fn forcing_parameter_jacobian"));
     assert!(tokens.contains("pub fn residual_parameter_jacobian"));
     assert!(tokens.contains(":: lagrange :: nalgebra :: SMatrix < S , 1 , 4 >"));
+    // No constraints, no constraint derivatives.
+    assert!(!tokens.contains("constraint_parameter_jacobian"));
     syn::parse_file(&tokens).expect("the items parse as Rust");
 
     let without = expand(&PENDULUM.replace("#[lagrange(parameter_derivatives)]", ""));
@@ -49,5 +51,19 @@ fn a_model_with_an_error_keeps_its_parameter_derivatives_in_the_stub() {
     assert_eq!(tokens.matches("compile_error").count(), 1, "{tokens}");
     assert!(tokens.contains("pub const PARAMETER_SCALARS : [& 'static str ; 4]"));
     assert!(tokens.contains("pub fn residual_parameter_jacobian"));
+    assert!(!tokens.contains("constraint_parameter_jacobian"));
+    syn::parse_file(&tokens).expect("the stub parses as Rust");
+
+    // A constrained model's stub has its constraints' derivatives, `C × P`.
+    let constrained = PENDULUM
+        .replace("coordinates: theta;", "coordinates: theta, r;")
+        .replace(
+            "potential:",
+            "constraints: rod: r = l[0] + l[1]; potential:",
+        );
+    let tokens = expand(&constrained.replace("cos(theta)", "cos(dot(theta))"));
+    assert_eq!(tokens.matches("compile_error").count(), 1, "{tokens}");
+    assert!(tokens.contains("pub fn constraint_acceleration_parameter_jacobian"));
+    assert!(tokens.contains(":: lagrange :: nalgebra :: SMatrix < S , 1 , 4 >"));
     syn::parse_file(&tokens).expect("the stub parses as Rust");
 }
