@@ -6,39 +6,10 @@
 //!
 //! `cargo run --release -p lagrange-studies --example jacobian_cost`
 
-#[allow(dead_code)]
-#[path = "scaling/chain.rs"]
-mod chain;
+#[path = "support/option_cost.rs"]
+mod option_cost;
 
-use chain::Form;
-use proc_macro2::TokenStream;
-use std::time::{Duration, Instant};
-
-/// The `n`-link chain of `lagrange-studies/examples/scaling`, with or without the attribute.
-fn chain(n: usize, jacobians: bool) -> TokenStream {
-    let attribute = if jacobians {
-        "#[lagrange(jacobians)]"
-    } else {
-        ""
-    };
-    format!("{attribute} {}", chain::model_body(n, Form::Indexed))
-        .parse()
-        .expect("the chain lexes")
-}
-
-/// Median expansion time over `reps` runs, and the emitted code's size.
-fn expand(tokens: &TokenStream, reps: usize) -> (Duration, usize) {
-    let mut times = Vec::new();
-    let mut bytes = 0;
-    for _ in 0..reps {
-        let start = Instant::now();
-        let out = lagrange_engine::expand(tokens.clone());
-        times.push(start.elapsed());
-        bytes = out.to_string().len();
-    }
-    times.sort();
-    (times[reps / 2], bytes)
-}
+use option_cost::{chain, expand};
 
 fn main() {
     println!(
@@ -47,8 +18,8 @@ fn main() {
     println!("|---:|---:|---:|---:|---:|---:|---:|");
     for n in [2, 5, 10, 20] {
         let reps = if n >= 20 { 3 } else { 7 };
-        let (t0, b0) = expand(&chain(n, false), reps);
-        let (t1, b1) = expand(&chain(n, true), reps);
+        let (t0, b0) = expand(&chain(n, None), reps);
+        let (t1, b1) = expand(&chain(n, Some("jacobians")), reps);
         println!(
             "| {n} | {:.4} | {:.4} | {:.2} | {:.0} | {:.0} | {:.2} |",
             t0.as_secs_f64(),

@@ -7,16 +7,14 @@
 //!
 //! `cargo run --release -p lagrange-studies --example parameter_cost`
 
-#[allow(dead_code)]
-#[path = "scaling/chain.rs"]
-mod chain;
+#[path = "support/option_cost.rs"]
+mod option_cost;
 
-use chain::Form;
 use lagrange::nalgebra::SVector;
 use lagrange::prelude::*;
-use proc_macro2::TokenStream;
+use option_cost::{chain, expand};
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 macro_rules! chain_model {
     ($name:ident, $n:literal) => {
@@ -40,32 +38,6 @@ chain_model!(Chain2, 2);
 chain_model!(Chain5, 5);
 chain_model!(Chain10, 10);
 chain_model!(Chain20, 20);
-
-/// The chain's body as the scaling study writes it, with or without the option.
-fn source(n: usize, option: bool) -> TokenStream {
-    let attribute = if option {
-        "#[lagrange(parameter_derivatives)]"
-    } else {
-        ""
-    };
-    format!("{attribute} {}", chain::model_body(n, Form::Indexed))
-        .parse()
-        .expect("the chain lexes")
-}
-
-/// Median expansion time over `reps` runs, and the emitted code's size.
-fn expand(tokens: &TokenStream, reps: usize) -> (Duration, usize) {
-    let mut times = Vec::new();
-    let mut bytes = 0;
-    for _ in 0..reps {
-        let start = Instant::now();
-        let out = lagrange_engine::expand(tokens.clone());
-        times.push(start.elapsed());
-        bytes = out.to_string().len();
-    }
-    times.sort();
-    (times[reps / 2], bytes)
-}
 
 /// Median ns per call of `f` over 7 batches.
 fn ns(mut f: impl FnMut()) -> f64 {
@@ -123,8 +95,8 @@ fn main() {
     println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
     for n in [2, 5, 10, 20] {
         let reps = if n >= 20 { 3 } else { 7 };
-        let (t0, b0) = expand(&source(n, false), reps);
-        let (t1, b1) = expand(&source(n, true), reps);
+        let (t0, b0) = expand(&chain(n, None), reps);
+        let (t1, b1) = expand(&chain(n, Some("parameter_derivatives")), reps);
         println!(
             "| {n} | {} | {:.4} | {:.4} | {:.2} | {:.0} | {:.0} | {:.2} |",
             2 * n,
