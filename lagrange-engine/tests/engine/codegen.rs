@@ -3,22 +3,8 @@
 //! sines and cosines are lanes of the runtime's kernel, called once for all
 //! the angles known at that point.
 
+use crate::problems::indexed_chain;
 use quote::ToTokens;
-
-fn indexed_chain(n: usize) -> String {
-    format!(
-        "pub struct Chain {{
-            const N = {n};
-            coordinates: theta[N];
-            parameters: m[N], l[N];
-            constants: g = 9.81;
-            let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));
-            let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));
-            kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2));
-            potential: sum(i in 0..N, m[i]*g*y[i]);
-        }}"
-    )
-}
 
 /// Every method of the model's inherent impl.
 fn methods(source: &str) -> Vec<syn::ImplItemFn> {

@@ -2,22 +2,9 @@
 //! `G = ∂φ/∂q`, `φ̇`, `γ`) against closed forms, the items it adds, the
 //! errors it gives, and that it changes nothing for a model without it.
 
+use crate::problems::{derive, error};
 use lagrange_engine::Derived;
 use lagrange_engine::derive::ConstraintEquations;
-
-fn derive(src: &str) -> Derived {
-    match lagrange_engine::derive(src.parse().unwrap()) {
-        Ok(d) => d,
-        Err(e) => panic!("{e}"),
-    }
-}
-
-fn error(src: &str) -> String {
-    match lagrange_engine::derive(src.parse().unwrap()) {
-        Ok(_) => panic!("expected an error from {src}"),
-        Err(e) => e.to_string(),
-    }
-}
 
 fn constraints(d: &Derived) -> &ConstraintEquations {
     d.equations

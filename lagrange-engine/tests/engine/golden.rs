@@ -17,6 +17,7 @@
 //! (`tests/data/double_pendulum.expanded.rs`), so that a change shows as a
 //! readable diff.
 
+use crate::problems::{DOUBLE_PENDULUM, indexed_chain};
 use proc_macro2::{TokenStream, TokenTree};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -45,22 +46,6 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
             out.push(path);
         }
     }
-}
-
-/// The N-link chain of the README and the scaling benchmark.
-fn indexed_chain(n: usize) -> String {
-    format!(
-        "pub struct Chain {{
-            const N = {n};
-            coordinates: theta[N];
-            parameters: m[N], l[N];
-            constants: g = 9.81;
-            let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));
-            let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));
-            kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2));
-            potential: sum(i in 0..N, m[i]*g*y[i]);
-        }}"
-    )
 }
 
 fn fnv1a(bytes: &[u8]) -> u64 {
@@ -130,19 +115,6 @@ fn expansions() -> BTreeMap<String, String> {
     }
     out
 }
-
-/// The README's double pendulum.
-const DOUBLE_PENDULUM: &str = "
-    pub struct DoublePendulum {
-        coordinates: theta1, theta2;
-        parameters: m1, m2, l1, l2, g;
-        let x1 = l1*sin(theta1);
-        let y1 = -l1*cos(theta1);
-        let x2 = x1 + l2*sin(theta2);
-        let y2 = y1 - l2*cos(theta2);
-        kinetic: m1/2*(dot(x1)^2 + dot(y1)^2) + m2/2*(dot(x2)^2 + dot(y2)^2);
-        potential: m1*g*y1 + m2*g*y2;
-    }";
 
 fn manifest(expansions: &BTreeMap<String, String>) -> String {
     let mut s =

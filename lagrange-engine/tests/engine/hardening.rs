@@ -11,6 +11,7 @@
 //! 0 by default, where the deep cases below still pass on 2 MiB: checked
 //! by building the tests so, once.)
 
+use crate::problems::indexed_chain;
 use lagrange_engine::expr::{DEFAULT_BUDGET, MAX_DEPTH};
 use lagrange_engine::parse::expression::MAX_NESTING;
 
@@ -65,22 +66,6 @@ fn error(source: String, budget: u64) -> String {
 /// A one-coordinate model with potential energy `v`.
 fn with_potential(v: &str) -> String {
     format!("struct M {{ coordinates: x; kinetic: dot(x)^2; potential: {v}; }}")
-}
-
-/// The README's chain of `n` links.
-fn chain(n: usize) -> String {
-    format!(
-        "pub struct Chain {{
-            const N = {n};
-            coordinates: theta[N];
-            parameters: m[N], l[N];
-            constants: g = 9.81;
-            let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));
-            let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));
-            kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2));
-            potential: sum(i in 0..N, m[i]*g*y[i]);
-        }}"
-    )
 }
 
 const TOO_DEEP: &str = "levels deep (parentheses, calls, unary minuses, exponents or method calls)";
@@ -295,7 +280,7 @@ fn wide_sums_and_long_polynomials_expand_within_the_budget() {
 
 #[test]
 fn the_hundred_link_chain_stops_with_the_budget_error() {
-    let e = error(chain(100), DEFAULT_BUDGET);
+    let e = error(indexed_chain(100), DEFAULT_BUDGET);
     assert!(
         e.contains(&format!("{OVER_BUDGET} of {DEFAULT_BUDGET} steps")),
         "{e}"
@@ -308,15 +293,16 @@ fn the_hundred_link_chain_stops_with_the_budget_error() {
 
 #[test]
 fn the_smallest_budget_is_an_error_not_a_panic() {
-    let one = chain(2).replacen("pub struct", "#[lagrange(budget = 1)] pub struct", 1);
+    let one = indexed_chain(2).replacen("pub struct", "#[lagrange(budget = 1)] pub struct", 1);
     assert!(error(one, DEFAULT_BUDGET).contains(&format!("{OVER_BUDGET} of 1 steps")));
 }
 
 #[test]
 fn the_budget_attribute_raises_the_budget_of_one_model() {
     let small = 200_000;
-    assert!(error(chain(8), small).contains(&format!("{OVER_BUDGET} of {small} steps")));
-    let raised = chain(8).replacen("pub struct", "#[lagrange(budget = 5000000)] pub struct", 1);
+    assert!(error(indexed_chain(8), small).contains(&format!("{OVER_BUDGET} of {small} steps")));
+    let raised =
+        indexed_chain(8).replacen("pub struct", "#[lagrange(budget = 5000000)] pub struct", 1);
     assert!(derive(raised, small).is_ok());
 }
 

@@ -2,21 +2,7 @@
 //! closed forms, the items it adds, the errors it gives, and that it
 //! changes nothing for a model without it.
 
-use lagrange_engine::Derived;
-
-fn derive(src: &str) -> Derived {
-    match lagrange_engine::derive(src.parse().unwrap()) {
-        Ok(d) => d,
-        Err(e) => panic!("{e}"),
-    }
-}
-
-fn error(src: &str) -> String {
-    match lagrange_engine::derive(src.parse().unwrap()) {
-        Ok(_) => panic!("expected an error from {src}"),
-        Err(e) => e.to_string(),
-    }
-}
+use crate::problems::{derive, error};
 
 const CART_POLE: &str = "
     pub struct CartPole {

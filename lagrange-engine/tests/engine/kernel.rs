@@ -1,5 +1,6 @@
 //! The engine outside rustc: canonical forms, derivatives, determinism.
 
+use crate::problems::{DOUBLE_PENDULUM, indexed_chain};
 use lagrange_engine::expr::{ExprId, Func, Pool, SymId};
 
 fn syms(pool: &mut Pool, n: u32) -> Vec<ExprId> {
@@ -126,20 +127,6 @@ fn every_derivative_rule_matches_central_differences() {
         }
     }
 }
-
-const DOUBLE_PENDULUM: &str = r#"
-    /// The double pendulum.
-    pub struct DoublePendulum {
-        coordinates: theta1, theta2;
-        parameters: m1, m2, l1, l2, g;
-        let x1 = l1*sin(theta1);
-        let y1 = -l1*cos(theta1);
-        let x2 = x1 + l2*sin(theta2);
-        let y2 = y1 - l2*cos(theta2);
-        kinetic: m1/2*(dot(x1)^2 + dot(y1)^2) + m2/2*(dot(x2)^2 + dot(y2)^2);
-        potential: m1*g*y1 + m2*g*y2;
-    }
-"#;
 
 #[test]
 fn the_same_model_always_expands_to_the_same_tokens() {
@@ -284,24 +271,6 @@ fn no_edit_of_a_model_makes_the_engine_panic() {
         errors > 500 && items > 50,
         "{errors} errors, {items} valid models"
     );
-}
-
-/// The N-link chain in the indexed DSL.
-fn indexed_chain(n: usize) -> String {
-    format!(
-        r#"
-    pub struct Chain {{
-        const N = {n};
-        coordinates: theta[N];
-        parameters: m[N], l[N];
-        constants: g = 9.81;
-        let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));
-        let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));
-        kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2));
-        potential: sum(i in 0..N, m[i]*g*y[i]);
-    }}
-"#
-    )
 }
 
 /// The same chain written out name by name, as before indices existed.

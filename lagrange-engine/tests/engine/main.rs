@@ -10,5 +10,6 @@ mod hardening;
 mod inputs;
 mod kernel;
 mod parameters;
+mod problems;
 mod readme;
 mod ui_messages;
