@@ -8,7 +8,7 @@
 
 use nalgebra::RealField;
 
-use super::record::{Evaluate, Project, Recorder, finite_state};
+use super::record::{Evaluate, Recorder, finite_state};
 use super::run::Segment;
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::events::{Events, Hermite, Watch, evaluate_into, first_crossing};
@@ -94,7 +94,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     /// the runtime's test binary).
     pub(crate) fn watch_dense(
         &mut self,
-        model: &dyn Project<S, N>,
+        model: &dyn Evaluate<S, N>,
         (t, t_new): (S, S),
         end: &State<S, N>,
         interpolant: &mut dyn FnMut(S) -> State<S, N>,
@@ -113,9 +113,9 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     /// right-hand side per step while events are watched) and kept as the
     /// next step's start, whose own is evaluated only after the state was
     /// changed in between (a reset, a projection, a new segment).
-    pub(crate) fn watch_hermite<E: Evaluate<S, N> + ?Sized>(
+    pub(crate) fn watch_hermite(
         &mut self,
-        model: &E,
+        model: &dyn Evaluate<S, N>,
         (t, start): (S, &State<S, N>),
         (t_new, end): (S, &State<S, N>),
     ) -> Result<Option<Segment<S, N>>, IntegrationError<S, N>> {
@@ -131,14 +131,13 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
             }
             let hermite = Hermite::new((t, *start, qddot0), (t_new, *end, qddot1));
             let mut interpolant = |s| hermite.at(s);
-            let projector = model.projector();
-            if let Some(ended) = self.act(projector, (t, t_new), end, g_end, &mut interpolant)? {
+            if let Some(ended) = self.act(model, (t, t_new), end, g_end, &mut interpolant)? {
                 return Ok(Some(ended));
             }
         }
         // A fixed step ends on every sample time: no sample lies strictly
         // inside it for the observer's stop to interpolate.
-        self.observe(model.projector(), t_new, end, &mut |_| *end)
+        self.observe(model, t_new, end, &mut |_| *end)
     }
 
     /// The observer, if any, at an accepted step's end `(t_new, end)`: when
@@ -146,7 +145,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     /// `interpolant` inside the step) and the run ends there.
     fn observe(
         &mut self,
-        model: &dyn Project<S, N>,
+        model: &dyn Evaluate<S, N>,
         t_new: S,
         end: &State<S, N>,
         interpolant: &mut dyn FnMut(S) -> State<S, N>,
@@ -207,7 +206,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
 
     fn act(
         &mut self,
-        model: &dyn Project<S, N>,
+        model: &dyn Evaluate<S, N>,
         step: (S, S),
         end: &State<S, N>,
         g_end: Vec<S>,
@@ -226,7 +225,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     fn act_on(
         &mut self,
         watch: &mut Watch<'a, S, N>,
-        model: &dyn Project<S, N>,
+        model: &dyn Evaluate<S, N>,
         (t, t_new): (S, S),
         end: &State<S, N>,
         g_end: Vec<S>,

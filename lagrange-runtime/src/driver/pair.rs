@@ -481,7 +481,7 @@ impl<S: RealField + Copy> Course<S> {
                     |ts: S| pairing.dense_at(h_try, (&q, &qdot), (ts - t) / h_try);
                 let end = (q_new, qdot_new);
                 run.rec
-                    .watch_dense(model.projector(), (t, t_new), &end, &mut interpolant)?
+                    .watch_dense(model, (t, t_new), &end, &mut interpolant)?
             } else {
                 None
             };
@@ -489,7 +489,7 @@ impl<S: RealField + Copy> Course<S> {
                 while let Some(ts) = run.rec.pending().filter(|&ts| ts <= t_new) {
                     if ts < t_new {
                         let (qs, qdots) = pairing.dense_at(h_try, (&q, &qdot), (ts - t) / h_try);
-                        run.rec.record_dense(model.projector(), ts, qs, qdots)?;
+                        run.rec.record_dense(model, ts, qs, qdots)?;
                     } else {
                         run.rec.record(ts, q_new, qdot_new);
                     }

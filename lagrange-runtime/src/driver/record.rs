@@ -129,7 +129,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     /// if the model's drift control projects.
     pub(crate) fn record_dense(
         &mut self,
-        model: &dyn Project<S, N>,
+        model: &dyn Evaluate<S, N>,
         t: S,
         q: SVector<S, N>,
         qdot: SVector<S, N>,
@@ -145,7 +145,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
     /// states) is an error, never a sample.
     pub(crate) fn project_sample(
         &mut self,
-        model: &dyn Project<S, N>,
+        model: &dyn Evaluate<S, N>,
         t: S,
         q: SVector<S, N>,
         qdot: SVector<S, N>,
@@ -179,34 +179,6 @@ pub(crate) fn finite_state<S: RealField + Copy, const N: usize>(
     q.iter().chain(qdot.iter()).all(|x| x.is_finite())
 }
 
-/// A state from an interpolant brought onto a model's constraints, as the
-/// model's drift control says (unchanged in minimal coordinates): what
-/// sampling and event location need of a model, behind a `dyn` so that
-/// their code is compiled once per scalar and size, not once per model
-/// and method.
-pub(crate) trait Project<S: RealField + Copy, const N: usize> {
-    fn project(
-        &self,
-        stats: &mut Stats,
-        t: S,
-        q: SVector<S, N>,
-        qdot: SVector<S, N>,
-    ) -> Result<State<S, N>, IntegrationError<S, N>>;
-}
-
-impl<S: RealField + Copy, L: Lagrangian<N, Scalar = S>, const N: usize> Project<S, N> for L {
-    fn project(
-        &self,
-        stats: &mut Stats,
-        t: S,
-        q: SVector<S, N>,
-        qdot: SVector<S, N>,
-    ) -> Result<State<S, N>, IntegrationError<S, N>> {
-        let sample = ProjectSample { t, q, qdot, stats };
-        self.visit_constraints(sample).unwrap_or(Ok((q, qdot)))
-    }
-}
-
 /// What the run loops ask of a model (its accelerations, the drift control
 /// after a step, the projection of a sample), object-safe: a loop that
 /// takes the model as `&dyn Evaluate` is compiled once per scalar and
@@ -230,8 +202,16 @@ pub(crate) trait Evaluate<S: RealField + Copy, const N: usize> {
         qdot: SVector<S, N>,
     ) -> Result<State<S, N>, IntegrationError<S, N>>;
 
-    /// The model as sampling and event location take it.
-    fn projector(&self) -> &dyn Project<S, N>;
+    /// A state from an interpolant brought onto the constraints, as the
+    /// model's drift control says (unchanged in minimal coordinates): what
+    /// sampling and event location need of a model.
+    fn project(
+        &self,
+        stats: &mut Stats,
+        t: S,
+        q: SVector<S, N>,
+        qdot: SVector<S, N>,
+    ) -> Result<State<S, N>, IntegrationError<S, N>>;
 }
 
 impl<S: RealField + Copy, L: Lagrangian<N, Scalar = S>, const N: usize> Evaluate<S, N> for L {
@@ -261,7 +241,14 @@ impl<S: RealField + Copy, L: Lagrangian<N, Scalar = S>, const N: usize> Evaluate
         self.visit_constraints(control).unwrap_or(Ok((q, qdot)))
     }
 
-    fn projector(&self) -> &dyn Project<S, N> {
-        self
+    fn project(
+        &self,
+        stats: &mut Stats,
+        t: S,
+        q: SVector<S, N>,
+        qdot: SVector<S, N>,
+    ) -> Result<State<S, N>, IntegrationError<S, N>> {
+        let sample = ProjectSample { t, q, qdot, stats };
+        self.visit_constraints(sample).unwrap_or(Ok((q, qdot)))
     }
 }
