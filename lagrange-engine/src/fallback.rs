@@ -8,7 +8,8 @@
 //! also gets their methods and the `Holonomic` impl's required ones, and a
 //! model that declares inputs their fields, `INPUTS`, the methods that read
 //! and set them and the `Actuated` impl; a model that asks for its
-//! parameter derivatives, those methods and `PARAMETER_SCALARS`.
+//! parameter derivatives, those methods, `PARAMETER_SCALARS` and the
+//! `ParameterDerivatives` impl.
 
 use crate::ast::ModelDef;
 use crate::emit::api::{CONSTS, InTrait, METHODS, Returns};
@@ -154,6 +155,20 @@ impl Stub {
         let actuated = (!actuated.is_empty())
             .then(|| quote!(#[allow(unused_variables, clippy::all)] #actuated));
         let lets = crate::emit::lets_impl(&self.name, &types);
+        let derivatives = METHODS
+            .iter()
+            .filter(|m| {
+                m.in_trait == InTrait::ParameterDerivatives
+                    && m.returns != Returns::ConstraintParameterMatrix
+            })
+            .map(|m| {
+                let signature = m.trait_signature(&types);
+                quote!(#signature { #stop })
+            })
+            .collect();
+        let parameters = crate::emit::parameters::parameters_impl(&outline, &types, derivatives);
+        let parameters = (!parameters.is_empty())
+            .then(|| quote!(#[allow(unused_variables, clippy::all)] #parameters));
         quote! {
             #error
             #item
@@ -175,6 +190,7 @@ impl Stub {
             #contacts
             #actuated
             #lets
+            #parameters
         }
     }
 }

@@ -19,6 +19,7 @@ const LAYERS: &[&str] = &[
     "linalg",      // matrices, no models
     "model",       // the contract: Lagrangian, its capabilities, layers
     "dynamics",    // q̈ and λ of a model at a state; blame
+    "sensitivity", // a model with its forward sensitivities
     "events",      // functions of the state, located on an interpolant
     "driver",      // the run loops, recording, validation
     "integrators", // one method per file

@@ -292,6 +292,7 @@ pub mod linalg;
 pub mod model;
 #[cfg(feature = "serde")]
 mod names;
+pub mod sensitivity;
 pub mod stepper;
 mod trajectory;
 pub mod trig;
@@ -309,7 +310,7 @@ pub use inputs::Actuated;
 pub use integrators::StepMethod;
 pub use integrators::all::*;
 pub use integrators::{AnyIntegrator, Integrator, Method, integrate};
-pub use model::{Lagrangian, lets};
+pub use model::{Lagrangian, ParameterDerivatives, lets};
 pub use nalgebra;
 /// The ode_solvers crate (feature `ode_solvers`), for its solvers beside
 /// [`interop::ode_solvers`].

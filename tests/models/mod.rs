@@ -14,7 +14,7 @@ mod layers;
 mod linearization;
 mod more_models;
 mod named_lets;
-mod parameter_derivatives;
+pub(crate) mod parameter_derivatives;
 mod physics_names;
 mod textbook_models;
 mod trigonometry;

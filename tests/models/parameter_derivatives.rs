@@ -12,8 +12,10 @@ use rand::{Rng, SeedableRng, rngs::StdRng};
 
 lagrangian! {
     /// A double pendulum with a damper in each joint: every parameter
-    /// (masses, lengths, gravity, damping) enters `M` or `f`.
-    #[lagrange(parameter_derivatives)]
+    /// (masses, lengths, gravity, damping) enters `M` or `f`. With its
+    /// exact Jacobians too, for its sensitivities
+    /// (`tests/trajectories/sensitivities.rs`).
+    #[lagrange(jacobians, parameter_derivatives)]
     pub struct DampedDoublePendulum {
         coordinates: theta1, theta2;
         parameters: m1, m2, l1, l2, g, c1, c2;
@@ -29,7 +31,7 @@ lagrangian! {
 
 lagrangian! {
     /// The 5-link chain of point masses in absolute angles.
-    #[lagrange(parameter_derivatives)]
+    #[lagrange(jacobians, parameter_derivatives)]
     pub struct ChainOfFive {
         const N = 5;
         coordinates: theta[N];
@@ -44,7 +46,7 @@ lagrangian! {
 
 /// A model built from its parameter scalars in the order of
 /// `PARAMETER_SCALARS`, in `f64` or in dual numbers.
-trait FromScalars<S>: Sized {
+pub(crate) trait FromScalars<S>: Sized {
     fn from_scalars(p: &[S]) -> Self;
 }
 

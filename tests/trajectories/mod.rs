@@ -12,3 +12,4 @@ mod integrator_suite;
 mod reference_trajectories;
 mod rigid_body;
 mod rolling;
+mod sensitivities;

@@ -12,6 +12,7 @@ mod function;
 pub(crate) mod inputs;
 mod names;
 pub mod outline;
+pub(crate) mod parameters;
 
 use crate::derive::Equations;
 use crate::expr::ExprId;
@@ -83,6 +84,17 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
     let actuated = actuated_impl(&cx);
     let contacts = contacts_impl(&cx);
     let lets = lets_impl(cx.outline.name, &cx.types);
+    // The constraints' parameter derivatives stay inherent: the trait
+    // (and the sensitivities over it) is of models in minimal coordinates.
+    let derivatives =
+        forwarding(&cx, |t| t == InTrait::ParameterDerivatives)
+            .zip(METHODS.iter().zip(&cx.roots).filter(|(m, roots)| {
+                m.in_trait == InTrait::ParameterDerivatives && roots.is_some()
+            }))
+            .filter(|(_, (m, _))| m.returns != api::Returns::ConstraintParameterMatrix)
+            .map(|(tokens, _)| tokens)
+            .collect();
+    let parameters = parameters::parameters_impl(&cx.outline, &cx.types, derivatives);
     quote! {
         #item
         #inherent
@@ -91,6 +103,7 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
         #contacts
         #actuated
         #lets
+        #parameters
     }
 }
 

@@ -35,7 +35,8 @@ pub use jacobian::acceleration_jacobians;
 ///
 /// For a model with constraints (see [`constraints`](crate::constraints))
 /// this is the saddle-point solve of `M q̈ + Gᵀ λ = f`, `G q̈ = −γ`; a
-/// model in minimal coordinates solves `M q̈ = f` as ever. Errors carry `t`
+/// model in minimal coordinates solves `M q̈ = f` as ever, or solves it
+/// itself ([`Lagrangian::accelerations`]). Errors carry `t`
 /// and the state, as the integrators report them.
 #[inline]
 pub fn acceleration<L: Lagrangian<N>, const N: usize>(
@@ -56,6 +57,9 @@ pub fn acceleration<L: Lagrangian<N>, const N: usize>(
     if let Some(constrained) = model.visit_constraints(Accelerations { t, q, qdot }) {
         // A controller's non-finite inputs show as a non-finite forcing.
         return constrained.map_err(|error| blame::blame_error(model, error));
+    }
+    if let Some(accelerations) = model.accelerations(t, q, qdot) {
+        return accelerations;
     }
     let (m, f) = model.mass_matrix_and_forcing(t, q, qdot);
     solve_mass_matrix(&m, &f).map_err(|err| match err {

@@ -273,6 +273,19 @@ where
             .residual_jacobians(&self.model, t, q, qdot, qddot)
     }
 
+    #[allow(clippy::type_complexity)]
+    #[inline]
+    fn accelerations(
+        &self,
+        t: M::Scalar,
+        q: &SVector<M::Scalar, N>,
+        qdot: &SVector<M::Scalar, N>,
+    ) -> Option<Result<SVector<M::Scalar, N>, crate::error::IntegrationError<M::Scalar, N>>> {
+        // Where no model answers, the forcing's NaN is reported (and blamed)
+        // by the solve with `M`.
+        at!(self, t, q, qdot, |m| m.accelerations(t, q, qdot), None)
+    }
+
     #[inline]
     fn momentum(
         &self,
@@ -517,6 +530,18 @@ where
     ) -> Option<(SMatrix<L::Scalar, N, N>, SMatrix<L::Scalar, N, N>)> {
         self.dynamics.residual_jacobians(t, q, qdot, qddot)
     }
+    #[allow(clippy::type_complexity)]
+    #[inline]
+    fn accelerations(
+        &self,
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) -> Option<Result<SVector<S, N>, crate::error::IntegrationError<S, N>>> {
+        // Never asked: a constrained model's `q̈` is the saddle-point solve.
+        self.dynamics.accelerations(t, q, qdot)
+    }
+
     #[inline]
     fn momentum(
         &self,

@@ -13,10 +13,12 @@
 //! | capability | reached through | who uses it |
 //! |---|---|---|
 //! | exact derivatives | [`Lagrangian::residual_jacobians`] | the implicit methods' Newton iterations, [`analysis`](crate::analysis) |
+//! | its own solve of `M q̈ = f` | [`Lagrangian::accelerations`] | every method's right-hand side ([`dynamics::acceleration`](crate::dynamics::acceleration)), for a model whose `M` has a structure it exploits |
 //! | the action | [`Lagrangian::momentum`], [`Lagrangian::lagrangian_gradient`], [`Lagrangian::nonconservative_forces`], [`Lagrangian::CONSERVATIVE`] | [`Variational`](crate::integrators::Variational) |
 //! | holonomic constraints | [`Lagrangian::visit_constraints`] → [`Holonomic<N, C>`](crate::model::constraints::Holonomic) and the run's [`ConstraintSettings`](crate::constraints::ConstraintSettings) | every method (the saddle-point solve, drift control) |
 //! | control inputs | [`Lagrangian::visit_inputs`] → [`Inputs<N, K>`](crate::inputs::Inputs) | the checks before a run (inputs never set) and the blame for a non-finite value |
 //! | named `let`s | [`Lagrangian::visit_lets`] → [`Lets<N, K>`](lets::Lets) | drawing, export, fits of measured outputs |
+//! | parameter derivatives | the model's type: [`ParameterDerivatives<N, P>`] | [`sensitivity`](crate::sensitivity), fits to measurements |
 //!
 //! The sized capabilities (a model's number of constraints `C`, of inputs
 //! `K`, of `let`s) are reached by a visitor, which is handed the model with
@@ -41,10 +43,12 @@ pub(crate) mod controller;
 pub(crate) mod inputs;
 pub(crate) mod layer;
 pub mod lets;
+pub(crate) mod parameters;
 mod reference;
 pub(crate) mod settings;
 
 pub use layer::{At, FiniteDifferences, Layer, Layered, WithoutJacobians};
+pub use parameters::ParameterDerivatives;
 
 /// A mechanical system written as `M(t, q) q̈ = f(t, q, q̇)`: the contract
 /// between a model and everything that runs it.
@@ -157,6 +161,26 @@ pub trait Lagrangian<const N: usize> {
         qddot: &SVector<Self::Scalar, N>,
     ) -> Option<(SMatrix<Self::Scalar, N, N>, SMatrix<Self::Scalar, N, N>)> {
         let _ = (t, q, qdot, qddot);
+        None
+    }
+
+    /// `q̈` at `(t, q, q̇)` solved by the model itself, for a model that
+    /// knows the structure of its `M` and need not have it formed and
+    /// factored whole: a [`Sensitivity`](crate::sensitivity::Sensitivity)
+    /// model, whose `M` is the model's repeated down the diagonal, solves
+    /// with the model's `M` once. `None` (the default, and every model from
+    /// `lagrangian!`) solves `M q̈ = f` from
+    /// [`mass_matrix_and_forcing`](Self::mass_matrix_and_forcing). A model
+    /// with constraints is not asked: its `q̈` is the saddle-point solve.
+    #[allow(clippy::type_complexity)]
+    fn accelerations(
+        &self,
+        t: Self::Scalar,
+        q: &SVector<Self::Scalar, N>,
+        qdot: &SVector<Self::Scalar, N>,
+    ) -> Option<Result<SVector<Self::Scalar, N>, crate::error::IntegrationError<Self::Scalar, N>>>
+    {
+        let _ = (t, q, qdot);
         None
     }
 

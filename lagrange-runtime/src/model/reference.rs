@@ -71,6 +71,16 @@ impl<L: Lagrangian<N> + ?Sized, const N: usize> Lagrangian<N> for &L {
     ) -> Option<(SMatrix<L::Scalar, N, N>, SMatrix<L::Scalar, N, N>)> {
         (**self).residual_jacobians(t, q, qdot, qddot)
     }
+    #[allow(clippy::type_complexity)]
+    #[inline]
+    fn accelerations(
+        &self,
+        t: L::Scalar,
+        q: &SVector<L::Scalar, N>,
+        qdot: &SVector<L::Scalar, N>,
+    ) -> Option<Result<SVector<L::Scalar, N>, crate::error::IntegrationError<L::Scalar, N>>> {
+        (**self).accelerations(t, q, qdot)
+    }
     #[inline]
     fn momentum(
         &self,

@@ -1,0 +1,530 @@
+//! Forward sensitivities: how a trajectory responds to a model's
+//! parameters and to its initial state, integrated with it by any method.
+//!
+//! A [`Sensitivity`] is a model with `N·(1 + D)` coordinates: the model's
+//! `q` and, for each of `D` directions (a parameter scalar, a coordinate's
+//! initial position or initial velocity), the derivative `S = ∂q/∂p` of the
+//! trajectory along it. Differentiating `r(t, q, q̇, q̈) = M q̈ − f = 0`
+//! along a direction gives each `S` its own second-order equation with the
+//! model's `M`,
+//!
+//! ```text
+//! M S̈ = −(∂r/∂q S + ∂r/∂q̇ Ṡ + ∂r/∂p),
+//! ```
+//!
+//! `∂r/∂p` from the model's generated parameter derivatives
+//! ([`ParameterDerivatives`], `#[lagrange(parameter_derivatives)]`; zero for
+//! an initial condition), `∂r/∂q` and `∂r/∂q̇` from its exact Jacobians
+//! (`#[lagrange(jacobians)]`) or, without them, from forward differences of
+//! `q̈` (accurate to about `√ε` relative, and `2N` more evaluations of the
+//! model per evaluation, not counted in [`Stats`](crate::Stats)). The
+//! sensitivity model solves with the model's `M` once per evaluation
+//! ([`Lagrangian::accelerations`]): its `M`, the model's repeated down the
+//! diagonal, is never formed on the run's path.
+//!
+//! It is a model like any other, so it runs through the one run loop with
+//! every method but the variational one (which needs momenta a sensitivity
+//! does not have). The adaptive methods control the error of the whole
+//! state, the sensitivities included, with the same tolerances: a
+//! sensitivity is then as accurate as the state, at the price of the steps
+//! its own error asks for (CVODES's `errconS`). Their entries are in units
+//! of `q` per unit of the parameter, so scale parameters of very different
+//! size before comparing them. Events are not carried: a reset would need
+//! the sensitivities' own jump conditions.
+//!
+//! ```
+//! use lagrange_runtime::nalgebra::SVector;
+//! use lagrange_runtime::sensitivity::{Direction, Sensitivity};
+//! use lagrange_runtime::{Dop853, Integrator, Lagrangian, ParameterDerivatives};
+//! # use lagrange_runtime::nalgebra::SMatrix;
+//! # /// `ml²θ̈ = −mgl sin θ`, written by hand with its derivative by `l`.
+//! # #[derive(Clone, Copy)]
+//! # struct Pendulum { l: f64 }
+//! # impl Lagrangian<1> for Pendulum {
+//! #     type Scalar = f64;
+//! #     const COORDINATES: [&'static str; 1] = ["theta"];
+//! #     fn mass_matrix(&self, _: f64, _: &SVector<f64, 1>) -> SMatrix<f64, 1, 1> {
+//! #         SMatrix::<f64, 1, 1>::new(self.l * self.l)
+//! #     }
+//! #     fn forcing(&self, _: f64, q: &SVector<f64, 1>, _: &SVector<f64, 1>) -> SVector<f64, 1> {
+//! #         SVector::<f64, 1>::new(-9.81 * self.l * q[0].sin())
+//! #     }
+//! #     fn kinetic_energy(&self, _: f64, _: &SVector<f64, 1>, v: &SVector<f64, 1>) -> f64 {
+//! #         0.5 * (self.l * v[0]).powi(2)
+//! #     }
+//! #     fn potential_energy(&self, _: f64, q: &SVector<f64, 1>) -> f64 {
+//! #         -9.81 * self.l * q[0].cos()
+//! #     }
+//! # }
+//! # impl ParameterDerivatives<1, 1> for Pendulum {
+//! #     const PARAMETERS: [&'static str; 1] = ["l"];
+//! #     fn parameter_values(&self) -> SVector<f64, 1> { SVector::<f64, 1>::new(self.l) }
+//! #     fn set_parameter_values(&mut self, p: &SVector<f64, 1>) { self.l = p[0]; }
+//! #     fn mass_matrix_parameter_derivatives(&self, _: f64, _: &SVector<f64, 1>) -> [SMatrix<f64, 1, 1>; 1] {
+//! #         [SMatrix::<f64, 1, 1>::new(2.0 * self.l)]
+//! #     }
+//! #     fn forcing_parameter_jacobian(&self, _: f64, q: &SVector<f64, 1>, _: &SVector<f64, 1>) -> SMatrix<f64, 1, 1> {
+//! #         SMatrix::<f64, 1, 1>::new(-9.81 * q[0].sin())
+//! #     }
+//! #     fn residual_parameter_jacobian(&self, t: f64, q: &SVector<f64, 1>, v: &SVector<f64, 1>, a: &SVector<f64, 1>) -> SMatrix<f64, 1, 1> {
+//! #         self.mass_matrix_parameter_derivatives(t, q)[0] * a - self.forcing_parameter_jacobian(t, q, v)
+//! #     }
+//! # }
+//! // A pendulum of length `l` (its `ParameterDerivatives` impl, which
+//! // `#[lagrange(parameter_derivatives)]` would generate, is hidden here),
+//! // and how its angle responds to `l` and to the initial angle: two
+//! // directions, so 1·(1 + 2) = 3 coordinates.
+//! let pendulum = Pendulum { l: 1.0 };
+//! let sensitivity: Sensitivity<Pendulum, 1, 1, 2, 3> = Sensitivity::new(
+//!     pendulum,
+//!     [Direction::parameter::<Pendulum, 1, 1>("l")?, Direction::Position(0)],
+//! )?;
+//! let (x0, v0) = sensitivity.initial_state(&SVector::from([0.1]), &SVector::from([0.0]));
+//! let run = Dop853::new().rtol(1e-10).atol(1e-12).integrate(&sensitivity, 0.0, x0, v0, &[1.0])?;
+//! let end = run.last().unwrap();
+//! let (theta, dtheta) = (sensitivity.state(&end.q), sensitivity.sensitivities(&end.q));
+//! // Small swings: θ = θ0 cos(ωt), ω = √(g/l), so ∂θ/∂θ0 = cos(ωt) and
+//! // ∂θ/∂l = θ0 sin(ωt) ωt/(2l); at θ0 = 0.1 rad the swing's own
+//! // nonlinearity (θ0²/16 of the frequency) bounds the difference.
+//! let w = 9.81_f64.sqrt();
+//! assert!((theta[0] - 0.1 * w.cos()).abs() < 1e-3);
+//! assert!((dtheta[(0, 0)] - 0.1 * w.sin() * w / 2.0).abs() < 1e-3);
+//! assert!((dtheta[(0, 1)] - w.cos()).abs() < 1e-2);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use nalgebra::{ComplexField, SMatrix, SVector};
+
+use crate::dynamics::acceleration_jacobians;
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::solve::{SolveError, factor_mass_matrix};
+use crate::model::constraints::is_constrained;
+use crate::model::{Lagrangian, ParameterDerivatives};
+use crate::trajectory::Stats;
+
+/// What a sensitivity is taken along.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Direction {
+    /// The parameter scalar of this index in
+    /// [`ParameterDerivatives::PARAMETERS`].
+    Parameter(usize),
+    /// The initial position of this coordinate.
+    Position(usize),
+    /// The initial velocity of this coordinate.
+    Velocity(usize),
+}
+
+impl Direction {
+    /// The parameter scalar named `name` of the model `L`.
+    pub fn parameter<L, const N: usize, const P: usize>(
+        name: &str,
+    ) -> Result<Self, SensitivityError>
+    where
+        L: ParameterDerivatives<N, P>,
+    {
+        L::parameter_index(name)
+            .map(Direction::Parameter)
+            .ok_or_else(|| SensitivityError::UnknownParameter {
+                name: name.to_string(),
+                known: L::PARAMETERS.iter().map(|p| p.to_string()).collect(),
+            })
+    }
+}
+
+/// Why a [`Sensitivity`] cannot be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SensitivityError {
+    /// No parameter scalar has this name.
+    #[error("the model has no parameter scalar `{name}` (it has: {})", known.join(", "))]
+    UnknownParameter {
+        /// The name asked for.
+        name: String,
+        /// The model's parameter scalars.
+        known: Vec<String>,
+    },
+    /// A direction's index is out of range.
+    #[error("direction {direction} is {value:?}, beyond the model's {limit} {what}")]
+    OutOfRange {
+        /// The direction's position in the list.
+        direction: usize,
+        /// The direction.
+        value: Direction,
+        /// How many there are.
+        limit: usize,
+        /// Parameters or coordinates.
+        what: &'static str,
+    },
+    /// A direction is listed twice.
+    #[error("direction {value:?} is listed twice")]
+    Repeated {
+        /// The direction.
+        value: Direction,
+    },
+    /// The model has constraints.
+    #[error(
+        "the model has constraints: sensitivities are built for models in minimal \
+         coordinates (a constrained model's would differentiate the saddle-point solve \
+         and the drift control too)"
+    )]
+    Constrained,
+    /// A parameter of the model is NaN or infinite.
+    #[error("a parameter of the model is NaN or infinite")]
+    NonFiniteParameters,
+    /// The model has control inputs that were never set.
+    #[error(
+        "the model has control inputs ({}) that were never set: set them with \
+         `model.with_inputs(..)` before taking its sensitivities",
+        .inputs.join(", ")
+    )]
+    InputsNotSet {
+        /// The names of the model's inputs.
+        inputs: &'static [&'static str],
+    },
+}
+
+/// A model with its forward sensitivities along `D` directions: a model
+/// with `NA = N·(1 + D)` coordinates, `q` then `∂q/∂d` for each direction
+/// `d` in order. `P` is the model's number of parameter scalars. The
+/// [module's docs](self) give the equations and an example.
+///
+/// `NA` is checked when the type is used: a wrong one is a compile error
+/// ("`NA` must be `N·(1 + D)`").
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sensitivity<L, const N: usize, const P: usize, const D: usize, const NA: usize> {
+    model: L,
+    directions: [Direction; D],
+}
+
+impl<L, const N: usize, const P: usize, const D: usize, const NA: usize> Sensitivity<L, N, P, D, NA>
+where
+    L: ParameterDerivatives<N, P>,
+{
+    const SIZE: () = assert!(NA == N * (1 + D), "`NA` must be `N·(1 + D)`");
+
+    /// `model` with its sensitivities along `directions`. Refuses a
+    /// constrained model, a model that cannot be evaluated, and a direction
+    /// out of range or listed twice.
+    pub fn new(model: L, directions: [Direction; D]) -> Result<Self, SensitivityError> {
+        let () = Self::SIZE;
+        if is_constrained(&model) {
+            return Err(SensitivityError::Constrained);
+        }
+        if !model.parameters_are_finite() {
+            return Err(SensitivityError::NonFiniteParameters);
+        }
+        if let Some(inputs) = crate::model::inputs::never_set(&model) {
+            return Err(SensitivityError::InputsNotSet { inputs });
+        }
+        for (i, &d) in directions.iter().enumerate() {
+            let (index, limit, what) = match d {
+                Direction::Parameter(k) => (k, P, "parameter scalars"),
+                Direction::Position(k) | Direction::Velocity(k) => (k, N, "coordinates"),
+            };
+            if index >= limit {
+                return Err(SensitivityError::OutOfRange {
+                    direction: i,
+                    value: d,
+                    limit,
+                    what,
+                });
+            }
+            if directions[..i].contains(&d) {
+                return Err(SensitivityError::Repeated { value: d });
+            }
+        }
+        Ok(Self { model, directions })
+    }
+
+    /// The model.
+    pub fn model(&self) -> &L {
+        &self.model
+    }
+
+    /// The model, to change its parameters between runs.
+    pub fn model_mut(&mut self) -> &mut L {
+        &mut self.model
+    }
+
+    /// The directions, in the order of the sensitivities' columns.
+    pub fn directions(&self) -> &[Direction; D] {
+        &self.directions
+    }
+
+    /// The start of a run from `(q0, q̇0)`: the sensitivities to a
+    /// parameter start at zero, those to an initial position or velocity
+    /// at that unit vector.
+    pub fn initial_state(
+        &self,
+        q0: &SVector<L::Scalar, N>,
+        qdot0: &SVector<L::Scalar, N>,
+    ) -> (SVector<L::Scalar, NA>, SVector<L::Scalar, NA>) {
+        let mut x = SVector::<L::Scalar, NA>::zeros();
+        let mut v = SVector::<L::Scalar, NA>::zeros();
+        x.fixed_rows_mut::<N>(0).copy_from(q0);
+        v.fixed_rows_mut::<N>(0).copy_from(qdot0);
+        for (j, d) in self.directions.iter().enumerate() {
+            match *d {
+                Direction::Parameter(_) => {}
+                Direction::Position(i) => {
+                    x[N * (1 + j) + i] = nalgebra::convert::<f64, L::Scalar>(1.0)
+                }
+                Direction::Velocity(i) => {
+                    v[N * (1 + j) + i] = nalgebra::convert::<f64, L::Scalar>(1.0)
+                }
+            }
+        }
+        (x, v)
+    }
+
+    /// The model's part of an augmented position (or velocity): `q` (`q̇`).
+    pub fn state(&self, x: &SVector<L::Scalar, NA>) -> SVector<L::Scalar, N> {
+        x.fixed_rows::<N>(0).into_owned()
+    }
+
+    /// The sensitivities' part of an augmented position (or velocity): the
+    /// `N × D` matrix whose column `j` is `∂q/∂d_j` (`∂q̇/∂d_j`).
+    pub fn sensitivities(&self, x: &SVector<L::Scalar, NA>) -> SMatrix<L::Scalar, N, D> {
+        SMatrix::<L::Scalar, N, D>::from_fn(|i, j| x[N * (1 + j) + i])
+    }
+
+    /// The accelerations of the whole augmented state, and `M` (for
+    /// [`forcing`](Lagrangian::forcing)).
+    #[allow(clippy::type_complexity)]
+    fn solve(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> Result<(SVector<L::Scalar, NA>, SMatrix<L::Scalar, N, N>), IntegrationError<L::Scalar, NA>>
+    {
+        let (q, qdot) = (self.state(x), self.state(v));
+        let non_finite = |value| IntegrationError::NonFiniteState {
+            t,
+            q: *x,
+            qdot: *v,
+            value,
+        };
+        let solve_error = |error| match error {
+            SolveError::NonFiniteMassMatrix => non_finite(NonFiniteValue::MassMatrix),
+            SolveError::NonFiniteForcing => non_finite(NonFiniteValue::Forcing),
+            SolveError::Singular => IntegrationError::SingularMassMatrix { t, q: *x, qdot: *v },
+            SolveError::Indefinite => IntegrationError::IndefiniteMassMatrix { t, q: *x, qdot: *v },
+        };
+        let (m, f) = self.model.mass_matrix_and_forcing(t, &q, &qdot);
+        if !f.iter().all(|x| x.is_finite()) {
+            return Err(non_finite(NonFiniteValue::Forcing));
+        }
+        let mass = factor_mass_matrix(&m).map_err(solve_error)?;
+        let qddot = mass.solve(&f).map_err(solve_error)?;
+        let finite = |m: &SMatrix<L::Scalar, N, N>| m.iter().all(|x| x.is_finite());
+        // `∂r/∂q` and `∂r/∂q̇` exact, or `∂q̈/∂q` and `∂q̈/∂q̇` by differences.
+        let exact = self.model.residual_jacobians(t, &q, &qdot, &qddot);
+        let differences = match exact {
+            Some(_) => None,
+            None => Some(
+                acceleration_jacobians(&self.model, t, &q, &qdot, &qddot, &mut Stats::default())
+                    .map_err(|_| non_finite(NonFiniteValue::Jacobian))?,
+            ),
+        };
+        if exact.is_some_and(|(a, b)| !finite(&a) || !finite(&b))
+            || differences.is_some_and(|(a, b)| !finite(&a) || !finite(&b))
+        {
+            return Err(non_finite(NonFiniteValue::Jacobian));
+        }
+        let by_parameters = self
+            .directions
+            .iter()
+            .any(|d| matches!(d, Direction::Parameter(_)))
+            .then(|| self.model.residual_parameter_jacobian(t, &q, &qdot, &qddot));
+        if by_parameters.is_some_and(|r| !r.iter().all(|x| x.is_finite())) {
+            return Err(non_finite(NonFiniteValue::Jacobian));
+        }
+        let mut a = SVector::<L::Scalar, NA>::zeros();
+        a.fixed_rows_mut::<N>(0).copy_from(&qddot);
+        for (j, d) in self.directions.iter().enumerate() {
+            let s = x.fixed_rows::<N>(N * (1 + j)).into_owned();
+            let sdot = v.fixed_rows::<N>(N * (1 + j)).into_owned();
+            let r_p = match (*d, &by_parameters) {
+                (Direction::Parameter(k), Some(r)) => r.column(k).into_owned(),
+                _ => SVector::zeros(),
+            };
+            let sddot = match (exact, differences) {
+                (Some((r_q, r_v)), _) => mass.solve(&(-(r_q * s + r_v * sdot + r_p))),
+                (None, Some((a_q, a_v))) => mass.solve(&r_p).map(|m_r| a_q * s + a_v * sdot - m_r),
+                (None, None) => unreachable!("one of the two is taken above"),
+            }
+            .map_err(solve_error)?;
+            a.fixed_rows_mut::<N>(N * (1 + j)).copy_from(&sddot);
+        }
+        Ok((a, m))
+    }
+}
+
+#[warn(clippy::missing_trait_methods)]
+impl<L, const N: usize, const P: usize, const D: usize, const NA: usize> Lagrangian<NA>
+    for Sensitivity<L, N, P, D, NA>
+where
+    L: ParameterDerivatives<N, P>,
+{
+    type Scalar = L::Scalar;
+    /// The model's coordinates, then an empty name for each sensitivity.
+    const COORDINATES: [&'static str; NA] = {
+        let mut names = [""; NA];
+        let mut i = 0;
+        while i < N {
+            names[i] = L::COORDINATES[i];
+            i += 1;
+        }
+        names
+    };
+    const CONSERVATIVE: bool = false;
+    const HAS_CONTACTS: bool = L::HAS_CONTACTS;
+
+    /// The model's `M` repeated down the diagonal (formed only when asked:
+    /// a run solves with the model's own, [`accelerations`](Self::accelerations)).
+    fn mass_matrix(&self, t: L::Scalar, x: &SVector<L::Scalar, NA>) -> SMatrix<L::Scalar, NA, NA> {
+        let m = self.model.mass_matrix(t, &self.state(x));
+        let mut out = SMatrix::<L::Scalar, NA, NA>::zeros();
+        for j in 0..=D {
+            out.fixed_view_mut::<N, N>(N * j, N * j).copy_from(&m);
+        }
+        out
+    }
+
+    /// `M` times the accelerations, block by block; NaN where they cannot
+    /// be solved for.
+    fn forcing(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> SVector<L::Scalar, NA> {
+        match self.solve(t, x, v) {
+            Ok((a, m)) => {
+                let mut f = SVector::<L::Scalar, NA>::zeros();
+                for j in 0..=D {
+                    let block = m * a.fixed_rows::<N>(N * j);
+                    f.fixed_rows_mut::<N>(N * j).copy_from(&block);
+                }
+                f
+            }
+            Err(_) => SVector::from_element(nalgebra::convert::<f64, L::Scalar>(f64::NAN)),
+        }
+    }
+
+    fn mass_matrix_and_forcing(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> (SMatrix<L::Scalar, NA, NA>, SVector<L::Scalar, NA>) {
+        (self.mass_matrix(t, x), self.forcing(t, x, v))
+    }
+
+    /// The model's `T` (the sensitivities carry none).
+    fn kinetic_energy(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> L::Scalar {
+        self.model.kinetic_energy(t, &self.state(x), &self.state(v))
+    }
+
+    /// The model's `V`.
+    fn potential_energy(&self, t: L::Scalar, x: &SVector<L::Scalar, NA>) -> L::Scalar {
+        self.model.potential_energy(t, &self.state(x))
+    }
+
+    fn energy(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> L::Scalar {
+        self.kinetic_energy(t, x, v) + self.potential_energy(t, x)
+    }
+
+    /// None: the implicit methods take the augmented Jacobians by
+    /// differences (the exact ones would need second derivatives).
+    fn residual_jacobians(
+        &self,
+        _: L::Scalar,
+        _: &SVector<L::Scalar, NA>,
+        _: &SVector<L::Scalar, NA>,
+        _: &SVector<L::Scalar, NA>,
+    ) -> Option<(SMatrix<L::Scalar, NA, NA>, SMatrix<L::Scalar, NA, NA>)> {
+        None
+    }
+
+    #[allow(clippy::type_complexity)]
+    fn accelerations(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> Option<Result<SVector<L::Scalar, NA>, IntegrationError<L::Scalar, NA>>> {
+        Some(self.solve(t, x, v).map(|(a, _)| a))
+    }
+
+    /// None: a sensitivity has no momenta, so the variational method
+    /// refuses it.
+    fn momentum(
+        &self,
+        _: L::Scalar,
+        _: &SVector<L::Scalar, NA>,
+        _: &SVector<L::Scalar, NA>,
+    ) -> Option<SVector<L::Scalar, NA>> {
+        None
+    }
+
+    fn lagrangian_gradient(
+        &self,
+        _: L::Scalar,
+        _: &SVector<L::Scalar, NA>,
+        _: &SVector<L::Scalar, NA>,
+    ) -> Option<SVector<L::Scalar, NA>> {
+        None
+    }
+
+    fn nonconservative_forces(
+        &self,
+        _: L::Scalar,
+        _: &SVector<L::Scalar, NA>,
+        _: &SVector<L::Scalar, NA>,
+    ) -> Option<SVector<L::Scalar, NA>> {
+        None
+    }
+
+    /// None: [`Sensitivity::new`] refuses a constrained model.
+    fn visit_constraints<V>(&self, _: V) -> Option<V::Output>
+    where
+        V: crate::model::constraints::Visitor<L::Scalar, NA>,
+    {
+        None
+    }
+
+    /// None: [`Sensitivity::new`] checked the model's inputs.
+    fn visit_inputs<V>(&self, _: V) -> Option<V::Output>
+    where
+        V: crate::model::inputs::Visitor<L::Scalar, NA>,
+    {
+        None
+    }
+
+    fn visit_lets<V>(&self, _: V) -> Option<V::Output>
+    where
+        V: crate::model::lets::Visitor<L::Scalar, NA>,
+    {
+        None
+    }
+
+    fn parameters_are_finite(&self) -> bool {
+        self.model.parameters_are_finite()
+    }
+
+    fn without_jacobians(self) -> crate::model::Layered<Self, crate::model::FiniteDifferences> {
+        crate::model::Layered::new(self, crate::model::FiniteDifferences)
+    }
+}
