@@ -26,6 +26,7 @@ const LAYERS: &[&str] = &[
     "stepper",     // frame by frame
     "contact",     // contacts and friction: modes switched at events
     "analysis",    // small motions
+    "identify",    // parameters fitted to measurements
     "export",      // results out
     "interop",     // other crates' solvers
     "constraints", // the user's door to constraints

@@ -283,6 +283,7 @@ pub mod dynamics;
 pub mod error;
 pub mod events;
 pub mod export;
+pub mod identify;
 pub mod inputs;
 pub mod integrators;
 pub mod interop;

@@ -8,6 +8,7 @@ mod ensemble;
 mod events;
 mod fingerprints;
 mod heavy_top;
+mod identification;
 mod integrator_suite;
 mod reference_trajectories;
 mod rigid_body;
