@@ -323,7 +323,8 @@ where
     let relative = |x: &DVector<f64>| x.map(|v| if v != 0.0 { v.abs() } else { 1.0 });
     let spectrum = levenberg::spectrum(&first.jacobian, &relative(&x0));
     let ratio = spectrum.singular_values[D - 1] / spectrum.singular_values[0];
-    if !(ratio >= settings.identifiability) {
+    // A NaN ratio (a Jacobian with no finite singular values) is refused too.
+    if ratio.is_nan() || ratio < settings.identifiability {
         let sign = spectrum.weakest.iter().fold(
             0.0,
             |best: f64, c| {
