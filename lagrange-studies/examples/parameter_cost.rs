@@ -3,7 +3,10 @@
 //! and 20. At compile time: the engine's expansion with and without the
 //! option (median time of `expand`, size of the emitted code). At run
 //! time: `∂f/∂p` (N × P), the residual's `∂r/∂p` (N × P) and `∂M/∂p` (P
-//! matrices N × N) against `f` alone, ns per call (median of 7 batches).
+//! matrices N × N) against `f` alone, ns per call (median of 7 batches);
+//! and one right-hand side of the chain with its forward sensitivities to
+//! all P parameters (`lagrange::sensitivity`, `N (1 + P)` coordinates,
+//! with the exact Jacobians) against `q̈` alone.
 //!
 //! `cargo run --release -p lagrange-studies --example parameter_cost`
 
@@ -19,7 +22,7 @@ use std::time::Instant;
 macro_rules! chain_model {
     ($name:ident, $n:literal) => {
         lagrangian! {
-            #[lagrange(parameter_derivatives)]
+            #[lagrange(jacobians, parameter_derivatives)]
             pub struct $name {
                 const N = $n;
                 coordinates: theta[N];
@@ -83,6 +86,34 @@ macro_rules! run_time {
     }};
 }
 
+/// ns per right-hand side of the chain alone, and with its sensitivities
+/// to all its `P` parameters (`NA = N (1 + P)` coordinates).
+macro_rules! sensitivity_time {
+    ($name:ident, $n:literal, $p:literal, $na:literal) => {{
+        use lagrange::dynamics::acceleration;
+        use lagrange::sensitivity::{Direction, Sensitivity};
+        let model = $name::new([1.0; $n], [0.5; $n]);
+        let directions: [Direction; $p] = std::array::from_fn(Direction::Parameter);
+        let sensitivity = Sensitivity::<_, $n, $p, $p, $na>::new(model, directions).unwrap();
+        let q = SVector::<f64, $n>::from_fn(|i, _| 0.4 * (0.7 * i as f64).sin());
+        let v = SVector::<f64, $n>::from_fn(|i, _| 0.5 * (1.3 * i as f64).cos());
+        let (mut x, mut w) = sensitivity.initial_state(&q, &v);
+        for k in $n..$na {
+            x[k] = 0.1 * (0.3 * k as f64).sin();
+            w[k] = 0.1 * (0.7 * k as f64).cos();
+        }
+        let m = black_box(model);
+        let alone = ns(|| {
+            black_box(acceleration(&m, 0.0, black_box(&q), black_box(&v)).unwrap());
+        });
+        let s = black_box(sensitivity);
+        let with = ns(|| {
+            black_box(acceleration(&s, 0.0, black_box(&x), black_box(&w)).unwrap());
+        });
+        (alone, with)
+    }};
+}
+
 fn main() {
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     println!("load average at the start: {}", load.trim());
@@ -126,6 +157,28 @@ fn main() {
             df / f,
             dr / f,
             dm / f
+        );
+    }
+    println!();
+    println!(
+        "One right-hand side with the sensitivities to all P parameters, ns, against `q̈` alone;"
+    );
+    println!("the last column per sensitivity (the ratio over P).");
+    println!();
+    println!("| N | P | q̈ | with sensitivities | ratio | ratio / P |");
+    println!("|---:|---:|---:|---:|---:|---:|");
+    let rows = [
+        (2, sensitivity_time!(Chain2, 2, 4, 10)),
+        (5, sensitivity_time!(Chain5, 5, 10, 55)),
+        (10, sensitivity_time!(Chain10, 10, 20, 210)),
+        (20, sensitivity_time!(Chain20, 20, 40, 820)),
+    ];
+    for (n, (alone, with)) in rows {
+        let p = 2 * n;
+        println!(
+            "| {n} | {p} | {alone:.1} | {with:.1} | {:.1} | {:.2} |",
+            with / alone,
+            with / alone / p as f64
         );
     }
 }
