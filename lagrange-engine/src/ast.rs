@@ -67,7 +67,7 @@ pub struct ModelDef {
 }
 
 /// What a model asks the macro to generate beyond the defaults.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub struct Options {
     /// `#[lagrange(jacobians)]`: exact Jacobians of the residual
     /// `M q̈ − f` for implicit integrators.
@@ -82,6 +82,11 @@ pub struct Options {
     /// `#[lagrange(parameter_derivatives)]`: `∂M/∂p`, `∂f/∂p` and the
     /// residual's `∂(M q̈ − f)/∂p`, one column per parameter scalar.
     pub parameter_derivatives: bool,
+    /// `#[lagrange(regressor(m1, c1, ..))]`: the parameters (fields, an
+    /// indexed one with all its scalars) in which `M q̈ − f` is to be
+    /// written as `Y(t, q, q̇, q̈) π + (terms free of them)`, `π` their
+    /// products that occur, grouped into base parameters.
+    pub regressor: Option<Vec<Ident>>,
 }
 
 /// The largest budget `#[lagrange(budget = N)]` may ask for: the time and

@@ -47,6 +47,7 @@ use crate::expr::{ExprId, Pool};
 use crate::model::{Model, Symbols};
 
 mod forcing;
+pub mod regressor;
 
 /// A matrix of expressions, row-major.
 pub type ExprMatrix = Vec<Vec<ExprId>>;
@@ -75,6 +76,8 @@ pub struct Equations {
     pub input_jacobian: Option<ExprMatrix>,
     /// The derivatives by the parameters, if the model asked.
     pub parameter_derivatives: Option<ParameterDerivatives>,
+    /// The regressor, if the model asked (filled in after the checks).
+    pub regressor: Option<regressor::Regressor>,
 }
 
 /// The derivatives of the equations by each parameter scalar `p_k`, in
@@ -329,6 +332,7 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         contacts,
         input_jacobian,
         parameter_derivatives,
+        regressor: None,
     }
 }
 
@@ -499,6 +503,7 @@ impl Equations {
             contacts: None,
             input_jacobian: None,
             parameter_derivatives: None,
+            regressor: None,
         }
     }
 }

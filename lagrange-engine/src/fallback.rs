@@ -33,12 +33,24 @@ pub struct Stub {
     lets: usize,
     serde: bool,
     parameter_derivatives: bool,
+    /// One empty name per scalar of the parameters `regressor(..)` lists
+    /// (the lumped ones are known only once derived).
+    regressor: Option<Vec<String>>,
 }
 
 impl Stub {
     /// Takes what the stub needs from the parsed model.
     pub fn of(def: &ModelDef) -> Self {
         let shape = declared_shape(def);
+        let regressor = def.options.regressor.as_ref().map(|listed| {
+            let scalars: usize = shape
+                .fields
+                .iter()
+                .filter(|f| listed.contains(&f.name))
+                .map(|f| f.len.unwrap_or(1))
+                .sum();
+            vec![String::new(); scalars.max(1)]
+        });
         Stub {
             attrs: def.attrs.clone(),
             vis: def.vis.clone(),
@@ -51,6 +63,7 @@ impl Stub {
             lets: shape.lets,
             serde: def.options.serde,
             parameter_derivatives: def.options.parameter_derivatives,
+            regressor,
         }
     }
 
@@ -68,6 +81,7 @@ impl Stub {
             contacts: self.contacts,
             serde: self.serde,
             parameter_derivatives: self.parameter_derivatives,
+            regressor: self.regressor.as_deref(),
             lets: self.lets,
         };
         let item = outline.struct_item();
@@ -80,7 +94,8 @@ impl Stub {
         let p: usize = self.fields.iter().map(|f| f.len.unwrap_or(1)).sum();
         let types = Types::new(self.dof, self.constraints, k, self.lets)
             .with_contacts(&vec![false; self.contacts])
-            .with_parameters(p);
+            .with_parameters(p)
+            .with_regressor(self.regressor.as_ref().map_or(0, Vec::len));
         let n = &types.n;
         let stop = quote!(::core::unreachable!(
             "`lagrangian!` reported a compile error for this model"
@@ -95,6 +110,7 @@ impl Stub {
             .filter(|m| self.contacts > 0 || m.in_trait != InTrait::Contacts)
             .filter(|m| actuated || m.in_trait != InTrait::Actuated)
             .filter(|m| self.parameter_derivatives || m.in_trait != InTrait::ParameterDerivatives)
+            .filter(|m| self.regressor.is_some() || m.in_trait != InTrait::Regressor)
             .filter(|m| constrained || m.returns != Returns::ConstraintParameterMatrix)
             .map(|m| {
                 let signature = m.signature(&types);

@@ -93,6 +93,11 @@ pub enum Returns {
     ParameterMatrices,
     /// `SMatrix<S, C, P>`: `C·P` roots.
     ConstraintParameterMatrix,
+    /// `SMatrix<S, N, K>`, `K` the regressor's lumped parameters: `N·K`
+    /// roots.
+    RegressorMatrix,
+    /// `SVector<S, K>`: `K` roots.
+    RegressorVector,
 }
 
 impl Returns {
@@ -125,6 +130,8 @@ impl Returns {
                 let p = Literal::usize_unsuffixed(ty.parameters);
                 quote!([#matrix; #p])
             }
+            Returns::RegressorMatrix => ty.regressor_matrix.clone(),
+            Returns::RegressorVector => ty.regressor_vector.clone(),
         }
     }
 
@@ -217,6 +224,13 @@ impl Returns {
                     .map(|m| quote!(#new_matrix(&[#(#m),*])));
                 quote!([#(#matrices),*])
             }
+            Returns::RegressorMatrix | Returns::RegressorVector => {
+                let ty = match self {
+                    Returns::RegressorMatrix => &ty.regressor_matrix,
+                    _ => &ty.regressor_vector,
+                };
+                quote!(<#ty>::from_column_slice(&[#(#outs),*]))
+            }
         }
     }
 }
@@ -255,6 +269,9 @@ pub enum InTrait {
     /// An inherent method of a model that asked for its parameter
     /// derivatives (`#[lagrange(parameter_derivatives)]`), and of its stub.
     ParameterDerivatives,
+    /// An inherent method of a model that asked for its regressor
+    /// (`#[lagrange(regressor(..))]`), and of its stub.
+    Regressor,
     /// An inherent method only, of every model and of the stub.
     Inherent,
 }
@@ -615,6 +632,45 @@ pub const METHODS: &[Method] = &[
         },
         in_trait: InTrait::ParameterDerivatives,
     },
+    // Only a model with `#[lagrange(regressor(..))]` has these.
+    Method {
+        name: "regressor",
+        doc: &[
+            "The regressor `Y`, `N × K`: `M q̈ − f = Y π + r₀` at `(t, q, q̇, q̈)`,",
+            "`π` the lumped parameters (`regressor_parameters`, named by",
+            "`REGRESSOR_PARAMETERS`), `r₀` the terms free of them",
+            "(`regressor_offset`).",
+        ],
+        args: &[Arg::T, Arg::Q, Arg::Qdot, Arg::Qddot],
+        returns: Returns::RegressorMatrix,
+        roots: |_, eq| {
+            let r = eq.regressor.as_ref()?;
+            Some(column_major_of(&r.columns, r.names.len()))
+        },
+        in_trait: InTrait::Regressor,
+    },
+    Method {
+        name: "regressor_offset",
+        doc: &[
+            "`r₀`, the terms of `M q̈ − f` free of the regressor's parameters",
+            "(a given force, a known mass), at `(t, q, q̇, q̈)`.",
+        ],
+        args: &[Arg::T, Arg::Q, Arg::Qdot, Arg::Qddot],
+        returns: Returns::Vector,
+        roots: |_, eq| Some(eq.regressor.as_ref()?.offset.clone()),
+        in_trait: InTrait::Regressor,
+    },
+    Method {
+        name: "regressor_parameters",
+        doc: &[
+            "The lumped parameters `π` at the model's parameter values, in the",
+            "order of `REGRESSOR_PARAMETERS`.",
+        ],
+        args: &[],
+        returns: Returns::RegressorVector,
+        roots: |_, eq| Some(eq.regressor.as_ref()?.parameters.clone()),
+        in_trait: InTrait::Regressor,
+    },
     // Only a constrained model with `#[lagrange(parameter_derivatives)]`.
     Method {
         name: "constraint_parameter_jacobian",
@@ -692,6 +748,7 @@ impl Method {
             | InTrait::Contacts
             | InTrait::Actuated
             | InTrait::ParameterDerivatives
+            | InTrait::Regressor
             | InTrait::Inherent => self.signature_returning(ty, returns),
         }
     }

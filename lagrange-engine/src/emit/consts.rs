@@ -39,6 +39,9 @@ pub enum ConstValue {
     /// derivatives; only with `#[lagrange(parameter_derivatives)]` (empty
     /// in the stub).
     ParameterScalarNames,
+    /// `[&'static str; K]`: the regressor's lumped parameters' names; only
+    /// with `#[lagrange(regressor(..))]` (empty strings in the stub).
+    RegressorNames,
     /// `[&'static str; K]`: the inputs' names, flattened (`tau[0]`, ...);
     /// empty in the stub, absent from a model without inputs.
     InputNames,
@@ -96,6 +99,15 @@ pub const CONSTS: &[Const] = &[
             "derivatives (`#[lagrange(parameter_derivatives)]`).",
         ]),
         value: ConstValue::ParameterScalarNames,
+    },
+    Const {
+        name: "REGRESSOR_PARAMETERS",
+        doc: Doc::Lines(&[
+            "Names of the regressor's lumped parameters `π`, each the products",
+            "of the listed parameters it sums (`m2*l1*l2`, `m[1]*l[0]^2 + m[2]*l[0]^2`),",
+            "in the order of the regressor's columns (`#[lagrange(regressor(..))]`).",
+        ]),
+        value: ConstValue::RegressorNames,
     },
     Const {
         name: "INPUTS",
@@ -167,6 +179,11 @@ impl Const {
                 let len: usize = outline.fields.iter().map(|f| f.len.unwrap_or(1)).sum();
                 let p = Literal::usize_unsuffixed(len);
                 (quote!([&'static str; #p]), quote!([""; #p]))
+            }
+            (ConstValue::RegressorNames, _) => {
+                let names = outline.regressor?;
+                let k = Literal::usize_unsuffixed(names.len());
+                (quote!([&'static str; #k]), quote!([#(#names),*]))
             }
             (ConstValue::InputNames, _) if outline.inputs.is_empty() => return None,
             (ConstValue::InputNames, Some((model, _))) => {

@@ -49,6 +49,7 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
             contacts: model.contacts.len(),
             serde: model.options.serde,
             parameter_derivatives: model.options.parameter_derivatives,
+            regressor: eq.regressor.as_ref().map(|r| r.names.as_slice()),
             lets: model.lets.len(),
         },
         types: Types::new(
@@ -64,7 +65,8 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
                 .map(|c| c.normal.is_some())
                 .collect::<Vec<_>>(),
         )
-        .with_parameters(model.parameters.len()),
+        .with_parameters(model.parameters.len())
+        .with_regressor(eq.regressor.as_ref().map_or(0, |r| r.names.len())),
         namer: Namer::new(model),
         roots: METHODS.iter().map(|m| (m.roots)(model, eq)).collect(),
     };
@@ -374,6 +376,7 @@ fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
             | InTrait::Contacts
             | InTrait::Actuated
             | InTrait::ParameterDerivatives
+            | InTrait::Regressor
             | InTrait::Inherent
     ) {
         return TokenStream::new();
@@ -407,6 +410,7 @@ fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
         | InTrait::Contacts
         | InTrait::Actuated
         | InTrait::ParameterDerivatives
+        | InTrait::Regressor
         | InTrait::Inherent => {
             quote! {
                 #[inline]

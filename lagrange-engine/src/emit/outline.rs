@@ -75,6 +75,12 @@ pub struct Types {
     pub constraint_parameter_matrix: TokenStream,
     /// The constructor of `SMatrix<S, C, P>` from a column-major slice.
     pub new_constraint_parameter_matrix: TokenStream,
+    /// The number of lumped parameters of the regressor, `K`.
+    pub regressors: usize,
+    /// `SMatrix<S, N, K>`.
+    pub regressor_matrix: TokenStream,
+    /// `SVector<S, K>`.
+    pub regressor_vector: TokenStream,
 }
 
 impl Types {
@@ -118,9 +124,23 @@ impl Types {
             new_parameter_matrix: quote!(#na::SMatrix::<S, #n, 0>::from_column_slice),
             constraint_parameter_matrix: quote!(#na::SMatrix<S, #c, 0>),
             new_constraint_parameter_matrix: quote!(#na::SMatrix::<S, #c, 0>::from_column_slice),
+            regressors: 0,
+            regressor_matrix: quote!(#na::SMatrix<S, #n, 0>),
+            regressor_vector: quote!(#na::SVector<S, 0>),
             n,
             c,
         }
+    }
+
+    /// The same types for a model whose regressor has `k` lumped
+    /// parameters.
+    pub fn with_regressor(mut self, k: usize) -> Self {
+        let na = nalgebra();
+        let (n, kk) = (&self.n, Literal::usize_unsuffixed(k));
+        self.regressor_matrix = quote!(#na::SMatrix<S, #n, #kk>);
+        self.regressor_vector = quote!(#na::SVector<S, #kk>);
+        self.regressors = k;
+        self
     }
 
     /// The same types for a model with `parameters` parameter scalars.
@@ -189,6 +209,9 @@ pub struct Outline<'a> {
     pub serde: bool,
     /// `#[lagrange(parameter_derivatives)]`.
     pub parameter_derivatives: bool,
+    /// `#[lagrange(regressor(..))]`: the lumped parameters' names (empty
+    /// strings in the stub, one per listed scalar).
+    pub regressor: Option<&'a [String]>,
     /// The number of `let` values.
     pub lets: usize,
 }

@@ -136,6 +136,26 @@ fn take_options(attrs: &mut Vec<Attribute>) -> (Options, Option<syn::Error>) {
             } else if meta.path.is_ident("parameter_derivatives") {
                 options.parameter_derivatives = true;
                 Ok(())
+            } else if meta.path.is_ident("regressor") {
+                let mut names = Vec::new();
+                meta.parse_nested_meta(|inner| {
+                    let name = inner.path.require_ident()?.clone();
+                    if names.contains(&name) {
+                        return Err(inner.error(format!(
+                            "`{name}` is listed twice in `regressor(...)`"
+                        )));
+                    }
+                    names.push(name);
+                    Ok(())
+                })?;
+                if names.is_empty() {
+                    return Err(meta.error(
+                        "`regressor(...)` lists the parameters the equations are to be \
+                         written linearly in, e.g. `regressor(m1, m2, c1)`",
+                    ));
+                }
+                options.regressor = Some(names);
+                Ok(())
             } else if meta.path.is_ident("budget") {
                 let lit: LitInt = meta.value()?.parse()?;
                 match lit.base10_parse::<u64>() {
@@ -152,6 +172,7 @@ fn take_options(attrs: &mut Vec<Attribute>) -> (Options, Option<syn::Error>) {
                 Err(meta.error(
                     "unknown option: `#[lagrange(...)]` takes `jacobians` (exact residual Jacobians for implicit integrators), \
                      `parameter_derivatives` (the derivatives of M, f and the residual by the parameters), \
+                     `regressor(p1, p2, ..)` (M q̈ − f written linearly in the products of those parameters), \
                      `serde` (the struct serializable, with lagrange's `serde` feature) \
                      and `budget = N` (the engine's work budget, in steps)",
                 ))

@@ -67,3 +67,106 @@ fn a_model_with_an_error_keeps_its_parameter_derivatives_in_the_stub() {
     assert!(tokens.contains(":: lagrange :: nalgebra :: SMatrix < S , 1 , 4 >"));
     syn::parse_file(&tokens).expect("the stub parses as Rust");
 }
+
+/// `#[lagrange(regressor(..))]`: the lumped parameters named and grouped
+/// at compile time, the stub keeping the API, and each refusal on the
+/// offending parameter.
+mod regressor {
+    use super::expand;
+    use crate::problems::error;
+
+    const CHAIN: &str = "
+        #[lagrange(regressor(m, l))]
+        pub struct Chain {
+            const N = 3;
+            coordinates: theta[N];
+            parameters: m[N], l[N];
+            constants: g = 9.81;
+            let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));
+            let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));
+            kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2));
+            potential: sum(i in 0..N, m[i]*g*y[i]);
+        }";
+
+    /// The chain's base parameters: `l_i l_j (m_j + … + m_{N−1})` for
+    /// `i ≤ j` (N(N+1)/2 = 6 of them) and the gravity terms
+    /// `l_i (m_i + … + m_{N−1})` (3): nine, each the sum of the products
+    /// whose columns coincide.
+    #[test]
+    fn the_chains_lumped_parameters_are_its_base_parameters() {
+        let tokens = expand(CHAIN);
+        assert!(!tokens.contains("compile_error"), "{tokens}");
+        let start = tokens.find("REGRESSOR_PARAMETERS").unwrap();
+        let names = &tokens[start..start + tokens[start..].find("] ;").unwrap() + 1];
+        assert!(names.contains("; 9]"), "{names}");
+        for base in [
+            "\"m[0]*l[0] + m[1]*l[0] + m[2]*l[0]\"",
+            "\"m[2]*l[2]^2\"",
+            "\"m[1]*l[0]*l[1] + m[2]*l[0]*l[1]\"",
+        ] {
+            assert!(tokens.contains(base), "{base} in {names}");
+        }
+        assert!(tokens.contains("pub fn regressor ("));
+        assert!(tokens.contains("pub fn regressor_offset ("));
+        assert!(tokens.contains("pub fn regressor_parameters (& self ,)"));
+        syn::parse_file(&tokens).expect("the items parse as Rust");
+    }
+
+    #[test]
+    fn a_model_with_an_error_keeps_its_regressor_in_the_stub() {
+        let tokens = expand(&CHAIN.replace("sin(theta[j])", "sin(dot(theta[j]))"));
+        assert_eq!(tokens.matches("compile_error").count(), 1, "{tokens}");
+        assert!(tokens.contains("pub const REGRESSOR_PARAMETERS : [& 'static str ; 6]"));
+        assert!(tokens.contains("pub fn regressor ("));
+        syn::parse_file(&tokens).expect("the stub parses as Rust");
+    }
+
+    #[test]
+    fn a_parameter_in_a_function_is_refused_on_its_token() {
+        let message = error(
+            "#[lagrange(regressor(m, alpha))]
+            pub struct Incline {
+                coordinates: x;
+                parameters: m, alpha;
+                constants: g = 9.81;
+                kinetic: m/2*dot(x)^2;
+                potential: -m*g*x*sin(alpha);
+            }",
+        );
+        assert!(message.contains("not a polynomial in `alpha`"), "{message}");
+    }
+
+    /// `(I + m l²) θ̈` with `l` known: the columns of `I` and `m` are
+    /// `θ̈` and `l² θ̈`, proportional by a factor that is not a constant.
+    #[test]
+    fn parameters_the_equations_cannot_tell_apart_are_refused() {
+        let message = error(
+            "#[lagrange(regressor(I, m))]
+            pub struct Wheel {
+                coordinates: theta;
+                parameters: I, m, l;
+                kinetic: (I + m*l^2)/2*dot(theta)^2;
+                potential: 0;
+            }",
+        );
+        assert!(
+            message.contains("the equations see `m` only in combination"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn a_name_that_is_not_a_parameter_is_refused() {
+        let message = error(
+            "#[lagrange(regressor(m, k))]
+            pub struct Spring {
+                coordinates: x;
+                parameters: m, c;
+                kinetic: m/2*dot(x)^2;
+                potential: x^2;
+            }",
+        );
+        assert!(message.contains("`k` is not a parameter"), "{message}");
+        assert!(message.contains("(here: m, c)"), "{message}");
+    }
+}
