@@ -31,8 +31,13 @@
 //! [`FitError::NotIdentifiable`] names that combination instead of fitting
 //! a value the data cannot fix.
 //!
-//! Measured `let`s as outputs, weights per coordinate and a linear route
-//! through a regressor are not built.
+//! The linear route, for a model with a regressor
+//! (`#[lagrange(regressor(..))]`: `M q̈ − f = Y π + r₀`), is ordinary least
+//! squares on `Y π = −r₀` stacked over the samples, with `q̇` and `q̈`
+//! estimated from the positions ([`savitzky_golay`], whose docs say what
+//! the noise does to them and to the estimate); the `identify` example
+//! takes it beside the fit. Measured `let`s as outputs and weights per
+//! coordinate are not built.
 //!
 //! ```
 //! use lagrange_runtime::identify::{Measurements, fit, FitSettings};
@@ -93,7 +98,10 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod differentiate;
 mod levenberg;
+
+pub use differentiate::savitzky_golay;
 
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 

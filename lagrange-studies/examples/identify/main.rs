@@ -35,7 +35,7 @@ use std::time::Instant;
 
 lagrangian! {
     /// A double pendulum with a damper in each joint.
-    #[lagrange(jacobians, parameter_derivatives)]
+    #[lagrange(jacobians, parameter_derivatives, regressor(m1, m2, c1, c2))]
     pub struct DampedDoublePendulum {
         coordinates: theta1, theta2;
         parameters: m1, m2, l1, l2, g, c1, c2;
@@ -174,10 +174,86 @@ fn main() -> Result<(), Box<dyn Error>> {
     draw(&path, &data, &fitted.fitted)?;
     println!();
     println!("wrote {}", path.display());
+    linear_route(&data, &truth);
     if args.iter().any(|a| a == "--scipy") {
         scipy(&data, &fitted, ours)?;
     }
     Ok(())
+}
+
+/// Least squares on the regressor, `Y π = 0` with `m1` given: `Y' π' =
+/// −y₁ m1` for `π' = (m2, c1, c2)`, stacked over the samples, `q̇` and
+/// `q̈` from the angles by Savitzky–Golay with half-window `M`: the noisy
+/// ones, and the noiseless ones (what the route gives without noise).
+fn linear_route(data: &Measurements<2>, truth: &[SVector<f64, 2>]) {
+    use lagrange::identify::savitzky_golay;
+    use lagrange::nalgebra::{DMatrix, DVector};
+    assert_eq!(
+        DampedDoublePendulum::<f64>::REGRESSOR_PARAMETERS,
+        ["m1", "m2", "c1", "c2"]
+    );
+    // The lengths as measured with a ruler: the true ones.
+    let model = model(&TRUTH);
+    println!();
+    println!(
+        "The linear route: M q̈ − f = Y π in (m1, m2, c1, c2), m1 given, q̇ and q̈ by Savitzky–Golay (cubic, 2M + 1 samples); each estimate's error against the truth:"
+    );
+    println!();
+    println!(
+        "| data | M | σ of q̈ from the noise (rad/s²) | m2 | c1 | c2 | errors (m2, c1, c2) | time (ms) |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---|---:|");
+    let runs = [
+        ("noiseless", truth, 2),
+        ("noiseless", truth, 5),
+        ("noiseless", truth, 20),
+        ("noisy", &data.positions[..], 5),
+        ("noisy", &data.positions[..], 10),
+        ("noisy", &data.positions[..], 20),
+        ("noisy", &data.positions[..], 40),
+    ];
+    for (label, positions, half) in runs {
+        let clock = Instant::now();
+        let Some(samples) = savitzky_golay(&data.times, positions, half) else {
+            continue;
+        };
+        let rows = 2 * samples.len();
+        let mut a = DMatrix::<f64>::zeros(rows, 3);
+        let mut b = DVector::<f64>::zeros(rows);
+        for (s, (t, q, v, acc)) in samples.iter().enumerate() {
+            let y = model.regressor(*t, q, v, acc);
+            let offset = model.regressor_offset(*t, q, v, acc);
+            for i in 0..2 {
+                let row = 2 * s + i;
+                for j in 0..3 {
+                    a[(row, j)] = y[(i, j + 1)];
+                }
+                b[row] = -(y[(i, 0)] * TRUTH[0] + offset[i]);
+            }
+        }
+        let estimate = a
+            .svd(true, true)
+            .solve(&b, 1e-12)
+            .expect("a least-squares solution");
+        let ms = clock.elapsed().as_secs_f64() * 1e3;
+        let m = half as f64;
+        let sigma = if label == "noisy" { NOISE } else { 0.0 };
+        let noise = sigma
+            * (180.0 / (m * (m + 1.0) * (2.0 * m + 1.0) * (2.0 * m - 1.0) * (2.0 * m + 3.0)))
+                .sqrt()
+            / 1e-4;
+        let truth = [TRUTH[1], TRUTH[5], TRUTH[6]];
+        let off: Vec<String> = (0..3)
+            .map(|j| format!("{:+.2} %", 100.0 * (estimate[j] - truth[j]) / truth[j]))
+            .collect();
+        println!(
+            "| {label} | {half} | {noise:.3} | {:.5} | {:.5} | {:.5} | {} | {ms:.1} |",
+            estimate[0],
+            estimate[1],
+            estimate[2],
+            off.join(", ")
+        );
+    }
 }
 
 /// The fit over `seeds` noise seeds: how often each 95 % interval holds
