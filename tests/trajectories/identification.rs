@@ -259,3 +259,83 @@ fn a_recorded_input_separates_what_the_free_motion_cannot() {
     .unwrap_err();
     assert!(matches!(error, FitError::NotIdentifiable { .. }), "{error}");
 }
+
+/// The second bob's Cartesian position (the model's `let`s `x2` and
+/// `y2`) measured at 800 irregular times instead of the angles: the same
+/// parameters come back within their standard errors, and a `let` the
+/// model does not name is refused.
+#[test]
+fn named_lets_at_irregular_times_fit_as_well() {
+    let mut rng = StdRng::seed_from_u64(11);
+    let mut times: Vec<f64> = (0..800).map(|_| rng.gen_range(0.01..10.0)).collect();
+    times.sort_by(f64::total_cmp);
+    let truth = DampedDoublePendulum::from_scalars(&TRUTH);
+    let (q0, v0) = start();
+    let run = Radau5::new()
+        .rtol(1e-12)
+        .atol(1e-12)
+        .integrate(&truth, 0.0, q0, v0, &times)
+        .unwrap();
+    let mut gauss = move || {
+        let (u, v): (f64, f64) = (rng.gen_range(f64::EPSILON..1.0), rng.gen_range(0.0..1.0));
+        (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
+    };
+    let values: Vec<Vec<f64>> = run
+        .iter()
+        .map(|s| {
+            let lets = truth.lets(s.t, &s.q, &s.qdot);
+            // x1, y1, x2, y2: the second bob's.
+            vec![lets[2] + NOISE * gauss(), lets[3] + NOISE * gauss()]
+        })
+        .collect();
+    let data = Measurements::lets(times, &["x2", "y2"], values);
+    let names = ["m2", "l1", "l2", "c1", "c2"];
+    let mut guess = TRUTH;
+    for (k, factor) in [(1, 1.2), (2, 0.8), (3, 1.2), (5, 0.8), (6, 1.2)] {
+        guess[k] *= factor;
+    }
+    let method = Dop853::new().rtol(1e-10).atol(1e-10);
+    let fitted = fit::<_, _, 2, 7, 5, 12>(
+        DampedDoublePendulum::from_scalars(&guess),
+        &method,
+        names.map(named),
+        0.0,
+        start(),
+        &data,
+        &FitSettings::default(),
+    )
+    .unwrap();
+    for (j, k) in [1, 2, 3, 5, 6].into_iter().enumerate() {
+        // 4 standard errors, as above.
+        let (value, error) = (fitted.values[j], fitted.standard_errors[j]);
+        assert!(
+            (value - TRUTH[k]).abs() < 4.0 * error,
+            "{}: {value} ± {error}",
+            names[j]
+        );
+    }
+    // σ̂ from 1600 residuals: 1/√3200 = 1.8 % per standard deviation.
+    assert!(
+        (fitted.sigma / NOISE - 1.0).abs() < 0.1,
+        "σ̂ = {}",
+        fitted.sigma
+    );
+
+    let wrong = Measurements::lets(vec![0.1, 0.2], &["x3"], vec![vec![0.0], vec![0.0]]);
+    let error = fit::<_, _, 2, 7, 1, 4>(
+        DampedDoublePendulum::from_scalars(&TRUTH),
+        &method,
+        [named("m2")],
+        0.0,
+        start(),
+        &wrong,
+        &FitSettings::default(),
+    )
+    .unwrap_err();
+    assert!(
+        error
+            .to_string()
+            .contains("`x3`, which is not a `let` of the model (it names: x1, y1, x2, y2)"),
+        "{error}"
+    );
+}

@@ -4,7 +4,9 @@
 //!
 //! [`fit`] minimizes `½ Σ (q_c(t_i) − y_ic)²` over the chosen
 //! [`Direction`]s, summed over the measured samples `i` and the observed
-//! coordinates `c`, by Levenberg–Marquardt. Each iteration is one run of
+//! coordinates `c` (and likewise over measured named `let`s, a bob's
+//! Cartesian `x2` and `y2`: [`Measurements::lets`]), by
+//! Levenberg–Marquardt. Each iteration is one run of
 //! the model's [`Sensitivity`] by the method given: the residuals and
 //! their exact Jacobian (the sensitivities at the sample times) at once.
 //! The samples may be at any times at or after the start, irregular ones
@@ -36,8 +38,9 @@
 //! squares on `Y π = −r₀` stacked over the samples, with `q̇` and `q̈`
 //! estimated from the positions ([`savitzky_golay`], whose docs say what
 //! the noise does to them and to the estimate); the `identify` example
-//! takes it beside the fit. Measured `let`s as outputs and weights per
-//! coordinate are not built.
+//! takes it beside the fit. Weights per output are not built: every
+//! residual counts alike, so outputs measured with different noise (an
+//! angle and a length) should be scaled to one noise level first.
 //!
 //! ```
 //! use lagrange_runtime::identify::{Measurements, fit, FitSettings};
@@ -110,16 +113,21 @@ use crate::integrators::Integrator;
 use crate::model::ParameterDerivatives;
 use crate::sensitivity::{Direction, Sensitivity, SensitivityError};
 
-/// Measured positions: some or all coordinates at each of `times`.
+/// What was measured at each of `times`: some or all coordinates, and
+/// named `let`s of the model (a bob's `x2`, `y2`), or either alone.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Measurements<const N: usize> {
     /// The sample times, non-decreasing, none before the fit's start.
     pub times: Vec<f64>,
     /// The measured positions at each time; the entries of coordinates not
-    /// observed are ignored.
+    /// observed are ignored (all of them where no coordinate was).
     pub positions: Vec<SVector<f64, N>>,
     /// Which coordinates were measured.
     pub observed: [bool; N],
+    /// The names of the measured `let`s, as the model's `LETS` writes them.
+    pub lets: Vec<String>,
+    /// At each time, the measured value of each of [`lets`](Self::lets).
+    pub let_values: Vec<Vec<f64>>,
 }
 
 impl<const N: usize> Measurements<N> {
@@ -129,6 +137,20 @@ impl<const N: usize> Measurements<N> {
             times,
             positions,
             observed: [true; N],
+            lets: Vec::new(),
+            let_values: Vec::new(),
+        }
+    }
+
+    /// The named `let`s `names` measured at each of `times` (`values[i][k]`
+    /// the value of `names[k]` at `times[i]`), no coordinate.
+    pub fn lets(times: Vec<f64>, names: &[&str], values: Vec<Vec<f64>>) -> Self {
+        Self {
+            positions: vec![SVector::zeros(); times.len()],
+            times,
+            observed: [false; N],
+            lets: names.iter().map(|n| n.to_string()).collect(),
+            let_values: values,
         }
     }
 
@@ -139,7 +161,82 @@ impl<const N: usize> Measurements<N> {
     }
 
     fn residual_count(&self) -> usize {
-        self.times.len() * self.observed.iter().filter(|o| **o).count()
+        self.times.len() * (self.observed.iter().filter(|o| **o).count() + self.lets.len())
+    }
+}
+
+/// The measured `let`s of a model at one state, and their rows of the
+/// Jacobian: `∂ℓ/∂q S + ∂ℓ/∂q̇ Ṡ`, the `let`s' derivatives by central
+/// differences (step `ε^{1/3}` relative: about 1e-10 relative error, far
+/// inside what a Jacobian for Levenberg–Marquardt and for the standard
+/// errors needs; the residuals themselves are exact).
+struct LetRows<'a, const N: usize, const D: usize> {
+    indices: &'a [usize],
+    t: f64,
+    q: SVector<f64, N>,
+    qdot: SVector<f64, N>,
+    s: SMatrix<f64, N, D>,
+    sdot: SMatrix<f64, N, D>,
+}
+
+impl<const N: usize, const D: usize> crate::model::lets::Visitor<f64, N> for LetRows<'_, N, D> {
+    type Output = Vec<(f64, SVector<f64, D>)>;
+
+    fn visit<L, const K: usize>(self, model: &L) -> Self::Output
+    where
+        L: crate::model::lets::Lets<N, K, Scalar = f64> + ?Sized,
+    {
+        let at = |q: &SVector<f64, N>, v: &SVector<f64, N>| model.lets(self.t, q, v);
+        let values = at(&self.q, &self.qdot);
+        let mut rows = vec![SVector::<f64, D>::zeros(); self.indices.len()];
+        for (vector, sens) in [(false, &self.s), (true, &self.sdot)] {
+            for i in 0..N {
+                let x = if vector { self.qdot[i] } else { self.q[i] };
+                let h = f64::EPSILON.cbrt() * x.abs().max(1.0);
+                let (mut plus, mut minus) = ((self.q, self.qdot), (self.q, self.qdot));
+                if vector {
+                    plus.1[i] += h;
+                    minus.1[i] -= h;
+                } else {
+                    plus.0[i] += h;
+                    minus.0[i] -= h;
+                }
+                let (up, down) = (at(&plus.0, &plus.1), at(&minus.0, &minus.1));
+                for (row, &k) in rows.iter_mut().zip(self.indices) {
+                    let slope = (up[k] - down[k]) / (2.0 * h);
+                    *row += sens.row(i).transpose() * slope;
+                }
+            }
+        }
+        self.indices
+            .iter()
+            .zip(rows)
+            .map(|(&k, row)| (values[k], row))
+            .collect()
+    }
+}
+
+/// The index in `LETS` of each measured `let`, or the names it has.
+struct LetIndices<'a>(&'a [String]);
+
+impl<const N: usize> crate::model::lets::Visitor<f64, N> for LetIndices<'_> {
+    type Output = Result<Vec<usize>, String>;
+
+    fn visit<L, const K: usize>(self, _: &L) -> Self::Output
+    where
+        L: crate::model::lets::Lets<N, K, Scalar = f64> + ?Sized,
+    {
+        self.0
+            .iter()
+            .map(|name| {
+                L::LETS.iter().position(|l| l == name).ok_or_else(|| {
+                    format!(
+                        "name `{name}`, which is not a `let` of the model (it names: {})",
+                        L::LETS.join(", ")
+                    )
+                })
+            })
+            .collect()
     }
 }
 
@@ -271,6 +368,14 @@ where
     I: Integrator<f64>,
 {
     check_data(data, t0, D)?;
+    let let_indices = if data.lets.is_empty() {
+        Vec::new()
+    } else {
+        model
+            .visit_lets(LetIndices(&data.lets))
+            .unwrap_or_else(|| Err("name `let`s, but the model names none".to_string()))
+            .map_err(FitError::Data)?
+    };
     // Refuses bad directions and models before any run.
     Sensitivity::<L, N, P, D, NA>::new(model.clone(), directions)?;
     let names: [String; D] = std::array::from_fn(|j| match directions[j] {
@@ -313,13 +418,29 @@ where
         let mut jacobian = DMatrix::<f64>::zeros(m, D);
         fitted.clear();
         let mut row = 0;
-        for (i, x) in run.positions().iter().enumerate() {
+        for (i, (x, w)) in run.positions().iter().zip(run.velocities()).enumerate() {
             let q = sensitivity.state(x);
             let s = sensitivity.sensitivities(x);
             for &c in &observed {
                 residual[row] = q[c] - data.positions[i][c];
                 jacobian.row_mut(row).copy_from(&s.row(c));
                 row += 1;
+            }
+            if !let_indices.is_empty() {
+                let rows = LetRows {
+                    indices: &let_indices,
+                    t: data.times[i],
+                    q,
+                    qdot: sensitivity.state(w),
+                    s,
+                    sdot: sensitivity.sensitivities(w),
+                };
+                let lets = sensitivity.model().visit_lets(rows).unwrap_or_default();
+                for (k, (value, derivative)) in lets.into_iter().enumerate() {
+                    residual[row] = value - data.let_values[i][k];
+                    jacobian.row_mut(row).copy_from(&derivative.transpose());
+                    row += 1;
+                }
             }
             fitted.push(q);
         }
@@ -400,8 +521,15 @@ fn check_data<const N: usize, const NA: usize>(
             data.positions.len()
         ));
     }
-    if !data.observed.contains(&true) {
-        return bad("observe no coordinate".into());
+    if !data.observed.contains(&true) && data.lets.is_empty() {
+        return bad("observe no coordinate and no `let`".into());
+    }
+    if !data.lets.is_empty() && data.let_values.len() != data.times.len() {
+        return bad(format!(
+            "have {} times but {} samples of the `let`s",
+            data.times.len(),
+            data.let_values.len()
+        ));
     }
     if data.residual_count() <= directions {
         return bad(format!(
