@@ -3,7 +3,7 @@
 //! constants, scalar and indexed `let`s, sums, `dot`, repeated sections,
 //! dissipation, forces on coordinates and along positions, constraints,
 //! control inputs driving a coordinate, the `jacobians`,
-//! `parameter_derivatives` and `budget` options, doc comments, visibility). Names are declared before they are
+//! `parameter_derivatives`, `regressor(..)` and `budget` options, doc comments, visibility). Names are declared before they are
 //! drawn and indices stay in range, so that most models expand and the
 //! mutator has valid programs to break.
 
@@ -73,9 +73,9 @@ impl Gen<'_> {
             ];
             options.push(format!("budget = {}", self.rng.pick(&steps)));
         }
-        if !options.is_empty() {
-            head.push_str(&format!("#[lagrange({})]\n", options.join(", ")));
-        }
+        // The options' attribute is written once the parameters are known
+        // (`regressor(..)` lists some of them).
+        let options_at = head.len();
         let vis = *self.rng.pick(&["pub ", "pub ", "", "pub(crate) "]);
         head.push_str(vis);
         let name = *self
@@ -95,7 +95,22 @@ impl Gen<'_> {
         if n_params > 0 {
             let parameters = self.declare(&["m", "k", "l", "c", "a", "b"], n_params, n_params);
             early.push(format!("parameters: {};", list(&parameters)));
+            if self.rng.chance(0.08) {
+                // Some of the parameters' names, now and then one that is not.
+                let mut listed: Vec<String> = parameters
+                    .iter()
+                    .map(|p| p.name.clone())
+                    .filter(|_| self.rng.chance(0.6))
+                    .collect();
+                if listed.is_empty() || self.rng.chance(0.1) {
+                    listed.push((*self.rng.pick(&["m", "zeta", "l"])).to_string());
+                }
+                options.push(format!("regressor({})", listed.join(", ")));
+            }
             self.scope.parameters = parameters;
+        }
+        if !options.is_empty() {
+            head.insert_str(options_at, &format!("#[lagrange({})]\n", options.join(", ")));
         }
         if self.rng.chance(0.3) {
             let mut entries = Vec::new();
