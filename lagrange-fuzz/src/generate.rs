@@ -110,7 +110,10 @@ impl Gen<'_> {
             self.scope.parameters = parameters;
         }
         if !options.is_empty() {
-            head.insert_str(options_at, &format!("#[lagrange({})]\n", options.join(", ")));
+            head.insert_str(
+                options_at,
+                &format!("#[lagrange({})]\n", options.join(", ")),
+            );
         }
         if self.rng.chance(0.3) {
             let mut entries = Vec::new();
