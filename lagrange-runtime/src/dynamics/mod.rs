@@ -58,8 +58,10 @@ pub fn acceleration<L: Lagrangian<N>, const N: usize>(
         // A controller's non-finite inputs show as a non-finite forcing.
         return constrained.map_err(|error| blame::blame_error(model, error));
     }
-    if let Some(accelerations) = model.accelerations(t, q, qdot) {
-        return accelerations;
+    if L::SOLVES_ACCELERATIONS {
+        if let Some(accelerations) = model.accelerations(t, q, qdot) {
+            return accelerations;
+        }
     }
     let (m, f) = model.mass_matrix_and_forcing(t, q, qdot);
     solve_mass_matrix(&m, &f).map_err(|err| match err {

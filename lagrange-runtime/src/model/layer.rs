@@ -196,6 +196,7 @@ where
     const COORDINATES: [&'static str; N] = M::COORDINATES;
     const CONSERVATIVE: bool = M::CONSERVATIVE;
     const HAS_CONTACTS: bool = M::HAS_CONTACTS;
+    const SOLVES_ACCELERATIONS: bool = M::SOLVES_ACCELERATIONS;
 
     #[inline]
     fn mass_matrix(&self, t: M::Scalar, q: &SVector<M::Scalar, N>) -> SMatrix<M::Scalar, N, N> {
@@ -281,6 +282,9 @@ where
         q: &SVector<M::Scalar, N>,
         qdot: &SVector<M::Scalar, N>,
     ) -> Option<Result<SVector<M::Scalar, N>, crate::error::IntegrationError<M::Scalar, N>>> {
+        if !M::SOLVES_ACCELERATIONS {
+            return None;
+        }
         // Where no model answers, the forcing's NaN is reported (and blamed)
         // by the solve with `M`.
         at!(self, t, q, qdot, |m| m.accelerations(t, q, qdot), None)

@@ -172,6 +172,7 @@ pub trait Lagrangian<const N: usize> {
     /// `lagrangian!`) solves `M q̈ = f` from
     /// [`mass_matrix_and_forcing`](Self::mass_matrix_and_forcing). A model
     /// with constraints is not asked: its `q̈` is the saddle-point solve.
+    /// A model that overrides it sets [`SOLVES_ACCELERATIONS`](Self::SOLVES_ACCELERATIONS).
     #[allow(clippy::type_complexity)]
     fn accelerations(
         &self,
@@ -183,6 +184,11 @@ pub trait Lagrangian<const N: usize> {
         let _ = (t, q, qdot);
         None
     }
+
+    /// Whether [`accelerations`](Self::accelerations) answers: only then is
+    /// it asked (a layer over a model that does not would otherwise set a
+    /// controller's inputs once more per evaluation, for nothing).
+    const SOLVES_ACCELERATIONS: bool = false;
 
     /// The generalized momenta `p = ∂L/∂q̇`, if the model provides them
     /// (generated models do). Variational integrators need them.

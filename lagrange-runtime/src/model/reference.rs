@@ -16,6 +16,7 @@ impl<L: Lagrangian<N> + ?Sized, const N: usize> Lagrangian<N> for &L {
     const COORDINATES: [&'static str; N] = L::COORDINATES;
     const CONSERVATIVE: bool = L::CONSERVATIVE;
     const HAS_CONTACTS: bool = L::HAS_CONTACTS;
+    const SOLVES_ACCELERATIONS: bool = L::SOLVES_ACCELERATIONS;
 
     #[inline]
     fn mass_matrix(&self, t: L::Scalar, q: &SVector<L::Scalar, N>) -> SMatrix<L::Scalar, N, N> {

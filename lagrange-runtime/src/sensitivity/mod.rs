@@ -30,7 +30,10 @@
 //! its own error asks for (CVODES's `errconS`). Their entries are in units
 //! of `q` per unit of the parameter, so scale parameters of very different
 //! size before comparing them. Events are not carried: a reset would need
-//! the sensitivities' own jump conditions.
+//! the sensitivities' own jump conditions. The implicit methods take the
+//! Jacobians of the whole `N·(1 + D)`-coordinate system by differences
+//! and form its matrices on the stack, as for any model of that size: for
+//! a large `N·(1 + D)` (hundreds), take an explicit method.
 //!
 //! ```
 //! use lagrange_runtime::nalgebra::SVector;
@@ -380,6 +383,7 @@ where
     };
     const CONSERVATIVE: bool = false;
     const HAS_CONTACTS: bool = L::HAS_CONTACTS;
+    const SOLVES_ACCELERATIONS: bool = true;
 
     /// The model's `M` repeated down the diagonal (formed only when asked:
     /// a run solves with the model's own, [`accelerations`](Self::accelerations)).
