@@ -14,7 +14,7 @@
 use crate::models::parameter_derivatives::{ChainOfFive, DampedDoublePendulum, FromScalars};
 use lagrange::nalgebra::{SMatrix, SVector};
 use lagrange::prelude::*;
-use lagrange::sensitivity::{Direction, Sensitivity, SensitivityError};
+use lagrange::sensitivity::{Direction, Sensitivity, SensitivityError, coordinates};
 use lagrange::{Dop853, ParameterDerivatives, Radau5, Rk4};
 use num_dual::Dual64;
 
@@ -225,7 +225,7 @@ fn rk4_sensitivities_of_the_chain_equal_dual_numbers_to_rounding() {
         h,
         &times,
     );
-    let (ours, _) = by_sensitivity::<_, _, 5, 10, 4, 25>(
+    let (ours, _) = by_sensitivity::<_, _, 5, 10, 4, { coordinates(5, 4) }>(
         ChainOfFive::from_scalars(&chain_parameters()),
         chain_directions(),
         chain_start(),

@@ -17,7 +17,7 @@
 //! an initial condition), `∂r/∂q` and `∂r/∂q̇` from its exact Jacobians
 //! (`#[lagrange(jacobians)]`) or, without them, from forward differences of
 //! `q̈` (accurate to about `√ε` relative, and `2N` more evaluations of the
-//! model per evaluation, not counted in [`Stats`](crate::Stats)). The
+//! model per evaluation, not counted in [`Stats`]). The
 //! sensitivity model solves with the model's `M` once per evaluation
 //! ([`Lagrangian::accelerations`]): its `M`, the model's repeated down the
 //! diagonal, is never formed on the run's path.
@@ -104,6 +104,13 @@ use crate::linalg::solve::{SolveError, factor_mass_matrix};
 use crate::model::constraints::is_constrained;
 use crate::model::{Lagrangian, ParameterDerivatives};
 use crate::trajectory::Stats;
+
+/// The number of coordinates of a [`Sensitivity`] of a model with `n`
+/// coordinates along `d` directions, `n·(1 + d)`, for its type's last
+/// parameter: `Sensitivity<M, 2, 7, 5, { coordinates(2, 5) }>`.
+pub const fn coordinates(n: usize, d: usize) -> usize {
+    n * (1 + d)
+}
 
 /// What a sensitivity is taken along.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -192,7 +199,10 @@ pub enum SensitivityError {
 /// [module's docs](self) give the equations and an example.
 ///
 /// `NA` is checked when the type is used: a wrong one is a compile error
-/// ("`NA` must be `N·(1 + D)`").
+/// ("`NA` must be `N·(1 + D)`"). Stable Rust cannot compute it from `N`
+/// and `D` in a generic type, so it is written out, or as
+/// `{ coordinates(N, D) }` with the numbers:
+/// `Sensitivity<Pendulum, 2, 7, 5, { coordinates(2, 5) }>`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sensitivity<L, const N: usize, const P: usize, const D: usize, const NA: usize> {
     model: L,
