@@ -26,6 +26,7 @@ mod cartesian_pendulum;
 mod chain;
 mod chaplygin_sleigh;
 mod contact;
+mod damped_double_pendulum;
 mod double_pendulum;
 mod four_bar;
 mod free_body;
@@ -51,6 +52,7 @@ pub use contact::{
     BallOnFloor, BlockOnBelt, BlockOnIncline, BobOnString, Ladder, ParticleOnSphere, SlidingBall,
     StickSlip, Swing, TorsionBearing, TumblingBox,
 };
+pub use damped_double_pendulum::DampedDoublePendulum;
 pub use double_pendulum::DoublePendulum;
 pub use four_bar::FourBar;
 pub use free_body::FreeBody;

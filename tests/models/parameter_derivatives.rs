@@ -2,33 +2,15 @@
 //! residual's `∂r/∂p`, derived at compile time, against forward-mode dual
 //! numbers (num-dual's `Dual64`) carried through the generated `M` and `f`
 //! themselves, one parameter scalar at a time: the same derivatives by
-//! another road, on the damped double pendulum and the 5-link chain (an
-//! indexed model, its parameters `m[N]` and `l[N]`).
+//! another road, on the damped double pendulum (`lagrange::models`) and the
+//! 5-link chain (an indexed model, its parameters `m[N]` and `l[N]`); and
+//! both models' regressors against `M q̈ − f`.
 
+pub(crate) use lagrange::models::DampedDoublePendulum;
 use lagrange::nalgebra::{SMatrix, SVector};
 use lagrange::prelude::*;
 use num_dual::Dual64;
 use rand::{Rng, SeedableRng, rngs::StdRng};
-
-lagrangian! {
-    /// A double pendulum with a damper in each joint: every parameter
-    /// (masses, lengths, gravity, damping) enters `M` or `f`. With its
-    /// exact Jacobians too, for its sensitivities
-    /// (`tests/trajectories/sensitivities.rs`), and its regressor in the
-    /// masses and dampers (the lengths and `g` known).
-    #[lagrange(jacobians, parameter_derivatives, regressor(m1, m2, c1, c2))]
-    pub struct DampedDoublePendulum {
-        coordinates: theta1, theta2;
-        parameters: m1, m2, l1, l2, g, c1, c2;
-        let x1 = l1*sin(theta1);
-        let y1 = -l1*cos(theta1);
-        let x2 = x1 + l2*sin(theta2);
-        let y2 = y1 - l2*cos(theta2);
-        kinetic: m1/2*(dot(x1)^2 + dot(y1)^2) + m2/2*(dot(x2)^2 + dot(y2)^2);
-        potential: m1*g*y1 + m2*g*y2;
-        dissipation: c1/2*dot(theta1)^2 + c2/2*(dot(theta2) - dot(theta1))^2;
-    }
-}
 
 lagrangian! {
     /// The 5-link chain of point masses in absolute angles, its regressor in

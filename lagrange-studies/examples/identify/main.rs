@@ -23,6 +23,7 @@
 //! `python3`) and says so and skips without one.
 
 use lagrange::identify::{Fit, FitSettings, Measurements, fit};
+use lagrange::models::DampedDoublePendulum;
 use lagrange::nalgebra::SVector;
 use lagrange::prelude::*;
 use lagrange::sensitivity::Direction;
@@ -32,22 +33,6 @@ use std::error::Error;
 use std::path::Path;
 use std::process::Command;
 use std::time::Instant;
-
-lagrangian! {
-    /// A double pendulum with a damper in each joint.
-    #[lagrange(jacobians, parameter_derivatives, regressor(m1, m2, c1, c2))]
-    pub struct DampedDoublePendulum {
-        coordinates: theta1, theta2;
-        parameters: m1, m2, l1, l2, g, c1, c2;
-        let x1 = l1*sin(theta1);
-        let y1 = -l1*cos(theta1);
-        let x2 = x1 + l2*sin(theta2);
-        let y2 = y1 - l2*cos(theta2);
-        kinetic: m1/2*(dot(x1)^2 + dot(y1)^2) + m2/2*(dot(x2)^2 + dot(y2)^2);
-        potential: m1*g*y1 + m2*g*y2;
-        dissipation: c1/2*dot(theta1)^2 + c2/2*(dot(theta2) - dot(theta1))^2;
-    }
-}
 
 /// m1, m2, l1, l2, g, c1, c2.
 const TRUTH: [f64; 7] = [1.0, 0.8, 1.1, 0.9, 9.81, 0.3, 0.2];
