@@ -154,7 +154,19 @@ pub fn regressor(model: &mut Model, eq: &mut Equations) -> syn::Result<()> {
             "the equations do not depend on the parameters `regressor(...)` lists",
         ));
     }
-    let groups = group(model, &coefficients)?;
+    let groups = group(model, &coefficients).map_err(|dependent| {
+        let monomial = &coefficients[dependent].0;
+        let name = name_of(&unknown_names, monomial, 1.0);
+        syn::Error::new(
+            unknowns[monomial[0]].1,
+            format!(
+                "the equations see `{name}` only in combination with the products of \
+                 the parameters before it: its column of the regressor is a sum of \
+                 theirs with factors that are not constants, so no data can tell \
+                 them apart; leave one of its parameters out of `regressor(...)`"
+            ),
+        )
+    })?;
     if model.pool.exhausted() {
         return Ok(());
     }
@@ -242,11 +254,12 @@ fn name_of(names: &[String], monomial: &Monomial, factor: f64) -> String {
 
 /// The columns grouped into base parameters: each group its first member
 /// (the column kept) and the others that are constant multiples of it,
-/// each with its factor (1 for the first). Refuses any other dependence.
+/// each with its factor (1 for the first). Any other dependence is the
+/// error: the index of the first column the ones before it determine.
 fn group(
     model: &Model,
     coefficients: &[(Monomial, Vec<ExprId>)],
-) -> syn::Result<Vec<Vec<(usize, f64)>>> {
+) -> Result<Vec<Vec<(usize, f64)>>, usize> {
     // Each column at generic values of every symbol: SplitMix64 from a
     // fixed seed, so that the same model always groups the same way.
     const SAMPLES: usize = 12;
@@ -337,20 +350,7 @@ fn group(
         }
         let size = norm(&w);
         if size <= 1e-9 * norm(v) {
-            let names: Vec<String> = listed_scalars(model)
-                .iter()
-                .map(|&(s, _)| model.parameters[param_index(model, s)].to_string())
-                .collect();
-            let name = name_of(&names, &coefficients[group[0].0].0, 1.0);
-            return Err(syn::Error::new(
-                listed_span(model, &coefficients[group[0].0].0),
-                format!(
-                    "the equations see `{name}` only in combination with the products of \
-                     the parameters before it: its column of the regressor is a sum of \
-                     theirs with factors that are not constants, so no data can tell \
-                     them apart; leave one of its parameters out of `regressor(...)`"
-                ),
-            ));
+            return Err(group[0].0);
         }
         basis.push(w.iter().map(|x| x / size).collect());
     }
@@ -368,26 +368,4 @@ fn rational(c: f64) -> Option<f64> {
         let n = (c * d as f64).round();
         ((c - n / d as f64).abs() <= 1e-9 * c.abs().max(1.0)).then(|| n / d as f64)
     })
-}
-
-fn listed_scalars(model: &Model) -> Vec<(SymId, Span)> {
-    let listed = model.options.regressor.as_deref().unwrap_or_default();
-    let mut out = Vec::new();
-    for name in listed {
-        for (p, &s) in model.parameters.iter().zip(&model.symbols.parameters) {
-            if p.name == *name {
-                out.push((s, name.span()));
-            }
-        }
-    }
-    out
-}
-
-/// The span of the first listed parameter of `monomial`.
-fn listed_span(model: &Model, monomial: &Monomial) -> Span {
-    let scalars = listed_scalars(model);
-    monomial
-        .first()
-        .map(|&k| scalars[k].1)
-        .unwrap_or_else(Span::call_site)
 }

@@ -45,7 +45,11 @@ pub fn savitzky_golay<const N: usize>(
     // Vandermonde matrix's pseudo-inverse, in units of the sample index.
     let v = DMatrix::<f64>::from_fn(width, 4, |i, p| (i as f64 - m as f64).powi(p as i32));
     let pinv = (v.transpose() * &v).try_inverse()? * v.transpose();
-    let (value, slope, curvature) = (pinv.row(0), pinv.row(1), pinv.row(2) * 2.0);
+    let (value, slope, curvature) = (
+        pinv.row(0).into_owned(),
+        pinv.row(1).into_owned(),
+        pinv.row(2) * 2.0,
+    );
     let out = (m..times.len() - m)
         .map(|c| {
             let window = &positions[c - m..=c + m];
@@ -57,8 +61,8 @@ pub fn savitzky_golay<const N: usize>(
             };
             (
                 times[c],
-                apply(&value.into_owned()),
-                apply(&slope.into_owned()) / h,
+                apply(&value),
+                apply(&slope) / h,
                 apply(&curvature) / (h * h),
             )
         })

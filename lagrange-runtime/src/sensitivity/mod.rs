@@ -374,7 +374,11 @@ where
     }
 }
 
-#[warn(clippy::missing_trait_methods)]
+// Every capability not written here is the trait's default, none: no
+// exact Jacobians (the implicit methods take differences of the whole
+// system), no momenta (the variational method refuses the model), no
+// constraints (`new` refuses a constrained model), no inputs (`new`
+// checked the model's), no `let`s.
 impl<L, const N: usize, const P: usize, const D: usize, const NA: usize> Lagrangian<NA>
     for Sensitivity<L, N, P, D, NA>
 where
@@ -391,7 +395,6 @@ where
         }
         names
     };
-    const CONSERVATIVE: bool = false;
     const HAS_CONTACTS: bool = L::HAS_CONTACTS;
     const SOLVES_ACCELERATIONS: bool = true;
 
@@ -427,15 +430,6 @@ where
         }
     }
 
-    fn mass_matrix_and_forcing(
-        &self,
-        t: L::Scalar,
-        x: &SVector<L::Scalar, NA>,
-        v: &SVector<L::Scalar, NA>,
-    ) -> (SMatrix<L::Scalar, NA, NA>, SVector<L::Scalar, NA>) {
-        (self.mass_matrix(t, x), self.forcing(t, x, v))
-    }
-
     /// The model's `T` (the sensitivities carry none).
     fn kinetic_energy(
         &self,
@@ -451,27 +445,6 @@ where
         self.model.potential_energy(t, &self.state(x))
     }
 
-    fn energy(
-        &self,
-        t: L::Scalar,
-        x: &SVector<L::Scalar, NA>,
-        v: &SVector<L::Scalar, NA>,
-    ) -> L::Scalar {
-        self.kinetic_energy(t, x, v) + self.potential_energy(t, x)
-    }
-
-    /// None: the implicit methods take the augmented Jacobians by
-    /// differences (the exact ones would need second derivatives).
-    fn residual_jacobians(
-        &self,
-        _: L::Scalar,
-        _: &SVector<L::Scalar, NA>,
-        _: &SVector<L::Scalar, NA>,
-        _: &SVector<L::Scalar, NA>,
-    ) -> Option<(SMatrix<L::Scalar, NA, NA>, SMatrix<L::Scalar, NA, NA>)> {
-        None
-    }
-
     #[allow(clippy::type_complexity)]
     fn accelerations(
         &self,
@@ -482,63 +455,7 @@ where
         Some(self.solve(t, x, v).map(|(a, _)| a))
     }
 
-    /// None: a sensitivity has no momenta, so the variational method
-    /// refuses it.
-    fn momentum(
-        &self,
-        _: L::Scalar,
-        _: &SVector<L::Scalar, NA>,
-        _: &SVector<L::Scalar, NA>,
-    ) -> Option<SVector<L::Scalar, NA>> {
-        None
-    }
-
-    fn lagrangian_gradient(
-        &self,
-        _: L::Scalar,
-        _: &SVector<L::Scalar, NA>,
-        _: &SVector<L::Scalar, NA>,
-    ) -> Option<SVector<L::Scalar, NA>> {
-        None
-    }
-
-    fn nonconservative_forces(
-        &self,
-        _: L::Scalar,
-        _: &SVector<L::Scalar, NA>,
-        _: &SVector<L::Scalar, NA>,
-    ) -> Option<SVector<L::Scalar, NA>> {
-        None
-    }
-
-    /// None: [`Sensitivity::new`] refuses a constrained model.
-    fn visit_constraints<V>(&self, _: V) -> Option<V::Output>
-    where
-        V: crate::model::constraints::Visitor<L::Scalar, NA>,
-    {
-        None
-    }
-
-    /// None: [`Sensitivity::new`] checked the model's inputs.
-    fn visit_inputs<V>(&self, _: V) -> Option<V::Output>
-    where
-        V: crate::model::inputs::Visitor<L::Scalar, NA>,
-    {
-        None
-    }
-
-    fn visit_lets<V>(&self, _: V) -> Option<V::Output>
-    where
-        V: crate::model::lets::Visitor<L::Scalar, NA>,
-    {
-        None
-    }
-
     fn parameters_are_finite(&self) -> bool {
         self.model.parameters_are_finite()
-    }
-
-    fn without_jacobians(self) -> crate::model::Layered<Self, crate::model::FiniteDifferences> {
-        crate::model::Layered::new(self, crate::model::FiniteDifferences)
     }
 }
