@@ -49,7 +49,8 @@ where
         qdot: *qdot,
         value,
     };
-    if !t.is_finite() || !q.iter().chain(qdot.iter()).all(|x| x.is_finite()) {
+    let finite = |v: &SVector<H::Scalar, N>| v.iter().all(|x| x.is_finite());
+    if !(t.is_finite() && finite(q) && finite(qdot)) {
         return Err(non_finite(NonFiniteValue::State));
     }
     let (m, f, g, mut gamma) = model.constrained_system(t, q, qdot);
@@ -65,7 +66,7 @@ where
     if !f.iter().all(|x| x.is_finite()) {
         return Err(non_finite(NonFiniteValue::Forcing));
     }
-    if !g.iter().chain(gamma.iter()).all(|x| x.is_finite()) {
+    if !(g.iter().all(|x| x.is_finite()) && gamma.iter().all(|x| x.is_finite())) {
         return Err(non_finite(NonFiniteValue::Constraints));
     }
     solve_saddle(&mass, &f, &g, &gamma).map_err(|e| saddle_error(e, t, q, qdot))
@@ -101,7 +102,7 @@ fn regularized_accelerations<S: RealField + Copy, const N: usize, const C: usize
     if !f.iter().all(|x| x.is_finite()) {
         return Err(non_finite(NonFiniteValue::Forcing));
     }
-    if !g.iter().chain(gamma.iter()).all(|x| x.is_finite()) {
+    if !(g.iter().all(|x| x.is_finite()) && gamma.iter().all(|x| x.is_finite())) {
         return Err(non_finite(NonFiniteValue::Constraints));
     }
     let (m, k) = regularized(&m, &g);

@@ -2,8 +2,9 @@
 //! and the `M⁻¹ Gᵀ (G M⁻¹ Gᵀ)⁻¹` that the projections share with it:
 //! matrices in, matrices out, no model.
 
-use nalgebra::{Cholesky, Const, RealField, SMatrix, SVector};
+use nalgebra::{RealField, SMatrix, SVector};
 
+use super::ldlt::Ldlt;
 use super::solve::{MassFactor, SolveError};
 
 /// Why the saddle-point system has no usable solution.
@@ -25,72 +26,90 @@ impl From<SolveError> for SaddleError {
 pub(crate) struct Schur<S: RealField + Copy, const N: usize, const C: usize> {
     /// `M⁻¹ Gᵀ`, `N × C`.
     pub(crate) x: SMatrix<S, N, C>,
-    /// The Cholesky factor of `D S D`, where `D = diag(S_ii)^(−½)` scales
-    /// each row of `G` to unit length in the `M⁻¹` metric.
-    unit: Cholesky<S, Const<C>>,
-    /// The diagonal of `D`.
-    d: SVector<S, C>,
+    /// `S = L D Lᵀ`.
+    factor: Ldlt<S, C>,
 }
 
 impl<S: RealField + Copy, const N: usize, const C: usize> Schur<S, N, C> {
-    /// Factors `G M⁻¹ Gᵀ`. With `M`'s Cholesky factor `L`, `Y = L⁻¹ Gᵀ`
-    /// and `S = Yᵀ Y`, symmetric positive semi-definite by construction;
-    /// with the LU fallback, `S = G X` symmetrized.
+    /// Factors `G M⁻¹ Gᵀ`. With `M = L D Lᵀ`, `Z = L⁻¹ Gᵀ`,
+    /// `S = Zᵀ D⁻¹ Z` (symmetric positive semi-definite by construction)
+    /// and `X = L⁻ᵀ D⁻¹ Z`: no square root. With the LU fallback,
+    /// `S = G X` symmetrized.
     ///
-    /// Rank is judged on `D S D`, whose diagonal is one: its smallest
-    /// Cholesky pivot is the squared sine of the angle between a row of `G`
-    /// and the span of the others in the `M⁻¹` metric, whatever the units
-    /// of the constraints. Below `C ε` the multipliers would be rounding
-    /// amplified past `1 / (C ε)`: [`SaddleError::Singular`], as `M`'s
-    /// pivots are judged. A row with `S_ii = 0` (a vanishing gradient) is
-    /// singular at once; for `C = 1` that is the only way to be singular.
+    /// Rank is judged as on `D_S S D_S`, where `D_S = diag(S_ii)^(−½)`
+    /// scales each row of `G` to unit length in the `M⁻¹` metric: its
+    /// pivots are `S`'s own divided by `S_ii`, and the smallest is the
+    /// squared sine of the angle between a row of `G` and the span of the
+    /// others in that metric, whatever the units of the constraints. Below
+    /// `C ε` the multipliers would be rounding amplified past `1 / (C ε)`:
+    /// [`SaddleError::Singular`], as `M`'s pivots are judged. A row with
+    /// `S_ii = 0` (a vanishing gradient) is singular at once; for `C = 1`
+    /// that is the only way to be singular. The factorization itself needs
+    /// no such scaling: Cholesky's accuracy is that of the best diagonally
+    /// scaled matrix already (van der Sluis; Higham, *Accuracy and
+    /// Stability of Numerical Algorithms*, §10.1).
+    #[inline]
     pub(crate) fn new(mass: &MassFactor<S, N>, g: &SMatrix<S, C, N>) -> Result<Self, SaddleError> {
-        let gt = g.transpose();
-        let (x, s) = match mass {
+        let mut x = g.transpose();
+        let mut s = SMatrix::<S, C, C>::zeros();
+        match mass {
             MassFactor::Cholesky(ldlt) => {
-                let l = ldlt.cholesky_factor();
-                let y = l.solve_lower_triangular(&gt).ok_or(SaddleError::Singular)?;
-                let x = l
-                    .tr_solve_lower_triangular(&y)
-                    .ok_or(SaddleError::Singular)?;
-                (x, y.transpose() * y)
+                for mut column in x.column_iter_mut() {
+                    let mut z = column.clone_owned();
+                    ldlt.forward(&mut z);
+                    column.copy_from(&z);
+                }
+                let inverse = ldlt.inverse_pivots();
+                for i in 0..C {
+                    for j in 0..=i {
+                        let mut sum = S::zero();
+                        for k in 0..N {
+                            sum += x[(k, i)] * inverse[k] * x[(k, j)];
+                        }
+                        s[(i, j)] = sum;
+                        s[(j, i)] = sum;
+                    }
+                }
+                for mut column in x.column_iter_mut() {
+                    let mut z = column.clone_owned();
+                    ldlt.backward(&mut z);
+                    column.copy_from(&z);
+                }
             }
             MassFactor::Lu(_) => {
-                let mut x = SMatrix::<S, N, C>::zeros();
-                for i in 0..C {
-                    x.set_column(i, &mass.solve(&gt.column(i).into_owned())?);
+                for mut column in x.column_iter_mut() {
+                    column.copy_from(&mass.solve(&column.clone_owned())?);
                 }
-                let s = g * x;
-                (x, (s + s.transpose()) * nalgebra::convert::<f64, S>(0.5))
+                let gx = g * x;
+                s = (gx + gx.transpose()) * nalgebra::convert::<f64, S>(0.5);
             }
-        };
-        let mut d = SVector::<S, C>::zeros();
+        }
         for i in 0..C {
             let sii = s[(i, i)];
             if !(sii > S::zero() && sii.is_finite()) {
                 return Err(SaddleError::Singular);
             }
-            d[i] = S::one() / sii.sqrt();
         }
-        let unit = SMatrix::<S, C, C>::from_fn(|i, j| d[i] * s[(i, j)] * d[j]);
-        let unit = unit.cholesky().ok_or(SaddleError::Singular)?;
-        let pivots = unit.l_dirty().diagonal().map(|l| l * l);
-        let c: S = nalgebra::convert(C as f64);
-        let smallest = pivots.min();
-        if C > 0 && (!smallest.is_finite() || smallest <= c * S::default_epsilon() * pivots.max()) {
-            return Err(SaddleError::Singular);
+        let factor = Ldlt::new(&s).ok_or(SaddleError::Singular)?;
+        // One constraint: `D_S S D_S` is the number one, nothing to judge.
+        if C > 1 {
+            let unit = SVector::<S, C>::from_fn(|i, _| factor.pivots()[i] / s[(i, i)]);
+            let c: S = nalgebra::convert(C as f64);
+            let smallest = unit.min();
+            if !smallest.is_finite() || smallest <= c * S::default_epsilon() * unit.max() {
+                return Err(SaddleError::Singular);
+            }
         }
         if !x.iter().all(|v| v.is_finite()) {
             return Err(SaddleError::Singular);
         }
-        Ok(Self { x, unit, d })
+        Ok(Self { x, factor })
     }
 
-    /// `S⁻¹ r = D (D S D)⁻¹ D r`.
+    /// `S⁻¹ r`.
+    #[inline]
     pub(crate) fn solve(&self, r: &SVector<S, C>) -> SVector<S, C> {
-        self.unit
-            .solve(&r.component_mul(&self.d))
-            .component_mul(&self.d)
+        self.factor.solve(r)
     }
 
     /// The change of `q` (or `q̇`) that removes a residual `r` of
@@ -102,7 +121,7 @@ impl<S: RealField + Copy, const N: usize, const C: usize> Schur<S, N, C> {
     ) -> Result<(SVector<S, N>, SVector<S, C>), SaddleError> {
         let mu = self.solve(r);
         let delta = -(self.x * mu);
-        if delta.iter().chain(mu.iter()).all(|v| v.is_finite()) {
+        if delta.iter().all(|v| v.is_finite()) && mu.iter().all(|v| v.is_finite()) {
             Ok((delta, mu))
         } else {
             Err(SaddleError::Singular)
@@ -130,6 +149,7 @@ pub(crate) fn regularized<S: RealField + Copy, const N: usize, const C: usize>(
 }
 
 /// `(q̈, λ)` of the saddle-point system with bias `gamma`.
+#[inline]
 pub(crate) fn solve_saddle<S: RealField + Copy, const N: usize, const C: usize>(
     mass: &MassFactor<S, N>,
     f: &SVector<S, N>,
@@ -140,7 +160,7 @@ pub(crate) fn solve_saddle<S: RealField + Copy, const N: usize, const C: usize>(
     let schur = Schur::new(mass, g)?;
     let lambda = schur.solve(&(g * u + gamma));
     let qddot = u - schur.x * lambda;
-    if qddot.iter().chain(lambda.iter()).all(|v| v.is_finite()) {
+    if qddot.iter().all(|v| v.is_finite()) && lambda.iter().all(|v| v.is_finite()) {
         Ok((qddot, lambda))
     } else {
         Err(SaddleError::Singular)
