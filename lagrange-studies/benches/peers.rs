@@ -29,7 +29,7 @@ fn main() -> ExitCode {
     let benching = args.iter().any(|a| a == "--bench");
     args.retain(|a| a != "--bench");
     let studies = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let script = studies.join("lagrange-studies/benches/peers/chain_codegen_c.py");
+    let script = studies.join("benches/peers/chain_codegen_c.py");
     // The repository's root, one above this crate: the script builds the
     // `lagrange` there into scratch crates.
     let root = studies
