@@ -14,6 +14,17 @@
 
 use nalgebra::{RealField, SMatrix, SVector};
 
+/// From this many coordinates on, `L D Lᵀ` is factored (and `L z = b`
+/// solved) column by column; below it, row by row. Measured on the 2-core
+/// development machine, old and new builds in interleaved rounds:
+/// `solve_mass_matrix` alone took 1.1× to 1.5× longer by columns at 5 to
+/// 12 coordinates and about the same at 16 and 24 (three rounds); from 32
+/// on, the column form's time over the row form's was 0.90 at 40 and 0.88
+/// at 64 (medians of six rounds), and one RK4 step of the 64-link chain
+/// 0.79 (five rounds; `cargo bench -p lagrange-studies --bench mujoco --
+/// --lagrange OTHER_CHECKOUT` builds the chain against either tree).
+pub(crate) const BY_COLUMNS: usize = 32;
+
 /// `L` (unit lower triangular, its strict lower part stored), the pivots
 /// `D` and their reciprocals, of a symmetric positive definite `M`.
 #[derive(Clone, Copy)]
@@ -27,17 +38,60 @@ impl<S: RealField + Copy, const N: usize> Ldlt<S, N> {
     /// Factors `M`, reading its lower triangle; `None` where a pivot is not
     /// positive (or NaN): `M` is not numerically positive definite.
     ///
-    /// Column by column, each column `j` of `L` made from `M`'s by one
-    /// update per column `k < j` before it, `L[j.., j] −= L[j.., k] wₖ`
-    /// with `wₖ = L_jk dₖ`: the inner loop runs down a column, contiguous
-    /// in nalgebra's column-major storage, and its entries are independent,
-    /// so it pipelines and vectorizes (the dot-product form, row `i` of `L`
-    /// against `w`, waited on each subtraction before the next and strode
-    /// across columns). Every entry still subtracts its terms in the order
-    /// `k = 0, 1, …, j − 1`, so the factors are the dot-product form's to
-    /// the last bit (`same_bits_as_the_dot_product_form`).
+    /// Two orders of the same arithmetic, chosen by size. Below
+    /// [`BY_COLUMNS`] coordinates, row by row: each entry of `L` is `M`'s
+    /// minus a dot product with the row of `w = L_jk dₖ`, which the
+    /// compiler unrolls into straight-line code at these sizes. From
+    /// [`BY_COLUMNS`] on, column by column: each column `j` made from `M`'s
+    /// by one update per column `k < j` before it,
+    /// `L[j.., j] −= L[j.., k] wₖ`, whose inner loop runs down a contiguous
+    /// column with independent entries, so it pipelines and vectorizes
+    /// where the dot products wait on each subtraction and stride across
+    /// columns. Every entry subtracts its terms in the order
+    /// `k = 0, 1, …, j − 1` either way, so both give the same bits
+    /// (`same_bits_as_the_dot_product_form`).
     #[inline]
     pub(crate) fn new(m: &SMatrix<S, N, N>) -> Option<Self> {
+        if N >= BY_COLUMNS {
+            Self::by_columns(m)
+        } else {
+            Self::by_rows(m)
+        }
+    }
+
+    #[inline]
+    fn by_rows(m: &SMatrix<S, N, N>) -> Option<Self> {
+        let mut l = SMatrix::<S, N, N>::zeros();
+        let mut d = SVector::<S, N>::zeros();
+        let mut inverse_d = SVector::<S, N>::zeros();
+        for j in 0..N {
+            // w[k] = L_jk d_k, reused by every row below.
+            let mut w = SVector::<S, N>::zeros();
+            let mut pivot = m[(j, j)];
+            for k in 0..j {
+                w[k] = l[(j, k)] * d[k];
+                pivot -= l[(j, k)] * w[k];
+            }
+            // Not `pivot <= 0`: a NaN pivot is refused too.
+            if pivot.partial_cmp(&S::zero()) != Some(core::cmp::Ordering::Greater) {
+                return None;
+            }
+            let inverse = S::one() / pivot;
+            d[j] = pivot;
+            inverse_d[j] = inverse;
+            for i in j + 1..N {
+                let mut s = m[(i, j)];
+                for k in 0..j {
+                    s -= l[(i, k)] * w[k];
+                }
+                l[(i, j)] = s * inverse;
+            }
+        }
+        Some(Self { l, d, inverse_d })
+    }
+
+    #[inline]
+    fn by_columns(m: &SMatrix<S, N, N>) -> Option<Self> {
         // The lower triangle of `M`, overwritten column by column; the rest
         // is set to zero as each column is done (never read).
         let mut l = *m;
@@ -108,12 +162,22 @@ impl<S: RealField + Copy, const N: usize> Ldlt<S, N> {
         &self.inverse_d
     }
 
-    /// `x ← L⁻¹ x`, by columns: once `z_k` is known, it leaves every row
-    /// below (`x[k+1..] −= L[k+1.., k] z_k`, a contiguous column). Each row
-    /// subtracts its terms in the order `k = 0, 1, …`, as the row by row
-    /// form does.
+    /// `x ← L⁻¹ x`: row by row below [`BY_COLUMNS`] coordinates, by
+    /// columns from there (once `z_k` is known, it leaves every row below,
+    /// `x[k+1..] −= L[k+1.., k] z_k`, a contiguous column). Each row
+    /// subtracts its terms in the order `k = 0, 1, …` either way.
     #[inline]
     pub(crate) fn forward(&self, x: &mut SVector<S, N>) {
+        if N < BY_COLUMNS {
+            for i in 0..N {
+                let mut s = x[i];
+                for k in 0..i {
+                    s -= self.l[(i, k)] * x[k];
+                }
+                x[i] = s;
+            }
+            return;
+        }
         for (k, column) in self.l.as_slice().chunks_exact(N.max(1)).take(N).enumerate() {
             let (known, below) = x.as_mut_slice().split_at_mut(k + 1);
             let z = known[k];
@@ -124,17 +188,15 @@ impl<S: RealField + Copy, const N: usize> Ldlt<S, N> {
     }
 
     /// `x ← L⁻ᵀ D⁻¹ x`, row by row from the last: row `i` of `Lᵀ` is
-    /// column `i` of `L`, contiguous.
+    /// column `i` of `L`, contiguous at any size.
     #[inline]
     pub(crate) fn backward(&self, x: &mut SVector<S, N>) {
-        let chunks = self.l.as_slice().chunks_exact(N.max(1)).take(N);
-        for (i, column) in chunks.enumerate().rev() {
-            let (unknown, known) = x.as_mut_slice().split_at_mut(i + 1);
-            let mut s = unknown[i] * self.inverse_d[i];
-            for (&l_ki, &x_k) in column[i + 1..].iter().zip(known.iter()) {
-                s -= l_ki * x_k;
+        for i in (0..N).rev() {
+            let mut s = x[i] * self.inverse_d[i];
+            for k in i + 1..N {
+                s -= self.l[(k, i)] * x[k];
             }
-            unknown[i] = s;
+            x[i] = s;
         }
     }
 }
@@ -257,6 +319,7 @@ mod tests {
         same_bits::<2>(12);
         same_bits::<5>(15);
         same_bits::<13>(23);
+        same_bits::<{ super::BY_COLUMNS }>(32);
         same_bits::<40>(50);
     }
 
