@@ -8,7 +8,6 @@
 //!   `--hs`: one JSON object.
 //! - `time`: ns per step of RK4 and symplectic Euler at h = 1e-3 (one run of
 //!   2000 steps each; the bench repeats and interleaves): one JSON object.
-#![allow(clippy::all)]
 
 use std::time::Instant;
 
