@@ -27,13 +27,19 @@ fn start<const N: usize>(absolute: bool) -> SVector<f64, N> {
     SVector::from_fn(|i, _| if absolute || i == 0 { 0.5 } else { 0.0 })
 }
 
-fn run_to_end<L, M, const N: usize>(model: &L, method: M, h: f64, q0: SVector<f64, N>) -> (f64, SVector<f64, N>, SVector<f64, N>)
+fn run_to_end<L, M, const N: usize>(
+    model: &L,
+    method: M,
+    h: f64,
+    q0: SVector<f64, N>,
+) -> (f64, SVector<f64, N>, SVector<f64, N>)
 where
     L: Lagrangian<N, Scalar = f64> + Clone,
     M: StepMethod<f64>,
 {
     let steps = (T / h).round() as usize;
-    let mut s = Stepper::new(model.clone(), method, 0.0, q0, SVector::zeros()).expect("a valid start");
+    let mut s =
+        Stepper::new(model.clone(), method, 0.0, q0, SVector::zeros()).expect("a valid start");
     let clock = Instant::now();
     for k in 1..=steps {
         s.advance_to(k as f64 * h).expect("the chain integrates");
@@ -43,10 +49,18 @@ where
 }
 
 fn list<const N: usize>(x: &SVector<f64, N>) -> String {
-    x.iter().map(|a| format!("{a:.17e}")).collect::<Vec<_>>().join(",")
+    x.iter()
+        .map(|a| format!("{a:.17e}"))
+        .collect::<Vec<_>>()
+        .join(",")
 }
 
-fn error<const N: usize>(q: &SVector<f64, N>, v: &SVector<f64, N>, rq: &SVector<f64, N>, rv: &SVector<f64, N>) -> f64 {
+fn error<const N: usize>(
+    q: &SVector<f64, N>,
+    v: &SVector<f64, N>,
+    rq: &SVector<f64, N>,
+    rv: &SVector<f64, N>,
+) -> f64 {
     (q - rq).amax().max((v - rv).amax())
 }
 
@@ -66,9 +80,15 @@ where
     let mut rows = Vec::new();
     for &h in hs {
         let (_, q, v) = run_to_end(&model, Rk4::new(h), h, q0);
-        rows.push(format!("{{\"method\":\"RK4\",\"h\":{h},\"error\":{:.3e}}}", error(&q, &v, &rq, &rv)));
+        rows.push(format!(
+            "{{\"method\":\"RK4\",\"h\":{h},\"error\":{:.3e}}}",
+            error(&q, &v, &rq, &rv)
+        ));
         let (_, q, v) = run_to_end(&model, SymplecticEuler::new(h), h, q0);
-        rows.push(format!("{{\"method\":\"SymplecticEuler\",\"h\":{h},\"error\":{:.3e}}}", error(&q, &v, &rq, &rv)));
+        rows.push(format!(
+            "{{\"method\":\"SymplecticEuler\",\"h\":{h},\"error\":{:.3e}}}",
+            error(&q, &v, &rq, &rv)
+        ));
     }
     format!(
         "\"{name}\":{{\"n\":{N},\"absolute\":{absolute},\"q_ref\":[{}],\"qdot_ref\":[{}],\"ours\":[{}]}}",
@@ -93,7 +113,10 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mode = args.first().map(String::as_str).unwrap_or("time");
     let hs: Vec<f64> = match args.iter().position(|a| a == "--hs") {
-        Some(i) => args[i + 1].split(',').map(|h| h.parse().expect("a step")).collect(),
+        Some(i) => args[i + 1]
+            .split(',')
+            .map(|h| h.parse().expect("a step"))
+            .collect(),
         None => vec![1e-2, 1e-3],
     };
     let parts = match mode {
