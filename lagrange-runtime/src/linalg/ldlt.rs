@@ -134,7 +134,7 @@ impl<S: RealField + Copy, const N: usize> Ldlt<S, N> {
     }
 
     /// Cholesky's factor `L √D` (zeros above the diagonal), for the
-    /// constrained solve's Schur complement.
+    /// normal modes' eigenproblem (`analysis/modes.rs`).
     pub(crate) fn cholesky_factor(&self) -> SMatrix<S, N, N> {
         SMatrix::from_fn(|i, j| match i.cmp(&j) {
             core::cmp::Ordering::Less => S::zero(),
@@ -255,9 +255,9 @@ mod tests {
         agrees_with_nalgebra::<10>(10);
     }
 
-    /// The dot-product form the factorization was first written in (row
-    /// `i` of `L` against `w`, then the solve row by row): the column form
-    /// must give the same bits, so that no method's results move.
+    /// The row (dot-product) form the factorization was first written in,
+    /// kept apart from the code under test: both forms, on either side of
+    /// `BY_COLUMNS`, must give its bits, so that no method's results move.
     fn dot_product_form<const N: usize>(
         m: &SMatrix<f64, N, N>,
         b: &SVector<f64, N>,
