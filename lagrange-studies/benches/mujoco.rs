@@ -31,6 +31,9 @@
 //! `target/peers/mujoco.txt`.
 //! Under `cargo test` (no `--bench` argument) it only says what it would do.
 
+#[path = "../examples/support/peers_python.rs"]
+mod peers_python;
+
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -105,18 +108,16 @@ fn main() -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    let python = std::env::var("LAGRANGE_PEERS_PYTHON").unwrap_or_else(|_| "python3".into());
-    let has_mujoco = Command::new(&python)
-        .args(["-c", "import mujoco, numpy"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !has_mujoco && !options.engine_only {
-        println!(
-            "mujoco: skipped: `{python}` cannot import mujoco and numpy (set LAGRANGE_PEERS_PYTHON to a Python that can)"
-        );
-        return ExitCode::SUCCESS;
-    }
-    match run(&options, &python, &peers, root) {
+    // The expansions alone need no Python.
+    let python = match peers_python::importing("mujoco, numpy") {
+        Ok(python) => Some(python),
+        Err(_) if options.engine_only => None,
+        Err(why) => {
+            println!("mujoco: skipped: {why}");
+            return ExitCode::SUCCESS;
+        }
+    };
+    match run(&options, python.as_deref(), &peers, root) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("mujoco: {e}");
@@ -212,7 +213,7 @@ fn median(mut values: Vec<f64>) -> f64 {
     }
 }
 
-fn run(options: &Options, python: &str, peers: &Path, root: &Path) -> Result<(), String> {
+fn run(options: &Options, python: Option<&str>, peers: &Path, root: &Path) -> Result<(), String> {
     let target = std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)
         .unwrap_or_else(|| root.join("target"));
@@ -243,10 +244,10 @@ fn run(options: &Options, python: &str, peers: &Path, root: &Path) -> Result<(),
         let _ = writeln!(expansions, "| {name} | {seconds:.2} | {ops} | {kb} |");
     }
 
-    if options.engine_only {
+    let Some(python) = python.filter(|_| !options.engine_only) else {
         print!("\n{expansions}");
         return Ok(());
-    }
+    };
     println!(
         "mujoco: building the models against {} in {}",
         lagrange.display(),

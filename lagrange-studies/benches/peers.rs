@@ -21,6 +21,9 @@
 //! Arguments after `--` go to the script (`--help` lists them). Under
 //! `cargo test` (no `--bench` argument) it only says what it would do.
 
+#[path = "../examples/support/peers_python.rs"]
+mod peers_python;
+
 use std::path::Path;
 use std::process::{Command, ExitCode};
 
@@ -42,17 +45,13 @@ fn main() -> ExitCode {
         );
         return ExitCode::SUCCESS;
     }
-    let python = std::env::var("LAGRANGE_PEERS_PYTHON").unwrap_or_else(|_| "python3".into());
-    let has_sympy = Command::new(&python)
-        .args(["-c", "import sympy"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !has_sympy {
-        println!(
-            "peers: skipped: `{python}` cannot import sympy (set LAGRANGE_PEERS_PYTHON to a Python that can)"
-        );
-        return ExitCode::SUCCESS;
-    }
+    let python = match peers_python::importing("sympy") {
+        Ok(python) => python,
+        Err(why) => {
+            println!("peers: skipped: {why}");
+            return ExitCode::SUCCESS;
+        }
+    };
     let has_gcc = Command::new("gcc")
         .arg("--version")
         .output()

@@ -22,6 +22,9 @@
 //! needs a Python with numpy and scipy (`LAGRANGE_PEERS_PYTHON`, else
 //! `python3`) and says so and skips without one.
 
+#[path = "../support/peers_python.rs"]
+mod peers_python;
+
 use lagrange::identify::{Fit, FitSettings, Measurements, fit};
 use lagrange::models::DampedDoublePendulum;
 use lagrange::nalgebra::SVector;
@@ -282,18 +285,14 @@ fn scipy(
     fitted: &Fit<DampedDoublePendulum, 2, 5>,
     ours: f64,
 ) -> Result<(), Box<dyn Error>> {
-    let python = std::env::var("LAGRANGE_PEERS_PYTHON").unwrap_or_else(|_| "python3".into());
-    let ready = Command::new(&python)
-        .args(["-c", "import numpy, scipy"])
-        .output()
-        .is_ok_and(|o| o.status.success());
     println!();
-    if !ready {
-        println!(
-            "scipy: skipped: `{python}` cannot import numpy and scipy (set LAGRANGE_PEERS_PYTHON to a Python that can)"
-        );
-        return Ok(());
-    }
+    let python = match peers_python::importing("numpy, scipy") {
+        Ok(python) => python,
+        Err(why) => {
+            println!("scipy: skipped: {why}");
+            return Ok(());
+        }
+    };
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/identify");
     std::fs::create_dir_all(&dir)?;
     let csv = dir.join("data.csv");
