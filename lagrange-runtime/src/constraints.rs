@@ -16,7 +16,7 @@
 //!
 //! Every right-hand side ([`acceleration`](crate::dynamics::acceleration))
 //! eliminates `q̈` on the stack: the Cholesky factor `L` of `M` (with the
-//! checks of [`solve_mass_matrix`](crate::linalg::solve::solve_mass_matrix)),
+//! checks of [`solve_mass_matrix`](crate::linalg::mass::solve_mass_matrix)),
 //! `Y = L⁻¹ Gᵀ`, the Schur complement `G M⁻¹ Gᵀ = Yᵀ Y` (`C × C`) and its
 //! Cholesky factor, then
 //!

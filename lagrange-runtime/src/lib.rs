@@ -182,7 +182,7 @@
 //! a solver tolerance; or, once it no longer contracts fast, when the
 //! correction is below the noise of evaluating the equations,
 //! `ε (1000 + 10 N κ)` with `κ` the pivot ratio of `M`
-//! ([`pivot_ratio`](linalg::solve::pivot_ratio)): an ill-conditioned mass
+//! ([`pivot_ratio`](linalg::mass::pivot_ratio)): an ill-conditioned mass
 //! matrix (a light body beside a heavy one) makes the accelerations, and so
 //! the corrections, only that accurate. If it diverges, or has not
 //! converged in `max_iterations`, the step fails with
@@ -222,7 +222,7 @@
 //! (`src/layers.rs` checks it), ARCHITECTURE.md draws the whole.
 //!
 //! - [`linalg`]: the linear algebra, knowing no models:
-//!   [`solve_mass_matrix`](linalg::solve::solve_mass_matrix) (an inlined
+//!   [`solve_mass_matrix`](linalg::mass::solve_mass_matrix) (an inlined
 //!   `L D Lᵀ`), singular cases caught; the saddle-point system, the heap
 //!   LU and the block solve of the implicit Runge–Kutta methods.
 //! - [`trig`]: the sine and cosine the generated code calls, an inline

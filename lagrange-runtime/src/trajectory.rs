@@ -92,10 +92,20 @@ pub struct Stats {
     /// drift control (the projection) touched it, in the units of the
     /// constraint: the drift one step produces with
     /// [`Drift::Projection`](crate::constraints::Drift::Projection), the
-    /// drift accumulated over the run with the other choices.
+    /// drift accumulated over the run with the other choices. The residual
+    /// after the projection is
+    /// [`projected_position_residual`](Self::projected_position_residual).
     pub max_position_residual: f64,
     /// The same for the velocity constraints, the largest `|φ̇_i|`.
     pub max_velocity_residual: f64,
+    /// The largest `|φ_i(t, q)|` after a projection onto `φ = 0` (after
+    /// each step, of each sample from dense output, and of the start): the
+    /// residual the returned states carry, at rounding level. Zero when
+    /// nothing was projected ([`Drift::None`](crate::constraints::Drift::None),
+    /// Baumgarte, unconstrained models). The velocity projection is exact
+    /// in one step (`φ̇` is linear in `q̇`), so its residual is rounding
+    /// and not recorded.
+    pub projected_position_residual: f64,
     /// How far the initial position was moved onto the constraints, the
     /// largest `|Δq_i|` (zero when it was consistent to rounding).
     pub initial_position_correction: f64,

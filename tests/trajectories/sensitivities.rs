@@ -76,7 +76,7 @@ where
     let t = Dual64::from(0.0);
     let a = |q: &SVector<Dual64, N>, v: &SVector<Dual64, N>| {
         let (m, f) = model.mass_matrix_and_forcing(t, q, v);
-        lagrange::linalg::solve::solve_mass_matrix(&m, &f).expect("M is regular")
+        lagrange::linalg::mass::solve_mass_matrix(&m, &f).expect("M is regular")
     };
     let half = h * 0.5;
     let (k1q, k1v) = (v, a(&q, &v));

@@ -7,7 +7,7 @@ use super::derivatives::{refuse_constrained, shifted};
 use super::{AnalysisError, Derivatives};
 use crate::dynamics::{acceleration, mass_error};
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::solve::{MassFactor, factor_mass_matrix};
+use crate::linalg::mass::{MassFactor, factor_mass_matrix};
 use crate::model::Lagrangian;
 use crate::model::inputs::Actuated;
 

@@ -8,8 +8,8 @@ use nalgebra::{ComplexField, DMatrix, RealField, SVector};
 
 use super::{AnalysisError, ManifoldLinearization, linearize_on_manifold};
 use crate::dynamics::mass_error;
+use crate::linalg::mass::factor_mass_matrix;
 use crate::linalg::schur::Schur;
-use crate::linalg::solve::factor_mass_matrix;
 use crate::model::constraints::{Holonomic, Visitor};
 use crate::model::inputs::Actuated;
 

@@ -9,7 +9,7 @@ use super::equilibrium::within;
 use super::rest::ManifoldModes;
 use super::{AnalysisError, Derivatives};
 use crate::dynamics::mass_error;
-use crate::linalg::solve::{MassFactor, SolveError, factor_mass_matrix};
+use crate::linalg::mass::{MassFactor, SolveError, factor_mass_matrix};
 use crate::model::Lagrangian;
 
 /// What small motions along one mode do, from the sign of its `ω²`.

@@ -16,7 +16,7 @@ use super::{AnalysisError, Derivatives};
 use crate::dynamics::mass_error;
 use crate::dynamics::projection::project_position;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::solve::SolveError;
+use crate::linalg::mass::SolveError;
 use crate::model::constraints::{Holonomic, Visitor};
 use crate::trajectory::Stats;
 

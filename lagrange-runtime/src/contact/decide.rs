@@ -479,7 +479,7 @@ where
                    residual: &DVector<L::Scalar>,
                    m: &SMatrix<L::Scalar, N, N>|
      -> Option<SVector<L::Scalar, N>> {
-        let factor = crate::linalg::solve::factor_mass_matrix(m).ok()?;
+        let factor = crate::linalg::mass::factor_mass_matrix(m).ok()?;
         let responses: Vec<SVector<L::Scalar, N>> = rows
             .iter()
             .map(|r| factor.solve(r).ok())

@@ -8,7 +8,7 @@ use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::erased::Erased;
 use super::{ContactError, ContactForces, ContactLaw, Contacts, Mode, Switch};
-use crate::linalg::solve::{MassFactor, factor_mass_matrix};
+use crate::linalg::mass::{MassFactor, factor_mass_matrix};
 use crate::model::Lagrangian;
 
 /// The accelerations and the contact forces at a state.

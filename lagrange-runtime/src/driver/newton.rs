@@ -3,7 +3,7 @@
 
 use nalgebra::{RealField, SVector};
 
-use crate::linalg::solve::pivot_ratio;
+use crate::linalg::mass::pivot_ratio;
 use crate::model::Lagrangian;
 
 /// Below this size relative to the state, a Newton correction that no

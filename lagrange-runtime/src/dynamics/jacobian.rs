@@ -12,7 +12,7 @@ use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use super::acceleration;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::solve::{SolveError, solve_mass_matrix};
+use crate::linalg::mass::{SolveError, solve_mass_matrix};
 use crate::model::Lagrangian;
 use crate::model::constraints::is_constrained;
 use crate::trajectory::Stats;

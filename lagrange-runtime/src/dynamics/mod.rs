@@ -18,7 +18,7 @@
 use nalgebra::{ComplexField, RealField, SVector};
 
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::solve::{SolveError, solve_mass_matrix};
+use crate::linalg::mass::{SolveError, solve_mass_matrix};
 use crate::model::Lagrangian;
 use saddle::Accelerations;
 

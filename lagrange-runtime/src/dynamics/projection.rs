@@ -8,8 +8,8 @@ use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use crate::dynamics::mass_error;
 use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::mass::{MassFactor, factor_mass_matrix};
 use crate::linalg::schur::{Schur, regularized};
-use crate::linalg::solve::{MassFactor, factor_mass_matrix};
 use crate::model::constraints::{Holonomic, Visitor};
 use crate::trajectory::Stats;
 
@@ -109,6 +109,8 @@ where
         // takes it to rounding (quadratically) for the price of one solve.
         let worst = worst_violation(&phi, &position_tolerance(&g, &q));
         let Some(worst) = worst.or((iterations == 0).then_some(0)) else {
+            let after = &mut stats.projected_position_residual;
+            *after = after.max(to_f64(phi.amax()));
             return Ok(q);
         };
         if iterations == MAX_ITERATIONS {

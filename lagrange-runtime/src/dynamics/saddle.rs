@@ -6,8 +6,8 @@ use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use super::mass_error;
 use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::mass::{SolveError, factor_mass_matrix};
 use crate::linalg::schur::{SaddleError, regularized, solve_saddle};
-use crate::linalg::solve::{SolveError, factor_mass_matrix};
 use crate::model::constraints::{Holonomic, Visitor};
 use crate::model::settings::ConstraintSettings;
 

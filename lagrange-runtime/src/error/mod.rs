@@ -556,8 +556,37 @@ impl fmt::Display for ConstraintLevel {
 /// An integration that stopped early: the reason, and every requested
 /// sample computed before it.
 ///
-/// Integrators return it boxed (see [`IntegrationResult`]) so that the
-/// successful path stays small.
+/// Integrators return it boxed (see [`IntegrationResult`]). A match
+/// needs no `Box` written out: take the failure, then match its `error`
+/// (a field read through the box), or move both parts out with `*`:
+///
+/// ```
+/// use lagrange_runtime::{Failure, IntegrationError, IntegrationResult};
+///
+/// fn why<const N: usize>(result: IntegrationResult<f64, N>) -> String {
+///     match result {
+///         Ok(trajectory) => format!("{} samples", trajectory.len()),
+///         Err(failure) => match failure.error {
+///             IntegrationError::TooManySteps { t, .. } => {
+///                 format!("out of steps at t = {t}, {} samples kept", failure.trajectory.len())
+///             }
+///             _ => failure.to_string(),
+///         },
+///     }
+/// }
+///
+/// fn parts<const N: usize>(failure: Box<Failure<f64, N>>) {
+///     let Failure { error, trajectory } = *failure;
+///     # let _ = (error, trajectory);
+/// }
+/// # let _ = (why::<1>, parts::<1>);
+/// ```
+///
+/// Why boxed: unboxed, the error variant of the result is at least 248
+/// bytes (the trajectory's vectors and statistics beside the error and its
+/// states), and Clippy's default `result_large_err` lint would then warn
+/// in every function of a user's that returns an [`IntegrationResult`].
+/// Boxed, it is one pointer, and the successful path stays small.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Failure<S: RealField + Copy, const N: usize> {

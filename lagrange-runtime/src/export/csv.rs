@@ -11,7 +11,7 @@ use crate::model::Lagrangian;
 use crate::model::constraints::{Holonomic, Visitor};
 use crate::trajectory::Trajectory;
 
-/// Why a trajectory could not be written.
+/// Why a trajectory could not be written (feature `csv`).
 #[derive(Debug, thiserror::Error)]
 pub enum CsvError<S: RealField + Copy, const N: usize> {
     /// The writer failed (I/O) or the CSV encoder did.
@@ -24,7 +24,7 @@ pub enum CsvError<S: RealField + Copy, const N: usize> {
     Multipliers(IntegrationError<S, N>),
 }
 
-/// Writes `trajectory` as CSV to `writer`: a header from the model's names,
+/// Writes `trajectory` as CSV to `writer` (feature `csv`): a header from the model's names,
 /// then one row per sample (see [the module](super)), and for a run with
 /// [events](crate::events) one row per event among them, named in a last
 /// `event` column. Numbers are written

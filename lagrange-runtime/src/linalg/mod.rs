@@ -2,7 +2,7 @@
 //! models: the model's side of every solve is in
 //! [`dynamics`](crate::dynamics).
 //!
-//! - [`solve`]: `M q̈ = f` on the stack, `M` and `f` given (Cholesky as
+//! - [`mass`]: the mass matrix factored and `M q̈ = f` solved on the stack, `M` and `f` given (Cholesky as
 //!   `LDLᵀ`, LU with partial pivoting as the fallback), with singular,
 //!   indefinite and non-finite cases caught. Also the stack LU of the
 //!   variational integrator's `N × N` Newton systems.
@@ -16,11 +16,11 @@
 //! - `second_order`: the `2N × 2N` systems `(γ I − J) x = b` of those
 //!   methods solved at size `N`, using `J = [[0, I], [∂q̈/∂q, ∂q̈/∂q̇]]`.
 //!
-//! `solve` is public (`lagrange_runtime::linalg::solve`); the others are
-//! the runtime's own.
+//! `mass` is public (`lagrange_runtime::linalg::mass`, named for what it
+//! holds); the others are the runtime's own.
 
 pub(crate) mod ldlt;
 pub(crate) mod lu;
+pub mod mass;
 pub(crate) mod schur;
 pub(crate) mod second_order;
-pub mod solve;

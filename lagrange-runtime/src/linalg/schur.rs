@@ -5,11 +5,11 @@
 use nalgebra::{RealField, SMatrix, SVector};
 
 use super::ldlt::Ldlt;
-use super::solve::{MassFactor, SolveError};
+use super::mass::{MassFactor, SolveError};
 
 /// Why the saddle-point system has no usable solution.
 pub(crate) enum SaddleError {
-    /// Solving with `M` failed, as [`solve_mass_matrix`](super::solve::solve_mass_matrix) says.
+    /// Solving with `M` failed, as [`solve_mass_matrix`](super::mass::solve_mass_matrix) says.
     Mass(SolveError),
     /// `G M⁻¹ Gᵀ` is singular or numerically so.
     Singular,

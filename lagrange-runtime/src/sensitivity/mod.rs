@@ -100,7 +100,7 @@ use nalgebra::{ComplexField, SMatrix, SVector};
 
 use crate::dynamics::acceleration_jacobians;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::solve::{SolveError, factor_mass_matrix};
+use crate::linalg::mass::{SolveError, factor_mass_matrix};
 use crate::model::constraints::is_constrained;
 use crate::model::{Lagrangian, ParameterDerivatives};
 use crate::trajectory::Stats;

@@ -143,7 +143,7 @@ fn invalid_step_sizes_are_refused_before_any_work() {
 #[test]
 fn an_ill_conditioned_mass_matrix_does_not_fail_a_converged_newton_iteration() {
     use crate::models::LightJoint;
-    use lagrange_runtime::linalg::solve::pivot_ratio;
+    use lagrange_runtime::linalg::mass::pivot_ratio;
     use lagrange_runtime::nalgebra::Matrix2;
 
     let model = LightJoint { mu: 1e-6 };

@@ -1,7 +1,7 @@
 //! The mass matrices of both extremes, solved to their conditioning.
 
 use super::{chain, heavy_start, light_start, reference};
-use lagrange::linalg::solve::{pivot_ratio, solve_mass_matrix};
+use lagrange::linalg::mass::{pivot_ratio, solve_mass_matrix};
 use lagrange::nalgebra::Vector2;
 
 /// A backward-stable Cholesky solve of `M x = f` has a relative error of at

@@ -62,7 +62,7 @@ fn sample_times() -> Vec<f64> {
 }
 
 /// Dop853 at 1e-13, our reference for each extreme: its error is ≈ 10 ×
-/// tol × growth (docs/guide.md, "Accuracy"), below 1e-8 even with the heavy chain's
+/// tol × growth (docs/guides/methods.md, "Accuracy"), below 1e-8 even with the heavy chain's
 /// growth of ~2300 (measured below), far below every error it judges.
 fn reference(model: &DoublePendulum, start: (Vector2<f64>, Vector2<f64>)) -> Trajectory<f64, 2> {
     Dop853::new()

@@ -6,7 +6,7 @@ use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 use super::{all_finite, epsilon, lacks, Variational};
 use crate::driver::newton_noise_floor;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::solve::{lu_solve, solve_mass_matrix, SolveError};
+use crate::linalg::mass::{lu_solve, solve_mass_matrix, SolveError};
 use crate::model::Lagrangian;
 use crate::trajectory::Stats;
 

@@ -6,7 +6,7 @@ use nalgebra::{RealField, SVector};
 use super::{all_finite, lacks};
 use crate::driver::Recorder;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::solve::{solve_mass_matrix, SolveError};
+use crate::linalg::mass::{solve_mass_matrix, SolveError};
 use crate::model::Lagrangian;
 use crate::trajectory::Stats;
 

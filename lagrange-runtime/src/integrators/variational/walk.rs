@@ -12,7 +12,7 @@ use super::{all_finite, lacks, out_of_budget, Variational};
 use crate::driver::run::{Advanced, Flow, Fresh, Run, Walk};
 use crate::driver::Interval;
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
-use crate::linalg::solve::positive_semidefinite;
+use crate::linalg::mass::positive_semidefinite;
 use crate::model::constraints::{
     has_velocity_constraints, is_constrained, mass_regular_on_constraints_only,
 };

@@ -4,7 +4,7 @@
 use lagrange::models::DoublePendulum;
 use lagrange_runtime::Lagrangian;
 use lagrange_runtime::analysis::{AnalysisError, Derivatives, linearize};
-use lagrange_runtime::linalg::solve::solve_mass_matrix;
+use lagrange_runtime::linalg::mass::solve_mass_matrix;
 use lagrange_runtime::nalgebra::{Matrix2, Vector2};
 
 use super::{Rng, differences};

@@ -71,6 +71,14 @@ fn without_control_the_constraint_drifts_and_the_drift_grows() {
     let projected = rk4.integrate(&model, 0.0, q0, qdot0, &times).unwrap();
     let one_step = projected.stats().max_position_residual;
     assert!(one_step < early / 100.0, "one step's drift {one_step:e}");
+
+    // After the projection: the residual every returned sample carries
+    // (each is a projected state, its `φ` evaluated as the projection's
+    // last iteration did), and below the drift one step produced.
+    let after = projected.stats().projected_position_residual;
+    assert!(max(&residuals(&projected)) <= after, "{after:e}");
+    assert!(after < one_step, "after {after:e}, before {one_step:e}");
+    assert_eq!(free.stats().projected_position_residual, 0.0);
 }
 
 /// Baumgarte's `φ̈ + 2α φ̇ + β² φ = 0` damps the drift instead of letting it

@@ -47,7 +47,7 @@ pub enum SolveError {
 /// singular too.
 ///
 /// ```
-/// use lagrange_runtime::linalg::solve::{solve_mass_matrix, SolveError};
+/// use lagrange_runtime::linalg::mass::{solve_mass_matrix, SolveError};
 /// use nalgebra::{Matrix2, Vector2};
 ///
 /// let m = Matrix2::new(2.0, 1.0, 1.0, 2.0);
@@ -217,7 +217,7 @@ pub(crate) fn lu_solve<S: RealField + Copy, const N: usize>(
 /// for `N = 2`). `None` when `M` is not positive definite.
 ///
 /// ```
-/// use lagrange_runtime::linalg::solve::pivot_ratio;
+/// use lagrange_runtime::linalg::mass::pivot_ratio;
 /// use nalgebra::Matrix2;
 ///
 /// // A light bob beside a heavy one: pivots 1 and 1e-6.
