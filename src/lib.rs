@@ -100,6 +100,11 @@
 extern crate self as lagrange;
 
 pub use lagrange_macros::lagrangian;
+/// The sine and cosine kernel the generated code calls
+/// (`lagrange_runtime::trig`): reached by `lagrangian!`'s expansion, not
+/// part of a model's or a simulation's API, so hidden here.
+#[doc(hidden)]
+pub use lagrange_runtime::trig;
 pub use lagrange_runtime::*;
 pub use nalgebra;
 /// The serde that `#[lagrange(serde)]` models derive through (feature
@@ -111,6 +116,30 @@ pub mod models;
 
 #[doc = include_str!("../docs/language.md")]
 pub mod language {}
+
+#[doc = include_str!("../docs/guides/README.md")]
+pub mod guide {
+    #[doc = include_str!("../docs/guides/constraints.md")]
+    pub mod constraints {}
+    #[doc = include_str!("../docs/guides/rigid_bodies.md")]
+    pub mod rigid_bodies {}
+    #[doc = include_str!("../docs/guides/contacts.md")]
+    pub mod contacts {}
+    #[doc = include_str!("../docs/guides/control.md")]
+    pub mod control {}
+    #[doc = include_str!("../docs/guides/identify.md")]
+    pub mod identify {}
+    #[doc = include_str!("../docs/guides/events.md")]
+    pub mod events {}
+    #[doc = include_str!("../docs/guides/stepper.md")]
+    pub mod stepper {}
+    #[doc = include_str!("../docs/guides/methods.md")]
+    pub mod methods {}
+    #[doc = include_str!("../docs/guides/results.md")]
+    pub mod results {}
+    #[doc = include_str!("../docs/guides/speed.md")]
+    pub mod speed {}
+}
 
 /// Everything a model and a simulation need: the macro, the [`Lagrangian`]
 /// trait, the integrators and their results.

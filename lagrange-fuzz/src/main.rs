@@ -27,7 +27,7 @@
 //!
 //! The long run, 10⁶ inputs: 650 to 900 inputs/s on the 2-core development
 //! machine once the engine stops every runaway at its budget, so 20 to 30
-//! minutes (docs/guide.md, "Measured", has the figures):
+//! minutes (docs/guides/methods.md, "Measured", has the figures):
 //!
 //! ```text
 //! cargo run --release -p lagrange-fuzz -- --inputs 1000000 --seed 1 --jobs 2

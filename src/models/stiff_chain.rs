@@ -54,7 +54,7 @@ impl StiffChain<f64> {
 
     /// The exact state at `t` from `(q0, q̇0)` at 0: `exp(A t) y0` for the
     /// first-order system `y = (q, q̇)`, `A = [[0, I], [−K, −C]]`: about
-    /// 4e-12 from the truth for the ratio 10⁶ over 10 s (docs/guide.md, "Measured").
+    /// 4e-12 from the truth for the ratio 10⁶ over 10 s (docs/guides/methods.md, "Measured").
     pub fn exact(
         &self,
         t: f64,

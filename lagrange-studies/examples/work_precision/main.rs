@@ -178,7 +178,7 @@ fn study<L: Lagrangian<N, Scalar = f64>, const N: usize>(p: &Problem<L, N>, runs
 /// The right-hand sides each fifth- or eighth-order pair needs to reach an
 /// error: between the two runs of the sweep whose errors bracket it, the
 /// evaluations interpolated linearly in log(error)–log(evaluations) (the
-/// the guide's table (docs/guide.md) of Tsit5 beside Dopri5 and Dop853).
+/// the guide's table (docs/guides/README.md) of Tsit5 beside Dopri5 and Dop853).
 fn pairs_at_equal_error(runs: &[Run]) {
     let cases = [
         ("double_pendulum", 1e-4),
