@@ -67,3 +67,27 @@ fn readme_shows_the_code_generated_for_its_model() {
         "README's generated code is stale: run `UPDATE_README=1 cargo test -p lagrange-engine --test engine -- readme::`"
     );
 }
+
+/// The user's crate (`user-crate/`, built and run by CI) holds the
+/// README's model and its use as the README shows them: the model's block
+/// verbatim, the use's lines in order inside `main`.
+#[test]
+fn the_user_crate_holds_the_readme_model_and_its_use() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let main = std::fs::read_to_string(root.join("user-crate/src/main.rs")).unwrap();
+    let (_, model) = block(&readme, MODEL_START);
+    assert!(
+        main.contains(model),
+        "user-crate/src/main.rs lacks the README's model"
+    );
+    let (_, usage) = block(&readme, "<!-- readme-use:start -->\n```rust\n");
+    let body = &main[main.find("fn main()").expect("a main function")..];
+    let mut rest = body;
+    for line in usage.lines().filter(|l| !l.trim().is_empty()) {
+        let at = rest.find(line).unwrap_or_else(|| {
+            panic!("user-crate/src/main.rs lacks, or has out of order, the README's line {line:?}")
+        });
+        rest = &rest[at + line.len()..];
+    }
+}
