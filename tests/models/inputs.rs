@@ -336,3 +336,30 @@ fn analysis_of_a_model_with_inputs_never_set_says_so() {
     never_set(modes(&cart(), 0.0, &Vector2::zeros()).unwrap_err());
     never_set(equilibrium(&cart(), 0.0, &q).unwrap_err());
 }
+
+/// Two surprises a new user met (issue 27), as they are used now: layers
+/// bind to a name (`with_drift` takes the controlled model by value, so no
+/// temporary is borrowed past its statement), and generic code over
+/// `Actuated` sets constant inputs through the trait's `with_inputs`,
+/// without copying the model to call `set_inputs`. A controller that
+/// returns the constant input runs the very steps the constant input
+/// does: the same trajectory to the bit.
+#[test]
+fn layers_bind_to_names_and_generic_code_sets_constant_inputs() {
+    fn held<L: Actuated<N, 1, Scalar = f64>, const N: usize>(model: L, u: f64) -> L {
+        model.with_inputs(&Vector1::new(u))
+    }
+    let bob = PushedBob::new(0.8, 0.6, 9.81);
+    let (q0, v0) = (Vector2::new(0.0, -0.6), Vector2::new(0.5, 0.0));
+    let controlled = bob
+        .with_controller(|_: f64, _: &Vector2<f64>, _: &Vector2<f64>| Vector1::new(0.4))
+        .with_drift(Drift::None);
+    let constant = held(bob, 0.4).with_drift(Drift::None);
+    let rk4 = Rk4::new(1e-2);
+    let by_controller = rk4
+        .integrate(&controlled, 0.0, q0, v0, &[0.5, 1.0])
+        .unwrap();
+    let by_constant = rk4.integrate(&constant, 0.0, q0, v0, &[0.5, 1.0]).unwrap();
+    assert_eq!(by_controller.positions(), by_constant.positions());
+    assert_eq!(by_controller.velocities(), by_constant.velocities());
+}
