@@ -3,8 +3,8 @@
 //! Each is a `lagrangian!` invocation in its own file (read the source),
 //! with its usual starting states and, where one exists, its exact
 //! solution. Three are constrained models, closed loops in
-//! redundant coordinates: [`CartesianPendulum`], [`SliderCrank`] (with its
-//! minimal-coordinate twin) and [`FourBar`]. One has a control input:
+//! redundant coordinates: [`CartesianPendulum`], [`SliderCrank`] and [`FourBar`]
+//! (each with its minimal-coordinate twin). One has a control input:
 //! [`CartPole`], pushed by a motor force. Two have impacts, as
 //! [events](lagrange_runtime::events): [`BouncingBall`] and
 //! [`PendulumWall`]. Two are rigid bodies in 3D, their orientation a unit
@@ -54,7 +54,7 @@ pub use contact::{
 };
 pub use damped_double_pendulum::DampedDoublePendulum;
 pub use double_pendulum::DoublePendulum;
-pub use four_bar::FourBar;
+pub use four_bar::{FourBar, MinimalFourBar};
 pub use free_body::FreeBody;
 pub use heavy_top::{EulerTop, HeavyTop};
 pub use kepler::{Kepler, PolarKepler};

@@ -47,12 +47,20 @@ fn right_hand_sides(c: &mut Criterion) {
         b.iter(|| acceleration(&minimal, black_box(0.0), black_box(&qm), black_box(&vm)))
     });
 
-    // The four-bar has no closed-form minimal form worth writing: its cost
-    // alone.
+    // The four-bar: three angles and two loop constraints against the
+    // crank angle alone, the loop eliminated by hand (`MinimalFourBar`).
     let four_bar = FourBar::crank_rocker();
+    let minimal = four_bar.minimal();
     let (q, v): (Vector3<f64>, Vector3<f64>) = four_bar.state(0.8, 12.0).unwrap();
+    let (qm, vm) = (Vector1::new(0.8), Vector1::new(12.0));
+    let a = acceleration(&four_bar, 0.0, &q, &v).unwrap()[0];
+    let am = acceleration(&minimal, 0.0, &qm, &vm).unwrap()[0];
+    assert!((a - am).abs() < 1e-9 * am.abs().max(1.0), "{a} vs {am}");
     group.bench_function("four_bar/redundant_3_coordinates_2_constraints", |b| {
         b.iter(|| acceleration(&four_bar, black_box(0.0), black_box(&q), black_box(&v)))
+    });
+    group.bench_function("four_bar/minimal_crank_angle", |b| {
+        b.iter(|| acceleration(&minimal, black_box(0.0), black_box(&qm), black_box(&vm)))
     });
     group.finish();
 }

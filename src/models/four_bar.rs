@@ -3,6 +3,7 @@
 //! constraints. As a crank-rocker (Grashof: the shortest link, the crank,
 //! turns fully) it runs for ever; as a parallelogram it has a change point
 //! where every pin is on one line and the loop constraints lose rank.
+//! `MinimalFourBar` is the crank-rocker with its loop eliminated by hand.
 
 use nalgebra::Vector3;
 
@@ -31,6 +32,40 @@ lagrangian! {
     }
 }
 
+lagrangian! {
+    /// The same crank-rocker in its one minimal coordinate, the crank angle
+    /// `theta1`: the coupler's far end `B = (bx, by)` is where the circles
+    /// of radius `b` about the crank pin and `c` about `(d, 0)` meet, on
+    /// the branch [`FourBar::state`] takes, eliminated by hand. The
+    /// coupler's centre is the midpoint of its pins, and its rate and the
+    /// rocker's follow from the pins' velocities (`b θ̇2 = |Ḃ − Ȧ|`,
+    /// `c θ̇3 = |Ḃ|`), so no angle but the crank's is needed. For the cost
+    /// of a constraint against the elimination
+    /// (`cargo bench -p lagrange-studies --bench constraints`), and
+    /// checked against [`FourBar`] along a run.
+    pub struct MinimalFourBar {
+        coordinates: theta1;
+        parameters: a, b, c, d, m1, m2, m3, j, g;
+        let xa = a*cos(theta1);
+        let ya = a*sin(theta1);
+        let dx = d - xa;
+        let dy = -ya;
+        let e2 = dx^2 + dy^2;
+        let e = sqrt(e2);
+        let along = (b^2 - c^2 + e2)/(2*e);
+        let half = sqrt(b^2 - along^2);
+        let bx = xa + (along*dx + half*ya)/e;
+        let by = ya + (along*dy + half*dx)/e;
+        let x2 = (xa + bx)/2;
+        let y2 = (ya + by)/2;
+        kinetic: (j + m1*a^2/3)/2*dot(theta1)^2
+            + m2/2*(dot(x2)^2 + dot(y2)^2)
+            + m2/24*((dot(bx) - dot(xa))^2 + (dot(by) - dot(ya))^2)
+            + m3/6*(dot(bx)^2 + dot(by)^2);
+        potential: g*(m1*ya/2 + m2*y2 + m3*by/2);
+    }
+}
+
 impl FourBar {
     /// A crank-rocker: crank 0.2 m, coupler 0.7 m, rocker 0.5 m, ground
     /// 0.6 m (Grashof: 0.2 + 0.7 ≤ 0.5 + 0.6, the crank shortest), steel-ish
@@ -44,6 +79,24 @@ impl FourBar {
     /// have rank one.
     pub fn parallelogram() -> Self {
         Self::new(0.3, 0.6, 0.3, 0.6, 0.3, 0.6, 0.3, 0.0, 9.81)
+    }
+
+    /// The same linkage in its one minimal coordinate, the crank angle, on
+    /// the branch [`state`](Self::state) takes.
+    pub fn minimal(&self) -> MinimalFourBar {
+        let Self {
+            a,
+            b,
+            c,
+            d,
+            m1,
+            m2,
+            m3,
+            j,
+            g,
+            ..
+        } = *self;
+        MinimalFourBar::new(a, b, c, d, m1, m2, m3, j, g)
     }
 
     /// The consistent state at crank angle `θ1` and rate `θ̇1`, in the
