@@ -69,8 +69,9 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Stages<S, N, K> {
 /// computed in, so that an attempt moves a few vectors, not all the slopes
 /// (a copy through `memcpy` on every step: with it, and with the weights
 /// read from a table built per run, Dopri5 took 45.6 ns per evaluation on
-/// the double pendulum instead of 41.0, `cargo bench -p lagrange-studies --bench
-/// rhs_overhead`, BENCHMARKS.md, "Constant weights, no copies").
+/// the double pendulum instead of 41.0, the two builds alternating in one
+/// run of `cargo bench -p lagrange-studies --bench rhs_overhead` when this
+/// changed; BENCHMARKS.md, "Constant weights, no copies", says why).
 pub struct Step<S, const N: usize> {
     pub(crate) q: SVector<S, N>,
     pub(crate) qdot: SVector<S, N>,

@@ -16,9 +16,10 @@ pub(super) type Stages<S, const N: usize> = crate::integrators::stages::Stages<S
 /// each sum is unrolled over its own constant weights, its zeros (a third
 /// of the tableau) dropped at compile time. (With a loop over a bit mask of
 /// weights converted once per run, and a `pow` more per step, Dop853 took
-/// 46.6 ns per evaluation on the double pendulum instead of 37.8: `cargo
-/// bench --bench rhs_overhead`, BENCHMARKS.md, "Constant weights, no
-/// copies".)
+/// 46.6 ns per evaluation on the double pendulum instead of 37.8, the two
+/// builds alternating in one run of `cargo bench -p lagrange-studies
+/// --bench rhs_overhead` when this changed; BENCHMARKS.md, "Constant
+/// weights, no copies", says why.)
 #[inline(always)]
 fn stage_input<S: RealField + Copy, const N: usize>(
     k: &Stages<S, N>,
