@@ -154,11 +154,7 @@ fn four_bar_moves_as_its_minimal_coordinate_form() {
     let reference = tight
         .integrate(&model.minimal(), 0.0, x0, w0, &times)
         .unwrap();
-    let mut worst = 0.0f64;
-    for (a, b) in run.iter().zip(&reference) {
-        worst = worst.max((a.q[0] - b.q[0]).abs() / b.q[0].abs().max(1.0));
-        worst = worst.max((a.qdot[0] - b.qdot[0]).abs() / 12.0);
-    }
+    let worst = super::worst_against_minimal(&run, &reference, 12.0);
     println!("constrained vs minimal: {worst:.2e} (relative)");
     assert!(worst < 1e-8, "{worst:.2e}");
 }

@@ -67,11 +67,7 @@ fn slider_crank_moves_as_its_minimal_coordinate_form() {
             &times,
         )
         .unwrap();
-    let mut worst = 0.0f64;
-    for (a, b) in run.iter().zip(&reference) {
-        worst = worst.max((a.q[0] - b.q[0]).abs() / b.q[0].abs().max(1.0));
-        worst = worst.max((a.qdot[0] - b.qdot[0]).abs() / 20.0);
-    }
+    let worst = super::worst_against_minimal(&run, &reference, 20.0);
     println!("constrained vs minimal: {worst:.2e} (relative)");
     assert!(worst < 1e-8, "{worst:.2e}");
 }
