@@ -18,6 +18,7 @@
 use nalgebra::{ComplexField, RealField, SVector};
 
 use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::all_finite;
 use crate::linalg::mass::{SolveError, solve_mass_matrix};
 use crate::model::Lagrangian;
 use saddle::Accelerations;
@@ -51,7 +52,7 @@ pub fn acceleration<L: Lagrangian<N>, const N: usize>(
         qdot: *qdot,
         value,
     };
-    if !t.is_finite() || !all_finite(q.iter()) || !all_finite(qdot.iter()) {
+    if !t.is_finite() || !all_finite(q.as_slice()) || !all_finite(qdot.as_slice()) {
         return Err(non_finite(NonFiniteValue::State));
     }
     if let Some(constrained) = model.visit_constraints(Accelerations { t, q, qdot }) {
@@ -88,8 +89,4 @@ pub(crate) fn mass_error<S: RealField + Copy, const N: usize>(
         SolveError::Singular => IntegrationError::SingularMassMatrix { t, q, qdot },
         SolveError::Indefinite => IntegrationError::IndefiniteMassMatrix { t, q, qdot },
     }
-}
-
-fn all_finite<'a, S: RealField + Copy>(mut values: impl Iterator<Item = &'a S>) -> bool {
-    values.all(|x| x.is_finite())
 }

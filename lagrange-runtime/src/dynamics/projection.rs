@@ -8,6 +8,7 @@ use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use crate::dynamics::mass_error;
 use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::all_finite;
 use crate::linalg::mass::{MassFactor, factor_mass_matrix};
 use crate::linalg::schur::{Schur, regularized};
 use crate::model::constraints::{Holonomic, Visitor};
@@ -69,10 +70,6 @@ pub(crate) fn worst_violation<S: RealField + Copy, const C: usize>(
         })
 }
 
-fn finite<'a, S: RealField + Copy>(mut values: impl Iterator<Item = &'a S>) -> bool {
-    values.all(|v| v.is_finite())
-}
-
 /// `q` moved onto `φ(t, q) = 0` by Newton's method on the projection
 /// orthogonal in the metric of `M` (at the point given, fixed):
 /// `Δq = −M⁻¹ G(q)ᵀ (G M⁻¹ Gᵀ)⁻¹ φ(q)`, `G` refreshed each iteration so
@@ -96,11 +93,11 @@ where
     loop {
         let phi = model.constraints(t, &q);
         let g = model.constraint_jacobian(t, &q);
-        if !finite(q.iter()) {
+        if !all_finite(q.as_slice()) {
             let (qdot, value) = (*qdot, NonFiniteValue::State);
             return Err(IntegrationError::NonFiniteState { t, q, qdot, value });
         }
-        if !finite(phi.iter().chain(g.iter())) {
+        if !(all_finite(phi.as_slice()) && all_finite(g.as_slice())) {
             let (qdot, value) = (*qdot, NonFiniteValue::Constraints);
             return Err(IntegrationError::NonFiniteState { t, q, qdot, value });
         }
@@ -150,7 +147,7 @@ where
     let (mass, k) = projection_metric(model, t, q, qdot)?;
     let g = model.constraint_jacobian(t, q);
     let phidot = model.constraint_velocities(t, q, qdot);
-    if !finite(g.iter().chain(phidot.iter())) {
+    if !(all_finite(g.as_slice()) && all_finite(phidot.as_slice())) {
         let (q, qdot, value) = (*q, *qdot, NonFiniteValue::Constraints);
         return Err(IntegrationError::NonFiniteState { t, q, qdot, value });
     }
@@ -187,7 +184,7 @@ where
         return Ok((mass, None));
     }
     let g = model.constraint_jacobian(t, q);
-    if !finite(g.iter()) {
+    if !all_finite(g.as_slice()) {
         let (q, qdot, value) = (*q, *qdot, NonFiniteValue::Constraints);
         return Err(IntegrationError::NonFiniteState { t, q, qdot, value });
     }
@@ -243,13 +240,13 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for DriftControl<'_, S, 
             stats,
             project: may_project,
         } = self;
-        if !finite(q.iter().chain(qdot.iter())) {
+        if !(all_finite(q.as_slice()) && all_finite(qdot.as_slice())) {
             let value = NonFiniteValue::State;
             return Err(IntegrationError::NonFiniteState { t, q, qdot, value });
         }
         let phi = model.constraints(t, &q);
         let phidot = model.constraint_velocities(t, &q, &qdot);
-        if !finite(phi.iter().chain(phidot.iter())) {
+        if !(all_finite(phi.as_slice()) && all_finite(phidot.as_slice())) {
             let value = NonFiniteValue::Constraints;
             return Err(IntegrationError::NonFiniteState { t, q, qdot, value });
         }

@@ -2,6 +2,7 @@
 //! `linalg/schur.rs` on the model's `M`, `f`, `G` and `γ`, with the
 //! run's Baumgarte terms, errors at `(t, q, q̇)`.
 
+use crate::linalg::all_finite;
 use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use super::mass_error;
@@ -49,7 +50,7 @@ where
         qdot: *qdot,
         value,
     };
-    let finite = |v: &SVector<H::Scalar, N>| v.iter().all(|x| x.is_finite());
+    let finite = |v: &SVector<H::Scalar, N>| all_finite(v.as_slice());
     if !(t.is_finite() && finite(q) && finite(qdot)) {
         return Err(non_finite(NonFiniteValue::State));
     }
@@ -63,10 +64,10 @@ where
         return regularized_accelerations((m, f, g, gamma), t, q, qdot);
     }
     let mass = factor_mass_matrix(&m).map_err(|e| mass_error(e, t, q, qdot))?;
-    if !f.iter().all(|x| x.is_finite()) {
+    if !all_finite(f.as_slice()) {
         return Err(non_finite(NonFiniteValue::Forcing));
     }
-    if !(g.iter().all(|x| x.is_finite()) && gamma.iter().all(|x| x.is_finite())) {
+    if !(all_finite(g.as_slice()) && all_finite(gamma.as_slice())) {
         return Err(non_finite(NonFiniteValue::Constraints));
     }
     solve_saddle(&mass, &f, &g, &gamma).map_err(|e| saddle_error(e, t, q, qdot))
@@ -96,13 +97,13 @@ fn regularized_accelerations<S: RealField + Copy, const N: usize, const C: usize
         qdot: *qdot,
         value,
     };
-    if !m.iter().all(|x| x.is_finite()) {
+    if !all_finite(m.as_slice()) {
         return Err(mass_error(SolveError::NonFiniteMassMatrix, t, q, qdot));
     }
-    if !f.iter().all(|x| x.is_finite()) {
+    if !all_finite(f.as_slice()) {
         return Err(non_finite(NonFiniteValue::Forcing));
     }
-    if !(g.iter().all(|x| x.is_finite()) && gamma.iter().all(|x| x.is_finite())) {
+    if !(all_finite(g.as_slice()) && all_finite(gamma.as_slice())) {
         return Err(non_finite(NonFiniteValue::Constraints));
     }
     let (m, k) = regularized(&m, &g);

@@ -75,7 +75,7 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for StartOnManifold<'_, 
 
         let g = model.constraint_jacobian(t, &q);
         let phidot = model.constraint_velocities(t, &q, &qdot0);
-        if !phidot.iter().all(|x| x.is_finite()) {
+        if !crate::linalg::all_finite(phidot.as_slice()) {
             return Err(non_finite(q, qdot0));
         }
         let tolerance = velocity_tolerance(model, t, &q, &g, &qdot0);

@@ -25,6 +25,10 @@ use nalgebra::{RealField, SMatrix, SVector};
 /// --lagrange OTHER_CHECKOUT` builds the chain against either tree).
 pub(crate) const BY_COLUMNS: usize = 32;
 
+/// Entries of a column the column form keeps in registers at once (four
+/// SSE2 registers of two `f64`).
+const BLOCK: usize = 8;
+
 /// `L` (unit lower triangular, its strict lower part stored), the pivots
 /// `D` and their reciprocals, of a symmetric positive definite `M`.
 #[derive(Clone, Copy)]
@@ -97,17 +101,39 @@ impl<S: RealField + Copy, const N: usize> Ldlt<S, N> {
         let mut l = *m;
         let mut d = SVector::<S, N>::zeros();
         let mut inverse_d = SVector::<S, N>::zeros();
+        // w[k] = L_jk d_k for the column being made.
+        let mut w = [S::zero(); N];
         for j in 0..N {
             let (done, rest) = l.as_mut_slice().split_at_mut(j * N);
-            let column = &mut rest[j..N];
             for (k, earlier) in done.chunks_exact(N).enumerate() {
-                let earlier = &earlier[j..];
-                let w = earlier[0] * d[k];
-                for (entry, &l_ik) in column.iter_mut().zip(earlier) {
-                    *entry -= l_ik * w;
+                w[k] = earlier[j] * d[k];
+            }
+            let w = &w[..j];
+            // Blocks of the column held in registers while every earlier
+            // column updates them: each entry is loaded and stored once,
+            // not once per column before it, and still subtracts its terms
+            // in the order k = 0, 1, …, j − 1.
+            let column = &mut rest[j..N];
+            let mut blocks = column.chunks_exact_mut(BLOCK);
+            for (b, block) in blocks.by_ref().enumerate() {
+                let from = j + b * BLOCK;
+                let mut sum: [S; BLOCK] = core::array::from_fn(|i| block[i]);
+                for (earlier, &w_k) in done.chunks_exact(N).zip(w) {
+                    let earlier = &earlier[from..from + BLOCK];
+                    for (entry, &l_ik) in sum.iter_mut().zip(earlier) {
+                        *entry -= l_ik * w_k;
+                    }
+                }
+                block.copy_from_slice(&sum);
+            }
+            let tail = blocks.into_remainder();
+            let from = N - tail.len();
+            for (earlier, &w_k) in done.chunks_exact(N).zip(w) {
+                for (entry, &l_ik) in tail.iter_mut().zip(&earlier[from..]) {
+                    *entry -= l_ik * w_k;
                 }
             }
-            let pivot = column[0];
+            let pivot = rest[j];
             // Not `pivot <= 0`: a NaN pivot is refused too.
             if pivot.partial_cmp(&S::zero()) != Some(core::cmp::Ordering::Greater) {
                 return None;
@@ -115,7 +141,7 @@ impl<S: RealField + Copy, const N: usize> Ldlt<S, N> {
             let inverse = S::one() / pivot;
             d[j] = pivot;
             inverse_d[j] = inverse;
-            for entry in &mut column[1..] {
+            for entry in &mut rest[j + 1..N] {
                 *entry *= inverse;
             }
             rest[..=j].fill(S::zero());
@@ -321,6 +347,7 @@ mod tests {
         same_bits::<13>(23);
         same_bits::<{ super::BY_COLUMNS }>(32);
         same_bits::<40>(50);
+        same_bits::<67>(77);
     }
 
     #[test]

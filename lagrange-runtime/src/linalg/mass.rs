@@ -7,6 +7,7 @@ use core::cmp::Ordering;
 
 use nalgebra::{RealField, SMatrix, SVector};
 
+use super::all_finite;
 use super::ldlt::Ldlt;
 
 /// Why `M q̈ = f` has no usable solution.
@@ -67,13 +68,19 @@ pub fn solve_mass_matrix<S: RealField + Copy, const N: usize>(
     m: &SMatrix<S, N, N>,
     f: &SVector<S, N>,
 ) -> Result<SVector<S, N>, SolveError> {
-    if !all_finite(m.iter()) {
+    if !all_finite(m.as_slice()) {
         return Err(SolveError::NonFiniteMassMatrix);
     }
-    if !all_finite(f.iter()) {
+    if !all_finite(f.as_slice()) {
         return Err(SolveError::NonFiniteForcing);
     }
-    factor_mass_matrix(m)?.solve(f)
+    // As `factor_mass_matrix(m)?.solve(f)`, without the factor moved into
+    // a `MassFactor` (a copy of `L`, 32 kB at 64 coordinates) or `M`
+    // checked twice.
+    finite_solution(match cholesky_or_lu(m)? {
+        Some(ldlt) => ldlt.solve(f),
+        None => lu_solve(*m, *f)?,
+    })
 }
 
 /// `M` factored once for several right-hand sides, as
@@ -94,17 +101,29 @@ pub(crate) enum MassFactor<S: RealField + Copy, const N: usize> {
 pub(crate) fn factor_mass_matrix<S: RealField + Copy, const N: usize>(
     m: &SMatrix<S, N, N>,
 ) -> Result<MassFactor<S, N>, SolveError> {
-    if !all_finite(m.iter()) {
+    if !all_finite(m.as_slice()) {
         return Err(SolveError::NonFiniteMassMatrix);
     }
-    // In exact arithmetic LU without pivoting of an SPD matrix has pivots
-    // L_ii², so both factorizations are judged on the same scale.
-    Ok(match Ldlt::new(m) {
-        Some(ldlt) if well_conditioned::<S, N>(ldlt.pivot_range()) => MassFactor::Cholesky(ldlt),
-        Some(_) => MassFactor::Lu(*m),
-        None if !positive_semidefinite(m) => return Err(SolveError::Indefinite),
+    Ok(match cholesky_or_lu(m)? {
+        Some(ldlt) => MassFactor::Cholesky(ldlt),
         None => MassFactor::Lu(*m),
     })
+}
+
+/// The decision of [`factor_mass_matrix`] for a finite `M`: its `L D Lᵀ`
+/// where the pivots are acceptable, `None` where LU must take it, or
+/// `Indefinite`. In exact arithmetic LU without pivoting of an SPD matrix
+/// has pivots `L_ii²`, so both factorizations are judged on the same scale.
+#[inline]
+fn cholesky_or_lu<S: RealField + Copy, const N: usize>(
+    m: &SMatrix<S, N, N>,
+) -> Result<Option<Ldlt<S, N>>, SolveError> {
+    match Ldlt::new(m) {
+        Some(ldlt) if well_conditioned::<S, N>(ldlt.pivot_range()) => Ok(Some(ldlt)),
+        Some(_) => Ok(None),
+        None if !positive_semidefinite(m) => Err(SolveError::Indefinite),
+        None => Ok(None),
+    }
 }
 
 impl<S: RealField + Copy, const N: usize> MassFactor<S, N> {
@@ -112,15 +131,22 @@ impl<S: RealField + Copy, const N: usize> MassFactor<S, N> {
     /// singular.
     #[inline]
     pub(crate) fn solve(&self, b: &SVector<S, N>) -> Result<SVector<S, N>, SolveError> {
-        let solution = match self {
+        finite_solution(match self {
             Self::Cholesky(ldlt) => ldlt.solve(b),
             Self::Lu(m) => lu_solve(*m, *b)?,
-        };
-        if all_finite(solution.iter()) {
-            Ok(solution)
-        } else {
-            Err(SolveError::Singular)
-        }
+        })
+    }
+}
+
+/// A solution, or `Singular` where it is not finite.
+#[inline]
+fn finite_solution<S: RealField + Copy, const N: usize>(
+    solution: SVector<S, N>,
+) -> Result<SVector<S, N>, SolveError> {
+    if all_finite(solution.as_slice()) {
+        Ok(solution)
+    } else {
+        Err(SolveError::Singular)
     }
 }
 
@@ -227,10 +253,6 @@ pub(crate) fn lu_solve<S: RealField + Copy, const N: usize>(
 pub fn pivot_ratio<S: RealField + Copy, const N: usize>(m: &SMatrix<S, N, N>) -> Option<S> {
     let (smallest, largest) = Ldlt::new(m)?.pivot_range();
     Some(largest / smallest)
-}
-
-fn all_finite<'a, S: RealField + Copy>(mut values: impl Iterator<Item = &'a S>) -> bool {
-    values.all(|x| x.is_finite())
 }
 
 /// Whether the smallest pivot's magnitude exceeds `N ε` times the largest

@@ -2,6 +2,7 @@
 //! and the `M⁻¹ Gᵀ (G M⁻¹ Gᵀ)⁻¹` that the projections share with it:
 //! matrices in, matrices out, no model.
 
+use super::all_finite;
 use nalgebra::{RealField, SMatrix, SVector};
 
 use super::ldlt::Ldlt;
@@ -100,7 +101,7 @@ impl<S: RealField + Copy, const N: usize, const C: usize> Schur<S, N, C> {
                 return Err(SaddleError::Singular);
             }
         }
-        if !x.iter().all(|v| v.is_finite()) {
+        if !all_finite(x.as_slice()) {
             return Err(SaddleError::Singular);
         }
         Ok(Self { x, factor })
@@ -121,7 +122,7 @@ impl<S: RealField + Copy, const N: usize, const C: usize> Schur<S, N, C> {
     ) -> Result<(SVector<S, N>, SVector<S, C>), SaddleError> {
         let mu = self.solve(r);
         let delta = -(self.x * mu);
-        if delta.iter().all(|v| v.is_finite()) && mu.iter().all(|v| v.is_finite()) {
+        if all_finite(delta.as_slice()) && all_finite(mu.as_slice()) {
             Ok((delta, mu))
         } else {
             Err(SaddleError::Singular)
@@ -160,7 +161,7 @@ pub(crate) fn solve_saddle<S: RealField + Copy, const N: usize, const C: usize>(
     let schur = Schur::new(mass, g)?;
     let lambda = schur.solve(&(g * u + gamma));
     let qddot = u - schur.x * lambda;
-    if qddot.iter().all(|v| v.is_finite()) && lambda.iter().all(|v| v.is_finite()) {
+    if all_finite(qddot.as_slice()) && all_finite(lambda.as_slice()) {
         Ok((qddot, lambda))
     } else {
         Err(SaddleError::Singular)
