@@ -48,8 +48,9 @@ impl<S: RealField + Copy, const N: usize> Ldlt<S, N> {
     /// compiler unrolls into straight-line code at these sizes. From
     /// [`BY_COLUMNS`] on, column by column: each column `j` made from `M`'s
     /// by one update per column `k < j` before it,
-    /// `L[j.., j] −= L[j.., k] wₖ`, whose inner loop runs down a contiguous
-    /// column with independent entries, so it pipelines and vectorizes
+    /// `L[j.., j] −= L[j.., k] wₖ`, [`BLOCK`] entries at a time held in
+    /// registers across all those updates; the entries of a block are
+    /// independent and contiguous, so the updates pipeline and vectorize
     /// where the dot products wait on each subtraction and stride across
     /// columns. Every entry subtracts its terms in the order
     /// `k = 0, 1, …, j − 1` either way, so both give the same bits

@@ -75,11 +75,13 @@ pub fn solve_mass_matrix<S: RealField + Copy, const N: usize>(
         return Err(SolveError::NonFiniteForcing);
     }
     // As `factor_mass_matrix(m)?.solve(f)`, without the factor moved into
-    // a `MassFactor` (a copy of `L`, 32 kB at 64 coordinates) or `M`
-    // checked twice.
-    finite_solution(match cholesky_or_lu(m)? {
-        Some(ldlt) => ldlt.solve(f),
-        None => lu_solve(*m, *f)?,
+    // a `MassFactor` or an `Option` again (each a copy of `L`, 32 kB at 64
+    // coordinates) or `M` checked twice.
+    let ldlt = Ldlt::new(m);
+    let cholesky = use_cholesky(ldlt.as_ref(), m)?;
+    finite_solution(match &ldlt {
+        Some(ldlt) if cholesky => ldlt.solve(f),
+        _ => lu_solve(*m, *f)?,
     })
 }
 
@@ -104,25 +106,27 @@ pub(crate) fn factor_mass_matrix<S: RealField + Copy, const N: usize>(
     if !all_finite(m.as_slice()) {
         return Err(SolveError::NonFiniteMassMatrix);
     }
-    Ok(match cholesky_or_lu(m)? {
-        Some(ldlt) => MassFactor::Cholesky(ldlt),
-        None => MassFactor::Lu(*m),
+    let ldlt = Ldlt::new(m);
+    Ok(match (use_cholesky(ldlt.as_ref(), m)?, ldlt) {
+        (true, Some(ldlt)) => MassFactor::Cholesky(ldlt),
+        _ => MassFactor::Lu(*m),
     })
 }
 
-/// The decision of [`factor_mass_matrix`] for a finite `M`: its `L D Lᵀ`
-/// where the pivots are acceptable, `None` where LU must take it, or
-/// `Indefinite`. In exact arithmetic LU without pivoting of an SPD matrix
-/// has pivots `L_ii²`, so both factorizations are judged on the same scale.
+/// The decision of [`factor_mass_matrix`] for a finite `M`, given its
+/// `L D Lᵀ` if it has one: `true` where the pivots are acceptable, `false`
+/// where LU must take it, or `Indefinite`. In exact arithmetic LU without
+/// pivoting of an SPD matrix has pivots `L_ii²`, so both factorizations
+/// are judged on the same scale.
 #[inline]
-fn cholesky_or_lu<S: RealField + Copy, const N: usize>(
+fn use_cholesky<S: RealField + Copy, const N: usize>(
+    ldlt: Option<&Ldlt<S, N>>,
     m: &SMatrix<S, N, N>,
-) -> Result<Option<Ldlt<S, N>>, SolveError> {
-    match Ldlt::new(m) {
-        Some(ldlt) if well_conditioned::<S, N>(ldlt.pivot_range()) => Ok(Some(ldlt)),
-        Some(_) => Ok(None),
+) -> Result<bool, SolveError> {
+    match ldlt {
+        Some(ldlt) => Ok(well_conditioned::<S, N>(ldlt.pivot_range())),
         None if !positive_semidefinite(m) => Err(SolveError::Indefinite),
-        None => Ok(None),
+        None => Ok(false),
     }
 }
 
