@@ -28,7 +28,7 @@ pub(crate) mod second_order;
 /// Whether every value is finite, over a matrix's storage as a slice
 /// (`m.as_slice()`): nalgebra's matrix iterator steps through columns and
 /// strides per element, and took several times the work of the check
-/// itself (at 64 coordinates, the two checks of `M` took as long as its
+/// itself (at 64 coordinates, the two checks of `M` took nearly as long as its
 /// factorization).
 #[inline]
 pub(crate) fn all_finite<S: nalgebra::RealField + Copy>(values: &[S]) -> bool {
