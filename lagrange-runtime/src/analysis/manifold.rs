@@ -57,7 +57,7 @@ impl<S: RealField + Copy> Tangent<S> {
     fn lift(&self, b: &DMatrix<S>) -> Option<DMatrix<S>> {
         let y = self.r.transpose().solve_lower_triangular(b)?;
         let lift = -(&self.normal * y);
-        lift.iter().all(|x| x.is_finite()).then_some(lift)
+        crate::linalg::all_finite(lift.as_slice()).then_some(lift)
     }
 }
 
@@ -289,7 +289,7 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Reduce<'_, S, N> {
         state_matrix
             .view_mut((d, d), (d, d))
             .copy_from(&lower_right);
-        if !state_matrix.iter().all(|x| x.is_finite()) {
+        if !crate::linalg::all_finite(state_matrix.as_slice()) {
             return Err(non_finite());
         }
         Ok(ManifoldLinearization {

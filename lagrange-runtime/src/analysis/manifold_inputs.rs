@@ -4,7 +4,7 @@
 
 use crate::dynamics::saddle::saddle_error;
 use crate::model::settings::ConstraintSettings;
-use nalgebra::{ComplexField, DMatrix, RealField, SVector};
+use nalgebra::{DMatrix, RealField, SVector};
 
 use super::{AnalysisError, ManifoldLinearization, linearize_on_manifold};
 use crate::dynamics::mass_error;
@@ -75,7 +75,7 @@ where
     actuated.set_inputs(u);
     let state = linearize_on_manifold(&actuated, t, q, qdot)?;
     let df_du = actuated.input_jacobian(t, q, qdot);
-    if !df_du.iter().all(|x| x.is_finite()) {
+    if !crate::linalg::all_finite(df_du.as_slice()) {
         return Err(AnalysisError::NonFiniteInputJacobian {
             t,
             q: *q,

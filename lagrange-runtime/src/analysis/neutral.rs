@@ -41,7 +41,7 @@ impl<S: RealField + Copy> Neutral<S> {
                 moved = true;
             }
         }
-        (moved && x.iter().all(|v| v.is_finite())).then_some(x)
+        (moved && crate::linalg::all_finite(x.as_slice())).then_some(x)
     }
 
     /// An orthonormal basis of the neutral directions: the right singular

@@ -222,7 +222,7 @@ pub(crate) fn min_norm_solve<S: RealField + Copy>(
     let x = svd.solve(b, c(1e-12) * scale).ok()?;
     let residual = (&a * &x - b).norm();
     let size = b.norm().max(scale * x.norm());
-    (x.iter().all(|v| v.is_finite()) && residual <= c(1e-8) * size).then_some(x)
+    (crate::linalg::all_finite(x.as_slice()) && residual <= c(1e-8) * size).then_some(x)
 }
 
 /// What the run shares with its events: the modes, the switches so far,

@@ -31,7 +31,7 @@ pub(crate) fn blame<L: Lagrangian<N>, const N: usize>(
             A: Inputs<N, K, Scalar = S> + ?Sized,
         {
             let u = model.inputs_at(self.t, self.q, self.qdot);
-            u.iter().all(|x| x.is_finite())
+            crate::linalg::all_finite(u.as_slice())
         }
     }
     match value {

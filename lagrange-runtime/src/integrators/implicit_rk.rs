@@ -197,7 +197,7 @@ impl<S: RealField + Copy, const N: usize> StageSolver<S, N> {
             self.lu.solve_in_place(&mut self.delta);
             rec.stats.linear_solves += 1;
             rec.stats.newton_iterations += 1;
-            if !self.delta.iter().all(|x| x.is_finite()) {
+            if !crate::linalg::all_finite(self.delta.as_slice()) {
                 return Err(diverged(iteration));
             }
             self.z += &self.delta;

@@ -3,7 +3,7 @@
 
 use core::cell::Cell;
 
-use nalgebra::{ComplexField, SMatrix, SVector};
+use nalgebra::{SMatrix, SVector};
 
 use super::inputs::{Actuated, Inputs, Visitor as InputVisitor};
 use crate::model::constraints::{Holonomic, Visitor as ConstraintVisitor};
@@ -108,7 +108,7 @@ where
         qdot: &SVector<M::Scalar, N>,
     ) -> At<'m, M> {
         let u = self.inputs(t, q, qdot);
-        if !u.iter().all(|x| x.is_finite()) {
+        if !crate::linalg::all_finite(u.as_slice()) {
             return At::NotFinite;
         }
         let mut driven = *model;

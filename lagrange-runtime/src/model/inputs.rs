@@ -179,7 +179,7 @@ pub(crate) fn never_set<L: Lagrangian<N>, const N: usize>(
         {
             let u = model.held_inputs()?;
             let names: &'static [&'static str] = const { &A::NAMES };
-            (!u.iter().all(|x| x.is_finite())).then_some(names)
+            (!crate::linalg::all_finite(u.as_slice())).then_some(names)
         }
     }
     model.visit_inputs(Unset).flatten()

@@ -96,7 +96,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use nalgebra::{ComplexField, SMatrix, SVector};
+use nalgebra::{SMatrix, SVector};
 
 use crate::dynamics::acceleration_jacobians;
 use crate::error::{IntegrationError, NonFiniteValue};
@@ -325,12 +325,12 @@ where
             SolveError::Indefinite => IntegrationError::IndefiniteMassMatrix { t, q: *x, qdot: *v },
         };
         let (m, f) = self.model.mass_matrix_and_forcing(t, &q, &qdot);
-        if !f.iter().all(|x| x.is_finite()) {
+        if !crate::linalg::all_finite(f.as_slice()) {
             return Err(non_finite(NonFiniteValue::Forcing));
         }
         let mass = factor_mass_matrix(&m).map_err(solve_error)?;
         let qddot = mass.solve(&f).map_err(solve_error)?;
-        let finite = |m: &SMatrix<L::Scalar, N, N>| m.iter().all(|x| x.is_finite());
+        let finite = |m: &SMatrix<L::Scalar, N, N>| crate::linalg::all_finite(m.as_slice());
         // `∂r/∂q` and `∂r/∂q̇` exact, or `∂q̈/∂q` and `∂q̈/∂q̇` by differences.
         let exact = self.model.residual_jacobians(t, &q, &qdot, &qddot);
         let differences = match exact {
@@ -350,7 +350,7 @@ where
             .iter()
             .any(|d| matches!(d, Direction::Parameter(_)))
             .then(|| self.model.residual_parameter_jacobian(t, &q, &qdot, &qddot));
-        if by_parameters.is_some_and(|r| !r.iter().all(|x| x.is_finite())) {
+        if by_parameters.is_some_and(|r| !crate::linalg::all_finite(r.as_slice())) {
             return Err(non_finite(NonFiniteValue::Jacobian));
         }
         let mut a = SVector::<L::Scalar, NA>::zeros();

@@ -215,7 +215,3 @@ fn lacks<S: RealField + Copy>(needs: &'static str) -> InvalidInput<S> {
 fn epsilon<S: RealField>() -> S {
     S::default_epsilon()
 }
-
-fn all_finite<S: RealField + Copy, const N: usize>(x: &SVector<S, N>) -> bool {
-    x.iter().all(|x| x.is_finite())
-}

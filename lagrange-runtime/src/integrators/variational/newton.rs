@@ -3,7 +3,8 @@
 
 use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
-use super::{all_finite, epsilon, lacks, Variational};
+use super::{epsilon, lacks, Variational};
+use crate::linalg::all_finite;
 use crate::driver::newton_noise_floor;
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::linalg::mass::{lu_solve, solve_mass_matrix, SolveError};
@@ -138,28 +139,28 @@ impl<L: Lagrangian<N>, const N: usize> DiscreteEulerLagrange<'_, L, N> {
             qdot: *v,
             value: crate::dynamics::blame::blame(model, value, t, &q, v),
         };
-        if !all_finite(&q) || !all_finite(v) {
+        if !all_finite(q.as_slice()) || !all_finite(v.as_slice()) {
             return Err(non_finite(NonFiniteValue::State));
         }
         let momentum = self
             .model
             .momentum(t, &q, v)
             .ok_or_else(|| lacks("momentum"))?;
-        if !all_finite(&momentum) {
+        if !all_finite(momentum.as_slice()) {
             return Err(non_finite(NonFiniteValue::Momentum));
         }
         let gradient = self
             .model
             .lagrangian_gradient(t, &q, v)
             .ok_or_else(|| lacks("lagrangian_gradient"))?;
-        if !all_finite(&gradient) {
+        if !all_finite(gradient.as_slice()) {
             return Err(non_finite(NonFiniteValue::LagrangianGradient));
         }
         let forces = self
             .model
             .nonconservative_forces(t, &q, v)
             .ok_or_else(|| lacks("nonconservative_forces"))?;
-        if !all_finite(&forces) {
+        if !all_finite(forces.as_slice()) {
             return Err(non_finite(NonFiniteValue::NonconservativeForces));
         }
         let (momentum, gradient) = match self.augment {

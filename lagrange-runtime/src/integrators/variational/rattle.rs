@@ -105,7 +105,7 @@ where
             Some(k) => model.mass_matrix(t, q) + g.transpose() * g * k,
         };
         let mass = factor_mass_matrix(&m).map_err(|e| mass_error(e, t, q, qdot))?;
-        if !g.iter().all(|x| x.is_finite()) {
+        if !crate::linalg::all_finite(g.as_slice()) {
             let (q, qdot, value) = (*q, *qdot, NonFiniteValue::Constraints);
             return Err(IntegrationError::NonFiniteState { t, q, qdot, value }.into());
         }

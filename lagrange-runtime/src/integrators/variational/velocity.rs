@@ -3,7 +3,8 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::{all_finite, lacks};
+use super::lacks;
+use crate::linalg::all_finite;
 use crate::driver::Recorder;
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::linalg::mass::{solve_mass_matrix, SolveError};
@@ -31,16 +32,16 @@ pub(super) fn velocity<L: Lagrangian<N>, const N: usize>(
         qdot: near,
         value,
     };
-    if !all_finite(q) {
+    if !all_finite(q.as_slice()) {
         return Err(non_finite(NonFiniteValue::State));
     }
-    if !all_finite(p) {
+    if !all_finite(p.as_slice()) {
         return Err(non_finite(NonFiniteValue::Momentum));
     }
     let offset = model
         .momentum(t, q, &SVector::zeros())
         .ok_or_else(|| lacks("momentum"))?;
-    if !all_finite(&offset) {
+    if !all_finite(offset.as_slice()) {
         return Err(non_finite(NonFiniteValue::Momentum));
     }
     let mut m = model.mass_matrix(t, q);

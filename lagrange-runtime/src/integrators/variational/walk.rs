@@ -8,7 +8,8 @@ use super::newton::{DiscreteEulerLagrange, StepFailure};
 use super::augmented::Weight;
 use super::rattle::StartForce;
 use super::velocity::{velocity, with_velocity, VelocityHistory};
-use super::{all_finite, lacks, out_of_budget, Variational};
+use super::{lacks, out_of_budget, Variational};
+use crate::linalg::all_finite;
 use crate::driver::run::{Advanced, Flow, Fresh, Run, Walk};
 use crate::driver::Interval;
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
@@ -84,7 +85,7 @@ impl<S: RealField + Copy, const N: usize> VariationalWalk<S, N> {
             return Err(InvalidInput::VelocityConstraints { method }.into());
         }
         run.rec.stats.rhs_evals += 1;
-        if !all_finite(&p0) {
+        if !all_finite(p0.as_slice()) {
             let value = NonFiniteValue::Momentum;
             let (q, qdot) = (q0, qdot0);
             return Err(IntegrationError::NonFiniteState {
@@ -101,7 +102,7 @@ impl<S: RealField + Copy, const N: usize> VariationalWalk<S, N> {
         // other methods do from their first evaluation. (A singular M, a
         // chart's pole, is integrated through.)
         let m0 = model.mass_matrix(t0, &q0);
-        if m0.iter().all(|m| m.is_finite()) && !positive_semidefinite(&m0) {
+        if crate::linalg::all_finite(m0.as_slice()) && !positive_semidefinite(&m0) {
             let (q, qdot) = (q0, qdot0);
             return Err(IntegrationError::IndefiniteMassMatrix { t: t0, q, qdot });
         }
