@@ -11,6 +11,18 @@ use lagrange::models::{CartesianPendulum, FourBar, Pendulum, SliderCrank};
 use lagrange::nalgebra::{Vector1, Vector3};
 use std::hint::black_box;
 
+/// One right-hand side's result kept from the optimizer by
+/// `std::hint::black_box`, and nothing handed back to criterion: criterion
+/// 0.5's own `black_box` (without its nightly `real_blackbox` feature) reads
+/// what a routine returns byte by byte through volatile loads, about a
+/// hundred of them for this `Result` with its error variant, which took
+/// longer than the Cartesian pendulum's whole right-hand side and grew with
+/// `N`, not with the work measured.
+#[inline(always)]
+fn rhs<T>(result: T) {
+    black_box(result);
+}
+
 fn right_hand_sides(c: &mut Criterion) {
     let mut group = c.benchmark_group("constrained_rhs");
 
@@ -25,10 +37,24 @@ fn right_hand_sides(c: &mut Criterion) {
     let want = 0.7f64.cos() * at - 0.7f64.sin() * 1.3 * 1.3;
     assert!((a[0] - want).abs() < 1e-12, "{} vs {want}", a[0]);
     group.bench_function("pendulum/cartesian_x_y_rod", |b| {
-        b.iter(|| acceleration(&cartesian, black_box(0.0), black_box(&q), black_box(&v)))
+        b.iter(|| {
+            rhs(acceleration(
+                &cartesian,
+                black_box(0.0),
+                black_box(&q),
+                black_box(&v),
+            ))
+        })
     });
     group.bench_function("pendulum/minimal_theta", |b| {
-        b.iter(|| acceleration(&theta, black_box(0.0), black_box(&qt), black_box(&vt)))
+        b.iter(|| {
+            rhs(acceleration(
+                &theta,
+                black_box(0.0),
+                black_box(&qt),
+                black_box(&vt),
+            ))
+        })
     });
 
     // The slider-crank: three coordinates and two loop constraints against
@@ -41,10 +67,24 @@ fn right_hand_sides(c: &mut Criterion) {
     let am = acceleration(&minimal, 0.0, &qm, &vm).unwrap()[0];
     assert!((a - am).abs() < 1e-9 * am.abs().max(1.0), "{a} vs {am}");
     group.bench_function("slider_crank/redundant_3_coordinates_2_constraints", |b| {
-        b.iter(|| acceleration(&crank, black_box(0.0), black_box(&q), black_box(&v)))
+        b.iter(|| {
+            rhs(acceleration(
+                &crank,
+                black_box(0.0),
+                black_box(&q),
+                black_box(&v),
+            ))
+        })
     });
     group.bench_function("slider_crank/minimal_crank_angle", |b| {
-        b.iter(|| acceleration(&minimal, black_box(0.0), black_box(&qm), black_box(&vm)))
+        b.iter(|| {
+            rhs(acceleration(
+                &minimal,
+                black_box(0.0),
+                black_box(&qm),
+                black_box(&vm),
+            ))
+        })
     });
 
     // The four-bar: three angles and two loop constraints against the
@@ -57,10 +97,24 @@ fn right_hand_sides(c: &mut Criterion) {
     let am = acceleration(&minimal, 0.0, &qm, &vm).unwrap()[0];
     assert!((a - am).abs() < 1e-9 * am.abs().max(1.0), "{a} vs {am}");
     group.bench_function("four_bar/redundant_3_coordinates_2_constraints", |b| {
-        b.iter(|| acceleration(&four_bar, black_box(0.0), black_box(&q), black_box(&v)))
+        b.iter(|| {
+            rhs(acceleration(
+                &four_bar,
+                black_box(0.0),
+                black_box(&q),
+                black_box(&v),
+            ))
+        })
     });
     group.bench_function("four_bar/minimal_crank_angle", |b| {
-        b.iter(|| acceleration(&minimal, black_box(0.0), black_box(&qm), black_box(&vm)))
+        b.iter(|| {
+            rhs(acceleration(
+                &minimal,
+                black_box(0.0),
+                black_box(&qm),
+                black_box(&vm),
+            ))
+        })
     });
     group.finish();
 }
@@ -71,6 +125,91 @@ fn main() {
     op_counts::print();
     benches();
     Criterion::default().configure_from_args().final_summary();
+    if std::env::args().any(|a| a == "--bench") {
+        plain_loops::print();
+    }
+}
+
+/// The same right-hand sides in a plain loop, one `#[inline(never)]` loop
+/// per model: criterion's loop around a closure is one harness, and the
+/// ratio of two short right-hand sides depends on the harness (how much of
+/// the call overlaps the next, what is inlined where). Ten batches of each
+/// model, the two of a pair interleaved; the best batch and the median.
+mod plain_loops {
+    use super::*;
+    use lagrange::Lagrangian;
+    use lagrange::nalgebra::SVector;
+    use std::time::Instant;
+
+    const CALLS: u32 = 1_000_000;
+    const BATCHES: usize = 10;
+
+    #[inline(never)]
+    fn batch<L: Lagrangian<N, Scalar = f64>, const N: usize>(
+        model: &L,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+    ) -> f64 {
+        let start = Instant::now();
+        for _ in 0..CALLS {
+            rhs(acceleration(
+                model,
+                black_box(0.0),
+                black_box(q),
+                black_box(v),
+            ));
+        }
+        start.elapsed().as_secs_f64() * 1e9 / f64::from(CALLS)
+    }
+
+    fn pair<A, B, const N: usize, const M: usize>(
+        name: &str,
+        (a, qa, va): (&A, SVector<f64, N>, SVector<f64, N>),
+        (b, qb, vb): (&B, SVector<f64, M>, SVector<f64, M>),
+    ) where
+        A: Lagrangian<N, Scalar = f64>,
+        B: Lagrangian<M, Scalar = f64>,
+    {
+        let (mut ta, mut tb) = (Vec::new(), Vec::new());
+        for _ in 0..BATCHES {
+            ta.push(batch(a, &qa, &va));
+            tb.push(batch(b, &qb, &vb));
+        }
+        let best = |t: &[f64]| t.iter().copied().fold(f64::INFINITY, f64::min);
+        let median = |t: &mut Vec<f64>| {
+            t.sort_by(f64::total_cmp);
+            t[t.len() / 2]
+        };
+        let (ba, bb) = (best(&ta), best(&tb));
+        let (ma, mb) = (median(&mut ta), median(&mut tb));
+        println!(
+            "{name:<14} {ba:>10.1} {bb:>10.1} {:>10.2} {ma:>12.1} {mb:>12.1} {:>12.2}",
+            ba / bb,
+            ma / mb
+        );
+    }
+
+    pub fn print() {
+        println!();
+        println!("Plain loops, ns per right-hand side ({BATCHES} batches of {CALLS} calls each):");
+        println!(
+            "{:<14} {:>10} {:>10} {:>10} {:>12} {:>12} {:>12}",
+            "model", "best con.", "best min.", "ratio", "median con.", "median min.", "ratio"
+        );
+        let cartesian = CartesianPendulum::new(1.0, 1.0, 9.81);
+        let (q, v) = cartesian.state(0.7, 1.3);
+        let theta = Pendulum::new(1.0, 1.0, 9.81);
+        let (qt, vt) = (Vector1::new(0.7), Vector1::new(1.3));
+        pair("pendulum", (&cartesian, q, v), (&theta, qt, vt));
+        let crank = SliderCrank::engine();
+        let (q, v) = crank.state(0.4, 20.0);
+        let (qm, vm) = (Vector1::new(0.4), Vector1::new(20.0));
+        pair("slider_crank", (&crank, q, v), (&crank.minimal(), qm, vm));
+        let four_bar = FourBar::crank_rocker();
+        let (q, v): (Vector3<f64>, Vector3<f64>) = four_bar.state(0.8, 12.0).unwrap();
+        let (qm, vm) = (Vector1::new(0.8), Vector1::new(12.0));
+        pair("four_bar", (&four_bar, q, v), (&four_bar.minimal(), qm, vm));
+    }
 }
 
 /// The operation counts of the generated code, from the engine run on the

@@ -44,16 +44,37 @@ pub(crate) fn constrained_accelerations<H, const N: usize, const C: usize>(
 where
     H: Holonomic<N, C> + ?Sized,
 {
+    let finite = |v: &SVector<H::Scalar, N>| all_finite(v.as_slice());
+    if !(t.is_finite() && finite(q) && finite(qdot)) {
+        return Err(IntegrationError::NonFiniteState {
+            t,
+            q: *q,
+            qdot: *qdot,
+            value: NonFiniteValue::State,
+        });
+    }
+    solve_constrained(model, t, q, qdot, baumgarte)
+}
+
+/// [`constrained_accelerations`] at a state already checked finite.
+#[allow(clippy::type_complexity)]
+#[inline]
+fn solve_constrained<H, const N: usize, const C: usize>(
+    model: &H,
+    t: H::Scalar,
+    q: &SVector<H::Scalar, N>,
+    qdot: &SVector<H::Scalar, N>,
+    baumgarte: Option<(H::Scalar, H::Scalar)>,
+) -> Result<(SVector<H::Scalar, N>, SVector<H::Scalar, C>), IntegrationError<H::Scalar, N>>
+where
+    H: Holonomic<N, C> + ?Sized,
+{
     let non_finite = |value| IntegrationError::NonFiniteState {
         t,
         q: *q,
         qdot: *qdot,
         value,
     };
-    let finite = |v: &SVector<H::Scalar, N>| all_finite(v.as_slice());
-    if !(t.is_finite() && finite(q) && finite(qdot)) {
-        return Err(non_finite(NonFiniteValue::State));
-    }
     let (m, f, g, mut gamma) = model.constrained_system(t, q, qdot);
     if let Some((two_alpha, beta2)) = baumgarte {
         let phi = model.constraints(t, q);
@@ -126,9 +147,9 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Accelerations<'_, S,
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {
+        // `acceleration`, its one caller, has checked the state.
         let baumgarte = settings.baumgarte();
-        constrained_accelerations(model, self.t, self.q, self.qdot, baumgarte)
-            .map(|(qddot, _)| qddot)
+        solve_constrained(model, self.t, self.q, self.qdot, baumgarte).map(|(qddot, _)| qddot)
     }
 }
 
