@@ -19,7 +19,7 @@ use nalgebra::{ComplexField, RealField, SVector};
 
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::linalg::all_finite;
-use crate::linalg::mass::{SolveError, solve_mass_matrix};
+use crate::linalg::mass::{SolveError, solve_mass_matrix, solve_mass_matrix_in_place};
 use crate::model::Lagrangian;
 use saddle::Accelerations;
 
@@ -64,8 +64,15 @@ pub fn acceleration<L: Lagrangian<N>, const N: usize>(
             return accelerations;
         }
     }
-    let (m, f) = model.mass_matrix_and_forcing(t, q, qdot);
-    solve_mass_matrix(&m, &f).map_err(|err| match err {
+    // `M` factored where the model returned it; where Cholesky refuses it,
+    // the same solve again on a fresh one (LU needs the `M` overwritten).
+    let mut mass_and_forcing = model.mass_matrix_and_forcing(t, q, qdot);
+    let (m, f) = (&mut mass_and_forcing.0, &mass_and_forcing.1);
+    let solved = solve_mass_matrix_in_place(m, f).unwrap_or_else(|| {
+        let (m, f) = model.mass_matrix_and_forcing(t, q, qdot);
+        solve_mass_matrix(&m, &f)
+    });
+    solved.map_err(|err| match err {
         // A controller's non-finite inputs show as a non-finite forcing.
         SolveError::NonFiniteForcing => {
             non_finite(blame::blame(model, NonFiniteValue::Forcing, t, q, qdot))

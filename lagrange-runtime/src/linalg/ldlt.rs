@@ -97,55 +97,16 @@ impl<S: RealField + Copy, const N: usize> Ldlt<S, N> {
 
     #[inline]
     fn by_columns(m: &SMatrix<S, N, N>) -> Option<Self> {
-        // The lower triangle of `M`, overwritten column by column; the rest
-        // is set to zero as each column is done (never read).
         let mut l = *m;
         let mut d = SVector::<S, N>::zeros();
         let mut inverse_d = SVector::<S, N>::zeros();
-        // w[k] = L_jk d_k for the column being made.
-        let mut w = [S::zero(); N];
-        for j in 0..N {
-            let (done, rest) = l.as_mut_slice().split_at_mut(j * N);
-            for (k, earlier) in done.chunks_exact(N).enumerate() {
-                w[k] = earlier[j] * d[k];
-            }
-            let w = &w[..j];
-            // Blocks of the column held in registers while every earlier
-            // column updates them: each entry is loaded and stored once,
-            // not once per column before it, and still subtracts its terms
-            // in the order k = 0, 1, …, j − 1.
-            let column = &mut rest[j..N];
-            let mut blocks = column.chunks_exact_mut(BLOCK);
-            for (b, block) in blocks.by_ref().enumerate() {
-                let from = j + b * BLOCK;
-                let mut sum: [S; BLOCK] = core::array::from_fn(|i| block[i]);
-                for (earlier, &w_k) in done.chunks_exact(N).zip(w) {
-                    let earlier = &earlier[from..from + BLOCK];
-                    for (entry, &l_ik) in sum.iter_mut().zip(earlier) {
-                        *entry -= l_ik * w_k;
-                    }
-                }
-                block.copy_from_slice(&sum);
-            }
-            let tail = blocks.into_remainder();
-            let from = N - tail.len();
-            for (earlier, &w_k) in done.chunks_exact(N).zip(w) {
-                for (entry, &l_ik) in tail.iter_mut().zip(&earlier[from..]) {
-                    *entry -= l_ik * w_k;
-                }
-            }
-            let pivot = rest[j];
-            // Not `pivot <= 0`: a NaN pivot is refused too.
-            if pivot.partial_cmp(&S::zero()) != Some(core::cmp::Ordering::Greater) {
-                return None;
-            }
-            let inverse = S::one() / pivot;
-            d[j] = pivot;
-            inverse_d[j] = inverse;
-            for entry in &mut rest[j + 1..N] {
-                *entry *= inverse;
-            }
-            rest[..=j].fill(S::zero());
+        if !factor_in_place(&mut l, &mut d, &mut inverse_d) {
+            return None;
+        }
+        // Zeros on and above the diagonal, as the row form leaves them
+        // (never read).
+        for (j, column) in l.as_mut_slice().chunks_exact_mut(N).enumerate() {
+            column[..=j].fill(S::zero());
         }
         Some(Self { l, d, inverse_d })
     }
@@ -195,36 +156,118 @@ impl<S: RealField + Copy, const N: usize> Ldlt<S, N> {
     /// subtracts its terms in the order `k = 0, 1, …` either way.
     #[inline]
     pub(crate) fn forward(&self, x: &mut SVector<S, N>) {
-        if N < BY_COLUMNS {
-            for i in 0..N {
-                let mut s = x[i];
-                for k in 0..i {
-                    s -= self.l[(i, k)] * x[k];
-                }
-                x[i] = s;
-            }
-            return;
-        }
-        for (k, column) in self.l.as_slice().chunks_exact(N.max(1)).take(N).enumerate() {
-            let (known, below) = x.as_mut_slice().split_at_mut(k + 1);
-            let z = known[k];
-            for (entry, &l_ik) in below.iter_mut().zip(&column[k + 1..]) {
-                *entry -= l_ik * z;
-            }
-        }
+        forward(&self.l, x);
     }
 
     /// `x ← L⁻ᵀ D⁻¹ x`, row by row from the last: row `i` of `Lᵀ` is
     /// column `i` of `L`, contiguous at any size.
     #[inline]
     pub(crate) fn backward(&self, x: &mut SVector<S, N>) {
-        for i in (0..N).rev() {
-            let mut s = x[i] * self.inverse_d[i];
-            for k in i + 1..N {
-                s -= self.l[(k, i)] * x[k];
+        backward(&self.l, &self.inverse_d, x);
+    }
+}
+
+/// The column form of [`Ldlt::new`] on `M` in place: the strict lower
+/// triangle of `l` becomes `L`'s, `d` and `inverse_d` the pivots and their
+/// reciprocals; `false` where a pivot is not positive (or NaN). The
+/// diagonal and the upper triangle of `l` are left as they are on the way
+/// (never read). The hot path of a large model factors the `M` its model
+/// returned this way ([`solve_mass_matrix_in_place`](super::mass::solve_mass_matrix_in_place)),
+/// where a copy of it and of its factor (32 kB each at 64 coordinates)
+/// cost a few percent of a right-hand side.
+#[inline]
+pub(crate) fn factor_in_place<S: RealField + Copy, const N: usize>(
+    l: &mut SMatrix<S, N, N>,
+    d: &mut SVector<S, N>,
+    inverse_d: &mut SVector<S, N>,
+) -> bool {
+    // The lower triangle of `M`, overwritten column by column.
+    // w[k] = L_jk d_k for the column being made.
+    let mut w = [S::zero(); N];
+    for j in 0..N {
+        let (done, rest) = l.as_mut_slice().split_at_mut(j * N);
+        for (k, earlier) in done.chunks_exact(N).enumerate() {
+            w[k] = earlier[j] * d[k];
+        }
+        let w = &w[..j];
+        // Blocks of the column held in registers while every earlier
+        // column updates them: each entry is loaded and stored once,
+        // not once per column before it, and still subtracts its terms
+        // in the order k = 0, 1, …, j − 1.
+        let column = &mut rest[j..N];
+        let mut blocks = column.chunks_exact_mut(BLOCK);
+        for (b, block) in blocks.by_ref().enumerate() {
+            let from = j + b * BLOCK;
+            let mut sum: [S; BLOCK] = core::array::from_fn(|i| block[i]);
+            for (earlier, &w_k) in done.chunks_exact(N).zip(w) {
+                let earlier = &earlier[from..from + BLOCK];
+                for (entry, &l_ik) in sum.iter_mut().zip(earlier) {
+                    *entry -= l_ik * w_k;
+                }
+            }
+            block.copy_from_slice(&sum);
+        }
+        let tail = blocks.into_remainder();
+        let from = N - tail.len();
+        for (earlier, &w_k) in done.chunks_exact(N).zip(w) {
+            for (entry, &l_ik) in tail.iter_mut().zip(&earlier[from..]) {
+                *entry -= l_ik * w_k;
+            }
+        }
+        let pivot = rest[j];
+        // Not `pivot <= 0`: a NaN pivot is refused too.
+        if pivot.partial_cmp(&S::zero()) != Some(core::cmp::Ordering::Greater) {
+            return false;
+        }
+        let inverse = S::one() / pivot;
+        d[j] = pivot;
+        inverse_d[j] = inverse;
+        for entry in &mut rest[j + 1..N] {
+            *entry *= inverse;
+        }
+    }
+    true
+}
+
+/// `x ← L⁻¹ x` with the strict lower triangle of `l` (see [`Ldlt::forward`]).
+#[inline]
+pub(crate) fn forward<S: RealField + Copy, const N: usize>(
+    l: &SMatrix<S, N, N>,
+    x: &mut SVector<S, N>,
+) {
+    if N < BY_COLUMNS {
+        for i in 0..N {
+            let mut s = x[i];
+            for k in 0..i {
+                s -= l[(i, k)] * x[k];
             }
             x[i] = s;
         }
+        return;
+    }
+    for (k, column) in l.as_slice().chunks_exact(N.max(1)).take(N).enumerate() {
+        let (known, below) = x.as_mut_slice().split_at_mut(k + 1);
+        let z = known[k];
+        for (entry, &l_ik) in below.iter_mut().zip(&column[k + 1..]) {
+            *entry -= l_ik * z;
+        }
+    }
+}
+
+/// `x ← L⁻ᵀ D⁻¹ x` with the strict lower triangle of `l` and `D⁻¹`'s
+/// diagonal (see [`Ldlt::backward`]).
+#[inline]
+pub(crate) fn backward<S: RealField + Copy, const N: usize>(
+    l: &SMatrix<S, N, N>,
+    inverse_d: &SVector<S, N>,
+    x: &mut SVector<S, N>,
+) {
+    for i in (0..N).rev() {
+        let mut s = x[i] * inverse_d[i];
+        for k in i + 1..N {
+            s -= l[(k, i)] * x[k];
+        }
+        x[i] = s;
     }
 }
 

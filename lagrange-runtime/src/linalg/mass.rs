@@ -8,7 +8,7 @@ use core::cmp::Ordering;
 use nalgebra::{RealField, SMatrix, SVector};
 
 use super::all_finite;
-use super::ldlt::Ldlt;
+use super::ldlt::{self, BY_COLUMNS, Ldlt};
 
 /// Why `M q̈ = f` has no usable solution.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
@@ -83,6 +83,41 @@ pub fn solve_mass_matrix<S: RealField + Copy, const N: usize>(
         Some(ldlt) if cholesky => ldlt.solve(f),
         _ => lu_solve(*m, *f)?,
     })
+}
+
+/// [`solve_mass_matrix`] on an `M` the caller owns and no longer needs:
+/// from [`BY_COLUMNS`] coordinates on, factored where it lies, with
+/// neither `M` nor its factor copied (32 kB each at 64 coordinates, a few
+/// percent of a right-hand side). The same arithmetic, so the same bits
+/// and the same errors; `None` where Cholesky refuses `M` or its pivots
+/// (the rare cases [`solve_mass_matrix`] hands to LU or calls indefinite,
+/// which need the `M` now overwritten): the caller asks again with a fresh
+/// `M`. Below [`BY_COLUMNS`], [`solve_mass_matrix`] itself.
+#[inline]
+pub(crate) fn solve_mass_matrix_in_place<S: RealField + Copy, const N: usize>(
+    m: &mut SMatrix<S, N, N>,
+    f: &SVector<S, N>,
+) -> Option<Result<SVector<S, N>, SolveError>> {
+    if N < BY_COLUMNS {
+        return Some(solve_mass_matrix(m, f));
+    }
+    if !all_finite(m.as_slice()) {
+        return Some(Err(SolveError::NonFiniteMassMatrix));
+    }
+    if !all_finite(f.as_slice()) {
+        return Some(Err(SolveError::NonFiniteForcing));
+    }
+    let mut d = SVector::<S, N>::zeros();
+    let mut inverse_d = SVector::<S, N>::zeros();
+    if !ldlt::factor_in_place(m, &mut d, &mut inverse_d)
+        || !well_conditioned::<S, N>((d.min(), d.max()))
+    {
+        return None;
+    }
+    let mut x = *f;
+    ldlt::forward(m, &mut x);
+    ldlt::backward(m, &inverse_d, &mut x);
+    Some(finite_solution(x))
 }
 
 /// `M` factored once for several right-hand sides, as
@@ -272,6 +307,47 @@ mod tests {
     use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 
     use super::*;
+
+    /// The in-place solve gives the bits and the errors of
+    /// [`solve_mass_matrix`] on either side of [`BY_COLUMNS`], and hands
+    /// back (`None`) exactly where Cholesky refuses `M` or its pivots.
+    fn in_place_as_solve<const N: usize>() {
+        // A chain-like M: dense, regular, entries of both signs.
+        let m = SMatrix::<f64, N, N>::from_fn(|i, j| {
+            let (i, j) = (i as f64, j as f64);
+            (N as f64 - i.max(j)) * (0.3 * (i - j)).cos() + if i == j { 1.0 } else { 0.0 }
+        });
+        let f = SVector::<f64, N>::from_fn(|i, _| (i as f64).sin());
+        let bits = |x: Result<SVector<f64, N>, SolveError>| x.map(|x| x.map(f64::to_bits));
+        let mut owned = m;
+        let in_place = solve_mass_matrix_in_place(&mut owned, &f).expect("Cholesky takes it");
+        assert_eq!(bits(in_place), bits(solve_mass_matrix(&m, &f)), "N = {N}");
+
+        let mut singular = m;
+        singular.row_mut(1).fill(0.0);
+        singular.column_mut(1).fill(0.0);
+        let mut owned = singular;
+        match solve_mass_matrix_in_place(&mut owned, &f) {
+            None => assert!(N >= BY_COLUMNS, "N = {N}"),
+            Some(x) => assert_eq!(bits(x), bits(solve_mass_matrix(&singular, &f))),
+        }
+        assert_eq!(solve_mass_matrix(&singular, &f), Err(SolveError::Singular));
+
+        let mut nan = m;
+        nan[(3, 2)] = f64::NAN;
+        assert_eq!(
+            solve_mass_matrix_in_place(&mut nan, &f),
+            Some(Err(SolveError::NonFiniteMassMatrix))
+        );
+    }
+
+    #[test]
+    fn in_place_solve_keeps_the_bits_and_hands_back_what_lu_takes() {
+        in_place_as_solve::<5>();
+        in_place_as_solve::<{ BY_COLUMNS }>();
+        in_place_as_solve::<40>();
+        in_place_as_solve::<67>();
+    }
 
     #[test]
     fn symmetric_positive_definite_mass_matrix_is_solved() {
