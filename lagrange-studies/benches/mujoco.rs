@@ -22,7 +22,14 @@
 //! ... --bench mujoco -- --chains 2,5,10 --trees 5 --reps 3      # quicker
 //! ... --bench mujoco -- --lagrange ../other-checkout            # another tree's runtime
 //! ... --bench mujoco -- --engine-only                           # the expansions alone
+//! ... --bench mujoco -- --native    # ours with -C target-cpu=native (AVX2, FMA here)
 //! ```
+//!
+//! MuJoCo's wheels are built for AVX (they stop with an illegal instruction
+//! on a CPU without it); ours are built for the default x86-64 target, SSE2,
+//! two `f64` lanes, unless `--native` builds the scratch crate with
+//! `RUSTFLAGS="-C target-cpu=native"` (in its own target directory; the
+//! table is then written to `target/peers/mujoco-native.txt`).
 //!
 //! About 17 minutes on 2 cores with the defaults (chains 2, 5, 10, 20, 40,
 //! 64; trees 2 × 5 and 2 × 32), 12 of them building the scratch crate: the
@@ -48,6 +55,7 @@ struct Options {
     hs: String,
     lagrange: PathBuf,
     engine_only: bool,
+    native: bool,
 }
 
 fn list(value: &str) -> Result<Vec<usize>, String> {
@@ -67,6 +75,7 @@ impl Options {
             hs: "1e-2,1e-3".into(),
             lagrange: root.to_path_buf(),
             engine_only: false,
+            native: false,
         };
         let mut it = args.iter();
         while let Some(flag) = it.next() {
@@ -78,6 +87,7 @@ impl Options {
                 "--hs" => o.hs = value()?.clone(),
                 "--lagrange" => o.lagrange = PathBuf::from(value()?),
                 "--engine-only" => o.engine_only = true,
+                "--native" => o.native = true,
                 other => return Err(format!("unknown option {other}")),
             }
         }
@@ -254,18 +264,26 @@ fn run(options: &Options, python: Option<&str>, peers: &Path, root: &Path) -> Re
         work.display()
     );
     let clock = Instant::now();
-    let status = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
+    let mut cargo = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
+    let scratch_target = work.join(if options.native {
+        "target-native"
+    } else {
+        "target"
+    });
+    cargo
         .args(["build", "--release", "--quiet"])
         .current_dir(&work)
-        .env("CARGO_TARGET_DIR", work.join("target"))
-        .status()
-        .map_err(|e| e.to_string())?;
+        .env("CARGO_TARGET_DIR", &scratch_target);
+    if options.native {
+        cargo.env("RUSTFLAGS", "-C target-cpu=native");
+    }
+    let status = cargo.status().map_err(|e| e.to_string())?;
     if !status.success() {
         return Err(format!("building the scratch crate failed ({status})"));
     }
     let build = clock.elapsed().as_secs_f64();
     println!("mujoco: built in {build:.0} s (cargo build --release, this process's load)");
-    let ours = work.join("target/release/chain-vs-mujoco");
+    let ours = scratch_target.join("release/chain-vs-mujoco");
 
     let reference_text = output(Command::new(&ours).args(["reference", "--hs", &options.hs]))?;
     let reference_path = work.join("reference.json");
@@ -296,8 +314,14 @@ fn run(options: &Options, python: Option<&str>, peers: &Path, root: &Path) -> Re
     let h_timed = reference["h_timed"].as_f64().unwrap_or(f64::NAN);
     let mut table = format!(
         "lagrange's Stepper beside MuJoCo {version} (mujoco.rollout, one thread): ns per step at h = {h_timed}, \
-         medians of {} interleaved rounds (ratio: the median of the rounds' ratios, ours / MuJoCo)\n\n",
-        options.reps
+         medians of {} interleaved rounds (ratio: the median of the rounds' ratios, ours / MuJoCo); \
+         ours built for {}\n\n",
+        options.reps,
+        if options.native {
+            "-C target-cpu=native"
+        } else {
+            "the default target"
+        }
     );
     table += "| model | N | method | ours ns/step | MuJoCo ns/step | ratio |\n|---|---:|---|---:|---:|---:|\n";
     // In the order of the options (the JSON objects are sorted by name).
@@ -350,7 +374,11 @@ fn run(options: &Options, python: Option<&str>, peers: &Path, root: &Path) -> Re
         "\nThe scratch crate (every model above) built in {build:.0} s."
     );
     print!("\n{table}");
-    let out = target.join("peers/mujoco.txt");
+    let out = target.join(if options.native {
+        "peers/mujoco-native.txt"
+    } else {
+        "peers/mujoco.txt"
+    });
     write(out.clone(), &table)?;
     println!("\nmujoco: written to {}", out.display());
     Ok(())

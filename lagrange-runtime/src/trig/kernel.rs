@@ -19,7 +19,8 @@ pub(crate) trait MulAdd {
     fn mul_add(a: f64, b: f64, c: f64) -> f64;
 }
 
-/// `a * b + c`, two roundings.
+/// `a * b + c`, two roundings (with hardware FMA: only the tests use it).
+#[cfg_attr(target_feature = "fma", allow(dead_code))]
 pub(crate) struct Plain;
 /// `a.mul_add(b, c)`, one rounding (a software call without hardware FMA:
 /// only the tests use it there).
