@@ -4,13 +4,16 @@
 //!
 //! - [`mass`]: the mass matrix factored and `M q̈ = f` solved on the stack, `M` and `f` given (Cholesky as
 //!   `LDLᵀ`, LU with partial pivoting as the fallback), with singular,
-//!   indefinite and non-finite cases caught. Also the stack LU of the
-//!   variational integrator's `N × N` Newton systems.
+//!   indefinite and non-finite cases caught; from 32 coordinates, in place
+//!   in an `M` the caller gives up (`acceleration`'s). Also the stack LU of
+//!   the variational integrator's `N × N` Newton systems.
 //! - `ldlt`: `M = L D Lᵀ` (Cholesky without square roots) written out for
-//!   the hot path: inlined, one division per column.
-//! - `schur`: the saddle-point system `M q̈ + Gᵀ λ = f`, `G q̈ = −γ`, and
-//!   the Schur complement `G M⁻¹ Gᵀ` judged for rank, which the
-//!   projections onto the constraints share.
+//!   the hot path: inlined, one division per column, in place from 32
+//!   coordinates.
+//! - `schur`: the saddle-point system `M q̈ + Gᵀ λ = f`, `G q̈ = −γ` (one
+//!   backward substitution with `M`'s factor), and the Schur complement
+//!   `G M⁻¹ Gᵀ` judged for rank, which the projections onto the
+//!   constraints share.
 //! - `lu`: LU factors in storage allocated once per integration, real or
 //!   complex, for the implicit Runge–Kutta methods' iteration matrices.
 //! - `second_order`: the `2N × 2N` systems `(γ I − J) x = b` of those
