@@ -272,13 +272,14 @@ pub(crate) fn backward<S: RealField + Copy, const N: usize>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(in crate::linalg) mod tests {
     use nalgebra::{Matrix2, SMatrix, SVector, Vector2};
 
     use super::Ldlt;
 
-    /// SplitMix64 in [-1, 1): the same matrices on every run.
-    fn uniform(state: &mut u64) -> f64 {
+    /// SplitMix64 in [-1, 1): the same matrices on every run (the
+    /// Schur complement's tests draw theirs from it too).
+    pub(in crate::linalg) fn uniform(state: &mut u64) -> f64 {
         *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = *state;
         z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);

@@ -239,17 +239,8 @@ mod tests {
     use nalgebra::{SMatrix, SVector};
 
     use super::{SaddleError, by_schur, solve_saddle};
+    use crate::linalg::ldlt::tests::uniform;
     use crate::linalg::mass::factor_mass_matrix;
-
-    /// SplitMix64 in [-1, 1): the same systems on every run.
-    fn uniform(state: &mut u64) -> f64 {
-        *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = *state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^= z >> 31;
-        2.0 * ((z >> 11) as f64 / (1u64 << 53) as f64) - 1.0
-    }
 
     /// The one-backward-substitution solve against the one through
     /// `M⁻¹ f` and `M⁻¹ Gᵀ`, and both against the saddle-point equations.
