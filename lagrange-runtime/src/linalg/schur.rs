@@ -51,40 +51,25 @@ impl<S: RealField + Copy, const N: usize, const C: usize> Schur<S, N, C> {
     /// Stability of Numerical Algorithms*, §10.1).
     #[inline]
     pub(crate) fn new(mass: &MassFactor<S, N>, g: &SMatrix<S, C, N>) -> Result<Self, SaddleError> {
-        let mut x = g.transpose();
-        let mut s = SMatrix::<S, C, C>::zeros();
-        match mass {
+        let (x, s) = match mass {
             MassFactor::Cholesky(ldlt) => {
-                for mut column in x.column_iter_mut() {
-                    let mut z = column.clone_owned();
-                    ldlt.forward(&mut z);
-                    column.copy_from(&z);
-                }
-                let inverse = ldlt.inverse_pivots();
-                for i in 0..C {
-                    for j in 0..=i {
-                        let mut sum = S::zero();
-                        for k in 0..N {
-                            sum += x[(k, i)] * inverse[k] * x[(k, j)];
-                        }
-                        s[(i, j)] = sum;
-                        s[(j, i)] = sum;
-                    }
-                }
+                let (mut x, s) = forward_rows(ldlt, g);
                 for mut column in x.column_iter_mut() {
                     let mut z = column.clone_owned();
                     ldlt.backward(&mut z);
                     column.copy_from(&z);
                 }
+                (x, s)
             }
             MassFactor::Lu(_) => {
+                let mut x = g.transpose();
                 for mut column in x.column_iter_mut() {
                     column.copy_from(&mass.solve(&column.clone_owned())?);
                 }
                 let gx = g * x;
-                s = (gx + gx.transpose()) * nalgebra::convert::<f64, S>(0.5);
+                (x, (gx + gx.transpose()) * nalgebra::convert::<f64, S>(0.5))
             }
-        }
+        };
         let factor = judged(&s)?;
         if !all_finite(x.as_slice()) {
             return Err(SaddleError::Singular);
@@ -113,6 +98,35 @@ impl<S: RealField + Copy, const N: usize, const C: usize> Schur<S, N, C> {
             Err(SaddleError::Singular)
         }
     }
+}
+
+/// `Z = L⁻¹ Gᵀ` and `S = Zᵀ D⁻¹ Z = G M⁻¹ Gᵀ` (symmetric positive
+/// semi-definite by construction, no square root), for [`Schur::new`] and
+/// [`solve_saddle`] alike.
+#[inline]
+fn forward_rows<S: RealField + Copy, const N: usize, const C: usize>(
+    ldlt: &Ldlt<S, N>,
+    g: &SMatrix<S, C, N>,
+) -> (SMatrix<S, N, C>, SMatrix<S, C, C>) {
+    let mut z = g.transpose();
+    for mut column in z.column_iter_mut() {
+        let mut c = column.clone_owned();
+        ldlt.forward(&mut c);
+        column.copy_from(&c);
+    }
+    let inverse = ldlt.inverse_pivots();
+    let mut s = SMatrix::<S, C, C>::zeros();
+    for i in 0..C {
+        for j in 0..=i {
+            let mut sum = S::zero();
+            for k in 0..N {
+                sum += z[(k, i)] * inverse[k] * z[(k, j)];
+            }
+            s[(i, j)] = sum;
+            s[(j, i)] = sum;
+        }
+    }
+    (z, s)
 }
 
 /// `S = G M⁻¹ Gᵀ` factored, or [`SaddleError::Singular`] where it is
@@ -179,24 +193,10 @@ pub(crate) fn solve_saddle<S: RealField + Copy, const N: usize, const C: usize>(
     if let MassFactor::Cholesky(ldlt) = mass {
         let mut z = *f;
         ldlt.forward(&mut z);
-        let mut zg = g.transpose();
-        for mut column in zg.column_iter_mut() {
-            let mut c = column.clone_owned();
-            ldlt.forward(&mut c);
-            column.copy_from(&c);
-        }
+        let (zg, s) = forward_rows(ldlt, g);
         let inverse = ldlt.inverse_pivots();
-        let mut s = SMatrix::<S, C, C>::zeros();
         let mut r = *gamma;
         for i in 0..C {
-            for j in 0..=i {
-                let mut sum = S::zero();
-                for k in 0..N {
-                    sum += zg[(k, i)] * inverse[k] * zg[(k, j)];
-                }
-                s[(i, j)] = sum;
-                s[(j, i)] = sum;
-            }
             let mut sum = S::zero();
             for k in 0..N {
                 sum += zg[(k, i)] * inverse[k] * z[k];
