@@ -6,21 +6,31 @@
 //! `cargo bench -p lagrange-studies --bench constraints`
 
 use criterion::{Criterion, criterion_group};
+use lagrange::Lagrangian;
 use lagrange::dynamics::acceleration;
 use lagrange::models::{CartesianPendulum, FourBar, Pendulum, SliderCrank};
-use lagrange::nalgebra::{Vector1, Vector3};
+use lagrange::nalgebra::{SVector, Vector1, Vector3};
 use std::hint::black_box;
 
-/// One right-hand side's result kept from the optimizer by
-/// `std::hint::black_box`, and nothing handed back to criterion: criterion
-/// 0.5's own `black_box` (without its nightly `real_blackbox` feature) reads
-/// what a routine returns byte by byte through volatile loads, about a
-/// hundred of them for this `Result` with its error variant, which took
-/// longer than the Cartesian pendulum's whole right-hand side and grew with
-/// `N`, not with the work measured.
+/// One right-hand side of `model` at `(0, q, v)`, its result kept from the
+/// optimizer by `std::hint::black_box` and nothing handed back to
+/// criterion: criterion 0.5's own `black_box` (without its nightly
+/// `real_blackbox` feature) reads what a routine returns byte by byte
+/// through volatile loads, about a hundred of them for this `Result` with
+/// its error variant, which took longer than the Cartesian pendulum's whole
+/// right-hand side and grew with `N`, not with the work measured.
 #[inline(always)]
-fn rhs<T>(result: T) {
-    black_box(result);
+fn one_rhs<L: Lagrangian<N, Scalar = f64>, const N: usize>(
+    model: &L,
+    q: &SVector<f64, N>,
+    v: &SVector<f64, N>,
+) {
+    let _ = black_box(acceleration(
+        model,
+        black_box(0.0),
+        black_box(q),
+        black_box(v),
+    ));
 }
 
 fn right_hand_sides(c: &mut Criterion) {
@@ -37,24 +47,10 @@ fn right_hand_sides(c: &mut Criterion) {
     let want = 0.7f64.cos() * at - 0.7f64.sin() * 1.3 * 1.3;
     assert!((a[0] - want).abs() < 1e-12, "{} vs {want}", a[0]);
     group.bench_function("pendulum/cartesian_x_y_rod", |b| {
-        b.iter(|| {
-            rhs(acceleration(
-                &cartesian,
-                black_box(0.0),
-                black_box(&q),
-                black_box(&v),
-            ))
-        })
+        b.iter(|| one_rhs(&cartesian, &q, &v))
     });
     group.bench_function("pendulum/minimal_theta", |b| {
-        b.iter(|| {
-            rhs(acceleration(
-                &theta,
-                black_box(0.0),
-                black_box(&qt),
-                black_box(&vt),
-            ))
-        })
+        b.iter(|| one_rhs(&theta, &qt, &vt))
     });
 
     // The slider-crank: three coordinates and two loop constraints against
@@ -67,24 +63,10 @@ fn right_hand_sides(c: &mut Criterion) {
     let am = acceleration(&minimal, 0.0, &qm, &vm).unwrap()[0];
     assert!((a - am).abs() < 1e-9 * am.abs().max(1.0), "{a} vs {am}");
     group.bench_function("slider_crank/redundant_3_coordinates_2_constraints", |b| {
-        b.iter(|| {
-            rhs(acceleration(
-                &crank,
-                black_box(0.0),
-                black_box(&q),
-                black_box(&v),
-            ))
-        })
+        b.iter(|| one_rhs(&crank, &q, &v))
     });
     group.bench_function("slider_crank/minimal_crank_angle", |b| {
-        b.iter(|| {
-            rhs(acceleration(
-                &minimal,
-                black_box(0.0),
-                black_box(&qm),
-                black_box(&vm),
-            ))
-        })
+        b.iter(|| one_rhs(&minimal, &qm, &vm))
     });
 
     // The four-bar: three angles and two loop constraints against the
@@ -97,24 +79,10 @@ fn right_hand_sides(c: &mut Criterion) {
     let am = acceleration(&minimal, 0.0, &qm, &vm).unwrap()[0];
     assert!((a - am).abs() < 1e-9 * am.abs().max(1.0), "{a} vs {am}");
     group.bench_function("four_bar/redundant_3_coordinates_2_constraints", |b| {
-        b.iter(|| {
-            rhs(acceleration(
-                &four_bar,
-                black_box(0.0),
-                black_box(&q),
-                black_box(&v),
-            ))
-        })
+        b.iter(|| one_rhs(&four_bar, &q, &v))
     });
     group.bench_function("four_bar/minimal_crank_angle", |b| {
-        b.iter(|| {
-            rhs(acceleration(
-                &minimal,
-                black_box(0.0),
-                black_box(&qm),
-                black_box(&vm),
-            ))
-        })
+        b.iter(|| one_rhs(&minimal, &qm, &vm))
     });
     group.finish();
 }
@@ -137,8 +105,6 @@ fn main() {
 /// model, the two of a pair interleaved; the best batch and the median.
 mod plain_loops {
     use super::*;
-    use lagrange::Lagrangian;
-    use lagrange::nalgebra::SVector;
     use std::time::Instant;
 
     const CALLS: u32 = 1_000_000;
@@ -152,12 +118,7 @@ mod plain_loops {
     ) -> f64 {
         let start = Instant::now();
         for _ in 0..CALLS {
-            rhs(acceleration(
-                model,
-                black_box(0.0),
-                black_box(q),
-                black_box(v),
-            ));
+            one_rhs(model, q, v);
         }
         start.elapsed().as_secs_f64() * 1e9 / f64::from(CALLS)
     }

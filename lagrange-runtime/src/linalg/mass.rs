@@ -68,12 +68,7 @@ pub fn solve_mass_matrix<S: RealField + Copy, const N: usize>(
     m: &SMatrix<S, N, N>,
     f: &SVector<S, N>,
 ) -> Result<SVector<S, N>, SolveError> {
-    if !all_finite(m.as_slice()) {
-        return Err(SolveError::NonFiniteMassMatrix);
-    }
-    if !all_finite(f.as_slice()) {
-        return Err(SolveError::NonFiniteForcing);
-    }
+    finite_inputs(m, f)?;
     // As `factor_mass_matrix(m)?.solve(f)`, without the factor moved into
     // a `MassFactor` or an `Option` again (each a copy of `L`, 32 kB at 64
     // coordinates) or `M` checked twice.
@@ -101,11 +96,8 @@ pub(crate) fn solve_mass_matrix_in_place<S: RealField + Copy, const N: usize>(
     if N < BY_COLUMNS {
         return Some(solve_mass_matrix(m, f));
     }
-    if !all_finite(m.as_slice()) {
-        return Some(Err(SolveError::NonFiniteMassMatrix));
-    }
-    if !all_finite(f.as_slice()) {
-        return Some(Err(SolveError::NonFiniteForcing));
+    if let Err(error) = finite_inputs(m, f) {
+        return Some(Err(error));
     }
     let mut d = SVector::<S, N>::zeros();
     let mut inverse_d = SVector::<S, N>::zeros();
@@ -118,6 +110,21 @@ pub(crate) fn solve_mass_matrix_in_place<S: RealField + Copy, const N: usize>(
     ldlt::forward(m, &mut x);
     ldlt::backward(m, &inverse_d, &mut x);
     Some(finite_solution(x))
+}
+
+/// `M` and `f` checked for NaN and infinity, `M` first.
+#[inline]
+fn finite_inputs<S: RealField + Copy, const N: usize>(
+    m: &SMatrix<S, N, N>,
+    f: &SVector<S, N>,
+) -> Result<(), SolveError> {
+    if !all_finite(m.as_slice()) {
+        Err(SolveError::NonFiniteMassMatrix)
+    } else if !all_finite(f.as_slice()) {
+        Err(SolveError::NonFiniteForcing)
+    } else {
+        Ok(())
+    }
 }
 
 /// `M` factored once for several right-hand sides, as
@@ -309,8 +316,9 @@ mod tests {
     use super::*;
 
     /// The in-place solve gives the bits and the errors of
-    /// [`solve_mass_matrix`] on either side of [`BY_COLUMNS`], and hands
-    /// back (`None`) exactly where Cholesky refuses `M` or its pivots.
+    /// [`solve_mass_matrix`] on either side of [`BY_COLUMNS`], and from
+    /// there on hands back (`None`) where Cholesky refuses `M` (a zero
+    /// pivot) or its pivots (one of 1e-18 of the largest).
     fn in_place_as_solve<const N: usize>() {
         // A chain-like M: dense, regular, entries of both signs.
         let m = SMatrix::<f64, N, N>::from_fn(|i, j| {
@@ -329,9 +337,31 @@ mod tests {
         let mut owned = singular;
         match solve_mass_matrix_in_place(&mut owned, &f) {
             None => assert!(N >= BY_COLUMNS, "N = {N}"),
-            Some(x) => assert_eq!(bits(x), bits(solve_mass_matrix(&singular, &f))),
+            Some(x) => {
+                assert!(N < BY_COLUMNS, "N = {N}: not handed back");
+                assert_eq!(bits(x), bits(solve_mass_matrix(&singular, &f)));
+            }
         }
         assert_eq!(solve_mass_matrix(&singular, &f), Err(SolveError::Singular));
+
+        // Positive definite, but one pivot below `N ε` of the largest:
+        // Cholesky's factor is refused for LU, which the caller runs on a
+        // fresh `M`.
+        let mut ill = m;
+        ill.row_mut(1).scale_mut(1e-9);
+        ill.column_mut(1).scale_mut(1e-9);
+        let mut owned = ill;
+        match solve_mass_matrix_in_place(&mut owned, &f) {
+            None => assert!(N >= BY_COLUMNS, "N = {N}"),
+            Some(x) => {
+                assert!(N < BY_COLUMNS, "N = {N}: not handed back");
+                assert_eq!(bits(x), bits(solve_mass_matrix(&ill, &f)));
+            }
+        }
+        assert!(Ldlt::new(&ill).is_some_and(|l| {
+            let (smallest, largest) = l.pivot_range();
+            !well_conditioned::<f64, N>((smallest, largest))
+        }));
 
         let mut nan = m;
         nan[(3, 2)] = f64::NAN;
