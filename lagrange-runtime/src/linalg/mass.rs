@@ -331,37 +331,28 @@ mod tests {
         let in_place = solve_mass_matrix_in_place(&mut owned, &f).expect("Cholesky takes it");
         assert_eq!(bits(in_place), bits(solve_mass_matrix(&m, &f)), "N = {N}");
 
+        // Singular (a zero pivot: Cholesky refuses `M`), and positive
+        // definite with one pivot below `N ε` of the largest (its factor
+        // refused for LU): from `BY_COLUMNS` on both are handed back, for
+        // the caller to solve again on a fresh `M`.
         let mut singular = m;
         singular.row_mut(1).fill(0.0);
         singular.column_mut(1).fill(0.0);
-        let mut owned = singular;
-        match solve_mass_matrix_in_place(&mut owned, &f) {
-            None => assert!(N >= BY_COLUMNS, "N = {N}"),
-            Some(x) => {
-                assert!(N < BY_COLUMNS, "N = {N}: not handed back");
-                assert_eq!(bits(x), bits(solve_mass_matrix(&singular, &f)));
-            }
-        }
         assert_eq!(solve_mass_matrix(&singular, &f), Err(SolveError::Singular));
-
-        // Positive definite, but one pivot below `N ε` of the largest:
-        // Cholesky's factor is refused for LU, which the caller runs on a
-        // fresh `M`.
         let mut ill = m;
         ill.row_mut(1).scale_mut(1e-9);
         ill.column_mut(1).scale_mut(1e-9);
-        let mut owned = ill;
-        match solve_mass_matrix_in_place(&mut owned, &f) {
-            None => assert!(N >= BY_COLUMNS, "N = {N}"),
-            Some(x) => {
-                assert!(N < BY_COLUMNS, "N = {N}: not handed back");
-                assert_eq!(bits(x), bits(solve_mass_matrix(&ill, &f)));
+        assert!(Ldlt::new(&ill).is_some_and(|l| !well_conditioned::<f64, N>(l.pivot_range())));
+        for hard in [singular, ill] {
+            let mut owned = hard;
+            match solve_mass_matrix_in_place(&mut owned, &f) {
+                None => assert!(N >= BY_COLUMNS, "N = {N}"),
+                Some(x) => {
+                    assert!(N < BY_COLUMNS, "N = {N}: not handed back");
+                    assert_eq!(bits(x), bits(solve_mass_matrix(&hard, &f)));
+                }
             }
         }
-        assert!(Ldlt::new(&ill).is_some_and(|l| {
-            let (smallest, largest) = l.pivot_range();
-            !well_conditioned::<f64, N>((smallest, largest))
-        }));
 
         let mut nan = m;
         nan[(3, 2)] = f64::NAN;
