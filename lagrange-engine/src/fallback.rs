@@ -171,6 +171,7 @@ impl Stub {
         let actuated = (!actuated.is_empty())
             .then(|| quote!(#[allow(unused_variables, clippy::all)] #actuated));
         let lets = crate::emit::lets_impl(&self.name, &types);
+        let lanes = crate::emit::lanes_impl(&outline, &types);
         let derivatives = METHODS
             .iter()
             .filter(|m| {
@@ -189,7 +190,9 @@ impl Stub {
             #error
             #item
             #[allow(unused_variables, clippy::all)]
-            impl<S: #na::RealField + ::core::marker::Copy> #name<S> {
+            impl<S: #na::SimdRealField + ::core::marker::Copy> #name<S> where
+            S::Element: #na::RealField + ::core::marker::Copy,
+        {
                 #(#consts)*
                 pub #new
                 #(#methods)*
@@ -206,6 +209,7 @@ impl Stub {
             #contacts
             #actuated
             #lets
+            #lanes
             #parameters
         }
     }

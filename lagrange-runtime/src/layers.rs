@@ -24,6 +24,7 @@ const LAYERS: &[&str] = &[
     "driver",      // the run loops, recording, validation
     "integrators", // one method per file
     "stepper",     // frame by frame
+    "ensemble",    // states in SIMD lanes, stepped together
     "contact",     // contacts and friction: modes switched at events
     "analysis",    // small motions
     "identify",    // parameters fitted to measurements

@@ -280,6 +280,7 @@ pub mod constraints;
 pub mod contact;
 mod driver;
 pub mod dynamics;
+pub mod ensemble;
 pub mod error;
 pub mod events;
 pub mod export;
@@ -310,7 +311,7 @@ pub use events::{Event, Events};
 pub use inputs::Actuated;
 pub use integrators::StepMethod;
 pub use integrators::all::*;
-pub use integrators::{AnyIntegrator, Integrator, Method, integrate};
+pub use integrators::{AnyIntegrator, Integrator, LaneStep, Method, integrate};
 pub use model::{Lagrangian, ParameterDerivatives, lets};
 pub use nalgebra;
 /// The ode_solvers crate (feature `ode_solvers`), for its solvers beside

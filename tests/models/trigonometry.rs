@@ -50,12 +50,18 @@ fn a_cosine_of_a_sine_is_computed_after_the_sine() {
 }
 
 #[test]
-fn an_f32_model_takes_f32_sines_and_cosines() {
+fn an_f32_model_takes_sines_and_cosines_rounded_once_from_f64() {
     let model = NestedCosine::<f32>::new();
     let theta = 0.7_f32;
     let f = model.forcing(0.0, &Vector1::new(theta), &Vector1::new(0.0))[0];
-    // f32's own functions; the expression may round differently (a
-    // multiply-add where the target has FMA): within 2 ε of its size.
-    let f0 = theta.sin() + theta.sin().sin() * theta.cos();
+    // The kernel's f64 values rounded to f32 (`lagrange::trig`): here the
+    // f64 functions' rounded once, as no value is near a tie.
+    let (sin, cos) = lagrange::trig::sin_cos(theta);
+    let once = |x: f32| ((x as f64).sin() as f32, (x as f64).cos() as f32);
+    assert_eq!((sin, cos), once(theta));
+    assert_eq!(lagrange::trig::sin(sin), once(sin).0);
+    // The expression may round differently (a multiply-add where the
+    // target has FMA): within 2 ε of its size.
+    let f0 = once(theta).0 + once(once(theta).0).0 * once(theta).1;
     assert!((f - f0).abs() <= 2.0 * f32::EPSILON, "{f} vs {f0}");
 }

@@ -34,3 +34,297 @@ fn a_sweep_in_parallel_equals_the_sweep_in_sequence() {
     let serial: Vec<Vector2<f64>> = angles.iter().map(end).collect();
     assert_eq!(parallel, serial);
 }
+
+/// SIMD lanes (`lagrange::ensemble`): every lane of an `Ensemble` is the
+/// `Stepper` of its own parameters and start, bit for bit, for each
+/// fixed-step method, in `f64` and `f32` lanes; a lane's failure is its
+/// scalar run's, with the lane named.
+mod lanes {
+    use lagrange::ensemble::{AutoF32x8, AutoF64x2, AutoF64x4, Ensemble, EnsembleError, LaneModel};
+    use lagrange::models::{Chain, DoublePendulum};
+    use lagrange::nalgebra::{RealField, SVector, SimdRealField, SimdValue};
+    use lagrange::prelude::*;
+    use lagrange::{IntegrationError, InvalidInput, LaneStep, StepMethod};
+
+    /// Frames that are not multiples of the step, so that every advance
+    /// cuts its interval into equal steps shorter than `h`.
+    const FRAMES: [f64; 4] = [0.0137, 0.2, 0.5003, 0.75];
+
+    /// The ensemble of `lane_model` (lanes built by `lane`), stepped to
+    /// every frame, against one scalar `Stepper` per lane of `scalar`:
+    /// equal bits, or the same error for the lane that fails.
+    fn lanes_match<S, V, L, Sc, M, const N: usize>(
+        lane_model: L,
+        scalar: impl Fn(usize) -> Sc,
+        method: M,
+        starts: impl Fn(usize) -> (SVector<S, N>, SVector<S, N>),
+    ) where
+        S: RealField + Copy,
+        V: SimdRealField<Element = S> + Copy,
+        L: LaneModel<N, Lanes = V>,
+        Sc: Lagrangian<N, Scalar = S>,
+        M: LaneStep<S> + StepMethod<S> + Copy,
+    {
+        let lanes = V::LANES;
+        let (q0, qdot0): (Vec<_>, Vec<_>) = (0..lanes).map(&starts).unzip();
+        let mut ensemble = Ensemble::new(lane_model, method, S::zero(), &q0, &qdot0).unwrap();
+        let mut steppers: Vec<_> = (0..lanes)
+            .map(|lane| {
+                Stepper::new(scalar(lane), method, S::zero(), q0[lane], qdot0[lane]).unwrap()
+            })
+            .collect();
+        let bits = |x: SVector<S, N>| x.map(|v| format!("{v:?}"));
+        for frame in FRAMES {
+            let frame: S = lagrange::nalgebra::convert(frame);
+            ensemble.advance_to(frame).unwrap();
+            for (lane, stepper) in steppers.iter_mut().enumerate() {
+                stepper.advance_to(frame).unwrap();
+                assert_eq!(
+                    bits(ensemble.q(lane)),
+                    bits(*stepper.q()),
+                    "lane {lane}, q at {frame:?}"
+                );
+                assert_eq!(
+                    bits(ensemble.qdot(lane)),
+                    bits(*stepper.qdot()),
+                    "lane {lane}, q̇"
+                );
+            }
+            assert_eq!(ensemble.t(), steppers[0].t());
+        }
+        assert_eq!(
+            ensemble.stats().steps_accepted,
+            steppers[0].stats().steps_accepted
+        );
+        assert_eq!(ensemble.stats().rhs_evals, steppers[0].stats().rhs_evals);
+    }
+
+    /// Lane `i` of a double pendulum ensemble: masses, rods and start
+    /// differ lane by lane (chaotic starts included: a chaotic run
+    /// amplifies any difference in the last bit).
+    fn pendulum_lane<S: RealField + Copy>(i: usize) -> DoublePendulum<S> {
+        let c = lagrange::nalgebra::convert::<f64, S>;
+        let i = i as f64;
+        DoublePendulum::new(
+            c(1.0 + 0.1 * i),
+            c(0.7 + 0.05 * i),
+            c(1.0),
+            c(0.8 + 0.02 * i),
+            c(9.81),
+        )
+    }
+
+    fn pendulum_start<S: RealField + Copy>(i: usize) -> (SVector<S, 2>, SVector<S, 2>) {
+        let c = lagrange::nalgebra::convert::<f64, S>;
+        let i = i as f64;
+        (
+            SVector::from([c(0.3 + 0.35 * i), c(-0.4 + 0.5 * i)]),
+            SVector::from([c(0.1 * i), c(0.5)]),
+        )
+    }
+
+    fn chain_lane<S: RealField + Copy>(i: usize) -> Chain<S> {
+        let c = lagrange::nalgebra::convert::<f64, S>;
+        let i = i as f64;
+        Chain::new(
+            core::array::from_fn(|k| c(1.0 + 0.1 * (k as f64 + i))),
+            core::array::from_fn(|k| c(1.0 - 0.05 * (k as f64) + 0.01 * i)),
+        )
+    }
+
+    fn chain_start<S: RealField + Copy>(i: usize) -> (SVector<S, 5>, SVector<S, 5>) {
+        let c = lagrange::nalgebra::convert::<f64, S>;
+        let i = i as f64;
+        (
+            SVector::from_fn(|k, _| c(0.2 * (k as f64 + 1.0) + 0.3 * i)),
+            SVector::from_fn(|k, _| c(0.1 * i - 0.05 * k as f64)),
+        )
+    }
+
+    /// The double pendulums of `pendulum_lane`, one to a lane.
+    fn pendulum<V: SimdRealField + Copy>() -> DoublePendulum<V>
+    where
+        V::Element: RealField + Copy,
+    {
+        let lanes = (0..V::LANES)
+            .map(pendulum_lane::<V::Element>)
+            .collect::<Vec<_>>();
+        let field = |get: fn(&DoublePendulum<V::Element>) -> V::Element| {
+            let mut v = V::splat(get(&lanes[0]));
+            for (i, lane) in lanes.iter().enumerate() {
+                v.replace(i, get(lane));
+            }
+            v
+        };
+        DoublePendulum::new(
+            field(|p| p.m1),
+            field(|p| p.m2),
+            field(|p| p.l1),
+            field(|p| p.l2),
+            field(|p| p.g),
+        )
+    }
+    /// The chains of `chain_lane`, one to a lane.
+    fn chain<V: SimdRealField + Copy>() -> Chain<V>
+    where
+        V::Element: RealField + Copy,
+    {
+        let lanes = (0..V::LANES)
+            .map(chain_lane::<V::Element>)
+            .collect::<Vec<_>>();
+        let field = |get: &dyn Fn(&Chain<V::Element>, usize) -> V::Element, k: usize| {
+            let mut v = V::splat(get(&lanes[0], k));
+            for (i, lane) in lanes.iter().enumerate() {
+                v.replace(i, get(lane, k));
+            }
+            v
+        };
+        Chain::new(
+            core::array::from_fn(|k| field(&|c, k| c.m[k], k)),
+            core::array::from_fn(|k| field(&|c, k| c.l[k], k)),
+        )
+    }
+    #[test]
+    fn every_lane_is_its_scalar_stepper_bit_for_bit() {
+        let h = 1e-3;
+        lanes_match(
+            pendulum::<AutoF64x4>(),
+            pendulum_lane,
+            Rk4::new(h),
+            pendulum_start,
+        );
+        lanes_match(
+            pendulum::<AutoF64x4>(),
+            pendulum_lane,
+            ExplicitEuler::new(h),
+            pendulum_start,
+        );
+        lanes_match(
+            pendulum::<AutoF64x4>(),
+            pendulum_lane,
+            SymplecticEuler::new(h),
+            pendulum_start,
+        );
+        lanes_match(
+            pendulum::<AutoF64x2>(),
+            pendulum_lane,
+            Rk4::new(h),
+            pendulum_start,
+        );
+        lanes_match(
+            pendulum::<AutoF32x8>(),
+            pendulum_lane,
+            Rk4::new(1e-3_f32),
+            pendulum_start,
+        );
+        lanes_match(
+            pendulum::<AutoF32x8>(),
+            pendulum_lane,
+            SymplecticEuler::new(1e-3_f32),
+            pendulum_start,
+        );
+        lanes_match(chain::<AutoF64x4>(), chain_lane, Rk4::new(h), chain_start);
+        lanes_match(
+            chain::<AutoF64x4>(),
+            chain_lane,
+            SymplecticEuler::new(h),
+            chain_start,
+        );
+        lanes_match(
+            chain::<AutoF32x8>(),
+            chain_lane,
+            Rk4::new(1e-3_f32),
+            chain_start,
+        );
+    }
+
+    /// Lane 2 with a massless tip (`m2 = 0`): `M` is singular there. The
+    /// ensemble names lane 2 with the error its scalar run reports, and
+    /// every lane stays at the start. Lane 1 with a tip of `1e-30`: `M`
+    /// positive definite but too ill-conditioned for Cholesky, solved
+    /// again alone by the scalar solve, with its scalar's answer.
+    #[test]
+    fn a_failing_lane_is_named_with_its_scalar_error() {
+        let mut model = pendulum::<AutoF64x4>();
+        model.m2.replace(2, 0.0);
+        let mut massless = pendulum_lane::<f64>(2);
+        massless.m2 = 0.0;
+        let (q0, qdot0): (Vec<_>, Vec<_>) = (0..4).map(pendulum_start::<f64>).unzip();
+        let method = Rk4::new(1e-3);
+        let mut ensemble = Ensemble::new(model, method, 0.0, &q0, &qdot0).unwrap();
+        let scalar = Stepper::new(massless, method, 0.0, q0[2], qdot0[2])
+            .unwrap()
+            .advance_to(0.1);
+        let lane = ensemble.advance_to(0.1);
+        assert!(
+            matches!(scalar, Err(IntegrationError::SingularMassMatrix { .. })),
+            "{scalar:?}"
+        );
+        assert_eq!(
+            lane,
+            Err(EnsembleError::Lane {
+                lane: 2,
+                error: scalar.unwrap_err()
+            })
+        );
+        assert_eq!(ensemble.t(), 0.0);
+        assert_eq!((ensemble.q(3), ensemble.qdot(3)), (q0[3], qdot0[3]));
+
+        // Its mass and state replaced, the lane goes on with the others.
+        ensemble
+            .model_mut()
+            .m2
+            .replace(2, pendulum_lane::<f64>(2).m2);
+        ensemble.set_lane(2, q0[2], qdot0[2]).unwrap();
+        ensemble.advance_to(0.1).unwrap();
+
+        let mut tiny = pendulum::<AutoF64x4>();
+        tiny.m2.replace(1, 1e-30);
+        let mut ensemble = Ensemble::new(tiny, method, 0.0, &q0, &qdot0).unwrap();
+        let mut light = pendulum_lane::<f64>(1);
+        light.m2 = 1e-30;
+        let mut scalar = Stepper::new(light, method, 0.0, q0[1], qdot0[1]).unwrap();
+        let (alone, together) = (scalar.advance_to(0.1), ensemble.advance_to(0.1));
+        match alone {
+            Ok(()) => {
+                together.unwrap();
+                let bits = |x: SVector<f64, 2>| x.map(f64::to_bits);
+                assert_eq!(bits(ensemble.q(1)), bits(*scalar.q()));
+                assert_eq!(bits(ensemble.qdot(1)), bits(*scalar.qdot()));
+            }
+            Err(error) => assert_eq!(together, Err(EnsembleError::Lane { lane: 1, error })),
+        }
+    }
+
+    /// The start and the settings are refused as a `Stepper` refuses them,
+    /// naming the lane; a wrong number of states is refused too.
+    #[test]
+    fn starts_and_settings_are_checked() {
+        let model = pendulum::<AutoF64x4>();
+        let (mut q0, qdot0): (Vec<_>, Vec<_>) = (0..4).map(pendulum_start::<f64>).unzip();
+        let method = Rk4::new(1e-3);
+        assert_eq!(
+            Ensemble::new(model, method, 0.0, &q0[..3], &qdot0[..3]).err(),
+            Some(EnsembleError::LaneCount { lanes: 4, given: 3 })
+        );
+        assert_eq!(
+            Ensemble::new(model, Rk4::new(-1.0), 0.0, &q0, &qdot0).err(),
+            Some(EnsembleError::InvalidInput(InvalidInput::InvalidStepSize {
+                h: -1.0
+            }))
+        );
+        q0[3][1] = f64::NAN;
+        let Some(EnsembleError::Lane { lane: 3, error }) =
+            Ensemble::new(model, method, 0.0, &q0, &qdot0).err()
+        else {
+            panic!("lane 3 refused");
+        };
+        assert!(matches!(
+            error,
+            IntegrationError::InvalidInput(InvalidInput::NonFiniteInitialPosition {
+                coordinate: "theta2",
+                ..
+            })
+        ));
+    }
+}

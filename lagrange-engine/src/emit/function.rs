@@ -288,28 +288,32 @@ impl<'a> FnEmitter<'a> {
                     let b = self.operand(b, Prec::Sum);
                     let e = self.operand(e, Prec::Sum);
                     let na = nalgebra();
-                    (quote!(#na::ComplexField::powf(#b, #e)), Prec::Atom)
+                    (quote!(#na::SimdComplexField::simd_powf(#b, #e)), Prec::Atom)
                 }
             },
             Node::Func(f, a) => {
                 let a = self.operand(a, Prec::Sum);
-                let name = format_ident!("{}", f.name());
                 // Sines and cosines through the runtime's inline kernel
-                // (`lagrange::trig`), the rest through nalgebra.
-                let path = match f {
-                    Func::Sin | Func::Cos => trig(),
+                // (`lagrange::trig`), the rest through nalgebra's SIMD
+                // traits: the scalar's own function for a scalar, lane by
+                // lane for SIMD lanes.
+                let call = match f {
+                    Func::Sin | Func::Cos => {
+                        let (path, name) = (trig(), format_ident!("{}", f.name()));
+                        quote!(#path::#name)
+                    }
                     _ => {
-                        let na = nalgebra();
-                        quote!(#na::ComplexField)
+                        let (na, name) = (nalgebra(), format_ident!("simd_{}", f.name()));
+                        quote!(#na::SimdComplexField::#name)
                     }
                 };
-                (quote!(#path::#name(#a)), Prec::Atom)
+                (quote!(#call(#a)), Prec::Atom)
             }
             Node::Atan2(y, x) => {
                 let y = self.operand(y, Prec::Sum);
                 let x = self.operand(x, Prec::Sum);
                 let na = nalgebra();
-                (quote!(#na::RealField::atan2(#y, #x)), Prec::Atom)
+                (quote!(#na::SimdRealField::simd_atan2(#y, #x)), Prec::Atom)
             }
         }
     }
@@ -392,14 +396,14 @@ impl<'a> FnEmitter<'a> {
         }
         let x = self.operand(b, Prec::Sum);
         if v == 0.5 {
-            return (quote!(#na::ComplexField::sqrt(#x)), Prec::Atom);
+            return (quote!(#na::SimdComplexField::simd_sqrt(#x)), Prec::Atom);
         }
         if v.fract() == 0.0 && v <= i32::MAX as f64 {
             let n = Literal::i32_unsuffixed(v as i32);
-            return (quote!(#na::ComplexField::powi(#x, #n)), Prec::Atom);
+            return (quote!(#na::SimdComplexField::simd_powi(#x, #n)), Prec::Atom);
         }
         let e = self.constant(v);
-        (quote!(#na::ComplexField::powf(#x, #e)), Prec::Atom)
+        (quote!(#na::SimdComplexField::simd_powf(#x, #e)), Prec::Atom)
     }
 
     /// The bindings this function needs, in order: symbols, constants, lets.
@@ -491,10 +495,10 @@ impl<'a> FnEmitter<'a> {
         if let Some(fma) = &self.fma {
             out.extend(quote! {
                 #[inline(always)]
-                fn #fma<S: #na::RealField + ::core::marker::Copy>(a: S, b: S, c: S) -> S {
+                fn #fma<S: #na::SimdRealField + ::core::marker::Copy>(a: S, b: S, c: S) -> S {
                     #[cfg(target_feature = "fma")]
                     {
-                        #na::ComplexField::mul_add(a, b, c)
+                        #na::SimdComplexField::simd_mul_add(a, b, c)
                     }
                     #[cfg(not(target_feature = "fma"))]
                     {

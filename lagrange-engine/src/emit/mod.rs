@@ -86,6 +86,7 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
     let actuated = actuated_impl(&cx);
     let contacts = contacts_impl(&cx);
     let lets = lets_impl(cx.outline.name, &cx.types);
+    let lanes = lanes_impl(&cx.outline, &cx.types);
     // The constraints' parameter derivatives stay inherent: the trait
     // (and the sensitivities over it) is of models in minimal coordinates.
     let derivatives =
@@ -105,7 +106,36 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
         #contacts
         #actuated
         #lets
+        #lanes
         #parameters
+    }
+}
+
+/// `impl LaneModel<N>`: `M` and `f` on SIMD lanes (the inherent
+/// `mass_matrix_and_forcing`, whose bound is `SimdRealField`), what an
+/// `Ensemble` steps. Only for a model in minimal coordinates with no
+/// inputs and no contacts: the ensemble integrates `M q̈ = f` alone, and
+/// would leave out a constraint's, an input's or a contact's part in
+/// silence. The same for the error stub, whose inherent method it calls.
+pub(crate) fn lanes_impl(outline: &Outline, types: &Types) -> TokenStream {
+    if outline.constraints > 0 || outline.contacts > 0 || !outline.inputs.is_empty() {
+        return TokenStream::new();
+    }
+    let na = nalgebra();
+    let name = outline.name;
+    let (n, vector, matrix) = (&types.n, &types.vector, &types.matrix);
+    quote! {
+        impl<S: #na::SimdRealField + ::core::marker::Copy> ::lagrange::ensemble::LaneModel<#n> for #name<S>
+        where
+            S::Element: #na::RealField + ::core::marker::Copy,
+        {
+            type Lanes = S;
+            const COORDINATES: [&'static str; #n] = Self::COORDINATES;
+            #[inline]
+            fn mass_matrix_and_forcing(&self, t: S, q: &#vector, qdot: &#vector) -> (#matrix, #vector) {
+                #name::mass_matrix_and_forcing(self, t, q, qdot)
+            }
+        }
     }
 }
 
@@ -166,7 +196,9 @@ fn inherent_impl(cx: &Context, texts: (&str, &str)) -> TokenStream {
     let let_value = api::let_value(&cx.types);
     quote! {
         #[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]
-        impl<S: #na::RealField + ::core::marker::Copy> #name<S> {
+        impl<S: #na::SimdRealField + ::core::marker::Copy> #name<S> where
+            S::Element: #na::RealField + ::core::marker::Copy,
+        {
             #(#consts)*
 
             #[doc = #new_doc]

@@ -13,7 +13,10 @@ pub struct DoublePendulum<S = f64> {
     pub g: S,
 }
 #[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]
-impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S> {
+impl<S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy> DoublePendulum<S>
+where
+    S::Element: ::lagrange::nalgebra::RealField + ::core::marker::Copy,
+{
     /// Number of degrees of freedom (generalized coordinates).
     pub const DOF: usize = 2;
     /// Names of the generalized coordinates, in the order of `q`.
@@ -44,13 +47,13 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
         let [theta1, theta2] = [q[0], q[1]];
         let Self { m1, m2, l1, l2, .. } = *self;
         #[inline(always)]
-        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+        fn fma<S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy>(
             a: S,
             b: S,
             c: S,
         ) -> S {
             #[cfg(target_feature = "fma")]
-            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            { ::lagrange::nalgebra::SimdComplexField::simd_mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let ([e0, e2], [e1, e3]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
@@ -75,13 +78,13 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
         );
         let Self { m1, m2, l1, l2, g, .. } = *self;
         #[inline(always)]
-        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+        fn fma<S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy>(
             a: S,
             b: S,
             c: S,
         ) -> S {
             #[cfg(target_feature = "fma")]
-            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            { ::lagrange::nalgebra::SimdComplexField::simd_mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let ([e0, e2], [e1, e3]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
@@ -110,13 +113,13 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
         );
         let Self { m1, m2, l1, l2, g, .. } = *self;
         #[inline(always)]
-        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+        fn fma<S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy>(
             a: S,
             b: S,
             c: S,
         ) -> S {
             #[cfg(target_feature = "fma")]
-            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            { ::lagrange::nalgebra::SimdComplexField::simd_mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let e0 = m1 + m2;
@@ -154,13 +157,13 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
         );
         let Self { m1, m2, l1, l2, .. } = *self;
         #[inline(always)]
-        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+        fn fma<S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy>(
             a: S,
             b: S,
             c: S,
         ) -> S {
             #[cfg(target_feature = "fma")]
-            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            { ::lagrange::nalgebra::SimdComplexField::simd_mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let k0: S = ::lagrange::nalgebra::convert::<f64, S>(0.5f64);
@@ -175,13 +178,13 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
         let [theta1, theta2] = [q[0], q[1]];
         let Self { m1, m2, l1, l2, g, .. } = *self;
         #[inline(always)]
-        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+        fn fma<S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy>(
             a: S,
             b: S,
             c: S,
         ) -> S {
             #[cfg(target_feature = "fma")]
-            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            { ::lagrange::nalgebra::SimdComplexField::simd_mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let ([_, _], [e0, e1]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
@@ -201,13 +204,13 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
         );
         let Self { m1, m2, l1, l2, g, .. } = *self;
         #[inline(always)]
-        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+        fn fma<S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy>(
             a: S,
             b: S,
             c: S,
         ) -> S {
             #[cfg(target_feature = "fma")]
-            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            { ::lagrange::nalgebra::SimdComplexField::simd_mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let k0: S = ::lagrange::nalgebra::convert::<f64, S>(0.5f64);
@@ -242,13 +245,13 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
         );
         let Self { m1, m2, l1, l2, .. } = *self;
         #[inline(always)]
-        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+        fn fma<S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy>(
             a: S,
             b: S,
             c: S,
         ) -> S {
             #[cfg(target_feature = "fma")]
-            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            { ::lagrange::nalgebra::SimdComplexField::simd_mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let ([e0, e2], [e1, e3]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
@@ -278,13 +281,13 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
         );
         let Self { m1, m2, l1, l2, g, .. } = *self;
         #[inline(always)]
-        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+        fn fma<S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy>(
             a: S,
             b: S,
             c: S,
         ) -> S {
             #[cfg(target_feature = "fma")]
-            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            { ::lagrange::nalgebra::SimdComplexField::simd_mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let ([e0, e2], [e1, e3]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
@@ -317,13 +320,13 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
         let [theta1, theta2] = [q[0], q[1]];
         let Self { l1, l2, .. } = *self;
         #[inline(always)]
-        fn fma<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy>(
+        fn fma<S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy>(
             a: S,
             b: S,
             c: S,
         ) -> S {
             #[cfg(target_feature = "fma")]
-            { ::lagrange::nalgebra::ComplexField::mul_add(a, b, c) }
+            { ::lagrange::nalgebra::SimdComplexField::simd_mul_add(a, b, c) }
             #[cfg(not(target_feature = "fma"))] { a * b + c }
         }
         let ([e0, e2], [e1, e3]) = ::lagrange::trig::sin_cos_array([theta1, theta2]);
@@ -445,5 +448,23 @@ impl<
         qdot: &::lagrange::nalgebra::SVector<S, 2>,
     ) -> [S; 4] {
         DoublePendulum::lets(self, t, q, qdot)
+    }
+}
+impl<
+    S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy,
+> ::lagrange::ensemble::LaneModel<2> for DoublePendulum<S>
+where
+    S::Element: ::lagrange::nalgebra::RealField + ::core::marker::Copy,
+{
+    type Lanes = S;
+    const COORDINATES: [&'static str; 2] = Self::COORDINATES;
+    #[inline]
+    fn mass_matrix_and_forcing(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> (::lagrange::nalgebra::SMatrix<S, 2, 2>, ::lagrange::nalgebra::SVector<S, 2>) {
+        DoublePendulum::mass_matrix_and_forcing(self, t, q, qdot)
     }
 }

@@ -62,15 +62,17 @@ fn fused_multiply_add_only_where_the_target_has_it() {
         .unwrap();
     let body = mf.block.to_token_stream().to_string();
     assert!(mentions(&body, "fma") > 10, "{body}");
-    // One `mul_add`, in the helper, under the cfg; the other branch plain.
-    assert_eq!(mentions(&body, "mul_add"), 1, "{body}");
+    // One `simd_mul_add` (a scalar's own `mul_add`, lane by lane for SIMD
+    // lanes), in the helper, under the cfg; the other branch plain.
+    assert_eq!(mentions(&body, "simd_mul_add"), 1, "{body}");
     let cfg = body
         .find("# [cfg (target_feature = \"fma\")]")
         .expect("the cfg");
     let not_cfg = body
         .find("# [cfg (not (target_feature = \"fma\"))] { a * b + c }")
         .expect("the plain branch");
-    assert!(cfg < body.find("mul_add").unwrap() && body.find("mul_add").unwrap() < not_cfg);
+    let call = body.find("simd_mul_add").unwrap();
+    assert!(cfg < call && call < not_cfg);
 }
 
 #[test]

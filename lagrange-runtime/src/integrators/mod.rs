@@ -47,7 +47,7 @@ mod implicit_rk;
 mod registry;
 mod stages;
 
-use nalgebra::{RealField, SVector};
+use nalgebra::{RealField, SVector, SimdRealField};
 
 use crate::driver::invalid;
 use crate::driver::run::{Advanced, Run, Walk, integrate as drive};
@@ -179,6 +179,34 @@ pub trait StepMethod<S: RealField + Copy> {
     /// iterations).
     #[doc(hidden)]
     fn walker<const N: usize>(&self) -> Result<Self::Walker<N>, InvalidInput<S>>;
+}
+
+/// A fixed-step explicit method that also steps SIMD lanes of states, all
+/// at one time: what an [`Ensemble`](crate::ensemble::Ensemble) runs
+/// ([`ExplicitEuler`](all::ExplicitEuler),
+/// [`SymplecticEuler`](all::SymplecticEuler), [`Rk4`](all::Rk4)). Each
+/// method's scalar runs take the same step with `V = S`, so that a lane's
+/// values are, bit for bit, those its scalar run would get. It cannot be
+/// implemented outside this crate.
+pub trait LaneStep<S: RealField + Copy>: StepMethod<S> {
+    /// The step bound `h`, checked as the scalar runs check it, and the
+    /// budget of steps per call.
+    #[doc(hidden)]
+    fn lane_course(&self) -> Result<(S, usize), InvalidInput<S>>;
+
+    /// One step of length `h` from `t`, for every lane of `(q, q̇)`, the
+    /// accelerations from `a(t, q, q̇)`.
+    #[doc(hidden)]
+    fn lane_step<V, E, A, const N: usize>(
+        &self,
+        t: S,
+        state: (&SVector<V, N>, &SVector<V, N>),
+        h: S,
+        a: A,
+    ) -> Result<(SVector<V, N>, SVector<V, N>), E>
+    where
+        V: SimdRealField<Element = S> + Copy,
+        A: FnMut(S, &SVector<V, N>, &SVector<V, N>) -> Result<SVector<V, N>, E>;
 }
 
 /// A method that integrates a [`Lagrangian`] model and samples it at

@@ -1,8 +1,8 @@
 //! The classic fourth-order Runge–Kutta method with a fixed step.
 
-use nalgebra::{RealField, SVector};
+use nalgebra::{RealField, SVector, SimdRealField};
 
-use super::StepMethod;
+use super::{LaneStep, StepMethod};
 use crate::driver::fixed::{FixedStep, FixedWalk};
 use crate::driver::{check_step_size, Recorder};
 use crate::error::{IntegrationError, InvalidInput};
@@ -92,19 +92,58 @@ pub(crate) fn rk4_step<L: Lagrangian<N>, const N: usize>(
     qdot: &SVector<L::Scalar, N>,
     h: L::Scalar,
 ) -> Result<State<L::Scalar, N>, IntegrationError<L::Scalar, N>> {
-    let two: L::Scalar = nalgebra::convert(2.0);
-    let half = h / two;
-    let sixth = h / nalgebra::convert(6.0);
+    rk4(t, (q, qdot), h, |t, q, qdot| rec.rhs(model, t, q, qdot))
+}
 
-    let (v1, a1) = (*qdot, rec.rhs(model, t, q, qdot)?);
-    let (q2, v2) = (q + v1 * half, qdot + a1 * half);
-    let a2 = rec.rhs(model, t + half, &q2, &v2)?;
-    let (q3, v3) = (q + v2 * half, qdot + a2 * half);
-    let a3 = rec.rhs(model, t + half, &q3, &v3)?;
-    let (q4, v4) = (q + v3 * h, qdot + a3 * h);
-    let a4 = rec.rhs(model, t + h, &q4, &v4)?;
+impl<S: RealField + Copy> LaneStep<S> for Rk4<S> {
+    fn lane_course(&self) -> Result<(S, usize), InvalidInput<S>> {
+        check_step_size(self.h)?;
+        Ok((self.h, self.max_steps))
+    }
 
-    let q_next = q + (v1 + (v2 + v3) * two + v4) * sixth;
-    let qdot_next = qdot + (a1 + (a2 + a3) * two + a4) * sixth;
+    #[inline]
+    fn lane_step<V, E, A, const N: usize>(
+        &self,
+        t: S,
+        state: (&SVector<V, N>, &SVector<V, N>),
+        h: S,
+        a: A,
+    ) -> Result<(SVector<V, N>, SVector<V, N>), E>
+    where
+        V: SimdRealField<Element = S> + Copy,
+        A: FnMut(S, &SVector<V, N>, &SVector<V, N>) -> Result<SVector<V, N>, E>,
+    {
+        rk4(t, state, h, a)
+    }
+}
+
+/// The step on scalars (`V = S`) or SIMD lanes of them: the coefficients
+/// computed in `S`, then the same arithmetic on every lane.
+#[inline]
+fn rk4<S, V, E, const N: usize>(
+    t: S,
+    (q, qdot): (&SVector<V, N>, &SVector<V, N>),
+    h: S,
+    mut a: impl FnMut(S, &SVector<V, N>, &SVector<V, N>) -> Result<SVector<V, N>, E>,
+) -> Result<(SVector<V, N>, SVector<V, N>), E>
+where
+    S: RealField + Copy,
+    V: SimdRealField<Element = S> + Copy,
+{
+    let two: S = nalgebra::convert(2.0);
+    let (half, sixth) = (h / two, h / nalgebra::convert(6.0));
+    let lanes = V::splat;
+    let (two_v, half_v, h_v, sixth_v) = (lanes(two), lanes(half), lanes(h), lanes(sixth));
+
+    let (v1, a1) = (*qdot, a(t, q, qdot)?);
+    let (q2, v2) = (q + v1 * half_v, qdot + a1 * half_v);
+    let a2 = a(t + half, &q2, &v2)?;
+    let (q3, v3) = (q + v2 * half_v, qdot + a2 * half_v);
+    let a3 = a(t + half, &q3, &v3)?;
+    let (q4, v4) = (q + v3 * h_v, qdot + a3 * h_v);
+    let a4 = a(t + h, &q4, &v4)?;
+
+    let q_next = q + (v1 + (v2 + v3) * two_v + v4) * sixth_v;
+    let qdot_next = qdot + (a1 + (a2 + a3) * two_v + a4) * sixth_v;
     Ok((q_next, qdot_next))
 }

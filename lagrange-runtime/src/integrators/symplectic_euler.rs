@@ -1,8 +1,8 @@
 //! Semi-implicit (symplectic) Euler with a fixed step.
 
-use nalgebra::{RealField, SVector};
+use nalgebra::{RealField, SVector, SimdRealField};
 
-use super::StepMethod;
+use super::{LaneStep, StepMethod};
 use crate::driver::fixed::{FixedStep, FixedWalk};
 use crate::driver::{check_step_size, Recorder};
 use crate::error::{IntegrationError, InvalidInput};
@@ -111,6 +111,44 @@ pub(crate) fn symplectic_step<L: Lagrangian<N>, const N: usize>(
     qdot: &SVector<L::Scalar, N>,
     h: L::Scalar,
 ) -> Result<State<L::Scalar, N>, IntegrationError<L::Scalar, N>> {
-    let qdot_next = qdot + rec.rhs(model, t, q, qdot)? * h;
-    Ok((q + qdot_next * h, qdot_next))
+    symplectic(t, (q, qdot), h, |t, q, qdot| rec.rhs(model, t, q, qdot))
+}
+
+impl<S: RealField + Copy> LaneStep<S> for SymplecticEuler<S> {
+    fn lane_course(&self) -> Result<(S, usize), InvalidInput<S>> {
+        check_step_size(self.h)?;
+        Ok((self.h, self.max_steps))
+    }
+
+    #[inline]
+    fn lane_step<V, E, A, const N: usize>(
+        &self,
+        t: S,
+        state: (&SVector<V, N>, &SVector<V, N>),
+        h: S,
+        a: A,
+    ) -> Result<(SVector<V, N>, SVector<V, N>), E>
+    where
+        V: SimdRealField<Element = S> + Copy,
+        A: FnMut(S, &SVector<V, N>, &SVector<V, N>) -> Result<SVector<V, N>, E>,
+    {
+        symplectic(t, state, h, a)
+    }
+}
+
+/// The step on scalars (`V = S`) or SIMD lanes of them.
+#[inline]
+fn symplectic<S, V, E, const N: usize>(
+    t: S,
+    (q, qdot): (&SVector<V, N>, &SVector<V, N>),
+    h: S,
+    mut a: impl FnMut(S, &SVector<V, N>, &SVector<V, N>) -> Result<SVector<V, N>, E>,
+) -> Result<(SVector<V, N>, SVector<V, N>), E>
+where
+    S: RealField + Copy,
+    V: SimdRealField<Element = S> + Copy,
+{
+    let h_v = V::splat(h);
+    let qdot_next = qdot + a(t, q, qdot)? * h_v;
+    Ok((q + qdot_next * h_v, qdot_next))
 }

@@ -12,7 +12,7 @@
 //! positive definite matrices it accepts (Higham, *Accuracy and Stability
 //! of Numerical Algorithms*, §10.1); the pivots `dⱼ` are Cholesky's `Lⱼⱼ²`.
 
-use nalgebra::{RealField, SMatrix, SVector};
+use nalgebra::{RealField, SMatrix, SVector, SimdRealField};
 
 /// From this many coordinates on, `L D Lᵀ` is factored (and `L z = b`
 /// solved) column by column; below it, row by row. Measured on the 2-core
@@ -66,32 +66,10 @@ impl<S: RealField + Copy, const N: usize> Ldlt<S, N> {
 
     #[inline]
     fn by_rows(m: &SMatrix<S, N, N>) -> Option<Self> {
-        let mut l = SMatrix::<S, N, N>::zeros();
-        let mut d = SVector::<S, N>::zeros();
-        let mut inverse_d = SVector::<S, N>::zeros();
-        for j in 0..N {
-            // w[k] = L_jk d_k, reused by every row below.
-            let mut w = SVector::<S, N>::zeros();
-            let mut pivot = m[(j, j)];
-            for k in 0..j {
-                w[k] = l[(j, k)] * d[k];
-                pivot -= l[(j, k)] * w[k];
-            }
-            // Not `pivot <= 0`: a NaN pivot is refused too.
-            if pivot.partial_cmp(&S::zero()) != Some(core::cmp::Ordering::Greater) {
-                return None;
-            }
-            let inverse = S::one() / pivot;
-            d[j] = pivot;
-            inverse_d[j] = inverse;
-            for i in j + 1..N {
-                let mut s = m[(i, j)];
-                for k in 0..j {
-                    s -= l[(i, k)] * w[k];
-                }
-                l[(i, j)] = s * inverse;
-            }
-        }
+        // Not `pivot <= 0`: a NaN pivot is refused too.
+        let refused =
+            |pivot: S| pivot.partial_cmp(&S::zero()) != Some(core::cmp::Ordering::Greater);
+        let (l, d, inverse_d) = factor_rows(m, refused)?;
         Some(Self { l, d, inverse_d })
     }
 
@@ -167,6 +145,46 @@ impl<S: RealField + Copy, const N: usize> Ldlt<S, N> {
     }
 }
 
+/// The row form of [`Ldlt::new`]: `L` (its strict lower triangle), the
+/// pivots and their reciprocals, for scalars or SIMD lanes of them; `None`
+/// as soon as `refused` refuses a pivot. The scalar factorization refuses
+/// a pivot that is not positive; lanes refuse none, and their caller
+/// judges each lane's pivots after (an [`Ensemble`](crate::ensemble)):
+/// the same arithmetic, so each lane's factor is its scalar's.
+#[inline]
+#[allow(clippy::type_complexity)]
+pub(crate) fn factor_rows<S: SimdRealField + Copy, const N: usize>(
+    m: &SMatrix<S, N, N>,
+    mut refused: impl FnMut(S) -> bool,
+) -> Option<(SMatrix<S, N, N>, SVector<S, N>, SVector<S, N>)> {
+    let mut l = SMatrix::<S, N, N>::zeros();
+    let mut d = SVector::<S, N>::zeros();
+    let mut inverse_d = SVector::<S, N>::zeros();
+    for j in 0..N {
+        // w[k] = L_jk d_k, reused by every row below.
+        let mut w = SVector::<S, N>::zeros();
+        let mut pivot = m[(j, j)];
+        for k in 0..j {
+            w[k] = l[(j, k)] * d[k];
+            pivot -= l[(j, k)] * w[k];
+        }
+        if refused(pivot) {
+            return None;
+        }
+        let inverse = S::one() / pivot;
+        d[j] = pivot;
+        inverse_d[j] = inverse;
+        for i in j + 1..N {
+            let mut s = m[(i, j)];
+            for k in 0..j {
+                s -= l[(i, k)] * w[k];
+            }
+            l[(i, j)] = s * inverse;
+        }
+    }
+    Some((l, d, inverse_d))
+}
+
 /// The column form of [`Ldlt::new`] on `M` in place: the strict lower
 /// triangle of `l` becomes `L`'s, `d` and `inverse_d` the pivots and their
 /// reciprocals; `false` where a pivot is not positive (or NaN). The
@@ -231,7 +249,7 @@ pub(crate) fn factor_in_place<S: RealField + Copy, const N: usize>(
 
 /// `x ← L⁻¹ x` with the strict lower triangle of `l` (see [`Ldlt::forward`]).
 #[inline]
-pub(crate) fn forward<S: RealField + Copy, const N: usize>(
+pub(crate) fn forward<S: SimdRealField + Copy, const N: usize>(
     l: &SMatrix<S, N, N>,
     x: &mut SVector<S, N>,
 ) {
@@ -257,7 +275,7 @@ pub(crate) fn forward<S: RealField + Copy, const N: usize>(
 /// `x ← L⁻ᵀ D⁻¹ x` with the strict lower triangle of `l` and `D⁻¹`'s
 /// diagonal (see [`Ldlt::backward`]).
 #[inline]
-pub(crate) fn backward<S: RealField + Copy, const N: usize>(
+pub(crate) fn backward<S: SimdRealField + Copy, const N: usize>(
     l: &SMatrix<S, N, N>,
     inverse_d: &SVector<S, N>,
     x: &mut SVector<S, N>,

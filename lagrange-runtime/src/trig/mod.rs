@@ -33,8 +33,13 @@
 //! Built for a CPU with fused multiply-add (`-C target-cpu=native`), the
 //! polynomials use it and the last bit may differ from the default build.
 //!
-//! Other scalars (`f32`, dual numbers, any `RealField`) go to their own
-//! [`ComplexField::sin_cos`]: the choice is made at compile time, by type.
+//! An `f32` takes the same kernel, computed in `f64` and rounded once to
+//! `f32` (within half a unit in the last place of `f32`, but for a double
+//! rounding in rare ties). SIMD lanes of `f64` or `f32` (nalgebra's
+//! `SimdRealField`, what an [`Ensemble`](crate::ensemble) evaluates) take
+//! it lane by lane, each lane's value the one its scalar would get. Other
+//! scalars (dual numbers, any other `RealField` or `SimdRealField`) go to
+//! their own `simd_sin_cos`: the choice is made at compile time, by type.
 //!
 //! ```
 //! let (s, c) = lagrange_runtime::trig::sin_cos(0.5_f64);
@@ -48,47 +53,108 @@ mod kernel;
 mod tests;
 
 use core::any::TypeId;
-use nalgebra::{ComplexField, RealField};
+use nalgebra::{RealField, SimdComplexField, SimdRealField};
+use simba::scalar::SupersetOf;
 
-/// `(sin x, cos x)`; for `f64` by the inline kernel (module docs): the
-/// one-lane [`sin_cos_array`].
+/// Whether the kernel answers for `S`: lanes (one or more) of `f64` or
+/// `f32`. An `f32` is computed in `f64` and rounded once: the same value
+/// alone or in a lane.
 #[inline(always)]
-pub fn sin_cos<S: RealField + Copy>(x: S) -> (S, S) {
+fn by_kernel<S: SimdRealField>() -> bool
+where
+    S::Element: RealField,
+{
+    let element = TypeId::of::<S::Element>();
+    element == TypeId::of::<f64>() || element == TypeId::of::<f32>()
+}
+
+/// `(sin x, cos x)`; for `f64` and `f32` by the inline kernel (module
+/// docs): the one-lane [`sin_cos_array`].
+#[inline(always)]
+pub fn sin_cos<S: SimdRealField + Copy>(x: S) -> (S, S)
+where
+    S::Element: RealField + Copy,
+{
     let ([s], [c]) = sin_cos_array([x]);
     (s, c)
 }
 
-/// `(sin xᵢ, cos xᵢ)` of several angles at once: for `f64` the kernel on
-/// all lanes together, which the compiler vectorizes (two or four lanes to
-/// an instruction). The generated code calls it with every angle whose
-/// sine and cosine it needs, where they are all known.
+/// `(sin xᵢ, cos xᵢ)` of several angles at once: for `f64` and `f32` the
+/// kernel on all lanes together, which the compiler vectorizes (two or
+/// four lanes to an instruction). The generated code calls it with every
+/// angle whose sine and cosine it needs, where they are all known. For
+/// SIMD lanes of them (`f64x4`, …, what an [`Ensemble`](crate::ensemble)
+/// evaluates), the kernel runs on four lanes at a time, every lane of
+/// every angle: each lane's value is the one its scalar would get.
 #[inline(always)]
-pub fn sin_cos_array<S: RealField + Copy, const K: usize>(x: [S; K]) -> ([S; K], [S; K]) {
-    // Decided per type at compile time: `TypeId`s of two known types are
+pub fn sin_cos_array<S: SimdRealField + Copy, const K: usize>(x: [S; K]) -> ([S; K], [S; K])
+where
+    S::Element: RealField + Copy,
+{
+    // Decided per type at compile time: `TypeId`s of known types are
     // constants, and for `f64` both conversions are the identity.
-    if TypeId::of::<S>() == TypeId::of::<f64>() {
-        let (s, c) = kernel::sin_cos_many::<kernel::Native, K>(x.map(|x| x.to_subset_unchecked()));
-        return (s.map(|s| S::from_subset(&s)), c.map(|c| S::from_subset(&c)));
+    if !by_kernel::<S>() {
+        let sc = x.map(SimdComplexField::simd_sin_cos);
+        return (sc.map(|(s, _)| s), sc.map(|(_, c)| c));
     }
-    let sc = x.map(ComplexField::sin_cos);
-    (sc.map(|(s, _)| s), sc.map(|(_, c)| c))
+    let wide = |v: S::Element| -> f64 { v.to_subset_unchecked() };
+    let narrow = |v: f64| -> S::Element { S::Element::from_subset(&v) };
+    if S::LANES == 1 {
+        let (s, c) = kernel::sin_cos_many::<kernel::Native, K>(x.map(|x| wide(x.extract(0))));
+        return (
+            s.map(|s| S::splat(narrow(s))),
+            c.map(|c| S::splat(narrow(c))),
+        );
+    }
+    // Every (angle, lane) in turn, four to a pass of the kernel; the last
+    // pass filled out with zeros.
+    let (mut sin, mut cos) = (x, x);
+    let total = K * S::LANES;
+    for start in (0..total).step_by(LANE_PASS) {
+        let at = |j: usize| ((start + j) / S::LANES, (start + j) % S::LANES);
+        let args: [f64; LANE_PASS] = core::array::from_fn(|j| {
+            let (k, lane) = at(j);
+            if start + j < total {
+                wide(x[k].extract(lane))
+            } else {
+                0.0
+            }
+        });
+        let (s, c) = kernel::sin_cos_many::<kernel::Native, LANE_PASS>(args);
+        for j in 0..LANE_PASS.min(total - start) {
+            let (k, lane) = at(j);
+            sin[k].replace(lane, narrow(s[j]));
+            cos[k].replace(lane, narrow(c[j]));
+        }
+    }
+    (sin, cos)
 }
 
-/// `sin x`; for `f64` the sine of [`sin_cos`], the cosine's arithmetic left
-/// out by the optimizer.
+/// Lanes of SIMD values per pass of the kernel: four `f64`, one AVX
+/// register.
+const LANE_PASS: usize = 4;
+
+/// `sin x`; for `f64` and `f32` the sine of [`sin_cos`], the cosine's
+/// arithmetic left out by the optimizer.
 #[inline(always)]
-pub fn sin<S: RealField + Copy>(x: S) -> S {
-    if TypeId::of::<S>() == TypeId::of::<f64>() {
+pub fn sin<S: SimdRealField + Copy>(x: S) -> S
+where
+    S::Element: RealField + Copy,
+{
+    if by_kernel::<S>() {
         return sin_cos(x).0;
     }
-    ComplexField::sin(x)
+    x.simd_sin()
 }
 
-/// `cos x`; for `f64` the cosine of [`sin_cos`].
+/// `cos x`; for `f64` and `f32` the cosine of [`sin_cos`].
 #[inline(always)]
-pub fn cos<S: RealField + Copy>(x: S) -> S {
-    if TypeId::of::<S>() == TypeId::of::<f64>() {
+pub fn cos<S: SimdRealField + Copy>(x: S) -> S
+where
+    S::Element: RealField + Copy,
+{
+    if by_kernel::<S>() {
         return sin_cos(x).1;
     }
-    ComplexField::cos(x)
+    x.simd_cos()
 }

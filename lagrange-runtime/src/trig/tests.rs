@@ -184,17 +184,17 @@ fn special_values_are_those_of_the_platform() {
 
 #[test]
 fn generic_entry_points_dispatch_by_type() {
-    // f64 takes the kernel, f32 its own: the f32 results are those of
-    // f32::sin_cos to the bit.
+    // f64 takes the kernel, f32 the kernel's f64 values rounded once.
     let x = 0.7_f64;
     let ([s], [c]) = kernel::sin_cos_lanes::<kernel::Native, 1>([x]);
     assert_eq!(super::sin_cos(x), (s, c));
     assert_eq!(super::sin(x), super::sin_cos(x).0);
     assert_eq!(super::cos(x), super::sin_cos(x).1);
     let y = 0.7_f32;
-    assert_eq!(super::sin_cos(y), y.sin_cos());
-    assert_eq!(super::sin(y), y.sin());
-    assert_eq!(super::cos(y), y.cos());
+    let ([s], [c]) = kernel::sin_cos_lanes::<kernel::Native, 1>([f64::from(y)]);
+    assert_eq!(super::sin_cos(y), (s as f32, c as f32));
+    assert_eq!(super::sin(y), s as f32);
+    assert_eq!(super::cos(y), c as f32);
 }
 
 /// Asserts that each lane of a `K`-lane call is the one-lane call's value,
@@ -240,5 +240,63 @@ fn each_lane_is_its_own_single_call_even_beside_a_declined_lane() {
     let (s, c) = super::sin_cos_array(y);
     for i in 0..3 {
         assert_eq!((s[i], c[i]), y[i].sin_cos());
+    }
+}
+
+/// SIMD lanes of `f64` and `f32` (what an ensemble evaluates) take the
+/// kernel lane by lane: every lane's bits are its scalar's, for any number
+/// of angles (a pass of the kernel spans angles), the arguments the kernel
+/// leaves to the platform included; an `f32` is the `f64` value rounded.
+#[test]
+fn lanes_take_their_scalars_values() {
+    use simba::simd::{AutoF32x8, AutoF64x2, AutoF64x4};
+
+    let args = [
+        0.3,
+        -0.0,
+        1e6,
+        f64::NAN,
+        -2.5,
+        f64::INFINITY,
+        1.5707963267948966,
+        7.0,
+    ];
+    let bits64 = f64::to_bits;
+    let bits32 = |x: f32| u64::from(x.to_bits());
+    fn check<V: nalgebra::SimdRealField + Copy, const K: usize>(
+        args: &[f64; 8],
+        bits: impl Fn(V::Element) -> u64,
+    ) where
+        V::Element: nalgebra::RealField + Copy,
+    {
+        // Angle k, lane i: args[(k * 3 + i) % 8].
+        let x: [V; K] = core::array::from_fn(|k| {
+            let mut v = V::splat(nalgebra::convert(args[0]));
+            for i in 0..V::LANES {
+                v.replace(i, nalgebra::convert(args[(k * 3 + i) % 8]));
+            }
+            v
+        });
+        let (s, c) = super::sin_cos_array(x);
+        for k in 0..K {
+            for i in 0..V::LANES {
+                let (s0, c0) = super::sin_cos(x[k].extract(i));
+                assert_eq!(bits(s[k].extract(i)), bits(s0), "sin, angle {k}, lane {i}");
+                assert_eq!(bits(c[k].extract(i)), bits(c0), "cos, angle {k}, lane {i}");
+            }
+        }
+    }
+    check::<AutoF64x4, 3>(&args, bits64);
+    check::<AutoF64x2, 1>(&args, bits64);
+    check::<AutoF64x2, 5>(&args, bits64);
+    check::<AutoF32x8, 2>(&args, bits32);
+    // f32 lanes and scalars: the f64 value rounded once.
+    for &x in &args {
+        let (s, c) = super::sin_cos(x as f32);
+        let (s64, c64) = super::sin_cos(f64::from(x as f32));
+        assert_eq!(
+            (s.to_bits(), c.to_bits()),
+            ((s64 as f32).to_bits(), (c64 as f32).to_bits())
+        );
     }
 }

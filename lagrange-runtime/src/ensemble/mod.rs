@@ -1,0 +1,376 @@
+//! Ensembles in SIMD lanes: one model evaluated for four or eight states
+//! at once, each state in a lane of a SIMD value, stepped together by a
+//! fixed-step method.
+//!
+//! `lagrangian!` writes every model's `M` and `f` for any
+//! `SimdRealField` scalar, nalgebra's SIMD scalars included: a
+//! `DoublePendulum<AutoF64x4>` holds four sets of parameters and evaluates
+//! `M` and `f` for four states in one pass, lane by lane, without a
+//! branch. An [`Ensemble`] steps such a model the way a
+//! [`Stepper`](crate::stepper::Stepper) steps a scalar one: frame by
+//! frame, every interval cut into the fewest equal steps no longer than
+//! `h`, with [`ExplicitEuler`](crate::ExplicitEuler),
+//! [`SymplecticEuler`](crate::SymplecticEuler) or [`Rk4`](crate::Rk4).
+//!
+//! **Each lane's values are its scalar run's, bit for bit**: the same
+//! arithmetic in the same order on every lane (the sines and cosines from
+//! the same kernel, `M` factored by the same row form, the same step), so
+//! that a lane of an ensemble is a `Stepper` of the same model, method and
+//! start, under the same target features (`tests/ensembles.rs` compares
+//! them). A lane whose mass matrix the fast path cannot take as the scalar
+//! solve would (not positive definite, ill-conditioned, not finite) is
+//! solved again alone by the scalar solve: its answer (LU where Cholesky
+//! refused `M`) or its error.
+//!
+//! What it takes: a model in minimal coordinates without inputs or
+//! contacts ([`LaneModel`], which `lagrangian!` implements for exactly
+//! those; a constrained model's `M q̈ = f` is not its dynamics, and it has
+//! none), and a fixed-step explicit method ([`LaneStep`]). The adaptive
+//! methods are not offered: a step shared by all lanes is the smallest any
+//! lane needs, and control per lane takes the lanes apart.
+//!
+//! Failures are typed and say which lane: [`EnsembleError::Lane`] holds the
+//! lane's [`IntegrationError`] as its scalar run would report it (at which
+//! `t`, in which state). All lanes stop together at the last step they
+//! all completed: [`t`](Ensemble::t), [`q`](Ensemble::q) and
+//! [`qdot`](Ensemble::qdot) are there, nothing computed before is lost, and
+//! [`set_lane`](Ensemble::set_lane) replaces the lane that failed before
+//! going on. The growth guard of the fixed-step runs watches every lane.
+//!
+//! Speed: the lanes are as wide as the build's vector registers allow.
+//! The default x86-64 target (SSE2) has two `f64` lanes; built with
+//! `-C target-cpu=native` on a CPU with AVX2, four `f64` or eight `f32`.
+//! `BENCHMARKS.md`, "Ensembles in SIMD lanes", has the throughput over
+//! scalar steppers (`cargo bench -p lagrange-studies --bench ensemble`).
+//!
+//! ```
+//! use lagrange_runtime::ensemble::{AutoF64x4, Ensemble, LaneModel};
+//! use lagrange_runtime::nalgebra::{SMatrix, SVector, SimdValue, Vector1};
+//! use lagrange_runtime::Rk4;
+//!
+//! /// A spring of stiffness `k` and unit mass, on any scalar or lanes.
+//! struct Spring<S> {
+//!     k: S,
+//! }
+//!
+//! impl LaneModel<1> for Spring<AutoF64x4> {
+//!     type Lanes = AutoF64x4;
+//!     const COORDINATES: [&'static str; 1] = ["x"];
+//!     fn mass_matrix_and_forcing(
+//!         &self,
+//!         _t: AutoF64x4,
+//!         q: &SVector<AutoF64x4, 1>,
+//!         _qdot: &SVector<AutoF64x4, 1>,
+//!     ) -> (SMatrix<AutoF64x4, 1, 1>, SVector<AutoF64x4, 1>) {
+//!         (SMatrix::from_element(AutoF64x4::splat(1.0)), -q * self.k)
+//!     }
+//! }
+//!
+//! // Four springs, stiffer lane by lane, all released from x = 1.
+//! let springs = Spring { k: AutoF64x4::new(1.0, 2.0, 3.0, 4.0) };
+//! let starts = [Vector1::new(1.0); 4];
+//! let rest = [Vector1::new(0.0); 4];
+//! let mut ensemble = Ensemble::new(springs, Rk4::new(1e-3), 0.0, &starts, &rest)?;
+//! ensemble.advance_to(1.0)?;
+//! for lane in 0..4 {
+//!     let omega = ((lane + 1) as f64).sqrt();
+//!     // RK4's global error at h = 1e-3 over one unit of time: below 1e-10.
+//!     assert!((ensemble.q(lane)[0] - omega.cos()).abs() < 1e-10);
+//! }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod solve;
+
+use nalgebra::{ComplexField, RealField, SMatrix, SVector, SimdRealField, SimdValue};
+
+use crate::driver::{GrowthGuard, Interval, finite_state};
+use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
+use crate::integrators::LaneStep;
+use crate::trajectory::Stats;
+use solve::{Element, accelerations, gather, lane_of};
+
+pub use simba::simd::{AutoF32x4, AutoF32x8, AutoF64x2, AutoF64x4, AutoF64x8, AutoSimd};
+
+/// A model whose `M` and `f` are evaluated on SIMD lanes: the contract of
+/// an [`Ensemble`]. `lagrangian!` implements it for every model in minimal
+/// coordinates without inputs or contacts, on any `SimdRealField` scalar
+/// (`Model<AutoF64x4>`: four lanes of `f64`).
+pub trait LaneModel<const N: usize> {
+    /// The lanes: a SIMD value of `f64` or `f32` (nalgebra's
+    /// `SimdRealField`, e.g. [`AutoF64x4`]), or a scalar (one lane).
+    type Lanes: SimdRealField<Element: RealField + Copy> + Copy;
+
+    /// Names of the coordinates, in the order of `q`.
+    const COORDINATES: [&'static str; N];
+
+    /// `M` and `f` of every lane at `(t, q, q̇)`.
+    fn mass_matrix_and_forcing(
+        &self,
+        t: Self::Lanes,
+        q: &SVector<Self::Lanes, N>,
+        qdot: &SVector<Self::Lanes, N>,
+    ) -> (SMatrix<Self::Lanes, N, N>, SVector<Self::Lanes, N>);
+}
+
+/// What an [`Ensemble`] could not do, and for which lane.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum EnsembleError<S: RealField + Copy, const N: usize> {
+    /// The method's settings or the call, refused before any step (a step
+    /// size that is not positive, a target not ahead, a start time that is
+    /// not finite).
+    #[error(transparent)]
+    InvalidInput(#[from] InvalidInput<S>),
+    /// The ensemble was given a number of start states other than its
+    /// number of lanes.
+    #[error("{given} start states given for {lanes} lanes")]
+    LaneCount {
+        /// Lanes of the model's SIMD type.
+        lanes: usize,
+        /// States given.
+        given: usize,
+    },
+    /// A lane's run failed, as its scalar run would have: the error holds
+    /// the time and that lane's state. Every lane stops at the last step
+    /// all of them completed. An error every lane meets at once (the step
+    /// budget, a step too short to advance `t`) is reported for lane 0.
+    #[error("lane {lane}: {error}")]
+    Lane {
+        /// The lane, from 0.
+        lane: usize,
+        /// What happened to it.
+        error: IntegrationError<S, N>,
+    },
+}
+
+/// An ensemble of states stepped together in SIMD lanes, frame by frame,
+/// by a fixed-step method: the lane-wise [`Stepper`](crate::stepper::Stepper)
+/// (module docs).
+pub struct Ensemble<L: LaneModel<N>, M, const N: usize> {
+    model: L,
+    method: M,
+    h: Element<L, N>,
+    max_steps: usize,
+    t: Element<L, N>,
+    q: SVector<L::Lanes, N>,
+    qdot: SVector<L::Lanes, N>,
+    growth: Vec<GrowthGuard<Element<L, N>>>,
+    stats: Stats,
+}
+
+impl<L, M, const N: usize> Ensemble<L, M, N>
+where
+    L: LaneModel<N>,
+    M: LaneStep<Element<L, N>>,
+{
+    /// An ensemble at `t0`, lane `i` starting at `(q0[i], q̇0[i])`; as many
+    /// states as the model has lanes. The method's step and the start are
+    /// checked as a `Stepper` checks them.
+    pub fn new(
+        model: L,
+        method: M,
+        t0: Element<L, N>,
+        q0: &[SVector<Element<L, N>, N>],
+        qdot0: &[SVector<Element<L, N>, N>],
+    ) -> Result<Self, EnsembleError<Element<L, N>, N>> {
+        let (h, max_steps) = method.lane_course()?;
+        let lanes = L::Lanes::LANES;
+        for given in [q0.len(), qdot0.len()] {
+            if given != lanes {
+                return Err(EnsembleError::LaneCount { lanes, given });
+            }
+        }
+        if !t0.is_finite() {
+            return Err(InvalidInput::NonFiniteStartTime { t0 }.into());
+        }
+        for (lane, (q, qdot)) in q0.iter().zip(qdot0).enumerate() {
+            check_start::<L, N>(q, qdot).map_err(|input| EnsembleError::Lane {
+                lane,
+                error: input.into(),
+            })?;
+        }
+        Ok(Self {
+            growth: q0
+                .iter()
+                .zip(qdot0)
+                .map(|(q, v)| GrowthGuard::new(q, v))
+                .collect(),
+            model,
+            method,
+            h,
+            max_steps,
+            t: t0,
+            q: gather(q0),
+            qdot: gather(qdot0),
+            stats: Stats::default(),
+        })
+    }
+
+    /// Advances every lane by `dt`: to `t + dt`, which must be later than
+    /// `t`.
+    pub fn advance(&mut self, dt: Element<L, N>) -> Result<(), EnsembleError<Element<L, N>, N>> {
+        self.advance_to(self.t + dt)
+    }
+
+    /// Advances every lane to time `target` (finite, later than
+    /// [`t`](Self::t)), in the fewest equal steps no longer than `h`. On a
+    /// lane's failure, every lane stays at the last step all of them
+    /// completed.
+    pub fn advance_to(
+        &mut self,
+        target: Element<L, N>,
+    ) -> Result<(), EnsembleError<Element<L, N>, N>> {
+        let t = self.t;
+        if !(target.is_finite() && target > t) {
+            return Err(InvalidInput::TargetNotAhead { t, target }.into());
+        }
+        let everyone = |error| EnsembleError::Lane { lane: 0, error };
+        let interval = Interval::new(t, target, self.h);
+        let (q0, qdot0) = (self.q(0), self.qdot(0));
+        if interval.underflows() {
+            let h = interval.step;
+            let (q, qdot) = (q0, qdot0);
+            return Err(everyone(IntegrationError::StepSizeUnderflow {
+                t,
+                h,
+                q,
+                qdot,
+            }));
+        }
+        let max_steps = self.max_steps;
+        let Some(steps) = interval.steps(max_steps) else {
+            let (q, qdot) = (q0, qdot0);
+            return Err(everyone(IntegrationError::TooManySteps {
+                t,
+                max_steps,
+                q,
+                qdot,
+            }));
+        };
+        for k in 1..=steps {
+            let t = self.t;
+            let t_next = interval.time(k, steps);
+            let dt = t_next - t;
+            let (model, stats) = (&self.model, &mut self.stats);
+            let (q, qdot) = self
+                .method
+                .lane_step(t, (&self.q, &self.qdot), dt, |t, q, qdot| {
+                    stats.rhs_evals += 1;
+                    accelerations(model, t, q, qdot)
+                })
+                .map_err(|(lane, error)| EnsembleError::Lane { lane, error })?;
+            // As the fixed-step loop does for each run: the step's end
+            // checked before it becomes the state, then its growth.
+            for (lane, growth) in self.growth.iter_mut().enumerate() {
+                let after = (lane_of(&q, lane), lane_of(&qdot, lane));
+                if !finite_state(&after.0, &after.1) {
+                    let (q, qdot) = after;
+                    let value = NonFiniteValue::State;
+                    let error = IntegrationError::NonFiniteState {
+                        t: t_next,
+                        q,
+                        qdot,
+                        value,
+                    };
+                    return Err(EnsembleError::Lane { lane, error });
+                }
+                let before = (lane_of(&self.q, lane), lane_of(&self.qdot, lane));
+                if let Some(steps) = growth.unstable(before, (&after.0, &after.1), dt) {
+                    let (q, qdot) = after;
+                    let (t, h) = (t_next, interval.step);
+                    let error = IntegrationError::Unstable {
+                        t,
+                        h,
+                        steps,
+                        q,
+                        qdot,
+                    };
+                    return Err(EnsembleError::Lane { lane, error });
+                }
+            }
+            self.stats.steps_accepted += 1;
+            (self.t, self.q, self.qdot) = (t_next, q, qdot);
+        }
+        Ok(())
+    }
+
+    /// The time of every lane's state.
+    pub fn t(&self) -> Element<L, N> {
+        self.t
+    }
+
+    /// Lane `lane`'s coordinates. Panics for a lane past the model's.
+    pub fn q(&self, lane: usize) -> SVector<Element<L, N>, N> {
+        lane_of(&self.q, self.lane(lane))
+    }
+
+    /// Lane `lane`'s velocities. Panics for a lane past the model's.
+    pub fn qdot(&self, lane: usize) -> SVector<Element<L, N>, N> {
+        lane_of(&self.qdot, self.lane(lane))
+    }
+
+    /// Every lane's coordinates, as the SIMD values they are stepped in.
+    pub fn lanes(&self) -> (&SVector<L::Lanes, N>, &SVector<L::Lanes, N>) {
+        (&self.q, &self.qdot)
+    }
+
+    /// Replaces lane `lane`'s state (checked as a start is), for example
+    /// the lane that failed, before going on; its growth guard starts
+    /// anew there. Panics for a lane past the model's.
+    pub fn set_lane(
+        &mut self,
+        lane: usize,
+        q: SVector<Element<L, N>, N>,
+        qdot: SVector<Element<L, N>, N>,
+    ) -> Result<(), EnsembleError<Element<L, N>, N>> {
+        let lane = self.lane(lane);
+        check_start::<L, N>(&q, &qdot)?;
+        for i in 0..N {
+            self.q[i].replace(lane, q[i]);
+            self.qdot[i].replace(lane, qdot[i]);
+        }
+        self.growth[lane] = GrowthGuard::new(&q, &qdot);
+        Ok(())
+    }
+
+    /// The model.
+    pub fn model(&self) -> &L {
+        &self.model
+    }
+
+    /// The model, to change a lane's parameters between calls.
+    pub fn model_mut(&mut self) -> &mut L {
+        &mut self.model
+    }
+
+    /// The work done: steps of the whole ensemble, and right-hand sides
+    /// (each one evaluation of every lane).
+    pub fn stats(&self) -> Stats {
+        self.stats.clone()
+    }
+
+    fn lane(&self, lane: usize) -> usize {
+        let lanes = L::Lanes::LANES;
+        assert!(lane < lanes, "lane {lane} of an ensemble of {lanes} lanes");
+        lane
+    }
+}
+
+/// A lane's start, refused as a scalar run's would be.
+fn check_start<L: LaneModel<N>, const N: usize>(
+    q: &SVector<Element<L, N>, N>,
+    qdot: &SVector<Element<L, N>, N>,
+) -> Result<(), InvalidInput<Element<L, N>>> {
+    for (i, coordinate) in L::COORDINATES.into_iter().enumerate() {
+        if !q[i].is_finite() {
+            let value = q[i];
+            return Err(InvalidInput::NonFiniteInitialPosition { coordinate, value });
+        }
+        if !qdot[i].is_finite() {
+            let value = qdot[i];
+            return Err(InvalidInput::NonFiniteInitialVelocity { coordinate, value });
+        }
+    }
+    Ok(())
+}
