@@ -26,7 +26,7 @@ use std::time::Instant;
 
 use lagrange::ensemble::{AutoF32x4, AutoF32x8, AutoF64x2, AutoF64x4, Ensemble, LaneModel};
 use lagrange::models::{Chain, DoublePendulum};
-use lagrange::nalgebra::{RealField, SVector, SimdRealField, SimdValue, convert};
+use lagrange::nalgebra::{RealField, SVector, SimdRealField, SimdValue, convert, zero};
 use lagrange::prelude::*;
 use lagrange::{LaneStep, StepMethod};
 
@@ -58,7 +58,7 @@ where
     let clock = Instant::now();
     for i in 0..STATES {
         let (q0, qdot0) = start(i);
-        let mut stepper = Stepper::new(model, method, L::Scalar::zero(), q0, qdot0).unwrap();
+        let mut stepper = Stepper::new(model, method, zero(), q0, qdot0).unwrap();
         for k in 1..=FRAMES {
             stepper.advance_to(frame(k)).unwrap();
         }
@@ -77,8 +77,7 @@ where
     let clock = Instant::now();
     for group in 0..STATES / width {
         let (q0, qdot0): (Vec<_>, Vec<_>) = (0..width).map(|j| start(group * width + j)).unzip();
-        let zero = <L::Lanes as SimdValue>::Element::zero();
-        let mut ensemble = Ensemble::new(model, method, zero, &q0, &qdot0).unwrap();
+        let mut ensemble = Ensemble::new(model, method, zero(), &q0, &qdot0).unwrap();
         for k in 1..=FRAMES {
             ensemble.advance_to(frame(k)).unwrap();
         }
@@ -135,14 +134,115 @@ fn shared_step_share<L: Lagrangian<N, Scalar = f64> + Copy, const N: usize>(
         })
         .collect();
     let own: usize = counts.iter().sum();
-    let shared: usize = counts.chunks(width).map(|g| g.len() * g.iter().max().unwrap()).sum();
+    let shared: usize = counts
+        .chunks(width)
+        .map(|g| g.len() * g.iter().max().unwrap())
+        .sum();
     let mut sorted = counts.clone();
     sorted.sort_unstable();
-    (sorted[0], sorted[STATES / 2], sorted[STATES - 1], own as f64 / shared as f64)
+    (
+        sorted[0],
+        sorted[STATES / 2],
+        sorted[STATES - 1],
+        own as f64 / shared as f64,
+    )
+}
+
+/// Nanoseconds per state for `M` and `f` alone: four scalar evaluations
+/// against one on four lanes (`--parts`).
+fn parts() {
+    fn time(mut f: impl FnMut(usize)) -> f64 {
+        let reps = 200_000;
+        let clock = Instant::now();
+        for i in 0..reps {
+            f(i);
+        }
+        clock.elapsed().as_secs_f64() / reps as f64 * 1e9
+    }
+    let p64 = pendulum::<f64>();
+    let p4 = pendulum::<AutoF64x4>();
+    let c64 = chain::<f64>();
+    let c4 = chain::<AutoF64x4>();
+    let c8 = chain::<AutoF32x8>();
+    let c32 = chain::<f32>();
+    let q2: Vec<(SVector<f64, 2>, SVector<f64, 2>)> = (0..4).map(start).collect();
+    let q5: Vec<(SVector<f64, 5>, SVector<f64, 5>)> = (0..4).map(start).collect();
+    let q5f: Vec<(SVector<f32, 5>, SVector<f32, 5>)> = (0..8).map(start).collect();
+    let lanes4 = |x: &[SVector<f64, 5>]| {
+        SVector::<AutoF64x4, 5>::from_fn(|i, _| AutoF64x4::new(x[0][i], x[1][i], x[2][i], x[3][i]))
+    };
+    let q5l = lanes4(&q5.iter().map(|s| s.0).collect::<Vec<_>>());
+    let q2l = SVector::<AutoF64x4, 2>::from_fn(|i, _| {
+        AutoF64x4::new(q2[0].0[i], q2[1].0[i], q2[2].0[i], q2[3].0[i])
+    });
+    let q5fl = SVector::<AutoF32x8, 5>::from_fn(|i, _| {
+        let mut v = AutoF32x8::splat(0.0);
+        for (j, s) in q5f.iter().enumerate() {
+            v.replace(j, s.0[i]);
+        }
+        v
+    });
+    let z = |_| 0.0;
+    println!("M and f alone, ns per state:");
+    println!(
+        "  pendulum f64 scalar {:.1}",
+        time(|i| {
+            black_box(p64.mass_matrix_and_forcing(z(i), black_box(&q2[i % 4].0), &q2[0].1));
+        })
+    );
+    println!(
+        "  pendulum f64 x4     {:.1}",
+        time(|_| {
+            black_box(p4.mass_matrix_and_forcing(AutoF64x4::splat(0.0), black_box(&q2l), &q2l));
+        }) / 4.0
+    );
+    println!(
+        "  chain f64 scalar    {:.1}",
+        time(|i| {
+            black_box(c64.mass_matrix_and_forcing(z(i), black_box(&q5[i % 4].0), &q5[0].1));
+        })
+    );
+    println!(
+        "  chain f64 x4        {:.1}",
+        time(|_| {
+            black_box(c4.mass_matrix_and_forcing(AutoF64x4::splat(0.0), black_box(&q5l), &q5l));
+        }) / 4.0
+    );
+    println!(
+        "  chain f32 scalar    {:.1}",
+        time(|i| {
+            black_box(c32.mass_matrix_and_forcing(0.0, black_box(&q5f[i % 8].0), &q5f[0].1));
+        })
+    );
+    println!(
+        "  chain f32 x8        {:.1}",
+        time(|_| {
+            black_box(c8.mass_matrix_and_forcing(AutoF32x8::splat(0.0), black_box(&q5fl), &q5fl));
+        }) / 8.0
+    );
+    let angles: [f64; 5] = core::array::from_fn(|i| q5[0].0[i]);
+    let angles4: [AutoF64x4; 5] = core::array::from_fn(|i| q5l[i]);
+    println!("sines and cosines of 5 angles, ns per state:");
+    println!(
+        "  f64 scalar          {:.1}",
+        time(|_| {
+            black_box(lagrange::trig::sin_cos_array(black_box(angles)));
+        })
+    );
+    println!(
+        "  f64 x4              {:.1}",
+        time(|_| {
+            black_box(lagrange::trig::sin_cos_array(black_box(angles4)));
+        }) / 4.0
+    );
 }
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
+    if args.iter().any(|a| a == "--parts") {
+        parts();
+        return;
+    }
     let rounds = args
         .iter()
         .position(|a| a == "--rounds")
@@ -216,7 +316,11 @@ fn main() {
     ];
     let mut rows: Vec<Row> = cases
         .iter()
-        .map(|(name, _, _)| Row { name: name.clone(), scalar: vec![], lanes: vec![] })
+        .map(|(name, _, _)| Row {
+            name: name.clone(),
+            scalar: vec![],
+            lanes: vec![],
+        })
         .collect();
     // A warm-up round, then the rounds, every case in turn within each.
     for round in 0..=rounds {
@@ -249,10 +353,17 @@ fn main() {
         features.join(", ")
     );
     println!();
-    println!("| model, method, lanes | scalar ns/state-step | lanes ns/state-step | throughput × (median) | range |");
+    println!(
+        "| model, method, lanes | scalar ns/state-step | lanes ns/state-step | throughput × (median) | range |"
+    );
     println!("|---|---:|---:|---:|---|");
     for row in rows {
-        let ratios: Vec<f64> = row.scalar.iter().zip(&row.lanes).map(|(s, l)| s / l).collect();
+        let ratios: Vec<f64> = row
+            .scalar
+            .iter()
+            .zip(&row.lanes)
+            .map(|(s, l)| s / l)
+            .collect();
         let lo = ratios.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = ratios.iter().copied().fold(0.0, f64::max);
         println!(
@@ -267,7 +378,9 @@ fn main() {
     }
 
     println!();
-    println!("Adaptive methods, a step shared by four lanes: Dop853 at rtol = atol = 1e-9 over the same second, steps per state alone (min, median, max) and the share of a group's lane-steps that are a state's own");
+    println!(
+        "Adaptive methods, a step shared by four lanes: Dop853 at rtol = atol = 1e-9 over the same second, steps per state alone (min, median, max) and the share of a group's lane-steps that are a state's own"
+    );
     println!();
     println!("| model | min | median | max | own share, groups of 4 |");
     println!("|---|---:|---:|---:|---:|");

@@ -8,6 +8,15 @@
 //!
 //! `cargo run --release -p lagrange-studies --example ensemble`
 //!
+//! Then the same grid in SIMD lanes, on one thread: the first 2 s of every
+//! pendulum with RK4 at `h = 1e-3`, as 10⁴ scalar `Stepper`s and as
+//! `Ensemble`s of four pendulums in the lanes of `AutoF64x4`. Each lane is
+//! its scalar stepper bit for bit, so the flips are the same; the example
+//! checks that and prints both times (the lanes' width is the build's:
+//! two `f64` by default, four with `RUSTFLAGS="-C target-cpu=native"` on
+//! an AVX2 CPU; `cargo bench -p lagrange-studies --bench ensemble` has
+//! the tables).
+//!
 //! Writes `docs/ensemble/first_flip.png`: each pixel a pair of initial
 //! angles (θ1 across, θ2 up, both from −3 to 3 rad), its colour the time to
 //! the first flip on a log scale (bright: soon; dark: late), black where no
@@ -15,8 +24,9 @@
 //! flip (too little energy): the black region in the middle is that bound,
 //! found by the integration, not assumed.
 
+use lagrange::ensemble::{AutoF64x4, Ensemble};
 use lagrange::models::DoublePendulum;
-use lagrange::nalgebra::Vector2;
+use lagrange::nalgebra::{SimdValue, Vector2};
 use lagrange::prelude::*;
 use rayon::prelude::*;
 use std::error::Error;
@@ -99,6 +109,23 @@ fn main() -> Result<(), Box<dyn Error + Send + Sync>> {
         t_one / t_all
     );
 
+    let clock = Instant::now();
+    let scalar = lanes_sweep_scalar()?;
+    let t_scalar = clock.elapsed().as_secs_f64();
+    let clock = Instant::now();
+    let lanes = lanes_sweep()?;
+    let t_lanes = clock.elapsed().as_secs_f64();
+    assert_eq!(
+        scalar, lanes,
+        "each lane is its scalar stepper, bit for bit"
+    );
+    println!(
+        "RK4 h = {H}, first {T_LANES} s, 1 thread: {} flip; scalar steppers {t_scalar:.2} s, \
+         ensembles of 4 lanes {t_lanes:.2} s: {:.2}× the throughput",
+        lanes.iter().flatten().count(),
+        t_scalar / t_lanes
+    );
+
     let path = std::path::Path::new(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../docs/ensemble/first_flip.png"
@@ -106,6 +133,57 @@ fn main() -> Result<(), Box<dyn Error + Send + Sync>> {
     draw(&parallel, path)?;
     println!("Wrote {}", path.display());
     Ok(())
+}
+
+/// The lanes' sweep: its span and step.
+const T_LANES: f64 = 2.0;
+const H: f64 = 1e-3;
+
+/// The first flip within `T_LANES` of every pendulum of the grid, each in
+/// its own RK4 `Stepper`.
+fn lanes_sweep_scalar() -> Result<Sweep, Box<dyn Error + Send + Sync>> {
+    let frames = (T_LANES / FRAME).round() as usize;
+    (0..SIDE * SIDE)
+        .map(|k| {
+            let q0 = Vector2::new(angle(k % SIDE), angle(k / SIDE));
+            let model = DoublePendulum::unit();
+            let mut stepper = Stepper::new(model, Rk4::new(H), 0.0, q0, Vector2::zeros())?;
+            for frame in 1..=frames {
+                stepper.advance_to(frame as f64 * FRAME)?;
+                if stepper.q().iter().any(|a| a.abs() > PI) {
+                    return Ok(Some(stepper.t()));
+                }
+            }
+            Ok(None)
+        })
+        .collect()
+}
+
+/// The same, four pendulums to an `Ensemble` in the lanes of `AutoF64x4`.
+fn lanes_sweep() -> Result<Sweep, Box<dyn Error + Send + Sync>> {
+    let frames = (T_LANES / FRAME).round() as usize;
+    let unit = |x: f64| AutoF64x4::splat(x);
+    let model = DoublePendulum::new(unit(1.0), unit(1.0), unit(1.0), unit(1.0), unit(9.81));
+    let mut flips = vec![None; SIDE * SIDE];
+    for (group, flips) in flips.chunks_mut(4).enumerate() {
+        let q0: Vec<_> = (0..4)
+            .map(|j| group * 4 + j)
+            .map(|k| Vector2::new(angle(k % SIDE), angle(k / SIDE)))
+            .collect();
+        let mut ensemble = Ensemble::new(model, Rk4::new(H), 0.0, &q0, &[Vector2::zeros(); 4])?;
+        for frame in 1..=frames {
+            ensemble.advance_to(frame as f64 * FRAME)?;
+            for (lane, flip) in flips.iter_mut().enumerate() {
+                if flip.is_none() && ensemble.q(lane).iter().any(|a| a.abs() > PI) {
+                    *flip = Some(ensemble.t());
+                }
+            }
+            if flips.iter().all(Option::is_some) {
+                break;
+            }
+        }
+    }
+    Ok(flips)
 }
 
 /// The picture, each grid cell a 4 × 4 block of pixels, θ2 up.

@@ -296,6 +296,25 @@ mod lanes {
         }
     }
 
+    /// Lane 3 with a stiff pendulum (`g = 10⁶`, `h ω ≈ 10`, past RK4's
+    /// stability limit of 2.8): its growth guard stops the ensemble where
+    /// it stops the lane's scalar run, with the same error.
+    #[test]
+    fn an_unstable_lane_stops_where_its_scalar_run_stops() {
+        let mut model = pendulum::<AutoF64x4>();
+        model.g.replace(3, 1e6);
+        let mut stiff = pendulum_lane::<f64>(3);
+        stiff.g = 1e6;
+        let (q0, qdot0): (Vec<_>, Vec<_>) = (0..4).map(pendulum_start::<f64>).unzip();
+        let method = Rk4::new(1e-2);
+        let mut ensemble = Ensemble::new(model, method, 0.0, &q0, &qdot0).unwrap();
+        let mut scalar = Stepper::new(stiff, method, 0.0, q0[3], qdot0[3]).unwrap();
+        let error = scalar.advance_to(5.0).unwrap_err();
+        assert!(matches!(error, IntegrationError::Unstable { .. }), "{error:?}");
+        assert_eq!(ensemble.advance_to(5.0), Err(EnsembleError::Lane { lane: 3, error }));
+        assert_eq!(ensemble.t(), scalar.t());
+    }
+
     /// The start and the settings are refused as a `Stepper` refuses them,
     /// naming the lane; a wrong number of states is refused too.
     #[test]

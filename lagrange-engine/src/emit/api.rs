@@ -139,22 +139,21 @@ impl Returns {
     pub fn assemble(self, ty: &Types, outs: &[TokenStream]) -> TokenStream {
         let (new_vector, new_matrix) = (&ty.new_vector, &ty.new_matrix);
         let square = ty.dof * ty.dof;
+        let vector = |f: &[TokenStream]| stored(new_vector, ty.dof, f);
+        let matrix = |m: &[TokenStream]| stored(new_matrix, ty.dof, m);
         match self {
             Returns::Scalar => quote!(#(#outs)*),
-            Returns::Vector => quote!(#new_vector(&[#(#outs),*])),
-            Returns::Matrix => quote!(#new_matrix(&[#(#outs),*])),
+            Returns::Vector => vector(outs),
+            Returns::Matrix => matrix(outs),
             Returns::MatrixAndVector => {
                 let (m, f) = outs.split_at(square);
-                quote! {
-                    (
-                        #new_matrix(&[#(#m),*]),
-                        #new_vector(&[#(#f),*]),
-                    )
-                }
+                let (m, f) = (matrix(m), vector(f));
+                quote!((#m, #f))
             }
             Returns::TwoMatrices => {
                 let (a, b) = outs.split_at(square);
-                quote!((#new_matrix(&[#(#a),*]), #new_matrix(&[#(#b),*])))
+                let (a, b) = (matrix(a), matrix(b));
+                quote!((#a, #b))
             }
             Returns::ConstraintVector => {
                 let new = &ty.new_constraint_vector;
@@ -169,10 +168,11 @@ impl Returns {
                 let (m, rest) = outs.split_at(square);
                 let (f, rest) = rest.split_at(ty.dof);
                 let (g, gamma) = rest.split_at(ty.constraints * ty.dof);
+                let (m, f) = (matrix(m), vector(f));
                 quote! {
                     (
-                        #new_matrix(&[#(#m),*]),
-                        #new_vector(&[#(#f),*]),
+                        #m,
+                        #f,
                         #new_cm(&[#(#g),*]),
                         #new_cv(&[#(#gamma),*]),
                     )
@@ -219,9 +219,7 @@ impl Returns {
                 quote!(#new(&[#(#outs),*]))
             }
             Returns::ParameterMatrices => {
-                let matrices = outs
-                    .chunks(square.max(1))
-                    .map(|m| quote!(#new_matrix(&[#(#m),*])));
+                let matrices = outs.chunks(square.max(1)).map(matrix);
                 quote!([#(#matrices),*])
             }
             Returns::RegressorMatrix | Returns::RegressorVector => {
@@ -233,6 +231,19 @@ impl Returns {
             }
         }
     }
+}
+
+/// `path::from_array_storage(ArrayStorage([[column 0], [column 1], …]))`,
+/// the entries `outs` in column-major order, `rows` to a column: the
+/// matrix written in place, for any scalar. (`from_column_slice` goes
+/// through an iterator, which the optimizer reduces to copies for `f64`
+/// but not for SIMD lanes, where it took more than the arithmetic.)
+pub(crate) fn stored(path: &TokenStream, rows: usize, outs: &[TokenStream]) -> TokenStream {
+    let na = super::outline::nalgebra();
+    let columns = outs
+        .chunks(rows.max(1))
+        .map(|column| quote!([#(#column),*]));
+    quote!(#path::from_array_storage(#na::ArrayStorage([#(#columns),*])))
 }
 
 /// How a method appears in the `impl Lagrangian`.

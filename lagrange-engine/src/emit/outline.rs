@@ -32,9 +32,9 @@ pub struct Types {
     pub vector: TokenStream,
     /// `SMatrix<S, N, N>`.
     pub matrix: TokenStream,
-    /// The constructor of `SVector<S, N>` from a slice.
+    /// `SVector::<S, N>`, built from its entries by [`stored`](super::api::stored).
     pub new_vector: TokenStream,
-    /// The constructor of `SMatrix<S, N, N>` from a column-major slice.
+    /// `SMatrix::<S, N, N>`, built from its entries by [`stored`](super::api::stored).
     pub new_matrix: TokenStream,
     /// `SVector<S, C>`.
     pub constraint_vector: TokenStream,
@@ -100,8 +100,8 @@ impl Types {
             k,
             vector: quote!(#na::SVector<S, #n>),
             matrix: quote!(#na::SMatrix<S, #n, #n>),
-            new_vector: quote!(#na::SVector::<S, #n>::from_column_slice),
-            new_matrix: quote!(#na::SMatrix::<S, #n, #n>::from_column_slice),
+            new_vector: quote!(#na::SVector::<S, #n>),
+            new_matrix: quote!(#na::SMatrix::<S, #n, #n>),
             constraint_vector: quote!(#na::SVector<S, #c>),
             constraint_matrix: quote!(#na::SMatrix<S, #c, #n>),
             new_constraint_vector: quote!(#na::SVector::<S, #c>::from_column_slice),

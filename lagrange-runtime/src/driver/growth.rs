@@ -2,7 +2,7 @@
 //! tolerance too loose to hold its step, notices that the step is beyond
 //! the method's stability limit before the state overflows.
 
-use nalgebra::{RealField, SVector};
+use nalgebra::{RealField, SVector, SimdRealField};
 
 use crate::trajectory::State;
 
@@ -37,6 +37,7 @@ use crate::trajectory::State;
 /// Growth that is smooth and slower than 2× per step (a physical
 /// instability, or explicit Euler's slow energy gain at small `hω`) is not
 /// an instability of the step and is left alone.
+#[derive(Clone, Copy)]
 pub(crate) struct GrowthGuard<S> {
     floor: S,
     last: S,
@@ -83,8 +84,18 @@ impl<S: RealField + Copy> GrowthGuard<S> {
         after: (&SVector<S, N>, &SVector<S, N>),
         h: S,
     ) -> Option<usize> {
+        self.judge(measure((&before.0, &before.1), after, h))
+    }
+
+    /// [`unstable`](Self::unstable) from the step's [`measure`], taken
+    /// before (lane by lane, for an ensemble's lanes).
+    pub(crate) fn judge(&mut self, step: Measured<S>) -> Option<usize> {
         let c = |x: f64| -> S { nalgebra::convert(x) };
-        let size = Self::size(after.0, after.1);
+        let Measured {
+            size,
+            change,
+            disagreement,
+        } = step;
         let ratio = |part: S, whole: S| {
             if whole > S::zero() {
                 part / whole
@@ -92,10 +103,6 @@ impl<S: RealField + Copy> GrowthGuard<S> {
                 S::zero()
             }
         };
-        let dq = after.0 - before.0;
-        let change = Self::size(&dq, &(after.1 - before.1));
-        let trapezoid = (before.1 + after.1) * (h / c(2.0));
-        let disagreement = ratio((dq - trapezoid).amax(), dq.amax() + trapezoid.amax());
         let unresolved = ratio(change, size.max(self.last)).max(disagreement);
         let steps = c(Self::STEPS as f64);
         self.roughness += (unresolved - self.roughness) / steps;
@@ -129,6 +136,52 @@ impl<S: RealField + Copy> GrowthGuard<S> {
         let (start, steps) = self.stretch.get_or_insert((size, 0));
         *steps += 1;
         (size >= c(Self::FOLD) * *start).then_some(*steps)
+    }
+}
+
+/// What the guard reads of a step: the state's size after it (the largest
+/// component of `q`, `q̇`), the size of its change, and how far `Δq`
+/// disagrees with the trapezoidal rule on `q̇`, `(h/2)(q̇ₙ + q̇ₙ₊₁)`,
+/// relative to both (zero where both are).
+#[derive(Clone, Copy)]
+pub(crate) struct Measured<S> {
+    pub(crate) size: S,
+    pub(crate) change: S,
+    pub(crate) disagreement: S,
+}
+
+/// A step [`Measured`], for a scalar state or lane by lane for SIMD lanes
+/// of states (each lane's values its scalar's: the same operations on
+/// finite values, maxima taken in any order). Every value must be finite.
+#[inline]
+pub(crate) fn measure<V: SimdRealField + Copy, const N: usize>(
+    before: (&SVector<V, N>, &SVector<V, N>),
+    after: (&SVector<V, N>, &SVector<V, N>),
+    h: V,
+) -> Measured<V> {
+    let zero = V::zero();
+    let half_h = h / (V::one() + V::one());
+    let (mut size, mut change, mut dq_max, mut trapezoid_max, mut apart) =
+        (zero, zero, zero, zero, zero);
+    for i in 0..N {
+        size = size
+            .simd_max(after.0[i].simd_abs())
+            .simd_max(after.1[i].simd_abs());
+        let dq = after.0[i] - before.0[i];
+        let trapezoid = (before.1[i] + after.1[i]) * half_h;
+        change = change
+            .simd_max(dq.simd_abs())
+            .simd_max((after.1[i] - before.1[i]).simd_abs());
+        dq_max = dq_max.simd_max(dq.simd_abs());
+        trapezoid_max = trapezoid_max.simd_max(trapezoid.simd_abs());
+        apart = apart.simd_max((dq - trapezoid).simd_abs());
+    }
+    let whole = dq_max + trapezoid_max;
+    let disagreement = (apart / whole).select(whole.simd_gt(zero), zero);
+    Measured {
+        size,
+        change,
+        disagreement,
     }
 }
 

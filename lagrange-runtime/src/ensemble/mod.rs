@@ -82,13 +82,13 @@
 
 mod solve;
 
-use nalgebra::{ComplexField, RealField, SMatrix, SVector, SimdRealField, SimdValue};
+use nalgebra::{ComplexField, RealField, SMatrix, SVector, SimdBool, SimdRealField, SimdValue};
 
-use crate::driver::{GrowthGuard, Interval, finite_state};
+use crate::driver::{GrowthGuard, Interval, Measured, measure};
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::integrators::LaneStep;
 use crate::trajectory::Stats;
-use solve::{Element, accelerations, gather, lane_of};
+use solve::{Element, accelerations, all_finite, gather, lane_of};
 
 pub use simba::simd::{AutoF32x4, AutoF32x8, AutoF64x2, AutoF64x4, AutoF64x8, AutoSimd};
 
@@ -156,6 +156,8 @@ pub struct Ensemble<L: LaneModel<N>, M, const N: usize> {
     q: SVector<L::Lanes, N>,
     qdot: SVector<L::Lanes, N>,
     growth: Vec<GrowthGuard<Element<L, N>>>,
+    /// The guards before a step, restored if a lane stops it.
+    spare: Vec<GrowthGuard<Element<L, N>>>,
     stats: Stats,
 }
 
@@ -190,12 +192,14 @@ where
                 error: input.into(),
             })?;
         }
+        let growth: Vec<_> = q0
+            .iter()
+            .zip(qdot0)
+            .map(|(q, v)| GrowthGuard::new(q, v))
+            .collect();
         Ok(Self {
-            growth: q0
-                .iter()
-                .zip(qdot0)
-                .map(|(q, v)| GrowthGuard::new(q, v))
-                .collect(),
+            spare: growth.clone(),
+            growth,
             model,
             method,
             h,
@@ -261,31 +265,41 @@ where
                 })
                 .map_err(|(lane, error)| EnsembleError::Lane { lane, error })?;
             // As the fixed-step loop does for each run: the step's end
-            // checked before it becomes the state, then its growth.
+            // checked before it becomes the state, then its growth, lane
+            // by lane; the guards as they were if a lane stops the step.
+            let finite = all_finite(&q, &qdot);
+            let step = measure((&self.q, &self.qdot), (&q, &qdot), L::Lanes::splat(dt));
+            self.spare.clone_from_slice(&self.growth);
             for (lane, growth) in self.growth.iter_mut().enumerate() {
-                let after = (lane_of(&q, lane), lane_of(&qdot, lane));
-                if !finite_state(&after.0, &after.1) {
-                    let (q, qdot) = after;
+                let error = if finite.bitmask() & (1 << lane) == 0 {
+                    let (q, qdot) = (lane_of(&q, lane), lane_of(&qdot, lane));
                     let value = NonFiniteValue::State;
-                    let error = IntegrationError::NonFiniteState {
+                    Some(IntegrationError::NonFiniteState {
                         t: t_next,
                         q,
                         qdot,
                         value,
+                    })
+                } else {
+                    let lane_step = Measured {
+                        size: step.size.extract(lane),
+                        change: step.change.extract(lane),
+                        disagreement: step.disagreement.extract(lane),
                     };
-                    return Err(EnsembleError::Lane { lane, error });
-                }
-                let before = (lane_of(&self.q, lane), lane_of(&self.qdot, lane));
-                if let Some(steps) = growth.unstable(before, (&after.0, &after.1), dt) {
-                    let (q, qdot) = after;
-                    let (t, h) = (t_next, interval.step);
-                    let error = IntegrationError::Unstable {
-                        t,
-                        h,
-                        steps,
-                        q,
-                        qdot,
-                    };
+                    growth.judge(lane_step).map(|steps| {
+                        let (q, qdot) = (lane_of(&q, lane), lane_of(&qdot, lane));
+                        let (t, h) = (t_next, interval.step);
+                        IntegrationError::Unstable {
+                            t,
+                            h,
+                            steps,
+                            q,
+                            qdot,
+                        }
+                    })
+                };
+                if let Some(error) = error {
+                    self.growth.clone_from_slice(&self.spare);
                     return Err(EnsembleError::Lane { lane, error });
                 }
             }

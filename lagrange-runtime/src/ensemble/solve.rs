@@ -6,7 +6,7 @@
 //! alone, by the scalar solve, which answers with its result (LU where
 //! Cholesky refused `M`) or its error.
 
-use nalgebra::{RealField, SVector, SimdBool, SimdPartialOrd, SimdRealField, SimdValue};
+use nalgebra::{RealField, SMatrix, SVector, SimdBool, SimdPartialOrd, SimdRealField, SimdValue};
 
 use super::LaneModel;
 use crate::dynamics::mass_error;
@@ -49,13 +49,7 @@ pub(super) fn accelerations<L: LaneModel<N>, const N: usize>(
     }
     let n: Element<L, N> = nalgebra::convert(N as f64);
     let floor = L::Lanes::splat(n * epsilon::<Element<L, N>>()) * largest;
-    let zeros = q
-        .iter()
-        .chain(qdot)
-        .chain(m.iter())
-        .chain(f.iter())
-        .chain(x.iter());
-    let finite = zeros.fold(zero, |sum, &v| sum + v * zero).simd_eq(zero);
+    let finite = all_finite(q, qdot) & all_finite(&m, &f) & all_finite(&x, &x);
     let answered = positive & smallest.simd_gt(floor) & finite;
     if answered.all() {
         return Ok(x);
@@ -77,6 +71,24 @@ pub(super) fn accelerations<L: LaneModel<N>, const N: usize>(
         }
     }
     Ok(x)
+}
+
+/// Per lane, whether every entry of `a` and `b` is finite: `x · 0` is zero
+/// just where `x` is.
+#[inline]
+pub(super) fn all_finite<V: SimdRealField + Copy, const R: usize, const C: usize>(
+    a: &SMatrix<V, R, C>,
+    b: &SVector<V, R>,
+) -> V::SimdBool {
+    // Four sums side by side: one would wait on each addition in turn.
+    let zero = V::zero();
+    let mut sums = [zero; 4];
+    for part in [a.as_slice(), b.as_slice()] {
+        for (i, &v) in part.iter().enumerate() {
+            sums[i % 4] += v * zero;
+        }
+    }
+    ((sums[0] + sums[1]) + (sums[2] + sums[3])).simd_eq(zero)
 }
 
 /// The scalar solve's `ε`.

@@ -157,12 +157,11 @@ pub(crate) fn factor_rows<S: SimdRealField + Copy, const N: usize>(
     m: &SMatrix<S, N, N>,
     mut refused: impl FnMut(S) -> bool,
 ) -> Option<(SMatrix<S, N, N>, SVector<S, N>, SVector<S, N>)> {
-    let mut l = SMatrix::<S, N, N>::zeros();
-    let mut d = SVector::<S, N>::zeros();
-    let mut inverse_d = SVector::<S, N>::zeros();
+    let (mut l, mut d) = (zeros::<S, N, N>(), zeros::<S, N, 1>());
+    let mut inverse_d = d;
     for j in 0..N {
         // w[k] = L_jk d_k, reused by every row below.
-        let mut w = SVector::<S, N>::zeros();
+        let mut w = zeros::<S, N, 1>();
         let mut pivot = m[(j, j)];
         for k in 0..j {
             w[k] = l[(j, k)] * d[k];
@@ -183,6 +182,14 @@ pub(crate) fn factor_rows<S: SimdRealField + Copy, const N: usize>(
         }
     }
     Some((l, d, inverse_d))
+}
+
+/// A matrix of zeros written in place: nalgebra's `zeros` goes through an
+/// iterator, which the optimizer reduces to stores for `f64` but not for
+/// SIMD lanes, where it took as long as the factorization.
+#[inline(always)]
+pub(crate) fn zeros<S: SimdRealField + Copy, const R: usize, const C: usize>() -> SMatrix<S, R, C> {
+    SMatrix::from_array_storage(nalgebra::ArrayStorage([[S::zero(); R]; C]))
 }
 
 /// The column form of [`Ldlt::new`] on `M` in place: the strict lower

@@ -9,7 +9,8 @@
 //!   the variational integrator's `N × N` Newton systems.
 //! - `ldlt`: `M = L D Lᵀ` (Cholesky without square roots) written out for
 //!   the hot path: inlined, one division per column, in place from 32
-//!   coordinates.
+//!   coordinates; the row form and the substitutions also on SIMD lanes,
+//!   for an [`Ensemble`](crate::ensemble::Ensemble).
 //! - `schur`: the saddle-point system `M q̈ + Gᵀ λ = f`, `G q̈ = −γ` (one
 //!   backward substitution with `M`'s factor), and the Schur complement
 //!   `G M⁻¹ Gᵀ` judged for rank, which the projections onto the
