@@ -262,6 +262,10 @@
 //!   [`Integrator::integrate_with_events`]; with the Zeno guard.
 //! - [`stepper`]: the [`Stepper`], one frame at a time for a real-time
 //!   loop, any method, no allocation per frame.
+//! - [`ensemble`]: many states of one model in SIMD lanes, stepped
+//!   together frame by frame ([`Ensemble`](ensemble::Ensemble), with the
+//!   fixed-step explicit methods, [`LaneStep`]), each lane bit for bit its
+//!   scalar `Stepper`.
 //! - [`analysis`]: small motions, [`linearize`](analysis::linearize) at
 //!   any state (`A`, and `B` for models with inputs), equilibria by
 //!   Newton's method (with the neutral directions of a family), normal
@@ -271,7 +275,8 @@
 //!   happened and the [`Stats`] of the work done.
 //! - [`error`]: [`IntegrationError`], [`InvalidInput`], [`Failure`].
 //!
-//! Everything is generic over the model's scalar: `f64` and `f32` both work.
+//! Everything is generic over the model's scalar: `f64` and `f32` both work
+//! (and lanes of them, `SimdRealField`, for an ensemble).
 
 #![deny(missing_docs)]
 

@@ -164,6 +164,7 @@ mod lanes {
             field(|p| p.g),
         )
     }
+
     /// The chains of `chain_lane`, one to a lane.
     fn chain<V: SimdRealField + Copy>() -> Chain<V>
     where
@@ -172,18 +173,19 @@ mod lanes {
         let lanes = (0..V::LANES)
             .map(chain_lane::<V::Element>)
             .collect::<Vec<_>>();
-        let field = |get: &dyn Fn(&Chain<V::Element>, usize) -> V::Element, k: usize| {
-            let mut v = V::splat(get(&lanes[0], k));
+        let field = |get: &dyn Fn(&Chain<V::Element>) -> V::Element| {
+            let mut v = V::splat(get(&lanes[0]));
             for (i, lane) in lanes.iter().enumerate() {
-                v.replace(i, get(lane, k));
+                v.replace(i, get(lane));
             }
             v
         };
         Chain::new(
-            core::array::from_fn(|k| field(&|c, k| c.m[k], k)),
-            core::array::from_fn(|k| field(&|c, k| c.l[k], k)),
+            core::array::from_fn(|k| field(&|c| c.m[k])),
+            core::array::from_fn(|k| field(&|c| c.l[k])),
         )
     }
+
     #[test]
     fn every_lane_is_its_scalar_stepper_bit_for_bit() {
         let h = 1e-3;
@@ -310,8 +312,14 @@ mod lanes {
         let mut ensemble = Ensemble::new(model, method, 0.0, &q0, &qdot0).unwrap();
         let mut scalar = Stepper::new(stiff, method, 0.0, q0[3], qdot0[3]).unwrap();
         let error = scalar.advance_to(5.0).unwrap_err();
-        assert!(matches!(error, IntegrationError::Unstable { .. }), "{error:?}");
-        assert_eq!(ensemble.advance_to(5.0), Err(EnsembleError::Lane { lane: 3, error }));
+        assert!(
+            matches!(error, IntegrationError::Unstable { .. }),
+            "{error:?}"
+        );
+        assert_eq!(
+            ensemble.advance_to(5.0),
+            Err(EnsembleError::Lane { lane: 3, error })
+        );
         assert_eq!(ensemble.t(), scalar.t());
     }
 

@@ -36,6 +36,9 @@
 //! [`qdot`](Ensemble::qdot) are there, nothing computed before is lost, and
 //! [`set_lane`](Ensemble::set_lane) replaces the lane that failed before
 //! going on. The growth guard of the fixed-step runs watches every lane.
+//! One check differs from a `Stepper`'s: a parameter that is not finite is
+//! not refused up front (a lane model has no such check); it shows as its
+//! lane's `M` or `f` not finite, at the first step.
 //!
 //! Speed: the lanes are as wide as the build's vector registers allow.
 //! The default x86-64 target (SSE2) has two `f64` lanes; built with
@@ -361,7 +364,7 @@ where
     /// The work done: steps of the whole ensemble, and right-hand sides
     /// (each one evaluation of every lane).
     pub fn stats(&self) -> Stats {
-        self.stats.clone()
+        self.stats
     }
 
     fn lane(&self, lane: usize) -> usize {

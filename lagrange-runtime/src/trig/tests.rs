@@ -258,7 +258,7 @@ fn lanes_take_their_scalars_values() {
         f64::NAN,
         -2.5,
         f64::INFINITY,
-        1.5707963267948966,
+        core::f64::consts::FRAC_PI_2,
         7.0,
     ];
     let bits64 = f64::to_bits;
