@@ -1,6 +1,8 @@
 //! Ensembles in parallel: generated models, their trajectories and a
 //! `Stepper` are plain `Send + Sync` values, so a sweep is a rayon
-//! `par_iter`, and each member's result is the same on any thread.
+//! `par_iter`, and each member's result is the same on any thread. And in
+//! SIMD lanes (`lanes`): each lane of an `Ensemble` is its scalar
+//! `Stepper`, bit for bit.
 
 use lagrange::models::DoublePendulum;
 use lagrange::nalgebra::Vector2;
@@ -40,7 +42,7 @@ fn a_sweep_in_parallel_equals_the_sweep_in_sequence() {
 /// fixed-step method, in `f64` and `f32` lanes; a lane's failure is its
 /// scalar run's, with the lane named.
 mod lanes {
-    use lagrange::ensemble::{AutoF32x8, AutoF64x2, AutoF64x4, Ensemble, EnsembleError, LaneModel};
+    use lagrange::ensemble::{AutoF32x8, AutoF64x4, Ensemble, EnsembleError, LaneModel};
     use lagrange::models::{Chain, DoublePendulum};
     use lagrange::nalgebra::{RealField, SVector, SimdRealField, SimdValue};
     use lagrange::prelude::*;
@@ -186,6 +188,9 @@ mod lanes {
         )
     }
 
+    /// Every method in `f64` lanes, and each model in `f32` and `f64`
+    /// lanes (fewer pairs than all: each costs the build a model's run
+    /// loops; the lanes' code is one for every method and model).
     #[test]
     fn every_lane_is_its_scalar_stepper_bit_for_bit() {
         let h = 1e-3;
@@ -208,34 +213,16 @@ mod lanes {
             pendulum_start,
         );
         lanes_match(
-            pendulum::<AutoF64x2>(),
-            pendulum_lane,
-            Rk4::new(h),
-            pendulum_start,
-        );
-        lanes_match(
             pendulum::<AutoF32x8>(),
             pendulum_lane,
             Rk4::new(1e-3_f32),
-            pendulum_start,
-        );
-        lanes_match(
-            pendulum::<AutoF32x8>(),
-            pendulum_lane,
-            SymplecticEuler::new(1e-3_f32),
             pendulum_start,
         );
         lanes_match(chain::<AutoF64x4>(), chain_lane, Rk4::new(h), chain_start);
         lanes_match(
-            chain::<AutoF64x4>(),
-            chain_lane,
-            SymplecticEuler::new(h),
-            chain_start,
-        );
-        lanes_match(
             chain::<AutoF32x8>(),
             chain_lane,
-            Rk4::new(1e-3_f32),
+            SymplecticEuler::new(1e-3_f32),
             chain_start,
         );
     }

@@ -62,7 +62,12 @@ where
             S,
             2,
             2,
-        >::from_column_slice(&[(l1 * l1) * (m1 + m2), e4, e4, m2 * (l2 * l2)])
+        >::from_array_storage(
+            ::lagrange::nalgebra::ArrayStorage([
+                [(l1 * l1) * (m1 + m2), e4],
+                [e4, m2 * (l2 * l2)],
+            ]),
+        )
     }
     /// The forcing `f(t, q, q̇)` of `M q̈ = f`.
     #[inline]
@@ -92,11 +97,13 @@ where
         ::lagrange::nalgebra::SVector::<
             S,
             2,
-        >::from_column_slice(
-            &[
-                -l1 * fma(l2 * m2 * e4, theta2_dot * theta2_dot, e0 * g * (m1 + m2)),
-                -l2 * m2 * fma(-l1 * (theta1_dot * theta1_dot), e4, e2 * g),
-            ],
+        >::from_array_storage(
+            ::lagrange::nalgebra::ArrayStorage([
+                [
+                    -l1 * fma(l2 * m2 * e4, theta2_dot * theta2_dot, e0 * g * (m1 + m2)),
+                    -l2 * m2 * fma(-l1 * (theta1_dot * theta1_dot), e4, e2 * g),
+                ],
+            ]),
         )
     }
     /// `M` and `f` together, sharing their common subexpressions.
@@ -131,15 +138,22 @@ where
                 S,
                 2,
                 2,
-            >::from_column_slice(&[(l1 * l1) * e0, e5, e5, m2 * (l2 * l2)]),
+            >::from_array_storage(
+                ::lagrange::nalgebra::ArrayStorage([
+                    [(l1 * l1) * e0, e5],
+                    [e5, m2 * (l2 * l2)],
+                ]),
+            ),
             ::lagrange::nalgebra::SVector::<
                 S,
                 2,
-            >::from_column_slice(
-                &[
-                    -l1 * fma(l2 * m2 * e6, theta2_dot * theta2_dot, e1 * g * e0),
-                    -l2 * m2 * fma(-l1 * (theta1_dot * theta1_dot), e6, e3 * g),
-                ],
+            >::from_array_storage(
+                ::lagrange::nalgebra::ArrayStorage([
+                    [
+                        -l1 * fma(l2 * m2 * e6, theta2_dot * theta2_dot, e1 * g * e0),
+                        -l2 * m2 * fma(-l1 * (theta1_dot * theta1_dot), e6, e3 * g),
+                    ],
+                ]),
             ),
         )
     }
@@ -260,11 +274,13 @@ where
         ::lagrange::nalgebra::SVector::<
             S,
             2,
-        >::from_column_slice(
-            &[
-                fma(l1 * m2, fma(e0, e5, e1 * e4), m1 * theta1_dot * (l1 * l1)),
-                l2 * m2 * fma(e2, e5, e3 * e4),
-            ],
+        >::from_array_storage(
+            ::lagrange::nalgebra::ArrayStorage([
+                [
+                    fma(l1 * m2, fma(e0, e5, e1 * e4), m1 * theta1_dot * (l1 * l1)),
+                    l2 * m2 * fma(e2, e5, e3 * e4),
+                ],
+            ]),
         )
     }
     /// `∂L/∂q`.
@@ -296,15 +312,17 @@ where
         ::lagrange::nalgebra::SVector::<
             S,
             2,
-        >::from_column_slice(
-            &[
-                fma(
-                    -l1 * e0 * g,
-                    m1 + m2,
-                    -l1 * theta1_dot * m2 * fma(-e1, e5, e0 * e4),
-                ),
-                fma(-l2 * e2 * m2, g, -l2 * m2 * theta2_dot * fma(-e3, e5, e2 * e4)),
-            ],
+        >::from_array_storage(
+            ::lagrange::nalgebra::ArrayStorage([
+                [
+                    fma(
+                        -l1 * e0 * g,
+                        m1 + m2,
+                        -l1 * theta1_dot * m2 * fma(-e1, e5, e0 * e4),
+                    ),
+                    fma(-l2 * e2 * m2, g, -l2 * m2 * theta2_dot * fma(-e3, e5, e2 * e4)),
+                ],
+            ]),
         )
     }
     /// Every `let` of the model at `(t, q, q̇)`, in the order of `LETS`:

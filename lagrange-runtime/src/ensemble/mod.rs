@@ -270,7 +270,7 @@ where
             // As the fixed-step loop does for each run: the step's end
             // checked before it becomes the state, then its growth, lane
             // by lane; the guards as they were if a lane stops the step.
-            let finite = all_finite(&q, &qdot);
+            let finite = all_finite(&[q.as_slice(), qdot.as_slice()]);
             let step = measure((&self.q, &self.qdot), (&q, &qdot), L::Lanes::splat(dt));
             self.spare.clone_from_slice(&self.growth);
             for (lane, growth) in self.growth.iter_mut().enumerate() {

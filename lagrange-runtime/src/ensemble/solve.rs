@@ -6,7 +6,7 @@
 //! alone, by the scalar solve, which answers with its result (LU where
 //! Cholesky refused `M`) or its error.
 
-use nalgebra::{RealField, SMatrix, SVector, SimdBool, SimdPartialOrd, SimdRealField, SimdValue};
+use nalgebra::{RealField, SVector, SimdBool, SimdPartialOrd, SimdRealField, SimdValue};
 
 use super::LaneModel;
 use crate::dynamics::mass_error;
@@ -49,7 +49,13 @@ pub(super) fn accelerations<L: LaneModel<N>, const N: usize>(
     }
     let n: Element<L, N> = nalgebra::convert(N as f64);
     let floor = L::Lanes::splat(n * epsilon::<Element<L, N>>()) * largest;
-    let finite = all_finite(q, qdot) & all_finite(&m, &f) & all_finite(&x, &x);
+    let finite = all_finite(&[
+        q.as_slice(),
+        qdot.as_slice(),
+        m.as_slice(),
+        f.as_slice(),
+        x.as_slice(),
+    ]);
     let answered = positive & smallest.simd_gt(floor) & finite;
     if answered.all() {
         return Ok(x);
@@ -73,17 +79,14 @@ pub(super) fn accelerations<L: LaneModel<N>, const N: usize>(
     Ok(x)
 }
 
-/// Per lane, whether every entry of `a` and `b` is finite: `x · 0` is zero
-/// just where `x` is.
+/// Per lane, whether every entry of `parts` is finite: `x · 0` is zero just
+/// where `x` is.
 #[inline]
-pub(super) fn all_finite<V: SimdRealField + Copy, const R: usize, const C: usize>(
-    a: &SMatrix<V, R, C>,
-    b: &SVector<V, R>,
-) -> V::SimdBool {
+pub(super) fn all_finite<V: SimdRealField + Copy>(parts: &[&[V]]) -> V::SimdBool {
     // Four sums side by side: one would wait on each addition in turn.
     let zero = V::zero();
     let mut sums = [zero; 4];
-    for part in [a.as_slice(), b.as_slice()] {
+    for part in parts {
         for (i, &v) in part.iter().enumerate() {
             sums[i % 4] += v * zero;
         }
