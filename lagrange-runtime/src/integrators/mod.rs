@@ -209,6 +209,53 @@ pub trait LaneStep<S: RealField + Copy>: StepMethod<S> {
         A: FnMut(S, &SVector<V, N>, &SVector<V, N>) -> Result<SVector<V, N>, E>;
 }
 
+/// `impl LaneStep` for a fixed-step explicit method (a struct with fields
+/// `h` and `max_steps`), and its step on scalars or SIMD lanes, written
+/// once: `lane_step!(Rk4, fn rk4(t, q, qdot, h, a) { … })` defines
+/// `fn rk4(t: S, (q, qdot), h: S, a) -> Result<(q, q̇), E>`, where `a` is
+/// the slope `q̈ = a(t, q, q̇)` and `q`, `qdot` are vectors of `V`, lanes of
+/// `S` (`V = S` for the scalar runs, which call it too).
+macro_rules! lane_step {
+    ($method:ident, fn $step:ident($t:ident, $q:ident, $qdot:ident, $h:ident, $a:ident) $body:block) => {
+        impl<S: ::nalgebra::RealField + Copy> $crate::integrators::LaneStep<S> for $method<S> {
+            fn lane_course(&self) -> Result<(S, usize), $crate::error::InvalidInput<S>> {
+                $crate::driver::check_step_size(self.h)?;
+                Ok((self.h, self.max_steps))
+            }
+
+            #[inline]
+            fn lane_step<V, E, A, const N: usize>(
+                &self,
+                t: S,
+                state: (&::nalgebra::SVector<V, N>, &::nalgebra::SVector<V, N>),
+                h: S,
+                a: A,
+            ) -> Result<(::nalgebra::SVector<V, N>, ::nalgebra::SVector<V, N>), E>
+            where
+                V: ::nalgebra::SimdRealField<Element = S> + Copy,
+                A: FnMut(S, &::nalgebra::SVector<V, N>, &::nalgebra::SVector<V, N>)
+                    -> Result<::nalgebra::SVector<V, N>, E>,
+            {
+                $step(t, state, h, a)
+            }
+        }
+
+        #[inline]
+        fn $step<S, V, E, const N: usize>(
+            $t: S,
+            ($q, $qdot): (&::nalgebra::SVector<V, N>, &::nalgebra::SVector<V, N>),
+            $h: S,
+            mut $a: impl FnMut(S, &::nalgebra::SVector<V, N>, &::nalgebra::SVector<V, N>)
+                -> Result<::nalgebra::SVector<V, N>, E>,
+        ) -> Result<(::nalgebra::SVector<V, N>, ::nalgebra::SVector<V, N>), E>
+        where
+            S: ::nalgebra::RealField + Copy,
+            V: ::nalgebra::SimdRealField<Element = S> + Copy,
+        $body
+    };
+}
+pub(crate) use lane_step;
+
 /// A method that integrates a [`Lagrangian`] model and samples it at
 /// requested times.
 ///

@@ -1,8 +1,8 @@
 //! The classic fourth-order Runge–Kutta method with a fixed step.
 
-use nalgebra::{RealField, SVector, SimdRealField};
+use nalgebra::{RealField, SVector};
 
-use super::{LaneStep, StepMethod};
+use super::{StepMethod, lane_step};
 use crate::driver::fixed::{FixedStep, FixedWalk};
 use crate::driver::{check_step_size, Recorder};
 use crate::error::{IntegrationError, InvalidInput};
@@ -95,41 +95,9 @@ pub(crate) fn rk4_step<L: Lagrangian<N>, const N: usize>(
     rk4(t, (q, qdot), h, |t, q, qdot| rec.rhs(model, t, q, qdot))
 }
 
-impl<S: RealField + Copy> LaneStep<S> for Rk4<S> {
-    fn lane_course(&self) -> Result<(S, usize), InvalidInput<S>> {
-        check_step_size(self.h)?;
-        Ok((self.h, self.max_steps))
-    }
-
-    #[inline]
-    fn lane_step<V, E, A, const N: usize>(
-        &self,
-        t: S,
-        state: (&SVector<V, N>, &SVector<V, N>),
-        h: S,
-        a: A,
-    ) -> Result<(SVector<V, N>, SVector<V, N>), E>
-    where
-        V: SimdRealField<Element = S> + Copy,
-        A: FnMut(S, &SVector<V, N>, &SVector<V, N>) -> Result<SVector<V, N>, E>,
-    {
-        rk4(t, state, h, a)
-    }
-}
-
-/// The step on scalars (`V = S`) or SIMD lanes of them: the coefficients
-/// computed in `S`, then the same arithmetic on every lane.
-#[inline]
-fn rk4<S, V, E, const N: usize>(
-    t: S,
-    (q, qdot): (&SVector<V, N>, &SVector<V, N>),
-    h: S,
-    mut a: impl FnMut(S, &SVector<V, N>, &SVector<V, N>) -> Result<SVector<V, N>, E>,
-) -> Result<(SVector<V, N>, SVector<V, N>), E>
-where
-    S: RealField + Copy,
-    V: SimdRealField<Element = S> + Copy,
-{
+// The step on scalars (`V = S`) or SIMD lanes of them: the coefficients
+// computed in `S`, then the same arithmetic on every lane.
+lane_step!(Rk4, fn rk4(t, q, qdot, h, a) {
     let two: S = nalgebra::convert(2.0);
     let (half, sixth) = (h / two, h / nalgebra::convert(6.0));
     let lanes = V::splat;
@@ -146,4 +114,4 @@ where
     let q_next = q + (v1 + (v2 + v3) * two_v + v4) * sixth_v;
     let qdot_next = qdot + (a1 + (a2 + a3) * two_v + a4) * sixth_v;
     Ok((q_next, qdot_next))
-}
+});

@@ -1,8 +1,8 @@
 //! Semi-implicit (symplectic) Euler with a fixed step.
 
-use nalgebra::{RealField, SVector, SimdRealField};
+use nalgebra::{RealField, SVector};
 
-use super::{LaneStep, StepMethod};
+use super::{StepMethod, lane_step};
 use crate::driver::fixed::{FixedStep, FixedWalk};
 use crate::driver::{check_step_size, Recorder};
 use crate::error::{IntegrationError, InvalidInput};
@@ -114,41 +114,9 @@ pub(crate) fn symplectic_step<L: Lagrangian<N>, const N: usize>(
     symplectic(t, (q, qdot), h, |t, q, qdot| rec.rhs(model, t, q, qdot))
 }
 
-impl<S: RealField + Copy> LaneStep<S> for SymplecticEuler<S> {
-    fn lane_course(&self) -> Result<(S, usize), InvalidInput<S>> {
-        check_step_size(self.h)?;
-        Ok((self.h, self.max_steps))
-    }
-
-    #[inline]
-    fn lane_step<V, E, A, const N: usize>(
-        &self,
-        t: S,
-        state: (&SVector<V, N>, &SVector<V, N>),
-        h: S,
-        a: A,
-    ) -> Result<(SVector<V, N>, SVector<V, N>), E>
-    where
-        V: SimdRealField<Element = S> + Copy,
-        A: FnMut(S, &SVector<V, N>, &SVector<V, N>) -> Result<SVector<V, N>, E>,
-    {
-        symplectic(t, state, h, a)
-    }
-}
-
-/// The step on scalars (`V = S`) or SIMD lanes of them.
-#[inline]
-fn symplectic<S, V, E, const N: usize>(
-    t: S,
-    (q, qdot): (&SVector<V, N>, &SVector<V, N>),
-    h: S,
-    mut a: impl FnMut(S, &SVector<V, N>, &SVector<V, N>) -> Result<SVector<V, N>, E>,
-) -> Result<(SVector<V, N>, SVector<V, N>), E>
-where
-    S: RealField + Copy,
-    V: SimdRealField<Element = S> + Copy,
-{
+// The step on scalars (`V = S`) or SIMD lanes of them.
+lane_step!(SymplecticEuler, fn symplectic(t, q, qdot, h, a) {
     let h_v = V::splat(h);
     let qdot_next = qdot + a(t, q, qdot)? * h_v;
     Ok((q + qdot_next * h_v, qdot_next))
-}
+});
