@@ -32,9 +32,9 @@ pub struct Types {
     pub vector: TokenStream,
     /// `SMatrix<S, N, N>`.
     pub matrix: TokenStream,
-    /// `SVector::<S, N>`, built from its entries by [`stored`](super::api::stored).
+    /// `SVector::<S, N>`, built from its entries by `api::stored`.
     pub new_vector: TokenStream,
-    /// `SMatrix::<S, N, N>`, built from its entries by [`stored`](super::api::stored).
+    /// `SMatrix::<S, N, N>`, built from its entries by `api::stored`.
     pub new_matrix: TokenStream,
     /// `SVector<S, C>`.
     pub constraint_vector: TokenStream,

@@ -183,8 +183,7 @@ pub trait StepMethod<S: RealField + Copy> {
 
 /// A fixed-step explicit method that also steps SIMD lanes of states, all
 /// at one time: what an [`Ensemble`](crate::ensemble::Ensemble) runs
-/// ([`ExplicitEuler`](all::ExplicitEuler),
-/// [`SymplecticEuler`](all::SymplecticEuler), [`Rk4`](all::Rk4)). Each
+/// ([`ExplicitEuler`], [`SymplecticEuler`], [`Rk4`]). Each
 /// method's scalar runs take the same step with `V = S`, so that a lane's
 /// values are, bit for bit, those its scalar run would get. It cannot be
 /// implemented outside this crate.
