@@ -131,7 +131,7 @@ pub(crate) fn lanes_impl(outline: &Outline, types: &Types) -> TokenStream {
         {
             type Lanes = S;
             const COORDINATES: [&'static str; #n] = Self::COORDINATES;
-            #[inline]
+            #[inline(always)]
             fn mass_matrix_and_forcing(&self, t: S, q: &#vector, qdot: &#vector) -> (#matrix, #vector) {
                 #name::mass_matrix_and_forcing(self, t, q, qdot)
             }

@@ -476,7 +476,7 @@ where
 {
     type Lanes = S;
     const COORDINATES: [&'static str; 2] = Self::COORDINATES;
-    #[inline]
+    #[inline(always)]
     fn mass_matrix_and_forcing(
         &self,
         t: S,

@@ -153,7 +153,7 @@ pub(crate) struct Measured<S> {
 /// A step [`Measured`], for a scalar state or lane by lane for SIMD lanes
 /// of states (each lane's values its scalar's: the same operations on
 /// finite values, maxima taken in any order). Every value must be finite.
-#[inline]
+#[inline(always)]
 pub(crate) fn measure<V: SimdRealField + Copy, const N: usize>(
     before: (&SVector<V, N>, &SVector<V, N>),
     after: (&SVector<V, N>, &SVector<V, N>),

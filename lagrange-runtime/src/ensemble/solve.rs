@@ -23,7 +23,7 @@ pub(super) type LaneFailure<L, const N: usize> = (usize, IntegrationError<Elemen
 
 /// `q̈` on every lane at `(t, q, q̇)`, or the first lane (lowest index)
 /// whose scalar right-hand side fails, with its error.
-#[inline]
+#[inline(always)]
 pub(super) fn accelerations<L: LaneModel<N>, const N: usize>(
     model: &L,
     t: Element<L, N>,
@@ -77,6 +77,25 @@ pub(super) fn accelerations<L: LaneModel<N>, const N: usize>(
         }
     }
     Ok(x)
+}
+
+/// [`accelerations`] compiled for AVX2, with the model's `M` and `f` it
+/// inlines: the slope an [`Ensemble`](super::Ensemble) takes on a CPU with
+/// AVX2 when the build has none (the same bits; see
+/// [`advance_to`](super::Ensemble::advance_to)).
+///
+/// # Safety
+///
+/// The CPU must have AVX2.
+#[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+#[target_feature(enable = "avx2")]
+pub(super) unsafe fn accelerations_avx2<L: LaneModel<N>, const N: usize>(
+    model: &L,
+    t: Element<L, N>,
+    q: &SVector<L::Lanes, N>,
+    qdot: &SVector<L::Lanes, N>,
+) -> Result<SVector<L::Lanes, N>, LaneFailure<L, N>> {
+    accelerations(model, t, q, qdot)
 }
 
 /// Per lane, whether every entry of `parts` is finite: `x · 0` is zero just
