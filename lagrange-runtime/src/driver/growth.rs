@@ -90,20 +90,20 @@ impl<S: RealField + Copy> GrowthGuard<S> {
     /// [`unstable`](Self::unstable) from the step's [`measure`], taken
     /// before (lane by lane, for an ensemble's lanes).
     pub(crate) fn judge(&mut self, step: Measured<S>) -> Option<usize> {
+        self.judge_unresolved(step.size, step.unresolved(self.last))
+    }
+
+    /// The size of the state after the last step: what
+    /// [`Measured::unresolved`] takes.
+    pub(crate) fn last(&self) -> S {
+        self.last
+    }
+
+    /// [`judge`](Self::judge) from the step's size and how unresolved it
+    /// is ([`Measured::unresolved`], taken before: lane by lane for an
+    /// ensemble's lanes).
+    pub(crate) fn judge_unresolved(&mut self, size: S, unresolved: S) -> Option<usize> {
         let c = |x: f64| -> S { nalgebra::convert(x) };
-        let Measured {
-            size,
-            change,
-            disagreement,
-        } = step;
-        let ratio = |part: S, whole: S| {
-            if whole > S::zero() {
-                part / whole
-            } else {
-                S::zero()
-            }
-        };
-        let unresolved = ratio(change, size.max(self.last)).max(disagreement);
         let steps = c(Self::STEPS as f64);
         self.roughness += (unresolved - self.roughness) / steps;
         if size > c(2.0) * self.last {
@@ -150,10 +150,22 @@ pub(crate) struct Measured<S> {
     pub(crate) disagreement: S,
 }
 
+impl<V: SimdRealField + Copy> Measured<V> {
+    /// How unresolved the step is: how much the state changed against its
+    /// size (after the step, or `last` before it, whichever is larger), or
+    /// the disagreement if that is more; zero where the sizes are.
+    #[inline]
+    pub(crate) fn unresolved(&self, last: V) -> V {
+        let (zero, whole) = (V::zero(), self.size.simd_max(last));
+        let ratio = (self.change / whole).select(whole.simd_gt(zero), zero);
+        ratio.simd_max(self.disagreement)
+    }
+}
+
 /// A step [`Measured`], for a scalar state or lane by lane for SIMD lanes
 /// of states (each lane's values its scalar's: the same operations on
 /// finite values, maxima taken in any order). Every value must be finite.
-#[inline(always)]
+#[inline]
 pub(crate) fn measure<V: SimdRealField + Copy, const N: usize>(
     before: (&SVector<V, N>, &SVector<V, N>),
     after: (&SVector<V, N>, &SVector<V, N>),

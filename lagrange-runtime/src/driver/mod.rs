@@ -34,7 +34,7 @@ mod step_control;
 mod validate;
 
 pub(crate) use fixed::Interval;
-pub(crate) use growth::{GrowthGuard, Measured, measure};
+pub(crate) use growth::{GrowthGuard, measure};
 pub(crate) use newton::newton_noise_floor;
 pub(crate) use record::{Recorder, finite_state};
 pub(crate) use step_control::{advances, default_tolerance};

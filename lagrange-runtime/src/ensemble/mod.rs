@@ -87,7 +87,7 @@ mod solve;
 
 use nalgebra::{ComplexField, RealField, SMatrix, SVector, SimdBool, SimdRealField, SimdValue};
 
-use crate::driver::{GrowthGuard, Interval, Measured, measure};
+use crate::driver::{GrowthGuard, Interval, measure};
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::integrators::LaneStep;
 use crate::trajectory::Stats;
@@ -316,6 +316,11 @@ where
             // by lane; the guards as they were if a lane stops the step.
             let finite = all_finite(&[q.as_slice(), qdot.as_slice()]);
             let step = measure((&self.q, &self.qdot), (&q, &qdot), L::Lanes::splat(dt));
+            let mut last = step.size;
+            for (lane, growth) in self.growth.iter().enumerate() {
+                last.replace(lane, growth.last());
+            }
+            let unresolved = step.unresolved(last);
             self.spare.clone_from_slice(&self.growth);
             for (lane, growth) in self.growth.iter_mut().enumerate() {
                 let error = if finite.bitmask() & (1 << lane) == 0 {
@@ -328,12 +333,9 @@ where
                         value,
                     })
                 } else {
-                    let lane_step = Measured {
-                        size: step.size.extract(lane),
-                        change: step.change.extract(lane),
-                        disagreement: step.disagreement.extract(lane),
-                    };
-                    growth.judge(lane_step).map(|steps| {
+                    let size = step.size.extract(lane);
+                    let unresolved = unresolved.extract(lane);
+                    growth.judge_unresolved(size, unresolved).map(|steps| {
                         let (q, qdot) = (lane_of(&q, lane), lane_of(&qdot, lane));
                         let (t, h) = (t_next, interval.step);
                         IntegrationError::Unstable {

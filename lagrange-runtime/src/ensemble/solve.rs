@@ -23,8 +23,20 @@ pub(super) type LaneFailure<L, const N: usize> = (usize, IntegrationError<Elemen
 
 /// `q̈` on every lane at `(t, q, q̇)`, or the first lane (lowest index)
 /// whose scalar right-hand side fails, with its error.
-#[inline(always)]
+#[inline]
 pub(super) fn accelerations<L: LaneModel<N>, const N: usize>(
+    model: &L,
+    t: Element<L, N>,
+    q: &SVector<L::Lanes, N>,
+    qdot: &SVector<L::Lanes, N>,
+) -> Result<SVector<L::Lanes, N>, LaneFailure<L, N>> {
+    accelerations_inline(model, t, q, qdot)
+}
+
+/// [`accelerations`], written once for it and for its AVX2 copy, into
+/// each of which it is inlined.
+#[inline(always)]
+fn accelerations_inline<L: LaneModel<N>, const N: usize>(
     model: &L,
     t: Element<L, N>,
     q: &SVector<L::Lanes, N>,
@@ -95,12 +107,12 @@ pub(super) unsafe fn accelerations_avx2<L: LaneModel<N>, const N: usize>(
     q: &SVector<L::Lanes, N>,
     qdot: &SVector<L::Lanes, N>,
 ) -> Result<SVector<L::Lanes, N>, LaneFailure<L, N>> {
-    accelerations(model, t, q, qdot)
+    accelerations_inline(model, t, q, qdot)
 }
 
 /// Per lane, whether every entry of `parts` is finite: `x · 0` is zero just
 /// where `x` is.
-#[inline]
+#[inline(always)]
 pub(super) fn all_finite<V: SimdRealField + Copy>(parts: &[&[V]]) -> V::SimdBool {
     // Four sums side by side: one would wait on each addition in turn.
     let zero = V::zero();

@@ -222,7 +222,7 @@ macro_rules! lane_step {
                 Ok((self.h, self.max_steps))
             }
 
-            #[inline(always)]
+            #[inline]
             fn lane_step<V, E, A, const N: usize>(
                 &self,
                 t: S,
@@ -239,7 +239,7 @@ macro_rules! lane_step {
             }
         }
 
-        #[inline(always)]
+        #[inline]
         fn $step<S, V, E, const N: usize>(
             $t: S,
             ($q, $qdot): (&::nalgebra::SVector<V, N>, &::nalgebra::SVector<V, N>),
