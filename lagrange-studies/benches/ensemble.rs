@@ -10,9 +10,9 @@
 //! the table is the time per state and step, and the scalar time over the
 //! ensemble's: medians over interleaved rounds, with their range.
 //!
-//! The lanes are as wide as the build's vector registers. The default
-//! x86-64 build (SSE2) has two `f64` or four `f32` lanes to an
-//! instruction; for AVX2 (four `f64`, eight `f32`) build for the CPU:
+//! On an x86-64 CPU with AVX2 the default build steps the ensembles in
+//! code compiled for AVX2, chosen at run time (its scalar runs stay SSE2);
+//! built for the CPU, everything is, the scalar runs too:
 //!
 //! ```text
 //! cargo bench -p lagrange-studies --bench ensemble

@@ -12,10 +12,9 @@
 //! pendulum with RK4 at `h = 1e-3`, as 10⁴ scalar `Stepper`s and as
 //! `Ensemble`s of four pendulums in the lanes of `AutoF64x4`. Each lane is
 //! its scalar stepper bit for bit, so the flips are the same; the example
-//! checks that and prints both times (the lanes' width is the build's:
-//! two `f64` by default, four with `RUSTFLAGS="-C target-cpu=native"` on
-//! an AVX2 CPU; `cargo bench -p lagrange-studies --bench ensemble` has
-//! the tables).
+//! checks that and prints both times (on an AVX2 CPU the ensembles step
+//! in code compiled for it, chosen at run time; `cargo bench -p
+//! lagrange-studies --bench ensemble` has the tables).
 //!
 //! Writes `docs/ensemble/first_flip.png`: each pixel a pair of initial
 //! angles (θ1 across, θ2 up, both from −3 to 3 rad), its colour the time to

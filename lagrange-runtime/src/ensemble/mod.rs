@@ -40,11 +40,14 @@
 //! not refused up front (a lane model has no such check); it shows as its
 //! lane's `M` or `f` not finite, at the first step.
 //!
-//! Speed: the lanes are as wide as the build's vector registers allow.
-//! The default x86-64 target (SSE2) has two `f64` lanes; built with
-//! `-C target-cpu=native` on a CPU with AVX2, four `f64` or eight `f32`.
-//! `BENCHMARKS.md`, "Ensembles in SIMD lanes", has the throughput over
-//! scalar steppers (`cargo bench -p lagrange-studies --bench ensemble`).
+//! Speed: four `f64` or eight `f32` lanes fill an AVX2 register. On an
+//! x86-64 CPU with AVX2, a build without it (the default target) steps the
+//! lanes in a copy of its loop and of the slope compiled for AVX2, chosen
+//! at run time ([`advance_to`](Ensemble::advance_to)); built with
+//! `-C target-cpu=native`, everything is. `BENCHMARKS.md`, "Ensembles in
+//! SIMD lanes", has the throughput over scalar steppers, 2.8–4.2× per core
+//! for the double pendulum and the 5-link chain (`cargo bench -p
+//! lagrange-studies --bench ensemble`).
 //!
 //! ```
 //! use lagrange_runtime::ensemble::{AutoF64x4, Ensemble, LaneModel};
