@@ -38,4 +38,4 @@ pub(crate) use growth::{GrowthGuard, measure};
 pub(crate) use newton::newton_noise_floor;
 pub(crate) use record::{Recorder, finite_state};
 pub(crate) use step_control::{advances, default_tolerance};
-pub(crate) use validate::{check_step_size, check_tolerances, invalid};
+pub(crate) use validate::{check_step_size, check_tolerances, finite_start, invalid};

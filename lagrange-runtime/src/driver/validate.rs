@@ -15,6 +15,27 @@ pub(crate) fn invalid<S: RealField + Copy, const N: usize>(
     Failure::boxed(invalid.into(), Trajectory::with_capacity(0))
 }
 
+/// A finite initial state, or the first coordinate (of `coordinates`,
+/// the model's names) whose position or velocity is not: for a run, and
+/// for each lane of an ensemble.
+pub(crate) fn finite_start<S: RealField + Copy, const N: usize>(
+    coordinates: [&'static str; N],
+    q0: &SVector<S, N>,
+    qdot0: &SVector<S, N>,
+) -> Result<(), InvalidInput<S>> {
+    for (i, coordinate) in coordinates.into_iter().enumerate() {
+        if !q0[i].is_finite() {
+            let value = q0[i];
+            return Err(InvalidInput::NonFiniteInitialPosition { coordinate, value });
+        }
+        if !qdot0[i].is_finite() {
+            let value = qdot0[i];
+            return Err(InvalidInput::NonFiniteInitialVelocity { coordinate, value });
+        }
+    }
+    Ok(())
+}
+
 /// The checks every method shares: a finite start time, finite parameters,
 /// control inputs that were set, a finite initial state, and finite,
 /// non-decreasing sample times none before `t0`. Unset inputs are NaN
@@ -34,16 +55,7 @@ pub(super) fn validate<L: Lagrangian<N>, const N: usize>(
     if L::HAS_CONTACTS {
         return Err(InvalidInput::ContactsNotRun);
     }
-    for (i, coordinate) in L::COORDINATES.into_iter().enumerate() {
-        if !q0[i].is_finite() {
-            let value = q0[i];
-            return Err(InvalidInput::NonFiniteInitialPosition { coordinate, value });
-        }
-        if !qdot0[i].is_finite() {
-            let value = qdot0[i];
-            return Err(InvalidInput::NonFiniteInitialVelocity { coordinate, value });
-        }
-    }
+    finite_start(L::COORDINATES, q0, qdot0)?;
     for (index, &time) in times.iter().enumerate() {
         if !time.is_finite() {
             return Err(InvalidInput::NonFiniteSampleTime { index, time });

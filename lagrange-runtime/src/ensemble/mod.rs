@@ -90,7 +90,7 @@ mod solve;
 
 use nalgebra::{ComplexField, RealField, SMatrix, SVector, SimdBool, SimdRealField, SimdValue};
 
-use crate::driver::{GrowthGuard, Interval, measure};
+use crate::driver::{GrowthGuard, Interval, finite_start, measure};
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::integrators::LaneStep;
 use crate::trajectory::Stats;
@@ -196,7 +196,7 @@ where
             return Err(InvalidInput::NonFiniteStartTime { t0 }.into());
         }
         for (lane, (q, qdot)) in q0.iter().zip(qdot0).enumerate() {
-            check_start::<L, N>(q, qdot).map_err(|input| EnsembleError::Lane {
+            finite_start(L::COORDINATES, q, qdot).map_err(|input| EnsembleError::Lane {
                 lane,
                 error: input.into(),
             })?;
@@ -391,7 +391,7 @@ where
         qdot: SVector<Element<L, N>, N>,
     ) -> Result<(), EnsembleError<Element<L, N>, N>> {
         let lane = self.lane(lane);
-        check_start::<L, N>(&q, &qdot)?;
+        finite_start(L::COORDINATES, &q, &qdot)?;
         for i in 0..N {
             self.q[i].replace(lane, q[i]);
             self.qdot[i].replace(lane, qdot[i]);
@@ -421,22 +421,4 @@ where
         assert!(lane < lanes, "lane {lane} of an ensemble of {lanes} lanes");
         lane
     }
-}
-
-/// A lane's start, refused as a scalar run's would be.
-fn check_start<L: LaneModel<N>, const N: usize>(
-    q: &SVector<Element<L, N>, N>,
-    qdot: &SVector<Element<L, N>, N>,
-) -> Result<(), InvalidInput<Element<L, N>>> {
-    for (i, coordinate) in L::COORDINATES.into_iter().enumerate() {
-        if !q[i].is_finite() {
-            let value = q[i];
-            return Err(InvalidInput::NonFiniteInitialPosition { coordinate, value });
-        }
-        if !qdot[i].is_finite() {
-            let value = qdot[i];
-            return Err(InvalidInput::NonFiniteInitialVelocity { coordinate, value });
-        }
-    }
-    Ok(())
 }
