@@ -275,10 +275,9 @@ where
         }
         let everyone = |error| EnsembleError::Lane { lane: 0, error };
         let interval = Interval::new(t, target, self.h);
-        let (q0, qdot0) = (self.q(0), self.qdot(0));
         if interval.underflows() {
             let h = interval.step;
-            let (q, qdot) = (q0, qdot0);
+            let (q, qdot) = (self.q(0), self.qdot(0));
             return Err(everyone(IntegrationError::StepSizeUnderflow {
                 t,
                 h,
@@ -288,7 +287,7 @@ where
         }
         let max_steps = self.max_steps;
         let Some(steps) = interval.steps(max_steps) else {
-            let (q, qdot) = (q0, qdot0);
+            let (q, qdot) = (self.q(0), self.qdot(0));
             return Err(everyone(IntegrationError::TooManySteps {
                 t,
                 max_steps,
