@@ -84,12 +84,7 @@ impl<S: RealField + Copy> GrowthGuard<S> {
         after: (&SVector<S, N>, &SVector<S, N>),
         h: S,
     ) -> Option<usize> {
-        self.judge(measure((&before.0, &before.1), after, h))
-    }
-
-    /// [`unstable`](Self::unstable) from the step's [`measure`], taken
-    /// before (lane by lane, for an ensemble's lanes).
-    pub(crate) fn judge(&mut self, step: Measured<S>) -> Option<usize> {
+        let step = measure((&before.0, &before.1), after, h);
         self.judge_unresolved(step.size, step.unresolved(self.last))
     }
 
@@ -99,9 +94,9 @@ impl<S: RealField + Copy> GrowthGuard<S> {
         self.last
     }
 
-    /// [`judge`](Self::judge) from the step's size and how unresolved it
-    /// is ([`Measured::unresolved`], taken before: lane by lane for an
-    /// ensemble's lanes).
+    /// [`unstable`](Self::unstable) from the step's size and how unresolved
+    /// it is ([`measure`], [`Measured::unresolved`], taken before: on the
+    /// lanes for an ensemble, whose guards are one per lane).
     pub(crate) fn judge_unresolved(&mut self, size: S, unresolved: S) -> Option<usize> {
         let c = |x: f64| -> S { nalgebra::convert(x) };
         let steps = c(Self::STEPS as f64);

@@ -94,7 +94,7 @@ use crate::driver::{GrowthGuard, Interval, finite_start, measure};
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::integrators::LaneStep;
 use crate::trajectory::Stats;
-use solve::{Element, accelerations, all_finite, gather, lane_of};
+use solve::{Element, accelerations, finite_lanes, gather, lane_of};
 
 pub use simba::simd::{AutoF32x4, AutoF32x8, AutoF64x2, AutoF64x4, AutoF64x8, AutoSimd};
 
@@ -316,7 +316,7 @@ where
             // As the fixed-step loop does for each run: the step's end
             // checked before it becomes the state, then its growth, lane
             // by lane; the guards as they were if a lane stops the step.
-            let finite = all_finite(&[q.as_slice(), qdot.as_slice()]);
+            let finite = finite_lanes(&[q.as_slice(), qdot.as_slice()]);
             let step = measure((&self.q, &self.qdot), (&q, &qdot), L::Lanes::splat(dt));
             let mut last = step.size;
             for (lane, growth) in self.growth.iter().enumerate() {

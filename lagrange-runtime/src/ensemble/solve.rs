@@ -61,7 +61,7 @@ fn accelerations_inline<L: LaneModel<N>, const N: usize>(
     }
     let n: Element<L, N> = nalgebra::convert(N as f64);
     let floor = L::Lanes::splat(n * epsilon::<Element<L, N>>()) * largest;
-    let finite = all_finite(&[
+    let finite = finite_lanes(&[
         q.as_slice(),
         qdot.as_slice(),
         m.as_slice(),
@@ -111,9 +111,10 @@ pub(super) unsafe fn accelerations_avx2<L: LaneModel<N>, const N: usize>(
 }
 
 /// Per lane, whether every entry of `parts` is finite: `x · 0` is zero just
-/// where `x` is.
+/// where `x` is. (The lanes' mask; `linalg::all_finite` is the scalars'
+/// yes or no.)
 #[inline(always)]
-pub(super) fn all_finite<V: SimdRealField + Copy>(parts: &[&[V]]) -> V::SimdBool {
+pub(super) fn finite_lanes<V: SimdRealField + Copy>(parts: &[&[V]]) -> V::SimdBool {
     // Four sums side by side: one would wait on each addition in turn.
     let zero = V::zero();
     let mut sums = [zero; 4];
