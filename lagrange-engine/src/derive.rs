@@ -46,6 +46,7 @@
 use crate::expr::{ExprId, Pool};
 use crate::model::{Model, Symbols};
 
+pub mod articulated;
 mod forcing;
 pub mod regressor;
 
@@ -78,6 +79,9 @@ pub struct Equations {
     pub parameter_derivatives: Option<ParameterDerivatives>,
     /// The regressor, if the model asked (filled in after the checks).
     pub regressor: Option<regressor::Regressor>,
+    /// The masses of `T` on a tree of increments, where the model has that
+    /// form (found last, `articulated`): the runtime then solves in `O(N)`.
+    pub articulated: Option<articulated::Articulated>,
 }
 
 /// The derivatives of the equations by each parameter scalar `p_k`, in
@@ -333,6 +337,7 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         input_jacobian,
         parameter_derivatives,
         regressor: None,
+        articulated: None,
     }
 }
 
@@ -504,6 +509,7 @@ impl Equations {
             input_jacobian: None,
             parameter_derivatives: None,
             regressor: None,
+            articulated: None,
         }
     }
 }

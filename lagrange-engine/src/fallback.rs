@@ -112,6 +112,7 @@ impl Stub {
             .filter(|m| self.parameter_derivatives || m.in_trait != InTrait::ParameterDerivatives)
             .filter(|m| self.regressor.is_some() || m.in_trait != InTrait::Regressor)
             .filter(|m| constrained || m.returns != Returns::ConstraintParameterMatrix)
+            .filter(|m| m.in_trait != InTrait::Articulated)
             .map(|m| {
                 let signature = m.signature(&types);
                 quote!(pub #signature { #stop })

@@ -1,6 +1,7 @@
 //! Trajectories of derived models: every integrator's order, tolerance and
 //! energy behaviour, and the 25-digit references of `tests/data/`.
 
+mod articulated;
 mod bicycle;
 mod constrained;
 mod contact;

@@ -98,6 +98,10 @@ pub enum Returns {
     RegressorMatrix,
     /// `SVector<S, K>`: `K` roots.
     RegressorVector,
+    /// `lagrange::linalg::articulated::Parts<S, N, D>`, `D` the axes of a
+    /// tree of increments: `N·D` axes, `N·D` bends, `N·D` masses joint by
+    /// joint, `N` inertias, `N` forces.
+    Articulated,
 }
 
 impl Returns {
@@ -132,6 +136,10 @@ impl Returns {
             }
             Returns::RegressorMatrix => ty.regressor_matrix.clone(),
             Returns::RegressorVector => ty.regressor_vector.clone(),
+            Returns::Articulated => {
+                let (n, d) = (&ty.n, Literal::usize_unsuffixed(ty.articulated_axes));
+                quote!(::lagrange::linalg::articulated::Parts<S, #n, #d>)
+            }
         }
     }
 
@@ -229,6 +237,30 @@ impl Returns {
                 };
                 quote!(<#ty>::from_column_slice(&[#(#outs),*]))
             }
+            Returns::Articulated => {
+                let per_axis = ty.dof * ty.articulated_axes;
+                let joints = |outs: &[TokenStream]| {
+                    let joints = outs
+                        .chunks(ty.articulated_axes.max(1))
+                        .map(|joint| quote!([#(#joint),*]));
+                    quote!([#(#joints),*])
+                };
+                let (axes, rest) = outs.split_at(per_axis);
+                let (bends, rest) = rest.split_at(per_axis);
+                let (masses, rest) = rest.split_at(per_axis);
+                let (inertia, forcing) = rest.split_at(ty.dof);
+                let (axes, bends, masses) = (joints(axes), joints(bends), joints(masses));
+                let forcing = vector(forcing);
+                quote! {
+                    ::lagrange::linalg::articulated::Parts {
+                        axes: #axes,
+                        bends: #bends,
+                        masses: #masses,
+                        inertia: [#(#inertia),*],
+                        forcing: #forcing,
+                    }
+                }
+            }
         }
     }
 }
@@ -285,6 +317,10 @@ pub enum InTrait {
     Regressor,
     /// An inherent method only, of every model and of the stub.
     Inherent,
+    /// An inherent method (hidden) of a model whose masses hang on a tree
+    /// of increments, not of the stub: what the `Lagrangian` impl's
+    /// `accelerations` hands the runtime's recursion.
+    Articulated,
 }
 
 /// A generated method `fn name(&self, args) -> returns`.
@@ -713,6 +749,20 @@ pub const METHODS: &[Method] = &[
         roots: |model, eq| constraint_parameter_roots(model, eq, 2),
         in_trait: InTrait::ParameterDerivatives,
     },
+    // Only a model whose masses hang on a tree of increments has this.
+    Method {
+        name: "articulated_parts",
+        doc: &[
+            "The joints' axes, bends, masses and inertias, and the forces other",
+            "than the kinetic energy's, at `(t, q, q̇)`: what",
+            "`lagrange::linalg::articulated::accelerations` solves `M q̈ = f`",
+            "from in `O(N)`, without `M`.",
+        ],
+        args: &[Arg::T, Arg::Q, Arg::Qdot],
+        returns: Returns::Articulated,
+        roots: |_, eq| Some(eq.articulated.as_ref()?.roots.clone()),
+        in_trait: InTrait::Articulated,
+    },
 ];
 
 /// One of a constrained model's parameter derivatives (`which`: `∂φ/∂p`,
@@ -760,7 +810,8 @@ impl Method {
             | InTrait::Actuated
             | InTrait::ParameterDerivatives
             | InTrait::Regressor
-            | InTrait::Inherent => self.signature_returning(ty, returns),
+            | InTrait::Inherent
+            | InTrait::Articulated => self.signature_returning(ty, returns),
         }
     }
 

@@ -15,6 +15,7 @@ pub mod outline;
 pub(crate) mod parameters;
 
 use crate::derive::Equations;
+use crate::derive::articulated::Articulated;
 use crate::expr::ExprId;
 use crate::model::Model;
 use api::{CONSTS, Doc, InTrait, METHODS, Method};
@@ -32,6 +33,8 @@ struct Context<'a> {
     /// The roots of each method of [`METHODS`], `None` if the model has no
     /// such method.
     roots: Vec<Option<Vec<ExprId>>>,
+    /// The tree of increments the masses hang on, where they do.
+    articulated: Option<&'a Articulated>,
 }
 
 /// The generated items of a derived model.
@@ -66,9 +69,11 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
                 .collect::<Vec<_>>(),
         )
         .with_parameters(model.parameters.len())
-        .with_regressor(eq.regressor.as_ref().map_or(0, |r| r.names.len())),
+        .with_regressor(eq.regressor.as_ref().map_or(0, |r| r.names.len()))
+        .with_articulated(eq.articulated.as_ref().map_or(0, |a| a.axes)),
         namer: Namer::new(model),
         roots: METHODS.iter().map(|m| (m.roots)(model, eq)).collect(),
+        articulated: eq.articulated.as_ref(),
     };
     let item = cx.outline.struct_item();
     let inherent = inherent_impl(&cx, texts);
@@ -304,6 +309,7 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
     let finite = parameters_are_finite(cx);
     let visit_inputs = inputs::visit_inputs(&cx.outline, &cx.types);
     let visit_lets = visit_lets(&cx.types);
+    let accelerations = cx.articulated.map(|a| accelerations(cx, a));
     // A constrained model hands itself, with its number of constraints, to
     // the runtime's visitor: how a generic integrator reaches `Holonomic`.
     let visit = (cx.types.constraints > 0).then(|| {
@@ -335,6 +341,45 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
             #visit_lets
             #visit
             #has_contacts
+            #accelerations
+        }
+    }
+}
+
+/// `Lagrangian::accelerations` of a model whose masses hang on a tree of
+/// increments: the runtime's `O(N)` recursion over the joints, from the
+/// inherent `articulated_parts`; `None` (the dense solve) where it refuses.
+fn accelerations(cx: &Context, a: &Articulated) -> TokenStream {
+    let name = cx.outline.name;
+    let (n, vector) = (&cx.types.n, &cx.types.vector);
+    let joint = |j: &Option<usize>| match j {
+        Some(j) => quote!(#j),
+        None => quote!(::lagrange::linalg::articulated::NONE),
+    };
+    let parent = a.parent.iter().map(joint);
+    let base = a.base.iter().map(joint);
+    let coordinate = &a.coordinate;
+    let scale = a
+        .scale
+        .iter()
+        .map(|&c| proc_macro2::Literal::f64_suffixed(c));
+    quote! {
+        const SOLVES_ACCELERATIONS: bool = true;
+        #[inline]
+        fn accelerations(
+            &self,
+            t: S,
+            q: &#vector,
+            qdot: &#vector,
+        ) -> ::core::option::Option<::core::result::Result<#vector, ::lagrange::error::IntegrationError<S, #n>>> {
+            const TREE: ::lagrange::linalg::articulated::Tree<#n> = ::lagrange::linalg::articulated::Tree {
+                parent: [#(#parent),*],
+                base: [#(#base),*],
+                coordinate: [#(#coordinate),*],
+                scale: [#(#scale),*],
+            };
+            let parts = #name::articulated_parts(self, t, q, qdot);
+            ::lagrange::linalg::articulated::accelerations(&TREE, &parts, qdot).map(::core::result::Result::Ok)
         }
     }
 }
@@ -410,6 +455,7 @@ fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
             | InTrait::ParameterDerivatives
             | InTrait::Regressor
             | InTrait::Inherent
+            | InTrait::Articulated
     ) {
         return TokenStream::new();
     }
@@ -443,7 +489,8 @@ fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
         | InTrait::Actuated
         | InTrait::ParameterDerivatives
         | InTrait::Regressor
-        | InTrait::Inherent => {
+        | InTrait::Inherent
+        | InTrait::Articulated => {
             quote! {
                 #[inline]
                 #signature {

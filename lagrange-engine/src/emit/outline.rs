@@ -81,6 +81,9 @@ pub struct Types {
     pub regressor_matrix: TokenStream,
     /// `SVector<S, K>`.
     pub regressor_vector: TokenStream,
+    /// The axes `D` of a model whose masses hang on a tree of increments
+    /// (`derive::articulated`), zero for the others.
+    pub articulated_axes: usize,
 }
 
 impl Types {
@@ -127,6 +130,7 @@ impl Types {
             regressors: 0,
             regressor_matrix: quote!(#na::SMatrix<S, #n, 0>),
             regressor_vector: quote!(#na::SVector<S, 0>),
+            articulated_axes: 0,
             n,
             c,
         }
@@ -140,6 +144,13 @@ impl Types {
         self.regressor_matrix = quote!(#na::SMatrix<S, #n, #kk>);
         self.regressor_vector = quote!(#na::SVector<S, #kk>);
         self.regressors = k;
+        self
+    }
+
+    /// The same types for a model whose masses hang on a tree of
+    /// increments in `axes` axes (zero: not).
+    pub fn with_articulated(mut self, axes: usize) -> Self {
+        self.articulated_axes = axes;
         self
     }
 

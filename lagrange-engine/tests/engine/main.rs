@@ -3,6 +3,7 @@
 //!
 //! `cargo test -p lagrange-engine --test engine -- golden::` runs one group.
 
+mod articulated;
 mod codegen;
 mod constraints;
 mod golden;

@@ -20,9 +20,15 @@
 //! - `second_order`: the `2N × 2N` systems `(γ I − J) x = b` of those
 //!   methods solved at size `N`, using `J = [[0, I], [∂q̈/∂q, ∂q̈/∂q̇]]`.
 //!
-//! `mass` is public (`lagrange_runtime::linalg::mass`, named for what it
-//! holds); the others are the runtime's own.
+//! - [`articulated`]: `M q̈ = f` in `O(N)` without `M`, for a model whose
+//!   masses hang on a tree of increments (a chain or a tree of links): the
+//!   articulated-body recursion, which the generated code calls.
+//!
+//! `mass` and `articulated` are public (`lagrange_runtime::linalg::mass`,
+//! named for what they hold; the second reached by generated code); the
+//! others are the runtime's own.
 
+pub mod articulated;
 pub(crate) mod ldlt;
 pub(crate) mod lu;
 pub mod mass;

@@ -1,0 +1,155 @@
+//! The masses of `T` on a tree of increments (`derive/articulated.rs`):
+//! found in a chain in absolute angles and in a branched tree in relative
+//! ones, with the joints, angles and axes the runtime's recursion reads;
+//! refused, so that the dense solve stays, wherever the form does not hold.
+//! That the recursion then solves `M q̈ = f` is the runtime's test
+//! (`tests/trajectories/articulated.rs`).
+
+use crate::problems::{derive, indexed_chain};
+use lagrange_engine::derive::articulated::{Articulated, FROM_COORDINATES};
+
+fn found(src: &str) -> Option<Articulated> {
+    derive(src).equations.articulated
+}
+
+/// Two branches of `b` links of length `l` in relative angles, the second
+/// hanging from the end of the first's first link (`l` pulled out of each
+/// velocity's sum: its terms are distributed again to find the joints).
+fn tree(b: usize) -> String {
+    format!(
+        "pub struct Tree {{
+            const B = {b};
+            coordinates: phi[B], psi[B];
+            parameters: l;
+            constants: g = 9.81;
+            let ta[i in 0..B] = sum(j in 0..=i, phi[j]);
+            let tb[i in 0..B] = ta[0] + sum(j in 0..=i, psi[j]);
+            let xa[i in 0..B] = l*sum(j in 0..=i, sin(ta[j]));
+            let ya[i in 0..B] = -l*sum(j in 0..=i, cos(ta[j]));
+            let xb[i in 0..B] = xa[0] + l*sum(j in 0..=i, sin(tb[j]));
+            let yb[i in 0..B] = ya[0] - l*sum(j in 0..=i, cos(tb[j]));
+            kinetic: sum(i in 0..B, (dot(xa[i])^2 + dot(ya[i])^2 + dot(xb[i])^2 + dot(yb[i])^2)/2);
+            potential: sum(i in 0..B, g*(ya[i] + yb[i]));
+        }}"
+    )
+}
+
+#[test]
+fn a_chain_in_absolute_angles_is_a_path_of_hinges() {
+    let n = FROM_COORDINATES;
+    let a = found(&indexed_chain(n)).expect("the chain's form");
+    assert_eq!(a.axes, 2);
+    // Each link's increment at the end of the one before; each angle a
+    // coordinate of its own.
+    let parents: Vec<Option<usize>> = (0..n).map(|j| j.checked_sub(1)).collect();
+    assert_eq!(a.parent, parents);
+    assert_eq!(a.base, vec![None; n]);
+    assert_eq!(a.coordinate, (0..n).collect::<Vec<_>>());
+    assert_eq!(a.scale, vec![1.0; n]);
+    // Axes, bends and masses for N joints in 2 axes, N inertias, N forces.
+    assert_eq!(a.roots.len(), n * (3 * 2 + 2));
+}
+
+#[test]
+fn a_branched_tree_in_relative_angles_is_a_tree_of_sums() {
+    let b = FROM_COORDINATES.div_ceil(2);
+    let a = found(&tree(b)).expect("the tree's form");
+    assert_eq!(a.axes, 2);
+    let n = 2 * b;
+    // Every angle but the first is another joint's plus one coordinate,
+    // every coordinate once; each joint's parent is its angle's base (a
+    // hinge turns with the link it hangs from).
+    assert_eq!(a.base.iter().filter(|b| b.is_none()).count(), 1);
+    assert_eq!(a.parent, a.base);
+    let mut coordinates = a.coordinate.clone();
+    coordinates.sort_unstable();
+    assert_eq!(coordinates, (0..n).collect::<Vec<_>>());
+    // Two joints hang from the first link's end: the second of branch a and
+    // the first of branch b.
+    let children_of_first = a.parent.iter().filter(|p| **p == Some(0)).count();
+    assert_eq!(children_of_first, 2);
+    for (j, p) in a.parent.iter().enumerate() {
+        assert!(p.is_none_or(|p| p < j), "a parent after its child");
+    }
+}
+
+#[test]
+fn a_component_written_with_the_other_sign_has_the_same_joints() {
+    // `y` written upward: its velocity's terms carry the opposite sign,
+    // the same joints.
+    let src = indexed_chain(FROM_COORDINATES).replace(
+        "let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));",
+        "let y[i in 0..N] = sum(j in 0..=i, l[j]*cos(theta[j]));",
+    );
+    let a = found(&src).expect("the form, whatever the sign");
+    assert_eq!(a.scale, vec![1.0; FROM_COORDINATES]);
+}
+
+#[test]
+fn models_without_the_form_keep_the_dense_solve() {
+    let n = FROM_COORDINATES;
+    // Below the size where the recursion pays.
+    assert!(found(&indexed_chain(n - 1)).is_none());
+    // Links that stretch: a length is a coordinate, and the direction it
+    // moves along depends on another (`g` is not a function of its own
+    // joint's angle).
+    let elastic = format!(
+        "pub struct Elastic {{
+            const N = {n};
+            coordinates: theta[N], r[N];
+            constants: g = 9.81, k = 50.0;
+            let x[i in 0..N] = sum(j in 0..=i, r[j]*sin(theta[j]));
+            let y[i in 0..N] = -sum(j in 0..=i, r[j]*cos(theta[j]));
+            kinetic: sum(i in 0..N, (dot(x[i])^2 + dot(y[i])^2)/2);
+            potential: sum(i in 0..N, g*y[i] + k/2*(r[i] - 1)^2);
+        }}"
+    );
+    assert!(found(&elastic).is_none());
+    // A support driven in time: `T` holds `t` outside the squares' masses.
+    let driven = indexed_chain(n).replace(
+        "let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));",
+        "let x[i in 0..N] = 0.1*sin(3*t) + sum(j in 0..=i, l[j]*sin(theta[j]));",
+    );
+    assert!(found(&driven).is_none());
+    // Masses that depend on the configuration.
+    let varying = indexed_chain(n).replace("m[i]/2*", "(1 + cos(theta[0])^2)*m[i]/2*");
+    assert!(found(&varying).is_none());
+    // A spring between two masses couples nothing in `T`: the form holds,
+    // and `V`'s forces go to the runtime as they are.
+    let sprung = indexed_chain(n).replace(
+        "potential: sum(i in 0..N, m[i]*g*y[i]);",
+        "potential: sum(i in 0..N, m[i]*g*y[i]) + 3*(x[N-1] - x[0])^2;",
+    );
+    assert!(found(&sprung).is_some());
+}
+
+#[test]
+fn rigid_links_bring_their_inertias_to_their_joints() {
+    // Rigid links in relative angles, each with a moment of inertia about
+    // its end (`½ I φ̇²`, the link's absolute rate): the inertias are the
+    // joints' own, not one more axis.
+    let n = FROM_COORDINATES;
+    let src = format!(
+        "pub struct RigidChain {{
+            const N = {n};
+            coordinates: theta[N];
+            constants: g = 9.81, inertia = 0.2;
+            let phi[i in 0..N] = sum(j in 0..=i, theta[j]);
+            let x[i in 0..N] = sum(j in 0..=i, sin(phi[j]));
+            let y[i in 0..N] = -sum(j in 0..=i, cos(phi[j]));
+            kinetic: sum(i in 0..N, (dot(x[i])^2 + dot(y[i])^2)/2 + inertia/2*dot(phi[i])^2);
+            potential: sum(i in 0..N, g*y[i]);
+        }}"
+    );
+    let a = found(&src).expect("the rigid chain's form");
+    assert_eq!(a.axes, 2);
+    assert_eq!(a.base.iter().filter(|b| b.is_none()).count(), 1);
+    // A cart under the chain moves along `x` alone: the joints' sets of
+    // components are then not nested (the cart's holds no `y`), which this
+    // form does not cover; the dense solve stays.
+    let on_cart = src
+        .replace("coordinates: theta[N];", "coordinates: s, theta[N];")
+        .replace("let x[i in 0..N] = sum(", "let x[i in 0..N] = s + sum(")
+        .replace("kinetic: sum(", "kinetic: 3*dot(s)^2/2 + sum(");
+    assert!(found(&on_cart).is_none());
+}
