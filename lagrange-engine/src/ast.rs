@@ -87,6 +87,13 @@ pub struct Options {
     /// written as `Y(t, q, q̇, q̈) π + (terms free of them)`, `π` their
     /// products that occur, grouped into base parameters.
     pub regressor: Option<Vec<Ident>>,
+    /// `#[lagrange(articulated)]`: the masses of `T` must hang on a tree of
+    /// increments, at any size, or the model is an error;
+    /// `#[lagrange(articulated = false)]`: the dense solve, whatever the
+    /// model. Neither (`None`): looked for from
+    /// [`FROM_COORDINATES`](crate::derive::articulated::FROM_COORDINATES)
+    /// coordinates on.
+    pub articulated: Option<bool>,
 }
 
 /// The largest budget `#[lagrange(budget = N)]` may ask for: the time and

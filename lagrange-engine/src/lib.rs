@@ -303,8 +303,8 @@ fn derive_model(def: ast::ModelDef, budget: u64) -> syn::Result<Derived> {
     within_budget(&model, r)?;
     let r = derive::regressor::regressor(&mut model, &mut equations);
     within_budget(&model, r)?;
-    derive::articulated::articulated(&mut model, &mut equations);
-    within_budget(&model, Ok(()))?;
+    let r = derive::articulated::articulated(&mut model, &mut equations);
+    within_budget(&model, r)?;
     // Emitting is linear in what it writes: charged now, so that a model
     // within its budget is one whose code is written within it too.
     emit::charge(&model, &equations);

@@ -6,7 +6,9 @@
 //! `M`, `f` and the Cholesky solve, with `2N` derivative directions at
 //! once. Prints a table (time per linearization, largest deviation from
 //! the exact blocks relative to their largest entry), then criterion's
-//! measurements.
+//! measurements. The chains keep the dense solve (`articulated = false`),
+//! as when BENCHMARKS.md's figures were taken; what the recursion over a
+//! tree of links does to a right-hand side is `benches/articulated.rs`.
 //!
 //! `cargo bench -p lagrange-studies --bench linearize`
 
@@ -23,7 +25,7 @@ use num_dual::{DualSVec64, jacobian};
 
 lagrangian! {
     /// The 10-link chain of `src/models/chain.rs`, with exact Jacobians.
-    #[lagrange(jacobians)]
+    #[lagrange(jacobians, articulated = false)]
     pub struct Chain10 {
         const N = 10;
         coordinates: theta[N];
@@ -38,7 +40,7 @@ lagrangian! {
 
 lagrangian! {
     /// The 20-link chain, with exact Jacobians.
-    #[lagrange(jacobians)]
+    #[lagrange(jacobians, articulated = false)]
     pub struct Chain20 {
         const N = 20;
         coordinates: theta[N];

@@ -32,7 +32,10 @@ use std::hint::black_box;
 use std::time::Instant;
 
 lagrangian! {
-    /// The scaling chain at N = 10.
+    /// The scaling chain at N = 10, solved with its dense `M` (what this
+    /// bench measures, and BENCHMARKS.md's figures; `benches/articulated.rs`
+    /// times the recursion the chain gets by default).
+    #[lagrange(articulated = false)]
     pub struct Chain10 {
         const N = 10;
         coordinates: theta[N];

@@ -75,18 +75,47 @@ struct Component {
 /// A joint's angle `w · q`: `(coordinate, factor bits)`, by coordinate.
 type Angle = Vec<(usize, u64)>;
 
-/// Sets `eq.articulated` where the model has the form.
-pub fn articulated(model: &mut Model, eq: &mut Equations) {
-    let n = model.dof();
-    if n < FROM_COORDINATES
-        || !model.constraints.is_empty()
-        || !model.contacts.is_empty()
-        || !model.inputs.is_empty()
-        || eq.forcing.len() != n
-    {
-        return;
+/// Sets `eq.articulated` where the model has the form: looked for from
+/// [`FROM_COORDINATES`] coordinates on, at any size under
+/// `#[lagrange(articulated)]` (an error, on `kinetic:`, where the form does
+/// not hold), never under `#[lagrange(articulated = false)]`.
+pub fn articulated(model: &mut Model, eq: &mut Equations) -> syn::Result<()> {
+    let wanted = model.options.articulated;
+    let own_path = if !model.constraints.is_empty() {
+        Some("constraints")
+    } else if !model.contacts.is_empty() {
+        Some("contacts")
+    } else if !model.inputs.is_empty() {
+        Some("control inputs")
+    } else {
+        None
+    };
+    let looked = match wanted {
+        Some(false) => false,
+        Some(true) => own_path.is_none(),
+        None => own_path.is_none() && model.dof() >= FROM_COORDINATES,
+    };
+    if looked && eq.forcing.len() == model.dof() {
+        eq.articulated = find(model, eq);
     }
-    eq.articulated = find(model, eq);
+    if wanted != Some(true) || eq.articulated.is_some() || model.pool.exhausted() {
+        return Ok(());
+    }
+    let range = model.kinetic.keyword_and_value();
+    Err(range.error(match own_path {
+        Some(what) => format!(
+            "`#[lagrange(articulated)]`: a model with {what} is solved by its own path (the saddle-point system, \
+             the contact phases, the controller's forcing), not by the recursion over a tree of links: \
+             remove the attribute"
+        ),
+        None => "`#[lagrange(articulated)]`: this kinetic energy is not masses hanging on a tree of links, \
+                 so `M q̈ = f` cannot be solved by the recursion: it needs `T` as a sum of masses (free of `t`, \
+                 `q` and `q̇`) times squared velocity components, each position a sum of increments along \
+                 links, each link's increment a function of one angle (a coordinate, or a coordinate plus \
+                 another link's angle), one link per coordinate, and the links nested as a tree (a cart under \
+                 a chain is not: it moves along one axis only); remove the attribute for the dense solve"
+            .to_string(),
+    }))
 }
 
 fn find(model: &mut Model, eq: &Equations) -> Option<Articulated> {

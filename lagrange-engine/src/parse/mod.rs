@@ -156,6 +156,13 @@ fn take_options(attrs: &mut Vec<Attribute>) -> (Options, Option<syn::Error>) {
                 }
                 options.regressor = Some(names);
                 Ok(())
+            } else if meta.path.is_ident("articulated") {
+                options.articulated = Some(if meta.input.peek(syn::Token![=]) {
+                    meta.value()?.parse::<syn::LitBool>()?.value
+                } else {
+                    true
+                });
+                Ok(())
             } else if meta.path.is_ident("budget") {
                 let lit: LitInt = meta.value()?.parse()?;
                 match lit.base10_parse::<u64>() {
@@ -173,8 +180,9 @@ fn take_options(attrs: &mut Vec<Attribute>) -> (Options, Option<syn::Error>) {
                     "unknown option: `#[lagrange(...)]` takes `jacobians` (exact residual Jacobians for implicit integrators), \
                      `parameter_derivatives` (the derivatives of M, f and the residual by the parameters), \
                      `regressor(p1, p2, ..)` (M q̈ − f written linearly in the products of those parameters), \
-                     `serde` (the struct serializable, with lagrange's `serde` feature) \
-                     and `budget = N` (the engine's work budget, in steps)",
+                     `serde` (the struct serializable, with lagrange's `serde` feature), \
+                     `articulated` or `articulated = false` (M q̈ = f solved by the recursion over a tree of \
+                     links, required or refused) and `budget = N` (the engine's work budget, in steps)",
                 ))
             }
         });

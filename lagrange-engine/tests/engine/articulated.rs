@@ -5,7 +5,7 @@
 //! That the recursion then solves `M q̈ = f` is the runtime's test
 //! (`tests/trajectories/articulated.rs`).
 
-use crate::problems::{derive, indexed_chain};
+use crate::problems::{derive, error, indexed_chain};
 use lagrange_engine::derive::articulated::{Articulated, FROM_COORDINATES};
 
 fn found(src: &str) -> Option<Articulated> {
@@ -152,4 +152,35 @@ fn rigid_links_bring_their_inertias_to_their_joints() {
         .replace("let x[i in 0..N] = sum(", "let x[i in 0..N] = s + sum(")
         .replace("kinetic: sum(", "kinetic: 3*dot(s)^2/2 + sum(");
     assert!(found(&on_cart).is_none());
+}
+
+#[test]
+fn the_attribute_asks_for_the_recursion_or_refuses_it_at_any_size() {
+    let asked = format!("#[lagrange(articulated)] {}", indexed_chain(2));
+    assert_eq!(
+        found(&asked).expect("asked for").parent,
+        vec![None, Some(0)]
+    );
+    let refused = format!(
+        "#[lagrange(articulated = false)] {}",
+        indexed_chain(FROM_COORDINATES)
+    );
+    assert!(found(&refused).is_none());
+    // Asked of a model without the form: an error that says what the form
+    // is, on `kinetic:`; asked of a constrained one: its own path.
+    let spring = "#[lagrange(articulated)] pub struct SpringPendulum {
+        coordinates: r, theta;
+        parameters: m, k, l, g;
+        kinetic: m/2*(dot(r)^2 + r^2*dot(theta)^2);
+        potential: k/2*(r - l)^2 - m*g*r*cos(theta);
+    }";
+    assert!(error(spring).contains("not masses hanging on a tree of links"));
+    let constrained = "#[lagrange(articulated)] pub struct Bead {
+        coordinates: x, y;
+        parameters: m, g, l;
+        kinetic: m/2*(dot(x)^2 + dot(y)^2);
+        potential: m*g*y;
+        constraints: rod: x^2 + y^2 = l^2;
+    }";
+    assert!(error(constrained).contains("a model with constraints is solved by its own path"));
 }
