@@ -172,7 +172,7 @@ impl Stub {
         let actuated = (!actuated.is_empty())
             .then(|| quote!(#[allow(unused_variables, clippy::all)] #actuated));
         let lets = crate::emit::lets_impl(&self.name, &types);
-        let lanes = crate::emit::lanes_impl(&outline, &types);
+        let lanes = crate::emit::lanes_impl(&outline, &types, None);
         let derivatives = METHODS
             .iter()
             .filter(|m| {

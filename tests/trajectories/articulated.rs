@@ -153,7 +153,7 @@ fn a_massless_tip_gets_the_dense_solves_error() {
     assert_eq!(model.accelerations(0.0, &q, &v), None);
     let times = [1.0];
     let ours = Rk4::new(1e-3).integrate(&model, 0.0, q, v, &times);
-    let dense = Rk4::new(1e-3).integrate(&Dense(model.clone()), 0.0, q, v, &times);
+    let dense = Rk4::new(1e-3).integrate(&Dense(model), 0.0, q, v, &times);
     let (ours, dense) = (ours.expect_err("singular"), dense.expect_err("singular"));
     assert!(
         matches!(ours.error, IntegrationError::SingularMassMatrix { .. }),

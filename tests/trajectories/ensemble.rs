@@ -43,7 +43,7 @@ fn a_sweep_in_parallel_equals_the_sweep_in_sequence() {
 /// scalar run's, with the lane named.
 mod lanes {
     use lagrange::ensemble::{AutoF32x8, AutoF64x4, Ensemble, EnsembleError, LaneModel};
-    use lagrange::models::{Chain, DoublePendulum};
+    use lagrange::models::{Chain, DoublePendulum, Tree};
     use lagrange::nalgebra::{RealField, SVector, SimdRealField, SimdValue};
     use lagrange::prelude::*;
     use lagrange::{IntegrationError, InvalidInput, LaneStep, StepMethod};
@@ -186,6 +186,63 @@ mod lanes {
             core::array::from_fn(|k| field(&|c| c.m[k])),
             core::array::from_fn(|k| field(&|c| c.l[k])),
         )
+    }
+
+    fn tree_lane<S: RealField + Copy>(i: usize) -> Tree<S> {
+        let c = lagrange::nalgebra::convert::<f64, S>;
+        let i = i as f64;
+        Tree::new(c(1.0 + 0.1 * i), c(1.0 - 0.05 * i), c(9.81))
+    }
+
+    fn tree_start<S: RealField + Copy>(i: usize) -> (SVector<S, 10>, SVector<S, 10>) {
+        let c = lagrange::nalgebra::convert::<f64, S>;
+        let i = i as f64;
+        (
+            SVector::from_fn(|k, _| c(0.3 * ((k as f64 + 1.0) * (i + 1.0)).sin())),
+            SVector::from_fn(|k, _| c(0.2 * i - 0.1 * k as f64)),
+        )
+    }
+
+    /// The trees of `tree_lane`, one to a lane.
+    fn tree<V: SimdRealField + Copy>() -> Tree<V>
+    where
+        V::Element: RealField + Copy,
+    {
+        let lanes = (0..V::LANES)
+            .map(tree_lane::<V::Element>)
+            .collect::<Vec<_>>();
+        let field = |get: fn(&Tree<V::Element>) -> V::Element| {
+            let mut v = V::splat(get(&lanes[0]));
+            for (i, lane) in lanes.iter().enumerate() {
+                v.replace(i, get(lane));
+            }
+            v
+        };
+        Tree::new(field(|t| t.m), field(|t| t.l), field(|t| t.g))
+    }
+
+    /// The tree solves for `q̈` by the recursion over its links, on the
+    /// lanes as on a scalar: the same bits. A lane whose links are massless
+    /// is declined by the recursion and fails in the dense solve, with its
+    /// scalar run's error.
+    #[test]
+    fn the_recursion_on_lanes_is_the_scalar_recursion() {
+        lanes_match(tree::<AutoF64x4>(), tree_lane, Rk4::new(1e-3), tree_start);
+        let mut model = tree::<AutoF64x4>();
+        model.m.replace(2, 0.0);
+        let (q0, qdot0): (Vec<_>, Vec<_>) = (0..4).map(tree_start::<f64>).unzip();
+        let mut ensemble = Ensemble::new(model, Rk4::new(1e-3), 0.0, &q0, &qdot0).unwrap();
+        let mut massless = tree_lane::<f64>(2);
+        massless.m = 0.0;
+        let mut scalar = Stepper::new(massless, Rk4::new(1e-3), 0.0, q0[2], qdot0[2]).unwrap();
+        let expected = scalar.advance_to(0.1).unwrap_err();
+        match ensemble.advance_to(0.1) {
+            Err(EnsembleError::Lane { lane: 2, error }) => {
+                assert!(matches!(error, IntegrationError::SingularMassMatrix { .. }));
+                assert_eq!(error.to_string(), expected.to_string());
+            }
+            other => panic!("expected lane 2's singular M, got {other:?}"),
+        }
     }
 
     /// Every method in `f64` lanes, and each model in `f32` and `f64`

@@ -91,7 +91,12 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
     let actuated = actuated_impl(&cx);
     let contacts = contacts_impl(&cx);
     let lets = lets_impl(cx.outline.name, &cx.types);
-    let lanes = lanes_impl(&cx.outline, &cx.types);
+    let lanes = lanes_impl(
+        &cx.outline,
+        &cx.types,
+        cx.articulated
+            .map(|a| lane_accelerations(&cx.outline, &cx.types, a)),
+    );
     // The constraints' parameter derivatives stay inherent: the trait
     // (and the sensitivities over it) is of models in minimal coordinates.
     let derivatives =
@@ -122,7 +127,13 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
 /// inputs and no contacts: the ensemble integrates `M q̈ = f` alone, and
 /// would leave out a constraint's, an input's or a contact's part in
 /// silence. The same for the error stub, whose inherent method it calls.
-pub(crate) fn lanes_impl(outline: &Outline, types: &Types) -> TokenStream {
+/// `accelerations`: a model whose masses hang on a tree of links solves
+/// for `q̈` on the lanes as its scalar impl does.
+pub(crate) fn lanes_impl(
+    outline: &Outline,
+    types: &Types,
+    accelerations: Option<TokenStream>,
+) -> TokenStream {
     if outline.constraints > 0 || outline.contacts > 0 || !outline.inputs.is_empty() {
         return TokenStream::new();
     }
@@ -140,6 +151,55 @@ pub(crate) fn lanes_impl(outline: &Outline, types: &Types) -> TokenStream {
             fn mass_matrix_and_forcing(&self, t: S, q: &#vector, qdot: &#vector) -> (#matrix, #vector) {
                 #name::mass_matrix_and_forcing(self, t, q, qdot)
             }
+            #accelerations
+        }
+    }
+}
+
+/// The joints of `a` as the runtime's `Tree`, a `const` in each method
+/// that hands it over.
+fn tree(types: &Types, a: &Articulated) -> TokenStream {
+    let n = &types.n;
+    let joint = |j: &Option<usize>| match j {
+        Some(j) => quote!(#j),
+        None => quote!(::lagrange::linalg::articulated::NONE),
+    };
+    let parent = a.parent.iter().map(joint);
+    let base = a.base.iter().map(joint);
+    let coordinate = &a.coordinate;
+    let scale = a
+        .scale
+        .iter()
+        .map(|&c| proc_macro2::Literal::f64_suffixed(c));
+    quote! {
+        const TREE: ::lagrange::linalg::articulated::Tree<#n> = ::lagrange::linalg::articulated::Tree {
+            parent: [#(#parent),*],
+            base: [#(#base),*],
+            coordinate: [#(#coordinate),*],
+            scale: [#(#scale),*],
+        };
+    }
+}
+
+/// `LaneModel::accelerations` of a model whose masses hang on a tree of
+/// links: the recursion on the lanes, with the lanes it answers for.
+fn lane_accelerations(outline: &Outline, types: &Types, a: &Articulated) -> TokenStream {
+    let name = outline.name;
+    let na = nalgebra();
+    let vector = &types.vector;
+    let tree = tree(types, a);
+    quote! {
+        const SOLVES_ACCELERATIONS: bool = true;
+        #[inline(always)]
+        fn accelerations(
+            &self,
+            t: S,
+            q: &#vector,
+            qdot: &#vector,
+        ) -> ::core::option::Option<(#vector, <S as #na::SimdValue>::SimdBool)> {
+            #tree
+            let parts = #name::articulated_parts(self, t, q, qdot);
+            ::core::option::Option::Some(::lagrange::linalg::articulated::lanes(&TREE, &parts, qdot))
         }
     }
 }
@@ -352,17 +412,7 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
 fn accelerations(cx: &Context, a: &Articulated) -> TokenStream {
     let name = cx.outline.name;
     let (n, vector) = (&cx.types.n, &cx.types.vector);
-    let joint = |j: &Option<usize>| match j {
-        Some(j) => quote!(#j),
-        None => quote!(::lagrange::linalg::articulated::NONE),
-    };
-    let parent = a.parent.iter().map(joint);
-    let base = a.base.iter().map(joint);
-    let coordinate = &a.coordinate;
-    let scale = a
-        .scale
-        .iter()
-        .map(|&c| proc_macro2::Literal::f64_suffixed(c));
+    let tree = tree(&cx.types, a);
     quote! {
         const SOLVES_ACCELERATIONS: bool = true;
         #[inline]
@@ -372,12 +422,7 @@ fn accelerations(cx: &Context, a: &Articulated) -> TokenStream {
             q: &#vector,
             qdot: &#vector,
         ) -> ::core::option::Option<::core::result::Result<#vector, ::lagrange::error::IntegrationError<S, #n>>> {
-            const TREE: ::lagrange::linalg::articulated::Tree<#n> = ::lagrange::linalg::articulated::Tree {
-                parent: [#(#parent),*],
-                base: [#(#base),*],
-                coordinate: [#(#coordinate),*],
-                scale: [#(#scale),*],
-            };
+            #tree
             let parts = #name::articulated_parts(self, t, q, qdot);
             ::lagrange::linalg::articulated::accelerations(&TREE, &parts, qdot).map(::core::result::Result::Ok)
         }

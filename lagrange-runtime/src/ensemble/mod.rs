@@ -117,6 +117,30 @@ pub trait LaneModel<const N: usize> {
         q: &SVector<Self::Lanes, N>,
         qdot: &SVector<Self::Lanes, N>,
     ) -> (SMatrix<Self::Lanes, N, N>, SVector<Self::Lanes, N>);
+
+    /// Whether [`accelerations`](Self::accelerations) answers: only then is
+    /// it asked.
+    const SOLVES_ACCELERATIONS: bool = false;
+
+    /// `q̈` of every lane solved by the model itself, as its scalar
+    /// [`Lagrangian::accelerations`](crate::model::Lagrangian::accelerations)
+    /// does (a model whose masses hang on a tree of links: the recursion of
+    /// [`linalg::articulated`](crate::linalg::articulated)), with the lanes
+    /// it answers for; the others are solved with `M`. `None` (the
+    /// default): every lane is.
+    #[allow(clippy::type_complexity)]
+    fn accelerations(
+        &self,
+        t: Self::Lanes,
+        q: &SVector<Self::Lanes, N>,
+        qdot: &SVector<Self::Lanes, N>,
+    ) -> Option<(
+        SVector<Self::Lanes, N>,
+        <Self::Lanes as nalgebra::SimdValue>::SimdBool,
+    )> {
+        let _ = (t, q, qdot);
+        None
+    }
 }
 
 /// What an [`Ensemble`] could not do, and for which lane.

@@ -4,7 +4,10 @@
 //! A lane the fast path cannot answer for as its scalar would (a pivot not
 //! positive, `M` ill-conditioned, a value not finite) is solved again
 //! alone, by the scalar solve, which answers with its result (LU where
-//! Cholesky refused `M`) or its error.
+//! Cholesky refused `M`) or its error. A model that solves for `q̈` itself
+//! (the recursion over a tree of links, `LaneModel::accelerations`) does so
+//! on the lanes, and a lane it declines goes to the scalar solve, as its
+//! scalar right-hand side does.
 
 use nalgebra::{RealField, SVector, SimdBool, SimdPartialOrd, SimdRealField, SimdValue};
 
@@ -42,6 +45,17 @@ fn accelerations_inline<L: LaneModel<N>, const N: usize>(
     q: &SVector<L::Lanes, N>,
     qdot: &SVector<L::Lanes, N>,
 ) -> Result<SVector<L::Lanes, N>, LaneFailure<L, N>> {
+    if L::SOLVES_ACCELERATIONS {
+        if let Some((x, solved)) = model.accelerations(L::Lanes::splat(t), q, qdot) {
+            // The scalar checks the state first, then asks the model.
+            let answered = solved & finite_lanes(&[q.as_slice(), qdot.as_slice()]);
+            if answered.all() {
+                return Ok(x);
+            }
+            let (m, f) = model.mass_matrix_and_forcing(L::Lanes::splat(t), q, qdot);
+            return alone(t, q, qdot, &m, &f, x, answered);
+        }
+    }
     let (m, f) = model.mass_matrix_and_forcing(L::Lanes::splat(t), q, qdot);
     let (l, d, inverse_d) = factor_rows(&m, |_| false).expect("lanes refuse no pivot");
     let mut x = f;
@@ -72,13 +86,33 @@ fn accelerations_inline<L: LaneModel<N>, const N: usize>(
     if answered.all() {
         return Ok(x);
     }
-    for lane in (0..L::Lanes::LANES).filter(|&lane| answered.bitmask() & (1 << lane) == 0) {
+    alone(t, q, qdot, &m, &f, x, answered)
+}
+
+/// `x` with every lane not `answered` solved again alone by the scalar
+/// solve from its `M` and `f`, or the first such lane's error.
+#[inline(always)]
+#[allow(clippy::type_complexity)]
+fn alone<V, const N: usize>(
+    t: V::Element,
+    q: &SVector<V, N>,
+    qdot: &SVector<V, N>,
+    m: &nalgebra::SMatrix<V, N, N>,
+    f: &SVector<V, N>,
+    mut x: SVector<V, N>,
+    answered: V::SimdBool,
+) -> Result<SVector<V, N>, (usize, IntegrationError<V::Element, N>)>
+where
+    V: SimdRealField + Copy,
+    V::Element: RealField + Copy,
+{
+    for lane in (0..V::LANES).filter(|&lane| answered.bitmask() & (1 << lane) == 0) {
         let (q, qdot) = (lane_of(q, lane), lane_of(qdot, lane));
         if !crate::driver::finite_state(&q, &qdot) {
             let value = NonFiniteValue::State;
             return Err((lane, IntegrationError::NonFiniteState { t, q, qdot, value }));
         }
-        let (m, f) = (m.map(|v| v.extract(lane)), lane_of(&f, lane));
+        let (m, f) = (m.map(|v| v.extract(lane)), lane_of(f, lane));
         match solve_mass_matrix(&m, &f) {
             Ok(solved) => {
                 for (entry, value) in x.iter_mut().zip(solved.iter()) {

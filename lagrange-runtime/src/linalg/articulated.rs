@@ -26,8 +26,12 @@
 //! `None` where a joint's articulated inertia `u·I u + J` is not positive
 //! or the result is not finite: the caller then solves `M q̈ = f` whole,
 //! which tells a singular `M` from a non-finite forcing in its errors.
+//! Written once for scalars and for SIMD lanes ([`lanes`], which says per
+//! lane whether it answered): the same operations in the same order, so
+//! that a lane of an [`Ensemble`](crate::ensemble::Ensemble) is its scalar
+//! run, bit for bit.
 
-use nalgebra::{RealField, SMatrix, SVector};
+use nalgebra::{RealField, SVector, SimdRealField};
 
 /// No joint: a root's parent, an angle that is a coordinate alone.
 pub const NONE: usize = usize::MAX;
@@ -73,6 +77,21 @@ pub fn accelerations<S: RealField + Copy, const N: usize, const D: usize>(
     parts: &Parts<S, N, D>,
     qdot: &SVector<S, N>,
 ) -> Option<SVector<S, N>> {
+    let (qddot, answered) = lanes(tree, parts, qdot);
+    answered.then_some(qddot)
+}
+
+/// [`accelerations`] on SIMD lanes (or a scalar, one lane): `q̈` of every
+/// lane, and which lanes it answers for (each as [`accelerations`] would
+/// for that lane alone, with the same bits); the others' values are
+/// meaningless.
+#[inline]
+#[allow(clippy::needless_range_loop)] // (a, b) index D × D inertias: the clearest form
+pub fn lanes<S: SimdRealField + Copy, const N: usize, const D: usize>(
+    tree: &Tree<N>,
+    parts: &Parts<S, N, D>,
+    qdot: &SVector<S, N>,
+) -> (SVector<S, N>, S::SimdBool) {
     // A factor of 1 (every angle of a chain or a tree of hinges) costs
     // nothing; another one multiplies, or divides, once.
     let times = |x: S, j: usize| match tree.scale[j] {
@@ -83,10 +102,19 @@ pub fn accelerations<S: RealField + Copy, const N: usize, const D: usize>(
         1.0 => x,
         c => x / nalgebra::convert::<f64, S>(c),
     };
-    let axis = |j: usize| SVector::<S, D>::from(parts.axes[j]);
+    let zero = S::zero();
+    let dot = |a: &[S; D], b: &[S; D]| {
+        let mut sum = a[0] * b[0];
+        for k in 1..D {
+            sum += a[k] * b[k];
+        }
+        sum
+    };
+    // `I x` for a symmetric `I` stored whole.
+    let apply = |i: &[[S; D]; D], x: &[S; D]| core::array::from_fn(|a| dot(&i[a], x));
     // The joints' rates, `φ̇ = A q̇`, and their forces, `τ = A⁻ᵀ f`.
-    let mut rate = [S::zero(); N];
-    let mut tau = [S::zero(); N];
+    let mut rate = [zero; N];
+    let mut tau = [zero; N];
     for j in 0..N {
         let (base, i) = (tree.base[j], tree.coordinate[j]);
         let own = times(qdot[i], j);
@@ -101,47 +129,52 @@ pub fn accelerations<S: RealField + Copy, const N: usize, const D: usize>(
     }
     // Leaves to root: each subtree's articulated inertia and bias force,
     // accumulated into its parent's; one division a joint.
-    let mut inertia = [SMatrix::<S, D, D>::zeros(); N];
-    let mut force = [SVector::<S, D>::zeros(); N];
-    let mut bias = [SVector::<S, D>::zeros(); N];
-    let mut pull = [SVector::<S, D>::zeros(); N];
-    let mut free = [S::zero(); N];
+    let mut inertia = [[[zero; D]; D]; N];
+    let mut force = [[zero; D]; N];
+    let mut bias = [[zero; D]; N];
+    let mut pull = [[zero; D]; N];
+    let mut free = [zero; N];
+    let mut positive = zero.simd_eq(zero);
     for j in (0..N).rev() {
         let mut i = inertia[j];
         for a in 0..D {
-            i[(a, a)] += parts.masses[j][a];
+            i[a][a] += parts.masses[j][a];
         }
-        let u = axis(j);
-        let w = SVector::<S, D>::from(parts.bends[j]) * (rate[j] * rate[j]);
-        let h = i * u;
-        let d = u.dot(&h) + parts.inertia[j];
-        // Not positive, or NaN: the dense solve's to judge.
-        if d.partial_cmp(&S::zero()) != Some(core::cmp::Ordering::Greater) {
-            return None;
-        }
-        let hd = h / d;
-        let z = i * w + force[j];
-        let e = tau[j] - u.dot(&z);
-        (bias[j], pull[j], free[j]) = (w, hd, e);
+        let u = &parts.axes[j];
+        let squared = rate[j] * rate[j];
+        let w: [S; D] = core::array::from_fn(|a| parts.bends[j][a] * squared);
+        let h = apply(&i, u);
+        let d = dot(u, &h) + parts.inertia[j];
+        // Not positive, or NaN: the dense solve's to judge, for this lane.
+        positive = positive & d.simd_gt(zero);
+        let iw = apply(&i, &w);
+        let z: [S; D] = core::array::from_fn(|a| iw[a] + force[j][a]);
+        let e = tau[j] - dot(u, &z);
+        let hd: [S; D] = core::array::from_fn(|a| h[a] / d);
+        let ed = e / d;
         let parent = tree.parent[j];
         if parent != NONE {
-            inertia[parent] += i - hd * h.transpose();
-            force[parent] += z + h * (e / d);
+            for a in 0..D {
+                for b in 0..D {
+                    inertia[parent][a][b] += i[a][b] - hd[a] * h[b];
+                }
+                force[parent][a] += z[a] + h[a] * ed;
+            }
         }
-        free[j] = e / d;
+        (bias[j], pull[j], free[j]) = (w, hd, ed);
     }
     // Root to leaves: each joint's acceleration, then its end's.
-    let mut end = [SVector::<S, D>::zeros(); N];
-    let mut angle = [S::zero(); N];
+    let mut end = [[zero; D]; N];
+    let mut angle = [zero; N];
     for j in 0..N {
         let parent = tree.parent[j];
         let from = if parent == NONE {
-            SVector::zeros()
+            [zero; D]
         } else {
             end[parent]
         };
-        angle[j] = free[j] - pull[j].dot(&from);
-        end[j] = from + axis(j) * angle[j] + bias[j];
+        angle[j] = free[j] - dot(&pull[j], &from);
+        end[j] = core::array::from_fn(|a| from[a] + parts.axes[j][a] * angle[j] + bias[j][a]);
     }
     // `q̈ = A⁻¹ φ̈`.
     let mut qddot = SVector::<S, N>::zeros();
@@ -154,7 +187,12 @@ pub fn accelerations<S: RealField + Copy, const N: usize, const D: usize>(
         };
         qddot[tree.coordinate[j]] = over(relative, j);
     }
-    super::all_finite(qddot.as_slice()).then_some(qddot)
+    // Finite where `x · 0` is zero, lane by lane.
+    let mut sum = zero;
+    for x in qddot.iter() {
+        sum += *x * zero;
+    }
+    (qddot, positive & sum.simd_eq(zero))
 }
 
 #[cfg(test)]
