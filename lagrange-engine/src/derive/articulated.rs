@@ -15,7 +15,7 @@
 //!    number, every coordinate once (so `φ = A q` with `A⁻¹` and `A⁻ᵀ`
 //!    applied in `O(N)`);
 //! 4. a component with one joint and a constant `g` is that joint's own
-//!    inertia (`½ J φ̇²`, a rotation in the plane or a cart); the others
+//!    inertia (`½ J φ̇²`: a rigid link's rotation in the plane); the others
 //!    fall into axes (components that share a joint with the same `g`:
 //!    `x`, `y`, at most three), each joint one `g` per axis, its axis `u`;
 //! 5. the joints a tree: each component's joints exactly the path from the
@@ -25,10 +25,11 @@
 //! exactly, which is the form the recursion solves. The generalized forces
 //! other than `T`'s, `−∂V/∂q + Q − ∂R/∂q̇`, go to the runtime as they are.
 //!
-//! Found only from [`FROM_COORDINATES`] coordinates on, after every other
-//! stage: the nodes it makes come after all the others, so a model's other
-//! functions are written as before, and a small model's expansion not at
-//! all differently.
+//! Looked for from [`FROM_COORDINATES`] coordinates on (at any size under
+//! `#[lagrange(articulated)]`, never under `articulated = false`), after
+//! every other stage: the nodes it makes come after all the others, so a
+//! model's other functions are written as before, and a model it is not
+//! looked for in expands exactly as before.
 
 use super::Equations;
 use crate::expr::{ExprId, Node, Pool};
@@ -407,6 +408,9 @@ const ATOM_DEPTH: u32 = 4;
 /// coefficient is a sum of, one term per joint.
 fn terms_of(pool: &mut Pool, g: ExprId, depth: u32, out: &mut Vec<ExprId>) {
     pool.charge(1);
+    if pool.exhausted() {
+        return;
+    }
     match pool.node(g).clone() {
         Node::Add(terms) if depth > 0 => {
             for t in terms.iter() {

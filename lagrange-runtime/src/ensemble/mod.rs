@@ -14,10 +14,11 @@
 //!
 //! **Each lane's values are its scalar run's, bit for bit**: the same
 //! arithmetic in the same order on every lane (the sines and cosines from
-//! the same kernel, `M` factored by the same row form, the same step), so
-//! that a lane of an ensemble is a `Stepper` of the same model, method and
-//! start, under the same target features (`tests/ensembles.rs` compares
-//! them). A lane whose mass matrix the fast path cannot take as the scalar
+//! the same kernel, `M` factored by the same row form, or the same
+//! recursion over a tree of links for a model that has one, the same
+//! step), so that a lane of an ensemble is a `Stepper` of the same model,
+//! method and start, under the same target features
+//! (`tests/trajectories/ensemble.rs` compares them). A lane whose mass matrix the fast path cannot take as the scalar
 //! solve would (not positive definite, ill-conditioned, not finite) is
 //! solved again alone by the scalar solve: its answer (LU where Cholesky
 //! refused `M`) or its error.
