@@ -19,12 +19,18 @@
 //! RUSTFLAGS="-C target-cpu=native" cargo bench -p lagrange-studies --bench ensemble --target-dir target/native
 //! ```
 //!
-//! `-- --rounds R` sets the rounds (default 7).
+//! `-- --rounds R` sets the rounds (default 7). `-- --adaptive`: the
+//! adaptive ensemble (`AdaptiveEnsemble`, Dormand–Prince with one step
+//! shared by four `f64` lanes) against scalar `Dopri5` steppers at
+//! `rtol = atol = 1e-8`, the same grid and frames, with the steps the
+//! sharing costs.
 
 use std::hint::black_box;
 use std::time::Instant;
 
-use lagrange::ensemble::{AutoF32x4, AutoF32x8, AutoF64x2, AutoF64x4, Ensemble, LaneModel};
+use lagrange::ensemble::{
+    AdaptiveEnsemble, AutoF32x4, AutoF32x8, AutoF64x2, AutoF64x4, Ensemble, LaneModel,
+};
 use lagrange::models::{Chain, DoublePendulum};
 use lagrange::nalgebra::{RealField, SVector, SimdRealField, SimdValue, convert, zero};
 use lagrange::prelude::*;
@@ -148,6 +154,108 @@ fn shared_step_share<L: Lagrangian<N, Scalar = f64> + Copy, const N: usize>(
     )
 }
 
+/// Seconds for `STATES` scalar `Dopri5` steppers through every frame, and
+/// their steps (accepted and rejected), at `rtol = atol = tol`.
+fn scalar_adaptive<L, const N: usize>(model: L, tol: f64) -> (f64, usize)
+where
+    L: Lagrangian<N, Scalar = f64> + Copy,
+{
+    let method = Dopri5::new().rtol(tol).atol(tol);
+    let clock = Instant::now();
+    let mut steps = 0;
+    for i in 0..STATES {
+        let (q0, qdot0) = start(i);
+        let mut stepper = Stepper::new(model, method, 0.0, q0, qdot0).unwrap();
+        for k in 1..=FRAMES {
+            stepper.advance_to(frame(k)).unwrap();
+        }
+        steps += stepper.stats().steps_accepted + stepper.stats().steps_rejected;
+        black_box(stepper.q());
+    }
+    (clock.elapsed().as_secs_f64(), steps)
+}
+
+/// The same states in adaptive ensembles of four `f64` lanes, one step
+/// shared by the lanes: seconds, and the steps of every lane together.
+fn lanes_adaptive<L, const N: usize>(model: L, tol: f64) -> (f64, usize)
+where
+    L: LaneModel<N, Lanes = AutoF64x4> + Copy,
+{
+    let method = Dopri5::new().rtol(tol).atol(tol);
+    let width = 4;
+    let clock = Instant::now();
+    let mut steps = 0;
+    for group in 0..STATES / width {
+        let (q0, qdot0): (Vec<_>, Vec<_>) = (0..width).map(|j| start(group * width + j)).unzip();
+        let mut ensemble = AdaptiveEnsemble::new(model, method, 0.0, &q0, &qdot0).unwrap();
+        for k in 1..=FRAMES {
+            ensemble.advance_to(frame(k)).unwrap();
+        }
+        steps += width * (ensemble.stats().steps_accepted + ensemble.stats().steps_rejected);
+        black_box(ensemble.q(0));
+    }
+    (clock.elapsed().as_secs_f64(), steps)
+}
+
+/// The adaptive ensemble against scalar `Dopri5` steppers (`--adaptive`):
+/// time per state over the second, the scalar's over the lanes', and the
+/// steps the shared step costs over the states' own.
+fn adaptive(rounds: usize) {
+    type Run = Box<dyn Fn() -> (f64, usize)>;
+    let tol = 1e-8;
+    let cases: Vec<(&str, Run, Run)> = vec![
+        (
+            "double pendulum",
+            Box::new(move || scalar_adaptive(pendulum::<f64>(), tol)),
+            Box::new(move || lanes_adaptive(pendulum::<AutoF64x4>(), tol)),
+        ),
+        (
+            "5-link chain",
+            Box::new(move || scalar_adaptive(chain::<f64>(), tol)),
+            Box::new(move || lanes_adaptive(chain::<AutoF64x4>(), tol)),
+        ),
+    ];
+    println!(
+        "Dopri5 at rtol = atol = {tol:e}, {STATES} states through {FRAMES} frames of 1/{HZ} s: \
+         scalar steppers against adaptive ensembles of four f64 lanes sharing a step; \
+         µs per state, medians of {rounds} interleaved rounds (range of the ratio)\n"
+    );
+    println!("| model | scalar | lanes | scalar / lanes | steps, lanes / scalar |");
+    println!("|---|---:|---:|---:|---:|");
+    for (name, run_scalar, run_lanes) in &cases {
+        let (mut s, mut l) = (Vec::new(), Vec::new());
+        let (mut steps_scalar, mut steps_lanes) = (0, 0);
+        for round in 0..=rounds {
+            let ((ts, ns), (tl, nl)) = if round % 2 == 0 {
+                let a = run_scalar();
+                (a, run_lanes())
+            } else {
+                let b = run_lanes();
+                (run_scalar(), b)
+            };
+            if round > 0 {
+                s.push(ts);
+                l.push(tl);
+            }
+            (steps_scalar, steps_lanes) = (ns, nl);
+        }
+        let ratios: Vec<f64> = s.iter().zip(&l).map(|(a, b)| a / b).collect();
+        let (lo, hi) = ratios
+            .iter()
+            .fold((f64::INFINITY, 0.0_f64), |(lo, hi), &r| {
+                (lo.min(r), hi.max(r))
+            });
+        let per = 1e6 / STATES as f64;
+        println!(
+            "| {name} | {:.1} | {:.1} | {:.2} ({lo:.2}–{hi:.2}) | {:.2} |",
+            median(s) * per,
+            median(l) * per,
+            median(ratios),
+            steps_lanes as f64 / steps_scalar as f64
+        );
+    }
+}
+
 /// Nanoseconds per state for `M` and `f` alone: four scalar evaluations
 /// against one on four lanes (`--parts`).
 fn parts() {
@@ -248,6 +356,10 @@ fn main() {
         .position(|a| a == "--rounds")
         .and_then(|i| args.get(i + 1)?.parse().ok())
         .unwrap_or(7);
+    if args.iter().any(|a| a == "--adaptive") {
+        adaptive(rounds);
+        return;
+    }
     let h64 = H;
     let h32 = H as f32;
     let steps = (STATES * FRAMES * 17) as f64;

@@ -26,9 +26,16 @@
 //! What it takes: a model in minimal coordinates without inputs or
 //! contacts ([`LaneModel`], which `lagrangian!` implements for exactly
 //! those; a constrained model's `M q̈ = f` is not its dynamics, and it has
-//! none), and a fixed-step explicit method ([`LaneStep`]). The adaptive
-//! methods are not offered: a step shared by all lanes is the smallest any
-//! lane needs, and control per lane takes the lanes apart.
+//! none), and a fixed-step explicit method ([`LaneStep`]).
+//!
+//! **Adaptive steps**: an [`AdaptiveEnsemble`] steps the lanes by
+//! Dormand–Prince 5(4) with [`Dopri5`](crate::Dopri5)'s tolerances and one
+//! step shared by every lane, the shortest any lane needs: each lane meets
+//! its tolerance, and the easier lanes take more steps than they would
+//! alone. Control per lane would take the lanes apart (each stage
+//! evaluates every lane at one time); the steps the sharing costs are
+//! measured in `BENCHMARKS.md`, "Ensembles in SIMD lanes". Its lanes are
+//! not their scalar runs' bits: the steps differ.
 //!
 //! Failures are typed and say which lane: [`EnsembleError::Lane`] holds the
 //! lane's [`IntegrationError`] as its scalar run would report it (at which
@@ -87,6 +94,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod adaptive;
 mod solve;
 
 use nalgebra::{ComplexField, RealField, SMatrix, SVector, SimdBool, SimdRealField, SimdValue};
@@ -97,6 +105,7 @@ use crate::integrators::LaneStep;
 use crate::trajectory::Stats;
 use solve::{Element, accelerations, finite_lanes, gather, lane_of};
 
+pub use adaptive::AdaptiveEnsemble;
 pub use simba::simd::{AutoF32x4, AutoF32x8, AutoF64x2, AutoF64x4, AutoF64x8, AutoSimd};
 
 /// A model whose `M` and `f` are evaluated on SIMD lanes: the contract of

@@ -47,7 +47,7 @@ macro_rules! registry {
         }
     )+) => {
         $(
-            mod $module;
+            pub(crate) mod $module;
             pub use $module::$ty;
         )+
 

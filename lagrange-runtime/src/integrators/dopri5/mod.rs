@@ -17,7 +17,7 @@ use crate::trajectory::State;
 use crate::integrators::stages::{pair_settings, Step};
 use tableau::{Dense, Stages, Tableau};
 
-mod tableau;
+pub(crate) mod tableau;
 
 /// Dormand–Prince 5(4) with adaptive steps: the default method.
 ///

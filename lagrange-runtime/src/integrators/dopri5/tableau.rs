@@ -14,7 +14,7 @@ pub(crate) type Stages<S, const N: usize> = crate::integrators::stages::Stages<S
 
 /// The coefficients, as in `dopri5.f`: row `i` of `A` holds `a_ij` for
 /// `j < i`.
-const A: [&[f64]; 7] = [
+pub(crate) const A: [&[f64]; 7] = [
     &[],
     &[1.0 / 5.0],
     &[3.0 / 40.0, 9.0 / 40.0],
@@ -43,9 +43,9 @@ const A: [&[f64]; 7] = [
     ],
 ];
 /// The nodes `c_i`.
-const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+pub(crate) const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
 /// `b − b̂`: fifth- minus fourth-order weights.
-const E: [f64; 7] = [
+pub(crate) const E: [f64; 7] = [
     71.0 / 57600.0,
     0.0,
     -71.0 / 16695.0,

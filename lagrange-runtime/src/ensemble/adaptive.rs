@@ -1,0 +1,420 @@
+//! The adaptive ensemble: Dormand–Prince 5(4) on SIMD lanes, one step
+//! shared by every lane, chosen for the lane that needs the shortest.
+//!
+//! Why one step for all, not one per lane: lanes stepped together must sit
+//! at the same `t` (each stage evaluates every lane at once), so per-lane
+//! control would take the lanes apart, lane by lane, which is the scalar
+//! run again. A shared step is the smallest any lane needs: every lane
+//! meets its tolerance (its error is at most the shared one), and the lanes
+//! that could have taken longer steps take more than they need. Measured on
+//! Dop853 at `1e-9` (BENCHMARKS.md, "Ensembles in SIMD lanes"), a lane's
+//! own steps were 0.89 to 0.90 of the shared ones: about a tenth of the
+//! work spent on the easier lanes, against the three to four times the
+//! lanes give.
+//!
+//! The error is each lane's own, Hairer's root mean square of the
+//! estimate over `atol + rtol·max(|y|, |y_new|)`; the step is accepted when
+//! the largest over the lanes is at most 1, and the next step is chosen
+//! from it by the same controller as the scalar [`Dopri5`]'s (its gains,
+//! its stabilization, no growth right after a rejection). The first step
+//! is Hairer's estimate, the smallest over the lanes. A step that would
+//! pass the target is cut to end there, so that every frame is reached
+//! exactly.
+
+use nalgebra::{
+    ComplexField, RealField, SVector, SimdComplexField, SimdPartialOrd, SimdRealField, SimdValue,
+};
+
+use super::solve::{Element, accelerations, gather, lane_of};
+use super::{EnsembleError, LaneModel};
+use crate::driver::finite_start;
+use crate::driver::pair::{Embedded, Gains};
+use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
+use crate::integrators::Dopri5;
+use crate::integrators::dopri5::tableau::{A, C, E};
+use crate::trajectory::Stats;
+
+/// An ensemble of states stepped together in SIMD lanes by Dormand–Prince
+/// 5(4) with one adaptive step for all lanes (module docs): the adaptive
+/// counterpart of [`Ensemble`](super::Ensemble), frame by frame.
+pub struct AdaptiveEnsemble<L: LaneModel<N>, const N: usize> {
+    model: L,
+    rtol: Element<L, N>,
+    atol: Element<L, N>,
+    max_steps: usize,
+    gains: Gains<Element<L, N>>,
+    t: Element<L, N>,
+    q: SVector<L::Lanes, N>,
+    qdot: SVector<L::Lanes, N>,
+    /// `q̈` at `(t, q, q̇)`: the next step's first stage (FSAL).
+    qddot: SVector<L::Lanes, N>,
+    /// The next step to try; zero before the first.
+    h: Element<L, N>,
+    /// The last accepted step's error, for the controller's stabilization.
+    err_old: Element<L, N>,
+    /// Whether to step in the copy of the loop compiled for AVX2, as
+    /// [`Ensemble`](super::Ensemble) does.
+    avx2: bool,
+    stats: Stats,
+}
+
+impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
+    /// An ensemble at `t0`, lane `i` starting at `(q0[i], q̇0[i])`, stepped
+    /// with `method`'s tolerances and step budget (per call of
+    /// [`advance_to`](Self::advance_to), accepted and rejected steps
+    /// together); checked as a run checks them. Evaluates `q̈` at the start.
+    pub fn new(
+        model: L,
+        method: Dopri5<Element<L, N>>,
+        t0: Element<L, N>,
+        q0: &[SVector<Element<L, N>, N>],
+        qdot0: &[SVector<Element<L, N>, N>],
+    ) -> Result<Self, EnsembleError<Element<L, N>, N>> {
+        let tolerances = <Dopri5<Element<L, N>> as Embedded<Element<L, N>, N>>::tolerances(&method);
+        crate::driver::check_tolerances(tolerances.rtol, tolerances.atol)?;
+        let lanes = L::Lanes::LANES;
+        for given in [q0.len(), qdot0.len()] {
+            if given != lanes {
+                return Err(EnsembleError::LaneCount { lanes, given });
+            }
+        }
+        if !t0.is_finite() {
+            return Err(InvalidInput::NonFiniteStartTime { t0 }.into());
+        }
+        for (lane, (q, qdot)) in q0.iter().zip(qdot0).enumerate() {
+            finite_start(L::COORDINATES, q, qdot).map_err(|input| EnsembleError::Lane {
+                lane,
+                error: input.into(),
+            })?;
+        }
+        let (q, qdot) = (gather(q0), gather(qdot0));
+        let qddot = accelerations(&model, t0, &q, &qdot)
+            .map_err(|(lane, error)| EnsembleError::Lane { lane, error })?;
+        let control = <Dopri5<Element<L, N>> as Embedded<Element<L, N>, N>>::CONTROL;
+        #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+        let avx2 = std::is_x86_feature_detected!("avx2");
+        #[cfg(not(all(target_arch = "x86_64", not(target_feature = "avx2"))))]
+        let avx2 = false;
+        Ok(Self {
+            avx2,
+            model,
+            rtol: tolerances.rtol,
+            atol: tolerances.atol,
+            max_steps: tolerances.max_steps,
+            gains: control.gains(),
+            t: t0,
+            q,
+            qdot,
+            qddot,
+            h: nalgebra::zero::<Element<L, N>>(),
+            err_old: nalgebra::convert(1e-4),
+            stats: Stats {
+                rhs_evals: 1,
+                ..Stats::default()
+            },
+        })
+    }
+
+    /// Advances every lane to time `target` (finite, later than
+    /// [`t`](Self::t)), in adaptive steps shared by all lanes, the last
+    /// cut to end at `target`. On a lane's failure every lane stays where
+    /// the last accepted step left them, and the error names the lane.
+    ///
+    /// On an x86-64 CPU with AVX2, a build without it steps in a copy of
+    /// this loop compiled for AVX2, chosen at run time, as
+    /// [`Ensemble::advance_to`](super::Ensemble::advance_to) does.
+    pub fn advance_to(
+        &mut self,
+        target: Element<L, N>,
+    ) -> Result<(), EnsembleError<Element<L, N>, N>> {
+        #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+        if self.avx2 {
+            // SAFETY: `avx2` is set only where the CPU has it.
+            return unsafe { self.advance_to_avx2(target) };
+        }
+        self.steps_to(target)
+    }
+
+    /// [`steps_to`](Self::steps_to) compiled for AVX2, with what it inlines.
+    #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+    #[target_feature(enable = "avx2")]
+    fn advance_to_avx2(
+        &mut self,
+        target: Element<L, N>,
+    ) -> Result<(), EnsembleError<Element<L, N>, N>> {
+        self.steps_to(target)
+    }
+
+    /// The loop of [`advance_to`](Self::advance_to).
+    #[inline(always)]
+    fn steps_to(&mut self, target: Element<L, N>) -> Result<(), EnsembleError<Element<L, N>, N>> {
+        let t0 = self.t;
+        if !(target.is_finite() && target > t0) {
+            return Err(InvalidInput::TargetNotAhead { t: t0, target }.into());
+        }
+        if self.h == nalgebra::zero::<Element<L, N>>() {
+            self.h = self.initial_step(target - t0)?;
+        }
+        let mut attempts = 0;
+        let mut rejected = false;
+        while self.t < target {
+            if attempts == self.max_steps {
+                let (t, max_steps) = (self.t, self.max_steps);
+                let (q, qdot) = (self.q(0), self.qdot(0));
+                return Err(EnsembleError::Lane {
+                    lane: 0,
+                    error: IntegrationError::TooManySteps {
+                        t,
+                        max_steps,
+                        q,
+                        qdot,
+                    },
+                });
+            }
+            attempts += 1;
+            let t = self.t;
+            let last = self.h >= target - t;
+            let h = if last { target - t } else { self.h };
+            let t_new = if last { target } else { t + h };
+            let (q, qdot, qddot, errors) = self.attempt((t, t_new, h))?;
+            let (err, worst) = largest(errors);
+            if !err.is_finite() {
+                let (q, qdot) = (lane_of(&q, worst), lane_of(&qdot, worst));
+                let value = NonFiniteValue::State;
+                return Err(EnsembleError::Lane {
+                    lane: worst,
+                    error: IntegrationError::NonFiniteState {
+                        t: t_new,
+                        q,
+                        qdot,
+                        value,
+                    },
+                });
+            }
+            if err <= nalgebra::one::<Element<L, N>>() {
+                let mut next = self.gains.after_acceptance(h, err, self.err_old);
+                if rejected {
+                    next = next.min(h);
+                }
+                self.err_old = err.max(nalgebra::convert(1e-4));
+                (self.t, self.q, self.qdot, self.qddot) = (t_new, q, qdot, qddot);
+                self.stats.steps_accepted += 1;
+                rejected = false;
+                // A step cut to reach the target says nothing of the step
+                // the motion allows: the controller's proposal stands.
+                self.h = if last { next.max(self.h) } else { next };
+            } else {
+                self.stats.steps_rejected += 1;
+                rejected = true;
+                self.h = self.gains.after_rejection(h, err);
+                if t + self.h == t {
+                    let (q, qdot) = (self.q(worst), self.qdot(worst));
+                    let h = self.h;
+                    return Err(EnsembleError::Lane {
+                        lane: worst,
+                        error: IntegrationError::StepSizeUnderflow { t, h, q, qdot },
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Advances every lane by `dt`.
+    pub fn advance(&mut self, dt: Element<L, N>) -> Result<(), EnsembleError<Element<L, N>, N>> {
+        self.advance_to(self.t + dt)
+    }
+
+    /// One Dormand–Prince step of `h` from `t` to `t_new`: the new state,
+    /// its `q̈` (the last stage, the next step's first) and each lane's
+    /// error over its tolerance.
+    #[allow(clippy::type_complexity)]
+    #[inline(always)]
+    fn attempt(
+        &mut self,
+        (t, t_new, h): (Element<L, N>, Element<L, N>, Element<L, N>),
+    ) -> Result<
+        (
+            SVector<L::Lanes, N>,
+            SVector<L::Lanes, N>,
+            SVector<L::Lanes, N>,
+            L::Lanes,
+        ),
+        EnsembleError<Element<L, N>, N>,
+    > {
+        let c = |x: f64| -> Element<L, N> { nalgebra::convert(x) };
+        let lanes = |x: Element<L, N>| L::Lanes::splat(x);
+        let mut kq = [SVector::<L::Lanes, N>::zeros(); 7];
+        let mut kv = [SVector::<L::Lanes, N>::zeros(); 7];
+        (kq[0], kv[0]) = (self.qdot, self.qddot);
+        // The last row of `A` is the weights: the seventh stage is the new
+        // state.
+        let (mut q_new, mut qdot_new) = (self.q, self.qdot);
+        for i in 1..7 {
+            let (mut qi, mut vi) = (self.q, self.qdot);
+            for (j, &a) in A[i].iter().enumerate() {
+                if a != 0.0 {
+                    let ha = lanes(h * c(a));
+                    qi += kq[j] * ha;
+                    vi += kv[j] * ha;
+                }
+            }
+            let ti = if i == 6 { t_new } else { t + c(C[i]) * h };
+            kv[i] = self.slope(ti, &qi, &vi)?;
+            self.stats.rhs_evals += 1;
+            kq[i] = vi;
+            (q_new, qdot_new) = (qi, vi);
+        }
+        let (mut eq, mut ev) = (SVector::<L::Lanes, N>::zeros(), SVector::zeros());
+        for (j, &e) in E.iter().enumerate() {
+            if e != 0.0 {
+                let he = lanes(h * c(e));
+                eq += kq[j] * he;
+                ev += kv[j] * he;
+            }
+        }
+        let errors = self.errors((&eq, &ev), (&q_new, &qdot_new));
+        Ok((q_new, qdot_new, kv[6], errors))
+    }
+
+    /// `q̈` of every lane, in the AVX2 copy where the loop runs in it.
+    #[inline(always)]
+    fn slope(
+        &self,
+        t: Element<L, N>,
+        q: &SVector<L::Lanes, N>,
+        qdot: &SVector<L::Lanes, N>,
+    ) -> Result<SVector<L::Lanes, N>, EnsembleError<Element<L, N>, N>> {
+        #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+        if self.avx2 {
+            // SAFETY: `avx2` is set only where the CPU has it.
+            return unsafe { super::solve::accelerations_avx2(&self.model, t, q, qdot) }
+                .map_err(|(lane, error)| EnsembleError::Lane { lane, error });
+        }
+        accelerations(&self.model, t, q, qdot)
+            .map_err(|(lane, error)| EnsembleError::Lane { lane, error })
+    }
+
+    /// Each lane's error: the root mean square of the estimate `(e_q, e_v)`
+    /// over `atol + rtol·max(|y|, |y_new|)`, as the scalar pairs weigh it.
+    #[inline(always)]
+    fn errors(
+        &self,
+        (eq, ev): (&SVector<L::Lanes, N>, &SVector<L::Lanes, N>),
+        (q, qdot): (&SVector<L::Lanes, N>, &SVector<L::Lanes, N>),
+    ) -> L::Lanes {
+        let (rtol, atol) = (L::Lanes::splat(self.rtol), L::Lanes::splat(self.atol));
+        let mut sum = nalgebra::zero::<L::Lanes>();
+        let parts = [(eq, &self.q, q), (ev, &self.qdot, qdot)];
+        for (e, old, new) in parts {
+            for i in 0..N {
+                let scale = atol + rtol * old[i].simd_abs().simd_max(new[i].simd_abs());
+                let x = e[i] / scale;
+                sum += x * x;
+            }
+        }
+        let n: Element<L, N> = nalgebra::convert((2 * N) as f64);
+        (sum / L::Lanes::splat(n)).simd_sqrt()
+    }
+
+    /// Hairer's first step, the smallest over the lanes: `h0` from the
+    /// sizes of `y` and `y'`, then one explicit Euler probe of the second
+    /// derivative, no longer than `span`.
+    fn initial_step(
+        &mut self,
+        span: Element<L, N>,
+    ) -> Result<Element<L, N>, EnsembleError<Element<L, N>, N>> {
+        let c = |x: f64| -> Element<L, N> { nalgebra::convert(x) };
+        let (rtol, atol) = (L::Lanes::splat(self.rtol), L::Lanes::splat(self.atol));
+        type Lanes<L, const N: usize> = SVector<<L as LaneModel<N>>::Lanes, N>;
+        let norm = |parts: [(&Lanes<L, N>, &Lanes<L, N>); 2]| {
+            let mut sum = nalgebra::zero::<L::Lanes>();
+            for (x, y) in parts {
+                for i in 0..N {
+                    let v = x[i] / (atol + rtol * y[i].simd_abs());
+                    sum += v * v;
+                }
+            }
+            let n: Element<L, N> = nalgebra::convert((2 * N) as f64);
+            (sum / L::Lanes::splat(n)).simd_sqrt()
+        };
+        let (q, qdot, qddot) = (self.q, self.qdot, self.qddot);
+        let d0 = norm([(&q, &q), (&qdot, &qdot)]);
+        let d1 = norm([(&qdot, &q), (&qddot, &qdot)]);
+        let mut h0 = span;
+        for lane in 0..L::Lanes::LANES {
+            let (d0, d1) = (d0.extract(lane), d1.extract(lane));
+            let guess = if d0 < c(1e-5) || d1 < c(1e-5) || !(d0 / d1).is_finite() {
+                c(1e-6)
+            } else {
+                c(0.01) * d0 / d1
+            };
+            h0 = h0.min(guess);
+        }
+        let step = L::Lanes::splat(h0);
+        let (q1, qdot1) = (q + qdot * step, qdot + qddot * step);
+        let qddot1 = self.slope(self.t + h0, &q1, &qdot1)?;
+        self.stats.rhs_evals += 1;
+        let d2 = norm([(&(qdot1 - qdot), &q), (&(qddot1 - qddot), &qdot)]) / step;
+        let mut h = c(100.0) * h0;
+        for lane in 0..L::Lanes::LANES {
+            let larger = d1.extract(lane).max(d2.extract(lane));
+            let h1 = if larger <= c(1e-15) {
+                c(1e-6).max(h0 * c(1e-3))
+            } else {
+                (c(0.01) / larger).powf(c(0.2))
+            };
+            h = h.min(h1);
+        }
+        Ok(h.min(span))
+    }
+
+    /// The time of every lane's state.
+    pub fn t(&self) -> Element<L, N> {
+        self.t
+    }
+
+    /// Lane `lane`'s coordinates. Panics for a lane past the model's.
+    pub fn q(&self, lane: usize) -> SVector<Element<L, N>, N> {
+        lane_of(&self.q, lane)
+    }
+
+    /// Lane `lane`'s velocities. Panics for a lane past the model's.
+    pub fn qdot(&self, lane: usize) -> SVector<Element<L, N>, N> {
+        lane_of(&self.qdot, lane)
+    }
+
+    /// The step the next attempt will try (zero before the first).
+    pub fn step_size(&self) -> Element<L, N> {
+        self.h
+    }
+
+    /// The work so far: steps accepted and rejected (shared by every lane)
+    /// and right-hand sides (each of every lane at once).
+    pub fn stats(&self) -> &Stats {
+        &self.stats
+    }
+
+    /// The model, its parameters one lane each.
+    pub fn model(&self) -> &L {
+        &self.model
+    }
+}
+
+/// The largest of the lanes' errors (NaN if any is), and its lane.
+fn largest<V: SimdRealField + Copy>(errors: V) -> (V::Element, usize)
+where
+    V::Element: RealField + Copy,
+{
+    let mut worst = (errors.extract(0), 0);
+    for lane in 0..V::LANES {
+        let e = errors.extract(lane);
+        if !e.is_finite() {
+            return (e, lane);
+        }
+        if e > worst.0 {
+            worst = (e, lane);
+        }
+    }
+    worst
+}
