@@ -37,6 +37,46 @@ use crate::trajectory::Stats;
 /// An ensemble of states stepped together in SIMD lanes by Dormand–Prince
 /// 5(4) with one adaptive step for all lanes (module docs): the adaptive
 /// counterpart of [`Ensemble`](super::Ensemble), frame by frame.
+///
+/// ```
+/// use lagrange_runtime::ensemble::{AdaptiveEnsemble, AutoF64x4, LaneModel};
+/// use lagrange_runtime::nalgebra::{SMatrix, SVector, SimdValue, Vector1};
+/// use lagrange_runtime::Dopri5;
+///
+/// /// A spring of stiffness `k` and unit mass, on four lanes.
+/// struct Spring {
+///     k: AutoF64x4,
+/// }
+///
+/// impl LaneModel<1> for Spring {
+///     type Lanes = AutoF64x4;
+///     const COORDINATES: [&'static str; 1] = ["x"];
+///     fn mass_matrix_and_forcing(
+///         &self,
+///         _t: AutoF64x4,
+///         q: &SVector<AutoF64x4, 1>,
+///         _qdot: &SVector<AutoF64x4, 1>,
+///     ) -> (SMatrix<AutoF64x4, 1, 1>, SVector<AutoF64x4, 1>) {
+///         (SMatrix::from_element(AutoF64x4::splat(1.0)), -q * self.k)
+///     }
+/// }
+///
+/// // Four springs, stiffer lane by lane (the stiffest sets the steps).
+/// let springs = Spring { k: AutoF64x4::new(1.0, 4.0, 9.0, 16.0) };
+/// let starts = [Vector1::new(1.0); 4];
+/// let rest = [Vector1::new(0.0); 4];
+/// let method = Dopri5::new().rtol(1e-10).atol(1e-10);
+/// let mut ensemble = AdaptiveEnsemble::new(springs, method, 0.0, &starts, &rest)?;
+/// ensemble.advance_to(1.0)?;
+/// assert_eq!(ensemble.t(), 1.0);
+/// for lane in 0..4 {
+///     let omega = (lane + 1) as f64;
+///     // A few tolerances over one unit of time (a global error of order
+///     // 1e-10 grown over at most four periods): below 1e-8.
+///     assert!((ensemble.q(lane)[0] - omega.cos()).abs() < 1e-8);
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub struct AdaptiveEnsemble<L: LaneModel<N>, const N: usize> {
     model: L,
     rtol: Element<L, N>,
