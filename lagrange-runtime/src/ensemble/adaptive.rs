@@ -26,8 +26,7 @@ use nalgebra::{
 };
 
 use super::solve::{Element, accelerations, gather, lane_of};
-use super::{EnsembleError, LaneModel};
-use crate::driver::finite_start;
+use super::{EnsembleError, LaneModel, avx2_at_run_time, check_starts};
 use crate::driver::pair::{Embedded, Gains};
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::integrators::Dopri5;
@@ -112,31 +111,13 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
     ) -> Result<Self, EnsembleError<Element<L, N>, N>> {
         let tolerances = <Dopri5<Element<L, N>> as Embedded<Element<L, N>, N>>::tolerances(&method);
         crate::driver::check_tolerances(tolerances.rtol, tolerances.atol)?;
-        let lanes = L::Lanes::LANES;
-        for given in [q0.len(), qdot0.len()] {
-            if given != lanes {
-                return Err(EnsembleError::LaneCount { lanes, given });
-            }
-        }
-        if !t0.is_finite() {
-            return Err(InvalidInput::NonFiniteStartTime { t0 }.into());
-        }
-        for (lane, (q, qdot)) in q0.iter().zip(qdot0).enumerate() {
-            finite_start(L::COORDINATES, q, qdot).map_err(|input| EnsembleError::Lane {
-                lane,
-                error: input.into(),
-            })?;
-        }
+        check_starts::<L, N>(t0, q0, qdot0)?;
         let (q, qdot) = (gather(q0), gather(qdot0));
         let qddot = accelerations(&model, t0, &q, &qdot)
             .map_err(|(lane, error)| EnsembleError::Lane { lane, error })?;
         let control = <Dopri5<Element<L, N>> as Embedded<Element<L, N>, N>>::CONTROL;
-        #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
-        let avx2 = std::is_x86_feature_detected!("avx2");
-        #[cfg(not(all(target_arch = "x86_64", not(target_feature = "avx2"))))]
-        let avx2 = false;
         Ok(Self {
-            avx2,
+            avx2: avx2_at_run_time(),
             model,
             rtol: tolerances.rtol,
             atol: tolerances.atol,

@@ -153,6 +153,40 @@ pub trait LaneModel<const N: usize> {
     }
 }
 
+/// A start of every lane, as a `Stepper` checks its own: as many states as
+/// lanes, `t0` finite, each state finite.
+pub(super) fn check_starts<L: LaneModel<N>, const N: usize>(
+    t0: Element<L, N>,
+    q0: &[SVector<Element<L, N>, N>],
+    qdot0: &[SVector<Element<L, N>, N>],
+) -> Result<(), EnsembleError<Element<L, N>, N>> {
+    let lanes = L::Lanes::LANES;
+    for given in [q0.len(), qdot0.len()] {
+        if given != lanes {
+            return Err(EnsembleError::LaneCount { lanes, given });
+        }
+    }
+    if !t0.is_finite() {
+        return Err(InvalidInput::NonFiniteStartTime { t0 }.into());
+    }
+    for (lane, (q, qdot)) in q0.iter().zip(qdot0).enumerate() {
+        finite_start(L::COORDINATES, q, qdot).map_err(|input| EnsembleError::Lane {
+            lane,
+            error: input.into(),
+        })?;
+    }
+    Ok(())
+}
+
+/// Whether to step in the copies of the loops compiled for AVX2: the CPU
+/// has it and the build does not.
+pub(super) fn avx2_at_run_time() -> bool {
+    #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+    return std::is_x86_feature_detected!("avx2");
+    #[cfg(not(all(target_arch = "x86_64", not(target_feature = "avx2"))))]
+    false
+}
+
 /// What an [`Ensemble`] could not do, and for which lane.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -220,32 +254,14 @@ where
         qdot0: &[SVector<Element<L, N>, N>],
     ) -> Result<Self, EnsembleError<Element<L, N>, N>> {
         let (h, max_steps) = method.lane_course()?;
-        let lanes = L::Lanes::LANES;
-        for given in [q0.len(), qdot0.len()] {
-            if given != lanes {
-                return Err(EnsembleError::LaneCount { lanes, given });
-            }
-        }
-        if !t0.is_finite() {
-            return Err(InvalidInput::NonFiniteStartTime { t0 }.into());
-        }
-        for (lane, (q, qdot)) in q0.iter().zip(qdot0).enumerate() {
-            finite_start(L::COORDINATES, q, qdot).map_err(|input| EnsembleError::Lane {
-                lane,
-                error: input.into(),
-            })?;
-        }
+        check_starts::<L, N>(t0, q0, qdot0)?;
         let growth: Vec<_> = q0
             .iter()
             .zip(qdot0)
             .map(|(q, v)| GrowthGuard::new(q, v))
             .collect();
-        #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
-        let avx2 = std::is_x86_feature_detected!("avx2");
-        #[cfg(not(all(target_arch = "x86_64", not(target_feature = "avx2"))))]
-        let avx2 = false;
         Ok(Self {
-            avx2,
+            avx2: avx2_at_run_time(),
             spare: growth.clone(),
             growth,
             model,
