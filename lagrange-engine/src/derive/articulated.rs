@@ -27,9 +27,12 @@
 //!
 //! Looked for from [`FROM_COORDINATES`] coordinates on (at any size under
 //! `#[lagrange(articulated)]`, never under `articulated = false`), after
-//! every other stage: the nodes it makes come after all the others, so a
-//! model's other functions are written as before, and a model it is not
-//! looked for in expands exactly as before.
+//! every other stage and the emission's charge: the nodes it makes come
+//! after all the others, so a model's other functions are written as
+//! before, and a model it is not looked for in expands exactly as before.
+//! Unasked, a search (with its function's emission) that does not fit in
+//! what is left of the budget is forgotten (`Pool::rewind`): a model that
+//! expanded before still does, with the dense solve.
 
 use super::Equations;
 use crate::expr::{ExprId, Node, Pool};
@@ -97,7 +100,21 @@ pub fn articulated(model: &mut Model, eq: &mut Equations) -> syn::Result<()> {
         None => own_path.is_none() && model.dof() >= FROM_COORDINATES,
     };
     if looked && eq.forcing.len() == model.dof() {
+        let mark = model.pool.mark();
         eq.articulated = find(model, eq);
+        if let Some(found) = &eq.articulated {
+            // The emission of `articulated_parts`, charged here: the other
+            // functions' was charged before the search.
+            let cost = crate::emit::emission_cost(model, &found.roots);
+            model.pool.charge(cost);
+        }
+        // Unasked, a search that does not fit in what is left of the budget
+        // is forgotten: a model that expanded before the search existed
+        // still expands, with the dense solve.
+        if wanted.is_none() && model.pool.exhausted() {
+            model.pool.rewind(mark);
+            eq.articulated = None;
+        }
     }
     if wanted != Some(true) || eq.articulated.is_some() || model.pool.exhausted() {
         return Ok(());
@@ -119,6 +136,7 @@ pub fn articulated(model: &mut Model, eq: &mut Equations) -> syn::Result<()> {
     }))
 }
 
+/// The form, if `T` has it (garbage, quickly, once the pool is exhausted).
 fn find(model: &mut Model, eq: &Equations) -> Option<Articulated> {
     let n = model.dof();
     let s = model.symbols.clone();
@@ -390,6 +408,9 @@ fn find(model: &mut Model, eq: &Equations) -> Option<Articulated> {
         let f = pool.sub(eq.nonconservative[i], dv);
         roots.push(f);
     }
+    if pool.exhausted() {
+        return None;
+    }
     Some(Articulated {
         parent: order.iter().map(|&j| parent[j].map(|p| place[p])).collect(),
         base: order.iter().map(|&j| base[j].map(|b| place[b])).collect(),
@@ -497,6 +518,11 @@ impl<F: Fn(crate::expr::SymId) -> Option<usize>> Kinds<'_, F> {
         out: &mut Vec<(Vec<ExprId>, ExprId)>,
     ) -> Option<()> {
         pool.charge(1);
+        // Each visit paid for: a shared node reached along many paths
+        // ends the search at the budget, not after it.
+        if pool.exhausted() {
+            return None;
+        }
         match pool.node(id) {
             Node::Add(terms) => {
                 for &t in terms.iter() {
@@ -526,6 +552,11 @@ impl<F: Fn(crate::expr::SymId) -> Option<usize>> Kinds<'_, F> {
         out: &mut Vec<(Vec<ExprId>, Angle)>,
     ) -> Option<()> {
         pool.charge(1);
+        // Each visit paid for: a shared node reached along many paths
+        // ends the search at the budget, not after it.
+        if pool.exhausted() {
+            return None;
+        }
         if let Some(angle) = self.rate(pool, id) {
             out.push((factors, angle));
             return Some(());

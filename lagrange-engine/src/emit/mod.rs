@@ -229,17 +229,24 @@ pub fn charge(model: &Model, eq: &Equations) {
         .iter()
         .filter_map(|m| (m.roots)(model, eq))
         .chain([text_roots.clone(), text_roots]);
-    // A function's prelude may name every symbol (`let [x, _, z] = ...`).
-    let symbols = model.symbols.count() as u64;
     for roots in functions {
         if pool.exhausted() {
             return;
         }
-        let before = pool.spent();
-        pool.post_order(&roots);
-        let walked = pool.spent() - before + roots.len() as u64 + symbols;
-        pool.charge(STEPS_PER_EMITTED_OPERAND * walked);
+        pool.charge(emission_cost(model, &roots));
     }
+}
+
+/// What writing one function of `roots` costs the budget ([`charge`]),
+/// after the walk over its nodes that measures it (charged as it goes).
+pub(crate) fn emission_cost(model: &Model, roots: &[ExprId]) -> u64 {
+    let pool = &model.pool;
+    // A function's prelude may name every symbol (`let [x, _, z] = ...`).
+    let symbols = model.symbols.count() as u64;
+    let before = pool.spent();
+    pool.post_order(roots);
+    let walked = pool.spent() - before + roots.len() as u64 + symbols;
+    STEPS_PER_EMITTED_OPERAND * walked
 }
 
 /// `impl Name<S>`: the consts, `new`, and every method the model has.

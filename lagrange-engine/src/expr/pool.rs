@@ -47,6 +47,13 @@ pub const DEFAULT_BUDGET: u64 = 50_000_000;
 /// depth comes from nested functions and powers, directly or through `let`s.
 pub const MAX_DEPTH: u32 = 400;
 
+/// The work done by a point in time ([`Pool::mark`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Mark {
+    spent: u64,
+    too_deep: bool,
+}
+
 impl Default for Pool {
     fn default() -> Self {
         Self::with_budget(DEFAULT_BUDGET)
@@ -108,6 +115,23 @@ impl Pool {
     /// The steps spent so far.
     pub fn spent(&self) -> u64 {
         self.spent.get()
+    }
+
+    /// Where the work stands, for [`Pool::rewind`].
+    pub fn mark(&self) -> Mark {
+        Mark {
+            spent: self.spent.get(),
+            too_deep: self.too_deep,
+        }
+    }
+
+    /// Forgets the work since `mark` (the steps and a node grown too deep):
+    /// for a search that may give up without costing the model its budget.
+    /// The nodes it made stay, unused; what it could make is bounded by the
+    /// budget it had, as any stage's.
+    pub fn rewind(&mut self, mark: Mark) {
+        self.spent.set(mark.spent);
+        self.too_deep = mark.too_deep;
     }
 
     /// Whether the budget is spent or a node grew too deep: from then on

@@ -184,3 +184,27 @@ fn the_attribute_asks_for_the_recursion_or_refuses_it_at_any_size() {
     }";
     assert!(error(constrained).contains("a model with constraints is solved by its own path"));
 }
+
+#[test]
+fn a_model_that_expanded_within_its_budget_still_does() {
+    // The chain's expansion with the dense solve alone takes `spent` steps;
+    // with exactly that budget, the search for the tree (and its
+    // function's emission) does not fit, is forgotten, and the model
+    // expands to the same code as with `articulated = false`.
+    let chain = indexed_chain(FROM_COORDINATES);
+    let dense = format!("#[lagrange(articulated = false)] {chain}");
+    let spent = lagrange_engine::derive_with_budget(dense.parse().unwrap(), 1 << 40)
+        .unwrap()
+        .model
+        .pool
+        .spent();
+    let tight = lagrange_engine::derive_with_budget(chain.parse().unwrap(), spent).unwrap();
+    assert!(tight.equations.articulated.is_none());
+    let expand = |options: &str| {
+        let source = format!("#[lagrange({options}budget = {spent})] {chain}");
+        lagrange_engine::expand(source.parse().unwrap()).to_string()
+    };
+    assert_eq!(expand(""), expand("articulated = false, "));
+    // With room, the form is found.
+    assert!(found(&chain).is_some());
+}
