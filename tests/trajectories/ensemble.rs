@@ -306,6 +306,25 @@ mod lanes {
         let stats = ensemble.stats();
         assert!(stats.steps_accepted > 0 && stats.rhs_evals >= 6 * stats.steps_accepted);
 
+        // Lane 1 replaced by its start, at 0.75 s: it goes on from there as
+        // its scalar run from that state does (1e-6: a hundred tolerances,
+        // a quarter second of this motion grows the error far less).
+        ensemble.set_lane(1, q0[1], qdot0[1]).unwrap();
+        assert_eq!((ensemble.q(1), ensemble.qdot(1)), (q0[1], qdot0[1]));
+        ensemble.advance_to(1.0).unwrap();
+        let alone = Dopri5::new()
+            .rtol(tol)
+            .atol(tol)
+            .integrate(&pendulum_lane::<f64>(1), 0.75, q0[1], qdot0[1], &[1.0])
+            .unwrap();
+        let last = alone.last().expect("one sample");
+        assert!((ensemble.q(1) - last.q).amax() < 1e-6);
+        let nan = SVector::from([f64::NAN, 0.0]);
+        assert!(matches!(
+            ensemble.set_lane(1, nan, qdot0[1]),
+            Err(EnsembleError::InvalidInput(_))
+        ));
+
         // Lane 2's tip massless: `M` singular there, at the start.
         let mut model = pendulum::<AutoF64x4>();
         model.m2.replace(2, 0.0);
