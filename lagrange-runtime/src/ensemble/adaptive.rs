@@ -324,14 +324,27 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
         (eq, ev): (&SVector<L::Lanes, N>, &SVector<L::Lanes, N>),
         (q, qdot): (&SVector<L::Lanes, N>, &SVector<L::Lanes, N>),
     ) -> L::Lanes {
+        self.rms([(eq, &self.q, q), (ev, &self.qdot, qdot)])
+    }
+
+    /// Per lane, the root mean square of `x` over `atol + rtol·max(|a|, |b|)`,
+    /// for each of the two parts `(x, a, b)` (positions, velocities).
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn rms(
+        &self,
+        parts: [(
+            &SVector<L::Lanes, N>,
+            &SVector<L::Lanes, N>,
+            &SVector<L::Lanes, N>,
+        ); 2],
+    ) -> L::Lanes {
         let (rtol, atol) = (L::Lanes::splat(self.rtol), L::Lanes::splat(self.atol));
         let mut sum = nalgebra::zero::<L::Lanes>();
-        let parts = [(eq, &self.q, q), (ev, &self.qdot, qdot)];
-        for (e, old, new) in parts {
+        for (x, a, b) in parts {
             for i in 0..N {
-                let scale = atol + rtol * old[i].simd_abs().simd_max(new[i].simd_abs());
-                let x = e[i] / scale;
-                sum += x * x;
+                let v = x[i] / (atol + rtol * a[i].simd_abs().simd_max(b[i].simd_abs()));
+                sum += v * v;
             }
         }
         let n: Element<L, N> = nalgebra::convert((2 * N) as f64);
@@ -346,22 +359,10 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
         span: Element<L, N>,
     ) -> Result<Element<L, N>, EnsembleError<Element<L, N>, N>> {
         let c = |x: f64| -> Element<L, N> { nalgebra::convert(x) };
-        let (rtol, atol) = (L::Lanes::splat(self.rtol), L::Lanes::splat(self.atol));
-        type Lanes<L, const N: usize> = SVector<<L as LaneModel<N>>::Lanes, N>;
-        let norm = |parts: [(&Lanes<L, N>, &Lanes<L, N>); 2]| {
-            let mut sum = nalgebra::zero::<L::Lanes>();
-            for (x, y) in parts {
-                for i in 0..N {
-                    let v = x[i] / (atol + rtol * y[i].simd_abs());
-                    sum += v * v;
-                }
-            }
-            let n: Element<L, N> = nalgebra::convert((2 * N) as f64);
-            (sum / L::Lanes::splat(n)).simd_sqrt()
-        };
         let (q, qdot, qddot) = (self.q, self.qdot, self.qddot);
-        let d0 = norm([(&q, &q), (&qdot, &qdot)]);
-        let d1 = norm([(&qdot, &q), (&qddot, &qdot)]);
+        // Each size over `atol + rtol·|y|`: `rms` with `a = b = y`.
+        let d0 = self.rms([(&q, &q, &q), (&qdot, &qdot, &qdot)]);
+        let d1 = self.rms([(&qdot, &q, &q), (&qddot, &qdot, &qdot)]);
         let mut h0 = span;
         for lane in 0..L::Lanes::LANES {
             let (d0, d1) = (d0.extract(lane), d1.extract(lane));
@@ -376,7 +377,7 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
         let (q1, qdot1) = (q + qdot * step, qdot + qddot * step);
         let qddot1 = self.slope(self.t + h0, &q1, &qdot1)?;
         self.stats.rhs_evals += 1;
-        let d2 = norm([(&(qdot1 - qdot), &q), (&(qddot1 - qddot), &qdot)]) / step;
+        let d2 = self.rms([(&(qdot1 - qdot), &q, &q), (&(qddot1 - qddot), &qdot, &qdot)]) / step;
         let mut h = c(100.0) * h0;
         for lane in 0..L::Lanes::LANES {
             let larger = d1.extract(lane).max(d2.extract(lane));

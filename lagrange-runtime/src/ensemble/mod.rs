@@ -102,8 +102,9 @@ use nalgebra::{ComplexField, RealField, SMatrix, SVector, SimdBool, SimdRealFiel
 use crate::driver::{GrowthGuard, Interval, finite_start, measure};
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::integrators::LaneStep;
+use crate::linalg::finite_lanes;
 use crate::trajectory::Stats;
-use solve::{Element, accelerations, finite_lanes, gather, lane_of};
+use solve::{Element, accelerations, gather, lane_of};
 
 pub use adaptive::AdaptiveEnsemble;
 pub use simba::simd::{AutoF32x4, AutoF32x8, AutoF64x2, AutoF64x4, AutoF64x8, AutoSimd};

@@ -14,6 +14,7 @@ use nalgebra::{RealField, SVector, SimdBool, SimdPartialOrd, SimdRealField, Simd
 use super::LaneModel;
 use crate::dynamics::mass_error;
 use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::finite_lanes;
 use crate::linalg::ldlt::{backward, factor_rows, forward};
 use crate::linalg::mass::solve_mass_matrix;
 
@@ -142,22 +143,6 @@ pub(super) unsafe fn accelerations_avx2<L: LaneModel<N>, const N: usize>(
     qdot: &SVector<L::Lanes, N>,
 ) -> Result<SVector<L::Lanes, N>, LaneFailure<L, N>> {
     accelerations_inline(model, t, q, qdot)
-}
-
-/// Per lane, whether every entry of `parts` is finite: `x · 0` is zero just
-/// where `x` is. (The lanes' mask; `linalg::all_finite` is the scalars'
-/// yes or no.)
-#[inline(always)]
-pub(super) fn finite_lanes<V: SimdRealField + Copy>(parts: &[&[V]]) -> V::SimdBool {
-    // Four sums side by side: one would wait on each addition in turn.
-    let zero = V::zero();
-    let mut sums = [zero; 4];
-    for part in parts {
-        for (i, &v) in part.iter().enumerate() {
-            sums[i % 4] += v * zero;
-        }
-    }
-    ((sums[0] + sums[1]) + (sums[2] + sums[3])).simd_eq(zero)
 }
 
 /// The scalar solve's `ε`.

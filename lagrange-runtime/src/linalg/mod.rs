@@ -35,6 +35,24 @@ pub mod mass;
 pub(crate) mod schur;
 pub(crate) mod second_order;
 
+use nalgebra::SimdRealField;
+
+/// Per lane, whether every entry of `parts` is finite: `x · 0` is zero just
+/// where `x` is. (The lanes' mask; [`all_finite`] is the scalars' yes or
+/// no.)
+#[inline(always)]
+pub(crate) fn finite_lanes<V: SimdRealField + Copy>(parts: &[&[V]]) -> V::SimdBool {
+    // Four sums side by side: one would wait on each addition in turn.
+    let zero = V::zero();
+    let mut sums = [zero; 4];
+    for part in parts {
+        for (i, &v) in part.iter().enumerate() {
+            sums[i % 4] += v * zero;
+        }
+    }
+    ((sums[0] + sums[1]) + (sums[2] + sums[3])).simd_eq(zero)
+}
+
 /// Whether every value is finite, over a matrix's storage as a slice
 /// (`m.as_slice()`): nalgebra's matrix iterator steps through columns and
 /// strides per element, and took several times the work of the check
