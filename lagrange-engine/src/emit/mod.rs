@@ -95,7 +95,7 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
         &cx.outline,
         &cx.types,
         cx.articulated
-            .map(|a| lane_accelerations(&cx.outline, &cx.types, a)),
+            .map(|_| lane_accelerations(&cx.outline, &cx.types)),
     );
     // The constraints' parameter derivatives stay inherent: the trait
     // (and the sensitivities over it) is of models in minimal coordinates.
@@ -156,8 +156,9 @@ pub(crate) fn lanes_impl(
     }
 }
 
-/// The joints of `a` as the runtime's `Tree`, a `const` in each method
-/// that hands it over.
+/// The joints of `a` as the runtime's `Tree`: the inherent impl's
+/// `ARTICULATED_TREE`, which every method that calls the runtime's
+/// recursion hands over.
 fn tree(types: &Types, a: &Articulated) -> TokenStream {
     let n = &types.n;
     let joint = |j: &Option<usize>| match j {
@@ -172,7 +173,8 @@ fn tree(types: &Types, a: &Articulated) -> TokenStream {
         .iter()
         .map(|&c| proc_macro2::Literal::f64_suffixed(c));
     quote! {
-        const TREE: ::lagrange::linalg::articulated::Tree<#n> = ::lagrange::linalg::articulated::Tree {
+        /// The joints the masses hang on, for the runtime's recursion.
+        const ARTICULATED_TREE: ::lagrange::linalg::articulated::Tree<#n> = ::lagrange::linalg::articulated::Tree {
             parent: [#(#parent),*],
             base: [#(#base),*],
             coordinate: [#(#coordinate),*],
@@ -183,11 +185,10 @@ fn tree(types: &Types, a: &Articulated) -> TokenStream {
 
 /// `LaneModel::accelerations` of a model whose masses hang on a tree of
 /// links: the recursion on the lanes, with the lanes it answers for.
-fn lane_accelerations(outline: &Outline, types: &Types, a: &Articulated) -> TokenStream {
+fn lane_accelerations(outline: &Outline, types: &Types) -> TokenStream {
     let name = outline.name;
     let na = nalgebra();
     let vector = &types.vector;
-    let tree = tree(types, a);
     quote! {
         const SOLVES_ACCELERATIONS: bool = true;
         #[inline(always)]
@@ -197,9 +198,8 @@ fn lane_accelerations(outline: &Outline, types: &Types, a: &Articulated) -> Toke
             q: &#vector,
             qdot: &#vector,
         ) -> ::core::option::Option<(#vector, <S as #na::SimdValue>::SimdBool)> {
-            #tree
             let parts = #name::articulated_parts(self, t, q, qdot);
-            ::core::option::Option::Some(::lagrange::linalg::articulated::lanes(&TREE, &parts, qdot))
+            ::core::option::Option::Some(::lagrange::linalg::articulated::lanes(&Self::ARTICULATED_TREE, &parts, qdot))
         }
     }
 }
@@ -266,12 +266,14 @@ fn inherent_impl(cx: &Context, texts: (&str, &str)) -> TokenStream {
         .filter_map(|(m, roots)| Some(method(cx, m, roots.as_ref()?)));
     let inputs = inputs::inherent_methods(&cx.outline, &cx.types);
     let let_value = api::let_value(&cx.types);
+    let tree = cx.articulated.map(|a| tree(&cx.types, a));
     quote! {
         #[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]
         impl<S: #na::SimdRealField + ::core::marker::Copy> #name<S> where
             S::Element: #na::RealField + ::core::marker::Copy,
         {
             #(#consts)*
+            #tree
 
             #[doc = #new_doc]
             #[inline]
@@ -352,6 +354,19 @@ fn forwarding<'a>(
 fn method(cx: &Context, m: &Method, roots: &[ExprId]) -> TokenStream {
     let doc = Doc::Lines(m.doc).attributes();
     let signature = m.signature(&cx.types);
+    if let Some(body) = cx.articulated.and_then(|_| formed(cx, m)) {
+        return quote! {
+            #doc
+            ///
+            /// Formed at run time from `articulated_parts` (the masses hang on a
+            /// tree of links): `M` in `O(N²)`, `f` in `O(N)`, not generated entry
+            /// by entry.
+            #[inline]
+            pub #signature {
+                #body
+            }
+        };
+    }
     let (prelude, outs) = function::body(cx.model, &cx.namer, roots);
     let value = m.returns.assemble(&cx.types, &outs);
     quote! {
@@ -362,6 +377,33 @@ fn method(cx: &Context, m: &Method, roots: &[ExprId]) -> TokenStream {
             #value
         }
     }
+}
+
+/// The body of `mass_matrix`, `forcing` or `mass_matrix_and_forcing` of a
+/// model whose masses hang on a tree of links: the runtime forms them from
+/// the parts (the same `M` and `f`, exactly so before rounding: the engine
+/// proved `T` has the form), so that the model's code holds no `O(N²)`
+/// entries of `M` and the build no longer compiles them; `None` for the
+/// other methods.
+fn formed(cx: &Context, m: &Method) -> Option<TokenStream> {
+    let name = cx.outline.name;
+    let vector = &cx.types.vector;
+    let zeros = quote!(&<#vector>::zeros());
+    Some(match m.name {
+        "mass_matrix" => quote! {
+            let parts = #name::articulated_parts(self, t, q, #zeros);
+            ::lagrange::linalg::articulated::mass_matrix(&Self::ARTICULATED_TREE, &parts)
+        },
+        "forcing" => quote! {
+            let parts = #name::articulated_parts(self, t, q, qdot);
+            ::lagrange::linalg::articulated::forcing(&Self::ARTICULATED_TREE, &parts, qdot)
+        },
+        "mass_matrix_and_forcing" => quote! {
+            let parts = #name::articulated_parts(self, t, q, qdot);
+            ::lagrange::linalg::articulated::mass_matrix_and_forcing(&Self::ARTICULATED_TREE, &parts, qdot)
+        },
+        _ => return None,
+    })
 }
 
 /// `impl Lagrangian<N> for Name<S>`: each method calls the inherent one.
@@ -376,7 +418,7 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
     let finite = parameters_are_finite(cx);
     let visit_inputs = inputs::visit_inputs(&cx.outline, &cx.types);
     let visit_lets = visit_lets(&cx.types);
-    let accelerations = cx.articulated.map(|a| accelerations(cx, a));
+    let accelerations = cx.articulated.map(|_| accelerations(cx));
     // A constrained model hands itself, with its number of constraints, to
     // the runtime's visitor: how a generic integrator reaches `Holonomic`.
     let visit = (cx.types.constraints > 0).then(|| {
@@ -416,10 +458,9 @@ fn lagrangian_impl(cx: &Context) -> TokenStream {
 /// `Lagrangian::accelerations` of a model whose masses hang on a tree of
 /// increments: the runtime's `O(N)` recursion over the joints, from the
 /// inherent `articulated_parts`; `None` (the dense solve) where it refuses.
-fn accelerations(cx: &Context, a: &Articulated) -> TokenStream {
+fn accelerations(cx: &Context) -> TokenStream {
     let name = cx.outline.name;
     let (n, vector) = (&cx.types.n, &cx.types.vector);
-    let tree = tree(&cx.types, a);
     quote! {
         const SOLVES_ACCELERATIONS: bool = true;
         #[inline]
@@ -429,9 +470,8 @@ fn accelerations(cx: &Context, a: &Articulated) -> TokenStream {
             q: &#vector,
             qdot: &#vector,
         ) -> ::core::option::Option<::core::result::Result<#vector, ::lagrange::error::IntegrationError<S, #n>>> {
-            #tree
             let parts = #name::articulated_parts(self, t, q, qdot);
-            ::lagrange::linalg::articulated::accelerations(&TREE, &parts, qdot).map(::core::result::Result::Ok)
+            ::lagrange::linalg::articulated::accelerations(&Self::ARTICULATED_TREE, &parts, qdot).map(::core::result::Result::Ok)
         }
     }
 }

@@ -31,7 +31,7 @@
 //! that a lane of an [`Ensemble`](crate::ensemble::Ensemble) is its scalar
 //! run, bit for bit.
 
-use nalgebra::{RealField, SVector, SimdRealField};
+use nalgebra::{RealField, SMatrix, SVector, SimdRealField};
 
 /// No joint: a root's parent, an angle that is a coordinate alone.
 pub const NONE: usize = usize::MAX;
@@ -93,11 +93,7 @@ pub fn lanes<S: SimdRealField + Copy, const N: usize, const D: usize>(
     qdot: &SVector<S, N>,
 ) -> (SVector<S, N>, S::SimdBool) {
     // A factor of 1 (every angle of a chain or a tree of hinges) costs
-    // nothing; another one multiplies, or divides, once.
-    let times = |x: S, j: usize| match tree.scale[j] {
-        1.0 => x,
-        c => x * nalgebra::convert::<f64, S>(c),
-    };
+    // nothing; another one divides once.
     let over = |x: S, j: usize| match tree.scale[j] {
         1.0 => x,
         c => x / nalgebra::convert::<f64, S>(c),
@@ -113,13 +109,10 @@ pub fn lanes<S: SimdRealField + Copy, const N: usize, const D: usize>(
     // `I x` for a symmetric `I` stored whole.
     let apply = |i: &[[S; D]; D], x: &[S; D]| core::array::from_fn(|a| dot(&i[a], x));
     // The joints' rates, `φ̇ = A q̇`, and their forces, `τ = A⁻ᵀ f`.
-    let mut rate = [zero; N];
+    let rate = rates(tree, qdot);
     let mut tau = [zero; N];
     for j in 0..N {
-        let (base, i) = (tree.base[j], tree.coordinate[j]);
-        let own = times(qdot[i], j);
-        rate[j] = if base == NONE { own } else { rate[base] + own };
-        tau[j] = over(parts.forcing[i], j);
+        tau[j] = over(parts.forcing[tree.coordinate[j]], j);
     }
     for j in (0..N).rev() {
         let base = tree.base[j];
@@ -191,6 +184,174 @@ pub fn lanes<S: SimdRealField + Copy, const N: usize, const D: usize>(
     (qddot, positive & finite)
 }
 
+/// `M` of the form in the coordinates `q`, formed from the parts in
+/// `O(N²)`: what a model with the form returns as its `mass_matrix` (the
+/// dense solve's, where the recursion declines, and the implicit and
+/// variational methods'), instead of generated code for every entry.
+///
+/// In the joints' angles, `M_φ[i][j] = Σ_a u_ia u_ja C_ia` for `j` on
+/// `i`'s path (and its mirror), `C_ia` the masses of `i`'s subtree along
+/// axis `a`, plus `J_i` on the diagonal; then `M = Aᵀ M_φ A`.
+#[inline]
+pub fn mass_matrix<S: SimdRealField + Copy, const N: usize, const D: usize>(
+    tree: &Tree<N>,
+    parts: &Parts<S, N, D>,
+) -> SMatrix<S, N, N> {
+    let zero = S::zero();
+    // Each joint's subtree's masses, axis by axis.
+    let mut held = parts.masses;
+    for j in (0..N).rev() {
+        let parent = tree.parent[j];
+        if parent != NONE {
+            for a in 0..D {
+                held[parent][a] += held[j][a];
+            }
+        }
+    }
+    let mut m = SMatrix::<S, N, N>::zeros();
+    for i in 0..N {
+        let mut j = i;
+        while j != NONE {
+            let mut entry = zero;
+            for a in 0..D {
+                entry += parts.axes[i][a] * parts.axes[j][a] * held[i][a];
+            }
+            if j == i {
+                m[(i, i)] = entry + parts.inertia[i];
+            } else {
+                m[(i, j)] = entry;
+                m[(j, i)] = entry;
+            }
+            j = tree.parent[j];
+        }
+    }
+    to_coordinates(tree, &m)
+}
+
+/// `f` of the form in the coordinates `q`, from the parts in `O(N)`: the
+/// generalized forces other than `T`'s less `T`'s velocity terms, what a
+/// model with the form returns as its `forcing`.
+///
+/// In the joints' angles `T`'s terms are `b_i = Σ_a u_ia Σ_{n in i's
+/// subtree} m_na c_na`, `c_n` the end of joint `n`'s acceleration at
+/// `φ̈ = 0` (its bends times the rates squared, summed along its path); in
+/// `q`, `f = f_other − Aᵀ b`.
+#[inline]
+pub fn forcing<S: SimdRealField + Copy, const N: usize, const D: usize>(
+    tree: &Tree<N>,
+    parts: &Parts<S, N, D>,
+    qdot: &SVector<S, N>,
+) -> SVector<S, N> {
+    let zero = S::zero();
+    let rate = rates(tree, qdot);
+    // Root to leaves: each end's acceleration at φ̈ = 0, times its masses.
+    let mut end = [[zero; D]; N];
+    let mut pulled = [[zero; D]; N];
+    for j in 0..N {
+        let parent = tree.parent[j];
+        let squared = rate[j] * rate[j];
+        for a in 0..D {
+            let from = if parent == NONE { zero } else { end[parent][a] };
+            end[j][a] = from + parts.bends[j][a] * squared;
+            pulled[j][a] = parts.masses[j][a] * end[j][a];
+        }
+    }
+    // Leaves to root: each subtree's pull, projected on its joint's axis.
+    let mut b = [zero; N];
+    for j in (0..N).rev() {
+        let parent = tree.parent[j];
+        let mut along = zero;
+        for a in 0..D {
+            along += parts.axes[j][a] * pulled[j][a];
+            if parent != NONE {
+                pulled[parent][a] += pulled[j][a];
+            }
+        }
+        b[j] = along;
+    }
+    // `Aᵀ b`: each joint's term to the coordinates its angle holds.
+    for j in (0..N).rev() {
+        let base = tree.base[j];
+        if base != NONE {
+            b[base] += b[j];
+        }
+    }
+    let mut f = parts.forcing;
+    for j in 0..N {
+        f[tree.coordinate[j]] -= scaled(tree, b[j], j);
+    }
+    f
+}
+
+/// [`mass_matrix`] and [`forcing`] together.
+#[inline]
+pub fn mass_matrix_and_forcing<S: SimdRealField + Copy, const N: usize, const D: usize>(
+    tree: &Tree<N>,
+    parts: &Parts<S, N, D>,
+    qdot: &SVector<S, N>,
+) -> (SMatrix<S, N, N>, SVector<S, N>) {
+    (mass_matrix(tree, parts), forcing(tree, parts, qdot))
+}
+
+/// The joints' rates `φ̇ = A q̇`.
+#[inline(always)]
+fn rates<S: SimdRealField + Copy, const N: usize>(tree: &Tree<N>, qdot: &SVector<S, N>) -> [S; N] {
+    let mut rate = [S::zero(); N];
+    for j in 0..N {
+        let (base, i) = (tree.base[j], tree.coordinate[j]);
+        let own = scaled(tree, qdot[i], j);
+        rate[j] = if base == NONE { own } else { rate[base] + own };
+    }
+    rate
+}
+
+/// `c_j x`: a factor of 1 (every angle of a chain or a tree of hinges)
+/// costs nothing.
+#[inline(always)]
+fn scaled<S: SimdRealField + Copy, const N: usize>(tree: &Tree<N>, x: S, j: usize) -> S {
+    match tree.scale[j] {
+        1.0 => x,
+        c => x * nalgebra::convert::<f64, S>(c),
+    }
+}
+
+/// `Aᵀ X A` for `X` in the joints' angles: row `j` of `A` is its base's
+/// plus `c_j` at its coordinate, so `X A`'s column `σ(k)` is `c_k` times
+/// the sum of `X`'s columns over the joints whose angles hold joint `k`'s
+/// (leaves to root, each into its base), and `Aᵀ` the same on the rows.
+fn to_coordinates<S: SimdRealField + Copy, const N: usize>(
+    tree: &Tree<N>,
+    x: &SMatrix<S, N, N>,
+) -> SMatrix<S, N, N> {
+    let mut x = *x;
+    for j in (0..N).rev() {
+        let base = tree.base[j];
+        if base != NONE {
+            for r in 0..N {
+                let v = x[(r, j)];
+                x[(r, base)] += v;
+            }
+        }
+    }
+    for j in (0..N).rev() {
+        let base = tree.base[j];
+        if base != NONE {
+            for c in 0..N {
+                let v = x[(j, c)];
+                x[(base, c)] += v;
+            }
+        }
+    }
+    let mut m = SMatrix::<S, N, N>::zeros();
+    for j in 0..N {
+        for k in 0..N {
+            let v = scaled(tree, x[(j, k)], j);
+            m[(tree.coordinate[j], tree.coordinate[k])] = scaled(tree, v, k);
+        }
+    }
+    m
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -219,13 +380,13 @@ mod tests {
             core::array::from_fn(|j| [lengths[j] * phi[j].cos(), lengths[j] * phi[j].sin()]);
         let masses = [[1.0, 1.5], [2.0, 2.0], [0.5, 0.7]];
         let inertia = [0.0, 0.3, 0.1];
-        let forcing = SVector::<f64, N>::new(0.4, -1.2, 0.9);
+        let forces = SVector::<f64, N>::new(0.4, -1.2, 0.9);
         let parts = Parts {
             axes,
             bends: [[0.0; 2]; N],
             masses,
             inertia,
-            forcing,
+            forcing: forces,
         };
         // ∂φ/∂q, and the ends' velocities per unit q̇: the Jacobian of the
         // end of joint n along axis a is Σ_{j on n's path} u_ja ∂φ_j/∂q.
@@ -244,7 +405,13 @@ mod tests {
         for (j, inertia) in inertia.iter().enumerate() {
             m += a.row(j).transpose() * a.row(j) * *inertia;
         }
-        let dense = m.lu().solve(&forcing).unwrap();
+        // `M` formed from the parts: the same sums in another order, to a
+        // few ε of its largest entry (about 10 here).
+        let formed = mass_matrix(&tree, &parts);
+        assert!((formed - m).amax() < 1e-14 * m.amax(), "{formed} {m}");
+        // At rest `f` is the forces alone.
+        assert_eq!(forcing(&tree, &parts, &SVector::zeros()), forces);
+        let dense = m.lu().solve(&forces).unwrap();
         let ours = accelerations(&tree, &parts, &SVector::zeros()).unwrap();
         // Both are backward stable solves of a 3 × 3 system with a
         // condition number of a few tens: agreement to 1e-13 relative.
