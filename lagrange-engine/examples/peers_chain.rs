@@ -14,9 +14,12 @@ fn main() {
         .nth(1)
         .and_then(|a| a.parse().ok())
         .expect("usage: peers_chain N");
-    // The model of lagrange-studies/examples/scaling (indexed form) and of the script.
+    // The model of lagrange-studies/examples/scaling (indexed form) and of
+    // the script, with its generated `M` and `f` (from 10 coordinates the
+    // chain would otherwise have them formed from its links' parts).
     let source = format!(
-        "pub struct Chain {{
+        "#[lagrange(articulated = false)]
+pub struct Chain {{
     const N = {n};
     coordinates: theta[N];
     parameters: m[N], l[N];

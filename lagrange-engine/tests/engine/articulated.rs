@@ -208,3 +208,28 @@ fn a_model_that_expanded_within_its_budget_still_does() {
     // With room, the form is found.
     assert!(found(&chain).is_some());
 }
+
+#[test]
+fn a_model_with_the_form_forms_m_and_f_from_its_parts() {
+    // Its `mass_matrix`, `forcing` and `mass_matrix_and_forcing` call the
+    // runtime on the parts instead of writing `M`'s entries out; that they
+    // are the derived `M` and `f` is the runtime's test
+    // (`tests/trajectories/articulated.rs`).
+    let chain = indexed_chain(FROM_COORDINATES);
+    let code = |source: &str| lagrange_engine::expand(source.parse().unwrap()).to_string();
+    let formed = code(&chain);
+    let generated = code(&format!("#[lagrange(articulated = false)] {chain}"));
+    for function in ["mass_matrix", "forcing", "mass_matrix_and_forcing"] {
+        let call = format!("articulated :: {function} (& Self :: ARTICULATED_TREE");
+        assert!(formed.contains(&call), "{function} is not formed");
+        assert!(!generated.contains(&call), "{function} is formed without the form");
+    }
+    // The entries gone: at 10 links the expansion is 0.81 of the one with
+    // `M` and `f` written out (their three functions); less at more links.
+    assert!(
+        formed.len() * 10 < generated.len() * 9,
+        "{} against {} bytes",
+        formed.len(),
+        generated.len()
+    );
+}

@@ -26,6 +26,12 @@
 //! `None` where a joint's articulated inertia `u·I u + J` is not positive
 //! or the result is not finite: the caller then solves `M q̈ = f` whole,
 //! which tells a singular `M` from a non-finite forcing in its errors.
+//!
+//! Where a method needs `M` or `f` themselves (that dense solve, the
+//! variational integrators, the sensitivities), [`mass_matrix`] and
+//! [`forcing`] form them from the same parts, in `O(N²)` and `O(N)`: a
+//! model with the form has no generated code for `M`'s entries, so its
+//! build is that of the parts alone.
 //! Written once for scalars and for SIMD lanes ([`lanes`], which says per
 //! lane whether it answered): the same operations in the same order, so
 //! that a lane of an [`Ensemble`](crate::ensemble::Ensemble) is its scalar

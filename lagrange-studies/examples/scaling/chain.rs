@@ -25,11 +25,21 @@ impl Form {
     }
 }
 
-/// The tokens inside `lagrangian! { ... }` for the `n`-link chain.
-pub fn model_body(n: usize, form: Form) -> String {
-    match form {
+/// The tokens inside `lagrangian! { ... }` for the `n`-link chain. With
+/// `#[lagrange(articulated = false)]` unless `articulated`: this study
+/// measures the generated `M` and `f`, which from 10 coordinates a chain
+/// would otherwise not have (`--articulated`: they are formed at run time
+/// from the links' parts, the model's code is those parts; the recursion
+/// over them is `benches/articulated.rs`'s).
+pub fn model_body(n: usize, form: Form, articulated: bool) -> String {
+    let body = match form {
         Form::Indexed => indexed(n),
         Form::Scalar => scalar(n),
+    };
+    if articulated {
+        body
+    } else {
+        format!("#[lagrange(articulated = false)]\n{body}")
     }
 }
 

@@ -65,7 +65,7 @@ impl Crates {
     }
 
     /// Writes (or rewrites, which makes cargo rebuild it) the crate for `n`.
-    pub fn write(&self, n: usize, form: Form) -> std::io::Result<ChainCrate> {
+    pub fn write(&self, n: usize, form: Form, articulated: bool) -> std::io::Result<ChainCrate> {
         let dir = self.root.join(format!("chain{n}"));
         fs::create_dir_all(dir.join("src"))?;
         let manifest = format!(
@@ -110,7 +110,7 @@ num-dual = "0.15"
         }
         let lib = LIB
             .replace("__N__", &n.to_string())
-            .replace("__MODEL__", chain::model_body(n, form).trim_end())
+            .replace("__MODEL__", chain::model_body(n, form, articulated).trim_end())
             .replace("__NEW__", &chain::constructor(n, form));
         fs::write(dir.join("src/lib.rs"), lib)?;
         fs::write(dir.join("src/eval.rs"), EVAL)?;

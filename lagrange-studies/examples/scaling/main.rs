@@ -17,7 +17,10 @@
 //! `--engine-only` (no builds), `--no-ad`, `--no-write` (leave
 //! `BENCHMARKS.md` alone), `--optimised-macro` (the model crates build the
 //! engine with `opt-level = 3`, as the README recommends; cargo's default
-//! for proc macros is 0), `--timeout S` (per build, default 600).
+//! for proc macros is 0), `--articulated` (the chain as a user writes it,
+//! without `#[lagrange(articulated = false)]`: from 10 coordinates its `M`
+//! and `f` are formed at run time from the links' parts, and the build is
+//! that of the parts; implies `--no-write`), `--timeout S` (per build, default 600).
 
 mod chain;
 mod crates;
@@ -40,6 +43,7 @@ struct Options {
     ad: bool,
     write: bool,
     optimised_macro: bool,
+    articulated: bool,
     timeout: Duration,
 }
 
@@ -53,6 +57,7 @@ impl Options {
             ad: true,
             write: true,
             optimised_macro: false,
+            articulated: false,
             timeout: Duration::from_secs(600),
         };
         let mut args = std::env::args().skip(1);
@@ -75,10 +80,11 @@ impl Options {
                 "--no-ad" => o.ad = false,
                 "--no-write" => o.write = false,
                 "--optimised-macro" => o.optimised_macro = true,
+                "--articulated" => o.articulated = true,
                 "--help" | "-h" => return Err(
                     "usage: cargo run --release -p lagrange-studies --example scaling -- [--max N | --only N,N,..] \
                          [--scalar] [--engine-only] [--no-ad] [--no-write] [--optimised-macro] \
-                         [--timeout S]"
+                         [--articulated] [--timeout S]"
                         .into(),
                 ),
                 other => return Err(format!("unknown option `{other}` (try --help)")),
@@ -86,6 +92,10 @@ impl Options {
         }
         if o.max == 0 {
             return Err("--max must be at least 1".into());
+        }
+        // BENCHMARKS.md's table is of the generated `M` and `f`.
+        if o.articulated {
+            o.write = false;
         }
         Ok(o)
     }
@@ -118,6 +128,9 @@ impl Options {
         }
         if self.optimised_macro {
             s.push_str(" --optimised-macro");
+        }
+        if self.articulated {
+            s.push_str(" --articulated");
         }
         if s.is_empty() {
             String::new()
@@ -158,7 +171,7 @@ fn run(options: &Options) -> Result<(), String> {
     println!("\nengine (expansion outside rustc, median of up to 5):");
     let mut rows: Vec<Row> = Vec::new();
     for n in options.chain_lengths() {
-        let engine = engine::measure(&chain::model_body(n, options.form));
+        let engine = engine::measure(&chain::model_body(n, options.form, options.articulated));
         match &engine {
             Ok(e) => println!(
                 "  N = {n:>2}: expand {:>9.4} s (derive {:.4} s, emit {:.4} s; {} runs), {} nodes, \
@@ -186,7 +199,7 @@ fn run(options: &Options) -> Result<(), String> {
         let crates = Crates::new(repo, options.timeout, options.optimised_macro);
         println!("\nwarm-up: the dependencies, built once into target/scaling/target ...");
         let was_cold = !crates.target_exists();
-        let first = crates.write(1, options.form).map_err(|e| e.to_string())?;
+        let first = crates.write(1, options.form, options.articulated).map_err(|e| e.to_string())?;
         let t = crates.build(&first, &[])?;
         crates.check(&first, &[])?;
         let what = if was_cold {
@@ -311,7 +324,7 @@ fn run(options: &Options) -> Result<(), String> {
 /// Builds the crate for `n`, runs its timing binary, then (unless `--no-ad`)
 /// builds and runs the AD comparison.
 fn build_and_time(crates: &Crates, n: usize, options: &Options) -> Result<BuildStats, String> {
-    let krate = crates.write(n, options.form).map_err(|e| e.to_string())?;
+    let krate = crates.write(n, options.form, options.articulated).map_err(|e| e.to_string())?;
     let check = crates.check(&krate, &[krate.eval_bin()])?;
     crates.touch(&krate).map_err(|e| e.to_string())?;
     let build = crates.build(&krate, &[krate.eval_bin()])?;
