@@ -222,7 +222,10 @@ fn a_model_with_the_form_forms_m_and_f_from_its_parts() {
     for function in ["mass_matrix", "forcing", "mass_matrix_and_forcing"] {
         let call = format!("articulated :: {function} (& Self :: ARTICULATED_TREE");
         assert!(formed.contains(&call), "{function} is not formed");
-        assert!(!generated.contains(&call), "{function} is formed without the form");
+        assert!(
+            !generated.contains(&call),
+            "{function} is formed without the form"
+        );
     }
     // The entries gone: at 10 links the expansion is 0.81 of the one with
     // `M` and `f` written out (their three functions); less at more links.

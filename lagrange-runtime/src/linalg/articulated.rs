@@ -199,6 +199,7 @@ pub fn lanes<S: SimdRealField + Copy, const N: usize, const D: usize>(
 /// `i`'s path (and its mirror), `C_ia` the masses of `i`'s subtree along
 /// axis `a`, plus `J_i` on the diagonal; then `M = Aᵀ M_φ A`.
 #[inline]
+#[allow(clippy::needless_range_loop)] // joints and axes index several arrays at once
 pub fn mass_matrix<S: SimdRealField + Copy, const N: usize, const D: usize>(
     tree: &Tree<N>,
     parts: &Parts<S, N, D>,
@@ -231,7 +232,7 @@ pub fn mass_matrix<S: SimdRealField + Copy, const N: usize, const D: usize>(
             j = tree.parent[j];
         }
     }
-    to_coordinates(tree, &m)
+    to_coordinates(tree, m)
 }
 
 /// `f` of the form in the coordinates `q`, from the parts in `O(N)`: the
@@ -243,6 +244,7 @@ pub fn mass_matrix<S: SimdRealField + Copy, const N: usize, const D: usize>(
 /// `φ̈ = 0` (its bends times the rates squared, summed along its path); in
 /// `q`, `f = f_other − Aᵀ b`.
 #[inline]
+#[allow(clippy::needless_range_loop)] // joints and axes index several arrays at once
 pub fn forcing<S: SimdRealField + Copy, const N: usize, const D: usize>(
     tree: &Tree<N>,
     parts: &Parts<S, N, D>,
@@ -325,11 +327,12 @@ fn scaled<S: SimdRealField + Copy, const N: usize>(tree: &Tree<N>, x: S, j: usiz
 /// plus `c_j` at its coordinate, so `X A`'s column `σ(k)` is `c_k` times
 /// the sum of `X`'s columns over the joints whose angles hold joint `k`'s
 /// (leaves to root, each into its base), and `Aᵀ` the same on the rows.
+/// Nothing to do for absolute angles in the coordinates' order (`A = I`,
+/// every chain written so).
 fn to_coordinates<S: SimdRealField + Copy, const N: usize>(
     tree: &Tree<N>,
-    x: &SMatrix<S, N, N>,
+    mut x: SMatrix<S, N, N>,
 ) -> SMatrix<S, N, N> {
-    let mut x = *x;
     for j in (0..N).rev() {
         let base = tree.base[j];
         if base != NONE {
@@ -347,6 +350,10 @@ fn to_coordinates<S: SimdRealField + Copy, const N: usize>(
                 x[(base, c)] += v;
             }
         }
+    }
+    let identity = (0..N).all(|j| tree.coordinate[j] == j && tree.scale[j] == 1.0);
+    if identity {
+        return x;
     }
     let mut m = SMatrix::<S, N, N>::zeros();
     for j in 0..N {

@@ -110,7 +110,10 @@ num-dual = "0.15"
         }
         let lib = LIB
             .replace("__N__", &n.to_string())
-            .replace("__MODEL__", chain::model_body(n, form, articulated).trim_end())
+            .replace(
+                "__MODEL__",
+                chain::model_body(n, form, articulated).trim_end(),
+            )
             .replace("__NEW__", &chain::constructor(n, form));
         fs::write(dir.join("src/lib.rs"), lib)?;
         fs::write(dir.join("src/eval.rs"), EVAL)?;

@@ -199,7 +199,9 @@ fn run(options: &Options) -> Result<(), String> {
         let crates = Crates::new(repo, options.timeout, options.optimised_macro);
         println!("\nwarm-up: the dependencies, built once into target/scaling/target ...");
         let was_cold = !crates.target_exists();
-        let first = crates.write(1, options.form, options.articulated).map_err(|e| e.to_string())?;
+        let first = crates
+            .write(1, options.form, options.articulated)
+            .map_err(|e| e.to_string())?;
         let t = crates.build(&first, &[])?;
         crates.check(&first, &[])?;
         let what = if was_cold {
@@ -324,7 +326,9 @@ fn run(options: &Options) -> Result<(), String> {
 /// Builds the crate for `n`, runs its timing binary, then (unless `--no-ad`)
 /// builds and runs the AD comparison.
 fn build_and_time(crates: &Crates, n: usize, options: &Options) -> Result<BuildStats, String> {
-    let krate = crates.write(n, options.form, options.articulated).map_err(|e| e.to_string())?;
+    let krate = crates
+        .write(n, options.form, options.articulated)
+        .map_err(|e| e.to_string())?;
     let check = crates.check(&krate, &[krate.eval_bin()])?;
     crates.touch(&krate).map_err(|e| e.to_string())?;
     let build = crates.build(&krate, &[krate.eval_bin()])?;

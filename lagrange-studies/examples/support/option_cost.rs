@@ -10,10 +10,12 @@ use chain::Form;
 use proc_macro2::TokenStream;
 use std::time::{Duration, Instant};
 
-/// The `n`-link chain, written with `#[lagrange(option)]` if one is given.
+/// The `n`-link chain, written with `#[lagrange(option)]` if one is given;
+/// with its `M` and `f` generated (`articulated = false`), as the options
+/// were first measured on.
 pub fn chain(n: usize, option: Option<&str>) -> TokenStream {
     let attribute = option.map_or(String::new(), |o| format!("#[lagrange({o})]"));
-    format!("{attribute} {}", chain::model_body(n, Form::Indexed))
+    format!("{attribute} {}", chain::model_body(n, Form::Indexed, false))
         .parse()
         .expect("the chain lexes")
 }
