@@ -26,16 +26,16 @@
 //! `None` where a joint's articulated inertia `u·I u + J` is not positive
 //! or the result is not finite: the caller then solves `M q̈ = f` whole,
 //! which tells a singular `M` from a non-finite forcing in its errors.
+//! Written once for scalars and for SIMD lanes ([`lanes`], which says per
+//! lane whether it answered): the same operations in the same order, so
+//! that a lane of an [`Ensemble`](crate::ensemble::Ensemble) is its scalar
+//! run, bit for bit.
 //!
 //! Where a method needs `M` or `f` themselves (that dense solve, the
 //! variational integrators, the sensitivities), [`mass_matrix`] and
 //! [`forcing`] form them from the same parts, in `O(N²)` and `O(N)`: a
 //! model with the form has no generated code for `M`'s entries, so its
 //! build is that of the parts alone.
-//! Written once for scalars and for SIMD lanes ([`lanes`], which says per
-//! lane whether it answered): the same operations in the same order, so
-//! that a lane of an [`Ensemble`](crate::ensemble::Ensemble) is its scalar
-//! run, bit for bit.
 
 use nalgebra::{RealField, SMatrix, SVector, SimdRealField};
 
@@ -191,9 +191,10 @@ pub fn lanes<S: SimdRealField + Copy, const N: usize, const D: usize>(
 }
 
 /// `M` of the form in the coordinates `q`, formed from the parts in
-/// `O(N²)`: what a model with the form returns as its `mass_matrix` (the
-/// dense solve's, where the recursion declines, and the implicit and
-/// variational methods'), instead of generated code for every entry.
+/// `O(N²)`: what a model with the form returns as its `mass_matrix` (for
+/// the dense solve where the recursion declines, the variational
+/// integrators, the sensitivities), instead of generated code for every
+/// entry.
 ///
 /// In the joints' angles, `M_φ[i][j] = Σ_a u_ia u_ja C_ia` for `j` on
 /// `i`'s path (and its mirror), `C_ia` the masses of `i`'s subtree along
