@@ -18,8 +18,13 @@
 //!    inertia (`½ J φ̇²`: a rigid link's rotation in the plane); the others
 //!    fall into axes (components that share a joint with the same `g`:
 //!    `x`, `y`, at most three), each joint one `g` per axis, its axis `u`;
-//! 5. the joints a tree: each component's joints exactly the path from the
-//!    root to its deepest one, where its mass `2 c_k` sits on its axis.
+//! 5. the joints a tree: the components grouped into points (two
+//!    components one point where each holds the other's joints that move
+//!    along its axis: `ẋ_i` and `ẏ_i` of one link's end), each point's
+//!    joints exactly the path from the root to its deepest one, where its
+//!    components' masses `2 c_k` sit on their axes; a joint that does not
+//!    move along an axis (a cart along `x` under a chain) is in none of
+//!    that axis's components, its axis there zero.
 //!
 //! Then `T = ½ Σ_n Σ_a m_na (Σ_{j on n's path} u_ja φ̇_j)² + ½ Σ_j J_j φ̇_j²`
 //! exactly, which is the form the recursion solves. The generalized forces
@@ -130,8 +135,8 @@ pub fn articulated(model: &mut Model, eq: &mut Equations) -> syn::Result<()> {
                  so `M q̈ = f` cannot be solved by the recursion: it needs `T` as a sum of masses (free of `t`, \
                  `q` and `q̇`) times squared velocity components, each position a sum of increments along \
                  links, each link's increment a function of one angle (a coordinate, or a coordinate plus \
-                 another link's angle), one link per coordinate, and the links nested as a tree (a cart under \
-                 a chain is not: it moves along one axis only); remove the attribute for the dense solve"
+                 another link's angle, or a slider's coordinate), one link per coordinate, and the links \
+                 nested as a tree; remove the attribute for the dense solve"
             .to_string(),
     }))
 }
@@ -162,7 +167,8 @@ fn find(model: &mut Model, eq: &Equations) -> Option<Articulated> {
     let mut angles: BTreeMap<Angle, usize> = BTreeMap::new();
     let mut joint_angles: Vec<Angle> = Vec::new();
     let mut components = Vec::with_capacity(squares.len());
-    for (factors, velocity) in squares {
+    for (factors, bases) in squares {
+        let velocity = pool.mul(&bases);
         let mut linear = Vec::new();
         kinds.linear(pool, velocity, Vec::new(), &mut linear)?;
         // Regrouped by the terms of the coefficients: `Σ_m g_m q̇_m`, each
@@ -263,7 +269,6 @@ fn find(model: &mut Model, eq: &Equations) -> Option<Articulated> {
         return None;
     }
     let mut axis = vec![vec![Pool::ZERO; axes]; n];
-    let mut holds: Vec<Vec<usize>> = vec![Vec::new(); n];
     for &k in &spread {
         for &(joint, g) in &components[k].terms {
             let slot = &mut axis[joint][axis_of[k]];
@@ -271,28 +276,74 @@ fn find(model: &mut Model, eq: &Equations) -> Option<Articulated> {
                 return None;
             }
             *slot = g;
-            holds[joint].push(k);
         }
     }
 
-    // 5.: the tree. Joints by how many components hold them, most first;
-    // each one's parent the last before it holding all its components.
+    // 5.: the tree. A joint that does not move along an axis (a cart along
+    // `x` under a chain) is in none of that axis's components: the
+    // components are first grouped into points, two components one point
+    // where each holds the other's joints that move along its axis
+    // (`x_i` and `y_i` of the same link's end); the joints' sets of points
+    // then nest, and each point's joints are the path to its deepest one.
+    let moves = |j: usize, a: usize| axis[j][a] != Pool::ZERO;
+    let moving_along = |k: usize, a: usize| -> Vec<usize> {
+        components[k]
+            .terms
+            .iter()
+            .map(|&(j, _)| j)
+            .filter(|&j| moves(j, a))
+            .collect()
+    };
+    pool.charge((spread.len() * spread.len() * n) as u64 / 8 + 1);
+    if pool.exhausted() {
+        return None;
+    }
+    let mut point_root: Vec<usize> = (0..components.len()).collect();
+    for (i, &k) in spread.iter().enumerate() {
+        for &l in &spread[..i] {
+            let (a, b) = (axis_of[k], axis_of[l]);
+            if moving_along(k, b) == moving_along(l, a) {
+                let (r, s) = (root(&mut point_root, k), root(&mut point_root, l));
+                point_root[r.max(s)] = r.min(s);
+            }
+        }
+    }
+    let point_of: Vec<usize> = (0..components.len())
+        .map(|k| root(&mut point_root, k))
+        .collect();
+    // Each joint's points, and the joints of each point.
+    let mut points_held: Vec<Vec<usize>> = vec![Vec::new(); n];
+    let mut joints_of: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for &k in &spread {
+        for &(j, _) in &components[k].terms {
+            points_held[j].push(point_of[k]);
+            joints_of.entry(point_of[k]).or_default().push(j);
+        }
+    }
+    for list in points_held.iter_mut().chain(joints_of.values_mut()) {
+        list.sort_unstable();
+        list.dedup();
+    }
+    // Joints by how many points they hold, most first (of two that hold
+    // the same, the one moving along fewer axes first: the cart above its
+    // chain); each one's parent the last before it holding all its points.
+    let axes_moved = |j: usize| (0..axes).filter(|&a| moves(j, a)).count();
     let mut by_size: Vec<usize> = (0..n).collect();
-    by_size.sort_by_key(|&j| (std::cmp::Reverse(holds[j].len()), j));
+    by_size.sort_by_key(|&j| (std::cmp::Reverse(points_held[j].len()), axes_moved(j), j));
     pool.charge((n * n) as u64 * components.len() as u64 / 8 + 1);
     if pool.exhausted() {
         return None;
     }
     let mut parent = vec![None; n];
     for (place, &j) in by_size.iter().enumerate() {
-        if holds[j].is_empty() {
+        if points_held[j].is_empty() {
             continue;
         }
-        parent[j] = by_size[..place]
-            .iter()
-            .rev()
-            .copied()
-            .find(|&k| holds[j].iter().all(|c| holds[k].binary_search(c).is_ok()));
+        parent[j] = by_size[..place].iter().rev().copied().find(|&k| {
+            points_held[j]
+                .iter()
+                .all(|p| points_held[k].binary_search(p).is_ok())
+        });
     }
     let rank: Vec<usize> = {
         let mut rank = vec![0; n];
@@ -301,10 +352,13 @@ fn find(model: &mut Model, eq: &Equations) -> Option<Articulated> {
         }
         rank
     };
+    // Each point's joints the path to its deepest; each of its components
+    // holds the path's joints that move along its axis, and its mass sits
+    // on the deepest joint.
     let mut masses = vec![vec![Vec::new(); axes]; n];
-    for &k in &spread {
-        let c = &components[k];
-        let deepest = c.terms.iter().map(|&(j, _)| j).max_by_key(|&j| rank[j])?;
+    let mut deepest_of: BTreeMap<usize, usize> = BTreeMap::new();
+    for (&point, joints) in &joints_of {
+        let deepest = joints.iter().copied().max_by_key(|&j| rank[j])?;
         let mut path = Vec::new();
         let mut at = Some(deepest);
         while let Some(j) = at {
@@ -315,11 +369,25 @@ fn find(model: &mut Model, eq: &Equations) -> Option<Articulated> {
             }
         }
         path.sort_unstable();
-        if path.len() != c.terms.len() || path.iter().zip(&c.terms).any(|(a, (b, _))| a != b) {
+        if &path != joints {
+            return None;
+        }
+        deepest_of.insert(point, deepest);
+    }
+    for &k in &spread {
+        let c = &components[k];
+        let a = axis_of[k];
+        let point = point_of[k];
+        let along: Vec<usize> = joints_of[&point]
+            .iter()
+            .copied()
+            .filter(|&j| moves(j, a))
+            .collect();
+        if along.len() != c.terms.len() || along.iter().zip(&c.terms).any(|(x, (y, _))| x != y) {
             return None;
         }
         let m = pool.mul2(two, c.mass);
-        masses[deepest][axis_of[k]].push(m);
+        masses[deepest_of[&point]][a].push(m);
     }
 
     // 3.: the angles as joints' angles plus one coordinate.
@@ -509,13 +577,14 @@ struct Kinds<'a, F> {
 }
 
 impl<F: Fn(crate::expr::SymId) -> Option<usize>> Kinds<'_, F> {
-    /// `id · Π factors` as a sum of `c L²`, pushed as `(c's factors, L)`.
+    /// `id · Π factors` as a sum of `c L²`, pushed as `(c's factors, L's
+    /// factors)`.
     fn squares(
         &self,
         pool: &Pool,
         id: ExprId,
         factors: Vec<ExprId>,
-        out: &mut Vec<(Vec<ExprId>, ExprId)>,
+        out: &mut Vec<(Vec<ExprId>, Vec<ExprId>)>,
     ) -> Option<()> {
         pool.charge(1);
         // Each visit paid for: a shared node reached along many paths
@@ -531,11 +600,31 @@ impl<F: Fn(crate::expr::SymId) -> Option<usize>> Kinds<'_, F> {
                 Some(())
             }
             Node::Mul(xs) => {
-                let (inner, rest) = self.one_with_velocities(pool, xs, factors, self.moving)?;
-                self.squares(pool, inner, rest, out)
+                if let Some((inner, rest)) =
+                    self.one_with_velocities(pool, xs, factors.clone(), self.moving)
+                {
+                    return self.squares(pool, inner, rest, out);
+                }
+                // A square of a product, its power distributed by the pool:
+                // `(l sin θ θ̇)²` is `l² sin²θ θ̇²`, one square of
+                // `l sin θ θ̇` (as the same link's term is in the other
+                // squares: its `g`, `l sin θ`, compared across them).
+                let mut factors = factors;
+                let mut bases = Vec::new();
+                for &x in xs.iter() {
+                    match pool.node(x) {
+                        Node::Pow(base, exponent) if pool.as_num(*exponent) == Some(2.0) => {
+                            bases.push(*base)
+                        }
+                        _ if pool.depends_on_any(x, self.moving) => return None,
+                        _ => factors.push(x),
+                    }
+                }
+                out.push((factors, bases));
+                Some(())
             }
             Node::Pow(base, exponent) if pool.as_num(*exponent) == Some(2.0) => {
-                out.push((factors, *base));
+                out.push((factors, vec![*base]));
                 Some(())
             }
             _ => None,

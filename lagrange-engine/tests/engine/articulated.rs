@@ -144,14 +144,45 @@ fn rigid_links_bring_their_inertias_to_their_joints() {
     let a = found(&src).expect("the rigid chain's form");
     assert_eq!(a.axes, 2);
     assert_eq!(a.base.iter().filter(|b| b.is_none()).count(), 1);
-    // A cart under the chain moves along `x` alone: the joints' sets of
-    // components are then not nested (the cart's holds no `y`), which this
-    // form does not cover; the dense solve stays.
-    let on_cart = src
-        .replace("coordinates: theta[N];", "coordinates: s, theta[N];")
-        .replace("let x[i in 0..N] = sum(", "let x[i in 0..N] = s + sum(")
-        .replace("kinetic: sum(", "kinetic: 3*dot(s)^2/2 + sum(");
-    assert!(found(&on_cart).is_none());
+}
+
+#[test]
+fn a_cart_under_a_chain_is_a_joint_along_one_axis() {
+    // The cart moves along `x` alone: it is in no `y` component, and its
+    // joint's axis along `y` is zero. Grouped into points (each link's
+    // end, `x_i` with `y_i`), the joints' sets still nest, the cart's
+    // holding every point: the root, with the links hanging from it.
+    let n = FROM_COORDINATES;
+    let src = format!(
+        "pub struct CartChain {{
+            const N = {n};
+            coordinates: s, theta[N];
+            constants: g = 9.81, inertia = 0.2;
+            let phi[i in 0..N] = sum(j in 0..=i, theta[j]);
+            let x[i in 0..N] = s + sum(j in 0..=i, sin(phi[j]));
+            let y[i in 0..N] = -sum(j in 0..=i, cos(phi[j]));
+            kinetic: 3*dot(s)^2/2 + sum(i in 0..N, (dot(x[i])^2 + dot(y[i])^2)/2 + inertia/2*dot(phi[i])^2);
+            potential: sum(i in 0..N, g*y[i]);
+        }}"
+    );
+    let derived = derive(&src);
+    let a = derived
+        .equations
+        .articulated
+        .as_ref()
+        .expect("the cart and chain's form");
+    assert_eq!(a.axes, 2);
+    // The cart first, its coordinate `s` (0); each link below the one
+    // before, the first below the cart.
+    assert_eq!(a.coordinate[0], 0);
+    let parents: Vec<Option<usize>> = (0..=n).map(|j| j.checked_sub(1)).collect();
+    assert_eq!(a.parent, parents);
+    // Axes: the cart's `(1, 0)` (constants), its bends zero.
+    let joints = n + 1;
+    let number = |id| derived.model.pool.as_num(id);
+    let (axes, bends) = (&a.roots[..2 * joints], &a.roots[2 * joints..4 * joints]);
+    assert_eq!((number(axes[0]), number(axes[1])), (Some(1.0), Some(0.0)));
+    assert_eq!((number(bends[0]), number(bends[1])), (Some(0.0), Some(0.0)));
 }
 
 #[test]
