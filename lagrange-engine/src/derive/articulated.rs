@@ -135,8 +135,8 @@ pub fn articulated(model: &mut Model, eq: &mut Equations) -> syn::Result<()> {
                  so `M q̈ = f` cannot be solved by the recursion: it needs `T` as a sum of masses (free of `t`, \
                  `q` and `q̇`) times squared velocity components, each position a sum of increments along \
                  links, each link's increment a function of one angle (a coordinate, or a coordinate plus \
-                 another link's angle, or a slider's coordinate), one link per coordinate, and the links \
-                 nested as a tree; remove the attribute for the dense solve"
+                 another link's angle), one link per coordinate, and the links nested as a tree; remove the \
+                 attribute for the dense solve"
             .to_string(),
     }))
 }
