@@ -286,14 +286,17 @@ fn find(model: &mut Model, eq: &Equations) -> Option<Articulated> {
     // (`x_i` and `y_i` of the same link's end); the joints' sets of points
     // then nest, and each point's joints are the path to its deepest one.
     let moves = |j: usize, a: usize| axis[j][a] != Pool::ZERO;
-    let moving_along = |k: usize, a: usize| -> Vec<usize> {
-        components[k]
-            .terms
-            .iter()
-            .map(|&(j, _)| j)
-            .filter(|&j| moves(j, a))
-            .collect()
-    };
+    // Each component's joints that move along each axis, listed once.
+    let moving_along: BTreeMap<usize, Vec<Vec<usize>>> = spread
+        .iter()
+        .map(|&k| {
+            let along = |a| {
+                let joints = components[k].terms.iter().map(|&(j, _)| j);
+                joints.filter(|&j| moves(j, a)).collect()
+            };
+            (k, (0..axes).map(along).collect())
+        })
+        .collect();
     pool.charge((spread.len() * spread.len() * n) as u64 / 8 + 1);
     if pool.exhausted() {
         return None;
@@ -302,7 +305,7 @@ fn find(model: &mut Model, eq: &Equations) -> Option<Articulated> {
     for (i, &k) in spread.iter().enumerate() {
         for &l in &spread[..i] {
             let (a, b) = (axis_of[k], axis_of[l]);
-            if moving_along(k, b) == moving_along(l, a) {
+            if moving_along[&k][b] == moving_along[&l][a] {
                 let (r, s) = (root(&mut point_root, k), root(&mut point_root, l));
                 point_root[r.max(s)] = r.min(s);
             }
