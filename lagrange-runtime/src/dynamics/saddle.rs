@@ -7,8 +7,8 @@ use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
 use super::mass_error;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::mass::{SolveError, factor_mass_matrix};
-use crate::linalg::schur::{SaddleError, regularized, solve_saddle};
+use crate::linalg::mass::{SolveError, accepted_cholesky, factor_mass_matrix};
+use crate::linalg::schur::{SaddleError, by_cholesky, regularized, solve_saddle};
 use crate::model::constraints::{Holonomic, Visitor};
 use crate::model::settings::ConstraintSettings;
 
@@ -20,13 +20,59 @@ pub(crate) fn saddle_error<S: RealField + Copy, const N: usize>(
     q: &SVector<S, N>,
     qdot: &SVector<S, N>,
 ) -> IntegrationError<S, N> {
-    match error {
-        SaddleError::Mass(error) => mass_error(error, t, q, qdot),
-        SaddleError::Singular => IntegrationError::SingularConstraints {
-            t,
-            q: *q,
-            qdot: *qdot,
-        },
+    Failure::from(error).at(t, q, qdot)
+}
+
+/// Why a constrained right-hand side failed, before the state is
+/// attached ([`Failure::at`]). The solve's hot path returns this small
+/// error, not [`IntegrationError`]: a `Result` with the large error's
+/// layout copied `q̈` out piece by piece along the error's fields, whose
+/// overlapping loads and stores stalled store forwarding for about a
+/// fifth of the Cartesian pendulum's right-hand side.
+#[derive(Clone, Copy)]
+pub(crate) enum Failure {
+    /// Solving with `M` failed.
+    Mass(SolveError),
+    /// A value of the model's evaluation is not finite.
+    NonFinite(NonFiniteValue),
+    /// `G M⁻¹ Gᵀ` is singular or numerically so.
+    Singular,
+}
+
+impl From<SaddleError> for Failure {
+    fn from(error: SaddleError) -> Self {
+        match error {
+            SaddleError::Mass(error) => Self::Mass(error),
+            SaddleError::Singular => Self::Singular,
+        }
+    }
+}
+
+impl Failure {
+    /// The error as the integrators report it, at `(t, q, q̇)`. Out of
+    /// line and cold: it is off every hot path.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn at<S: RealField + Copy, const N: usize>(
+        self,
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) -> IntegrationError<S, N> {
+        match self {
+            Self::Mass(error) => mass_error(error, t, q, qdot),
+            Self::NonFinite(value) => IntegrationError::NonFiniteState {
+                t,
+                q: *q,
+                qdot: *qdot,
+                value,
+            },
+            Self::Singular => IntegrationError::SingularConstraints {
+                t,
+                q: *q,
+                qdot: *qdot,
+            },
+        }
     }
 }
 
@@ -53,10 +99,11 @@ where
             value: NonFiniteValue::State,
         });
     }
-    solve_constrained(model, t, q, qdot, baumgarte)
+    solve_constrained(model, t, q, qdot, baumgarte).map_err(|failure| failure.at(t, q, qdot))
 }
 
-/// [`constrained_accelerations`] at a state already checked finite.
+/// [`constrained_accelerations`] at a state already checked finite, its
+/// error without the state.
 #[allow(clippy::type_complexity)]
 #[inline]
 fn solve_constrained<H, const N: usize, const C: usize>(
@@ -65,16 +112,10 @@ fn solve_constrained<H, const N: usize, const C: usize>(
     q: &SVector<H::Scalar, N>,
     qdot: &SVector<H::Scalar, N>,
     baumgarte: Option<(H::Scalar, H::Scalar)>,
-) -> Result<(SVector<H::Scalar, N>, SVector<H::Scalar, C>), IntegrationError<H::Scalar, N>>
+) -> Result<(SVector<H::Scalar, N>, SVector<H::Scalar, C>), Failure>
 where
     H: Holonomic<N, C> + ?Sized,
 {
-    let non_finite = |value| IntegrationError::NonFiniteState {
-        t,
-        q: *q,
-        qdot: *qdot,
-        value,
-    };
     let (m, f, g, mut gamma) = model.constrained_system(t, q, qdot);
     if let Some((two_alpha, beta2)) = baumgarte {
         let phi = model.constraints(t, q);
@@ -82,16 +123,43 @@ where
         gamma += phidot * two_alpha + phi * beta2;
     }
     if model.mass_regular_on_constraints_only() {
-        return regularized_accelerations((m, f, g, gamma), t, q, qdot);
+        return regularized_accelerations((m, f, g, gamma));
     }
-    let mass = factor_mass_matrix(&m).map_err(|e| mass_error(e, t, q, qdot))?;
+    // The common case, with no enum around `L` or the result: what
+    // `checked` does where `M` takes Cholesky and `S` is accepted.
+    if let Some(ldlt) = accepted_cholesky(&m) {
+        if all_finite(f.as_slice()) && all_finite(g.as_slice()) && all_finite(gamma.as_slice()) {
+            if let Some(solution) = by_cholesky(&ldlt, &f, &g, &gamma) {
+                return Ok(solution);
+            }
+        }
+    }
+    checked((m, f, g, gamma))
+}
+
+/// The saddle-point solve of [`solve_constrained`] with each of its checks
+/// in turn: the fallbacks (LU, the solve through `M⁻¹ Gᵀ`) and the
+/// errors, with whom they blame. Where the fast path declined, this
+/// factors `M` again, to the same bits.
+#[cold]
+#[inline(never)]
+#[allow(clippy::type_complexity)]
+fn checked<S: RealField + Copy, const N: usize, const C: usize>(
+    (m, f, g, gamma): (
+        SMatrix<S, N, N>,
+        SVector<S, N>,
+        SMatrix<S, C, N>,
+        SVector<S, C>,
+    ),
+) -> Result<(SVector<S, N>, SVector<S, C>), Failure> {
+    let mass = factor_mass_matrix(&m).map_err(Failure::Mass)?;
     if !all_finite(f.as_slice()) {
-        return Err(non_finite(NonFiniteValue::Forcing));
+        return Err(Failure::NonFinite(NonFiniteValue::Forcing));
     }
     if !(all_finite(g.as_slice()) && all_finite(gamma.as_slice())) {
-        return Err(non_finite(NonFiniteValue::Constraints));
+        return Err(Failure::NonFinite(NonFiniteValue::Constraints));
     }
-    solve_saddle(&mass, &f, &g, &gamma).map_err(|e| saddle_error(e, t, q, qdot))
+    Ok(solve_saddle(&mass, &f, &g, &gamma)?)
 }
 
 /// The saddle-point solve of a model whose `M` is regular only on the
@@ -108,29 +176,20 @@ fn regularized_accelerations<S: RealField + Copy, const N: usize, const C: usize
         SMatrix<S, C, N>,
         SVector<S, C>,
     ),
-    t: S,
-    q: &SVector<S, N>,
-    qdot: &SVector<S, N>,
-) -> Result<(SVector<S, N>, SVector<S, C>), IntegrationError<S, N>> {
-    let non_finite = |value| IntegrationError::NonFiniteState {
-        t,
-        q: *q,
-        qdot: *qdot,
-        value,
-    };
+) -> Result<(SVector<S, N>, SVector<S, C>), Failure> {
     if !all_finite(m.as_slice()) {
-        return Err(mass_error(SolveError::NonFiniteMassMatrix, t, q, qdot));
+        return Err(Failure::Mass(SolveError::NonFiniteMassMatrix));
     }
     if !all_finite(f.as_slice()) {
-        return Err(non_finite(NonFiniteValue::Forcing));
+        return Err(Failure::NonFinite(NonFiniteValue::Forcing));
     }
     if !(all_finite(g.as_slice()) && all_finite(gamma.as_slice())) {
-        return Err(non_finite(NonFiniteValue::Constraints));
+        return Err(Failure::NonFinite(NonFiniteValue::Constraints));
     }
     let (m, k) = regularized(&m, &g);
     let f = f - g.transpose() * (gamma * k);
-    let mass = factor_mass_matrix(&m).map_err(|e| mass_error(e, t, q, qdot))?;
-    solve_saddle(&mass, &f, &g, &gamma).map_err(|e| saddle_error(e, t, q, qdot))
+    let mass = factor_mass_matrix(&m).map_err(Failure::Mass)?;
+    Ok(solve_saddle(&mass, &f, &g, &gamma)?)
 }
 
 /// `q̈` of a constrained model, for [`acceleration`](super::acceleration).
@@ -141,7 +200,9 @@ pub(crate) struct Accelerations<'a, S, const N: usize> {
 }
 
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Accelerations<'_, S, N> {
-    type Output = Result<SVector<S, N>, IntegrationError<S, N>>;
+    /// The error without the state: [`acceleration`](super::acceleration)
+    /// attaches it off the hot path ([`Failure::at`]).
+    type Output = Result<SVector<S, N>, Failure>;
 
     fn visit<H, const C: usize>(self, model: &H, settings: ConstraintSettings<S>) -> Self::Output
     where

@@ -155,6 +155,22 @@ pub(crate) fn factor_mass_matrix<S: RealField + Copy, const N: usize>(
     })
 }
 
+/// `M`'s `L D Lᵀ` where [`factor_mass_matrix`] would take Cholesky: `M`
+/// finite, its pivots positive and acceptable; `None` in every other case
+/// (an error, or LU), which the caller leaves to [`factor_mass_matrix`].
+/// The same factor, without the [`MassFactor`] enum: moving `L` into and
+/// out of it is a copy the optimizer cannot keep in registers, and at a
+/// few coordinates it cost more than the factorization.
+#[inline]
+pub(crate) fn accepted_cholesky<S: RealField + Copy, const N: usize>(
+    m: &SMatrix<S, N, N>,
+) -> Option<Ldlt<S, N>> {
+    if !all_finite(m.as_slice()) {
+        return None;
+    }
+    Ldlt::new(m).filter(|ldlt| well_conditioned::<S, N>(ldlt.pivot_range()))
+}
+
 /// The decision of [`factor_mass_matrix`] for a finite `M`, given its
 /// `L D Lᵀ` if it has one: `true` where the pivots are acceptable, `false`
 /// where LU must take it, or `Indefinite`. In exact arithmetic LU without

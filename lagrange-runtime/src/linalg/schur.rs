@@ -191,28 +191,41 @@ pub(crate) fn solve_saddle<S: RealField + Copy, const N: usize, const C: usize>(
     gamma: &SVector<S, C>,
 ) -> Result<(SVector<S, N>, SVector<S, C>), SaddleError> {
     if let MassFactor::Cholesky(ldlt) = mass {
-        let mut z = *f;
-        ldlt.forward(&mut z);
-        let (zg, s) = forward_rows(ldlt, g);
-        let inverse = ldlt.inverse_pivots();
-        let mut r = *gamma;
-        for i in 0..C {
-            let mut sum = S::zero();
-            for k in 0..N {
-                sum += zg[(k, i)] * inverse[k] * z[k];
-            }
-            r[i] += sum;
-        }
-        if let Ok(factor) = judged(&s) {
-            let lambda = factor.solve(&r);
-            let mut qddot = z - zg * lambda;
-            ldlt.backward(&mut qddot);
-            if all_finite(qddot.as_slice()) && all_finite(lambda.as_slice()) {
-                return Ok((qddot, lambda));
-            }
+        if let Some(solution) = by_cholesky(ldlt, f, g, gamma) {
+            return Ok(solution);
         }
     }
     by_schur(mass, f, g, gamma)
+}
+
+/// The Cholesky branch of [`solve_saddle`]: `(q̈, λ)` with one backward
+/// substitution, or `None` where `S` is refused or the result is not
+/// finite, for [`solve_saddle`]'s fallback to say why.
+#[inline]
+#[allow(clippy::type_complexity)]
+pub(crate) fn by_cholesky<S: RealField + Copy, const N: usize, const C: usize>(
+    ldlt: &Ldlt<S, N>,
+    f: &SVector<S, N>,
+    g: &SMatrix<S, C, N>,
+    gamma: &SVector<S, C>,
+) -> Option<(SVector<S, N>, SVector<S, C>)> {
+    let mut z = *f;
+    ldlt.forward(&mut z);
+    let (zg, s) = forward_rows(ldlt, g);
+    let inverse = ldlt.inverse_pivots();
+    let mut r = *gamma;
+    for i in 0..C {
+        let mut sum = S::zero();
+        for k in 0..N {
+            sum += zg[(k, i)] * inverse[k] * z[k];
+        }
+        r[i] += sum;
+    }
+    let factor = judged(&s).ok()?;
+    let lambda = factor.solve(&r);
+    let mut qddot = z - zg * lambda;
+    ldlt.backward(&mut qddot);
+    (all_finite(qddot.as_slice()) && all_finite(lambda.as_slice())).then_some((qddot, lambda))
 }
 
 /// [`solve_saddle`] through [`Schur`]: `M⁻¹ f` and `M⁻¹ Gᵀ` each solved
