@@ -56,7 +56,7 @@ pub fn acceleration<L: Lagrangian<N>, const N: usize>(
         return Err(non_finite(NonFiniteValue::State));
     }
     if let Some(constrained) = model.visit_constraints(Accelerations { t, q, qdot }) {
-        return constrained.map_err(|failure| constrained_error(model, failure, t, q, qdot));
+        return constrained.map_err(|error| constrained_error(model, error, t, q, qdot));
     }
     if L::SOLVES_ACCELERATIONS {
         if let Some(accelerations) = model.accelerations(t, q, qdot) {
@@ -80,20 +80,20 @@ pub fn acceleration<L: Lagrangian<N>, const N: usize>(
     })
 }
 
-/// A constrained right-hand side's failure as the integrators report it,
+/// A constrained right-hand side's error as the integrators report it,
 /// at `(t, q, q̇)`; a controller's non-finite inputs show as a non-finite
 /// forcing, and are blamed. Cold, off the hot path with the
-/// [`Failure`](saddle::Failure) it builds on.
+/// [`RhsError`](saddle::RhsError) it builds on.
 #[cold]
 #[inline(never)]
 fn constrained_error<L: Lagrangian<N>, const N: usize>(
     model: &L,
-    failure: saddle::Failure,
+    error: saddle::RhsError,
     t: L::Scalar,
     q: &SVector<L::Scalar, N>,
     qdot: &SVector<L::Scalar, N>,
 ) -> IntegrationError<L::Scalar, N> {
-    blame::blame_error(model, failure.at(t, q, qdot))
+    blame::blame_error(model, error.at(t, q, qdot))
 }
 
 /// A failed solve with `M` as the integrators report it, at `(t, q, q̇)`.

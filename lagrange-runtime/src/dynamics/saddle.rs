@@ -20,17 +20,17 @@ pub(crate) fn saddle_error<S: RealField + Copy, const N: usize>(
     q: &SVector<S, N>,
     qdot: &SVector<S, N>,
 ) -> IntegrationError<S, N> {
-    Failure::from(error).at(t, q, qdot)
+    RhsError::from(error).at(t, q, qdot)
 }
 
 /// Why a constrained right-hand side failed, before the state is
-/// attached ([`Failure::at`]). The solve's hot path returns this small
+/// attached ([`RhsError::at`]). The solve's hot path returns this small
 /// error, not [`IntegrationError`]: a `Result` with the large error's
 /// layout copied `q̈` out piece by piece along the error's fields, whose
 /// overlapping loads and stores stalled store forwarding for about a
 /// fifth of the Cartesian pendulum's right-hand side.
 #[derive(Clone, Copy)]
-pub(crate) enum Failure {
+pub(crate) enum RhsError {
     /// Solving with `M` failed.
     Mass(SolveError),
     /// A value of the model's evaluation is not finite.
@@ -39,7 +39,7 @@ pub(crate) enum Failure {
     Singular,
 }
 
-impl From<SaddleError> for Failure {
+impl From<SaddleError> for RhsError {
     fn from(error: SaddleError) -> Self {
         match error {
             SaddleError::Mass(error) => Self::Mass(error),
@@ -48,7 +48,7 @@ impl From<SaddleError> for Failure {
     }
 }
 
-impl Failure {
+impl RhsError {
     /// The error as the integrators report it, at `(t, q, q̇)`. Out of
     /// line and cold: it is off every hot path.
     #[cold]
@@ -99,7 +99,7 @@ where
             value: NonFiniteValue::State,
         });
     }
-    solve_constrained(model, t, q, qdot, baumgarte).map_err(|failure| failure.at(t, q, qdot))
+    solve_constrained(model, t, q, qdot, baumgarte).map_err(|error| error.at(t, q, qdot))
 }
 
 /// [`constrained_accelerations`] at a state already checked finite, its
@@ -112,7 +112,7 @@ fn solve_constrained<H, const N: usize, const C: usize>(
     q: &SVector<H::Scalar, N>,
     qdot: &SVector<H::Scalar, N>,
     baumgarte: Option<(H::Scalar, H::Scalar)>,
-) -> Result<(SVector<H::Scalar, N>, SVector<H::Scalar, C>), Failure>
+) -> Result<(SVector<H::Scalar, N>, SVector<H::Scalar, C>), RhsError>
 where
     H: Holonomic<N, C> + ?Sized,
 {
@@ -151,13 +151,13 @@ fn checked<S: RealField + Copy, const N: usize, const C: usize>(
         SMatrix<S, C, N>,
         SVector<S, C>,
     ),
-) -> Result<(SVector<S, N>, SVector<S, C>), Failure> {
-    let mass = factor_mass_matrix(&m).map_err(Failure::Mass)?;
+) -> Result<(SVector<S, N>, SVector<S, C>), RhsError> {
+    let mass = factor_mass_matrix(&m).map_err(RhsError::Mass)?;
     if !all_finite(f.as_slice()) {
-        return Err(Failure::NonFinite(NonFiniteValue::Forcing));
+        return Err(RhsError::NonFinite(NonFiniteValue::Forcing));
     }
     if !(all_finite(g.as_slice()) && all_finite(gamma.as_slice())) {
-        return Err(Failure::NonFinite(NonFiniteValue::Constraints));
+        return Err(RhsError::NonFinite(NonFiniteValue::Constraints));
     }
     Ok(solve_saddle(&mass, &f, &g, &gamma)?)
 }
@@ -176,19 +176,19 @@ fn regularized_accelerations<S: RealField + Copy, const N: usize, const C: usize
         SMatrix<S, C, N>,
         SVector<S, C>,
     ),
-) -> Result<(SVector<S, N>, SVector<S, C>), Failure> {
+) -> Result<(SVector<S, N>, SVector<S, C>), RhsError> {
     if !all_finite(m.as_slice()) {
-        return Err(Failure::Mass(SolveError::NonFiniteMassMatrix));
+        return Err(RhsError::Mass(SolveError::NonFiniteMassMatrix));
     }
     if !all_finite(f.as_slice()) {
-        return Err(Failure::NonFinite(NonFiniteValue::Forcing));
+        return Err(RhsError::NonFinite(NonFiniteValue::Forcing));
     }
     if !(all_finite(g.as_slice()) && all_finite(gamma.as_slice())) {
-        return Err(Failure::NonFinite(NonFiniteValue::Constraints));
+        return Err(RhsError::NonFinite(NonFiniteValue::Constraints));
     }
     let (m, k) = regularized(&m, &g);
     let f = f - g.transpose() * (gamma * k);
-    let mass = factor_mass_matrix(&m).map_err(Failure::Mass)?;
+    let mass = factor_mass_matrix(&m).map_err(RhsError::Mass)?;
     Ok(solve_saddle(&mass, &f, &g, &gamma)?)
 }
 
@@ -201,8 +201,8 @@ pub(crate) struct Accelerations<'a, S, const N: usize> {
 
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Accelerations<'_, S, N> {
     /// The error without the state: [`acceleration`](super::acceleration)
-    /// attaches it off the hot path ([`Failure::at`]).
-    type Output = Result<SVector<S, N>, Failure>;
+    /// attaches it off the hot path ([`RhsError::at`]).
+    type Output = Result<SVector<S, N>, RhsError>;
 
     fn visit<H, const C: usize>(self, model: &H, settings: ConstraintSettings<S>) -> Self::Output
     where
