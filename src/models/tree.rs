@@ -10,7 +10,10 @@ lagrangian! {
     /// rods `l`), every angle relative to the link it hangs from: branch
     /// `a` (`phi`) from the origin, branch `b` (`psi`) from the end of
     /// `a`'s first link; gravity `g` along `−y`. Ten coordinates, the
-    /// angles of the links as sums of the hinges before them.
+    /// angles of the links as sums of the hinges before them. The form is
+    /// asked for (`#[lagrange(articulated)]`), so that `M` and `f` too are
+    /// formed from the parts, as they are unasked from 18 coordinates.
+    #[lagrange(articulated)]
     pub struct Tree {
         const B = 5;
         coordinates: phi[B], psi[B];

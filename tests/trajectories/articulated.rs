@@ -16,7 +16,9 @@ use lagrange::prelude::*;
 
 lagrangian! {
     /// The chain of ten links in absolute angles, masses and lengths as
-    /// parameters.
+    /// parameters. The form asked for, so that `M` and `f` are formed from
+    /// the parts at ten links too (found unasked, they are from 18).
+    #[lagrange(articulated)]
     pub struct Chain10 {
         const N = 10;
         coordinates: theta[N];

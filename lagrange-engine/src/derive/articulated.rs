@@ -49,6 +49,24 @@ use std::collections::BTreeMap;
 /// in `lagrange-studies`), and a small model's code stays as it was.
 pub const FROM_COORDINATES: usize = 10;
 
+/// The fewest coordinates from which a model with the form has its `M` and
+/// `f` formed at run time from its parts (`lagrange::linalg::articulated`)
+/// rather than generated entry by entry, unless `#[lagrange(articulated)]`
+/// asks for the form, which forms them at any size. Below, the generated
+/// ones are faster and build as fast: on the chain, `M + f` took 190 ns
+/// generated against 299 ns formed at 10 links, 663 against 783 at 16,
+/// 961 against 926 at 18 and 1,329 against 1,198 at 20, and from 18 links
+/// the crate with the formed ones builds faster (`cargo run --release -p
+/// lagrange-studies --example scaling -- --only 10,12,14,16,18,20 --no-ad
+/// --no-write`, then with `--articulated`).
+pub const FORMED_FROM: usize = 18;
+
+/// Whether `model`, which has the form, has its `M` and `f` formed from its
+/// parts ([`FORMED_FROM`]).
+pub fn formed(model: &Model) -> bool {
+    model.options.articulated == Some(true) || model.dof() >= FORMED_FROM
+}
+
 /// The most axes a tree of increments has here (a position in space).
 const MAX_AXES: usize = 3;
 

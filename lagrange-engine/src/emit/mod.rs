@@ -354,7 +354,8 @@ fn forwarding<'a>(
 fn method(cx: &Context, m: &Method, roots: &[ExprId]) -> TokenStream {
     let doc = Doc::Lines(m.doc).attributes();
     let signature = m.signature(&cx.types);
-    if let Some(body) = cx.articulated.and_then(|_| formed(cx, m)) {
+    let formed_here = cx.articulated.is_some() && crate::derive::articulated::formed(cx.model);
+    if let Some(body) = formed_here.then(|| formed(cx, m)).flatten() {
         return quote! {
             #doc
             ///
@@ -380,7 +381,9 @@ fn method(cx: &Context, m: &Method, roots: &[ExprId]) -> TokenStream {
 }
 
 /// The body of `mass_matrix`, `forcing` or `mass_matrix_and_forcing` of a
-/// model whose masses hang on a tree of links: the runtime forms them from
+/// model whose masses hang on a tree of links, from
+/// [`FORMED_FROM`](crate::derive::articulated::FORMED_FROM) coordinates or
+/// under `#[lagrange(articulated)]`: the runtime forms them from
 /// the parts (the same `M` and `f`, exactly so before rounding: the engine
 /// proved `T` has the form), so that the model's code holds no `O(N²)`
 /// entries of `M` and the build no longer compiles them; `None` for the

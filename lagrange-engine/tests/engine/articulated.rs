@@ -6,7 +6,7 @@
 //! (`tests/trajectories/articulated.rs`).
 
 use crate::problems::{derive, error, indexed_chain};
-use lagrange_engine::derive::articulated::{Articulated, FROM_COORDINATES};
+use lagrange_engine::derive::articulated::{Articulated, FORMED_FROM, FROM_COORDINATES};
 
 fn found(src: &str) -> Option<Articulated> {
     derive(src).equations.articulated
@@ -242,28 +242,54 @@ fn a_model_that_expanded_within_its_budget_still_does() {
 
 #[test]
 fn a_model_with_the_form_forms_m_and_f_from_its_parts() {
-    // Its `mass_matrix`, `forcing` and `mass_matrix_and_forcing` call the
-    // runtime on the parts instead of writing `M`'s entries out; that they
-    // are the derived `M` and `f` is the runtime's test
+    // From `FORMED_FROM` coordinates, or asked for by
+    // `#[lagrange(articulated)]` at any size, its `mass_matrix`, `forcing`
+    // and `mass_matrix_and_forcing` call the runtime on the parts instead
+    // of writing `M`'s entries out; found unasked below `FORMED_FROM`, they
+    // are generated as without the form (faster at that size). That the
+    // formed ones are the derived `M` and `f` is the runtime's test
     // (`tests/trajectories/articulated.rs`).
-    let chain = indexed_chain(FROM_COORDINATES);
     let code = |source: &str| lagrange_engine::expand(source.parse().unwrap()).to_string();
-    let formed = code(&chain);
-    let generated = code(&format!("#[lagrange(articulated = false)] {chain}"));
-    for function in ["mass_matrix", "forcing", "mass_matrix_and_forcing"] {
-        let call = format!("articulated :: {function} (& Self :: ARTICULATED_TREE");
-        assert!(formed.contains(&call), "{function} is not formed");
-        assert!(
-            !generated.contains(&call),
-            "{function} is formed without the form"
-        );
-    }
-    // The entries gone: at 10 links the expansion is 0.81 of the one with
-    // `M` and `f` written out (their three functions); less at more links.
+    let calls = |code: &str| {
+        ["mass_matrix", "forcing", "mass_matrix_and_forcing"]
+            .iter()
+            .filter(|function| {
+                code.contains(&format!(
+                    "articulated :: {function} (& Self :: ARTICULATED_TREE"
+                ))
+            })
+            .count()
+    };
+    let large = indexed_chain(FORMED_FROM);
+    let formed = code(&large);
+    let generated = code(&format!("#[lagrange(articulated = false)] {large}"));
+    assert_eq!(
+        calls(&formed),
+        3,
+        "M and f are not formed at {FORMED_FROM} links"
+    );
+    assert_eq!(calls(&generated), 0, "M and f are formed without the form");
+    // The entries gone: at 18 links the expansion is under 0.8 of the one
+    // with `M` and `f` written out (their three functions); less at more
+    // links.
     assert!(
-        formed.len() * 10 < generated.len() * 9,
+        formed.len() * 10 < generated.len() * 8,
         "{} against {} bytes",
         formed.len(),
         generated.len()
+    );
+    let small = indexed_chain(FROM_COORDINATES);
+    let found = code(&small);
+    assert!(found.contains("ARTICULATED_TREE"), "the form is not found");
+    assert_eq!(
+        calls(&found),
+        0,
+        "M and f are formed below {FORMED_FROM} links unasked"
+    );
+    let asked = code(&format!("#[lagrange(articulated)] {small}"));
+    assert_eq!(
+        calls(&asked),
+        3,
+        "M and f are not formed where the form is asked for"
     );
 }

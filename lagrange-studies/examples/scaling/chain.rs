@@ -27,20 +27,22 @@ impl Form {
 
 /// The tokens inside `lagrangian! { ... }` for the `n`-link chain. With
 /// `#[lagrange(articulated = false)]` unless `articulated`: this study
-/// measures the generated `M` and `f`, which from 10 coordinates a chain
-/// would otherwise not have (`--articulated`: they are formed at run time
-/// from the links' parts, the model's code is those parts; the recursion
-/// over them is `benches/articulated.rs`'s).
+/// measures the generated `M` and `f`, which from 18 coordinates a chain
+/// would otherwise not have (`--articulated`: `#[lagrange(articulated)]`,
+/// so that they are formed at run time from the links' parts at every
+/// size, the model's code those parts; the recursion over them is
+/// `benches/articulated.rs`'s).
 pub fn model_body(n: usize, form: Form, articulated: bool) -> String {
     let body = match form {
         Form::Indexed => indexed(n),
         Form::Scalar => scalar(n),
     };
-    if articulated {
-        body
+    let attribute = if articulated {
+        "articulated"
     } else {
-        format!("#[lagrange(articulated = false)]\n{body}")
-    }
+        "articulated = false"
+    };
+    format!("#[lagrange({attribute})]\n{body}")
 }
 
 /// A Rust expression for `Chain::<f64>::new(..)` from arrays `m`, `l`

@@ -17,10 +17,11 @@
 //! `--engine-only` (no builds), `--no-ad`, `--no-write` (leave
 //! `BENCHMARKS.md` alone), `--optimised-macro` (the model crates build the
 //! engine with `opt-level = 3`, as the README recommends; cargo's default
-//! for proc macros is 0), `--articulated` (the chain as a user writes it,
-//! without `#[lagrange(articulated = false)]`: from 10 coordinates its `M`
-//! and `f` are formed at run time from the links' parts, and the build is
-//! that of the parts; implies `--no-write`), `--timeout S` (per build, default 600).
+//! for proc macros is 0), `--articulated` (the chain with
+//! `#[lagrange(articulated)]` instead of `articulated = false`: its `M`
+//! and `f` are formed at run time from the links' parts at every size, as
+//! a chain as a user writes it has them from 18 coordinates, and the build
+//! is that of the parts; implies `--no-write`), `--timeout S` (per build, default 600).
 
 mod chain;
 mod crates;
