@@ -449,6 +449,44 @@ mod tests {
         assert!((m * qdd - m * x).amax() < 1e-6, "{qdd}");
     }
 
+    /// The constrained solve's fast path (`accepted_cholesky`) takes
+    /// exactly the matrices `factor_mass_matrix` hands to Cholesky, with
+    /// the same factor, so that its result is the checked path's: every
+    /// kind of `M` of the tests around this one.
+    #[test]
+    fn accepted_cholesky_takes_what_factor_mass_matrix_gives_cholesky() {
+        let delta = 1e-9;
+        let cases = [
+            (Matrix2::new(2.0, 0.5, 0.5, 1.0), true),
+            (Matrix2::new(1e-6, 0.0, 0.0, 1e6), true),
+            (Matrix2::new(1.0, 0.0, 0.0, -1.0), false),
+            (Matrix2::new(1.0, 1.0, 1.0, 1.0), false),
+            (Matrix2::new(delta, 1.0, 1.0, 2.0 / delta), false),
+            (Matrix2::new(1.0, 0.0, 0.0, 0.0), false),
+            (Matrix2::new(1.0, 1.0, 1.0, 1.0 + f64::EPSILON), false),
+            (Matrix2::new(1.0, 0.0, 0.0, f64::NAN), false),
+            (Matrix2::new(f64::INFINITY, 0.0, 0.0, 1.0), false),
+        ];
+        let b = Vector2::new(0.3, -1.7);
+        for (m, taken) in cases {
+            let fast = accepted_cholesky(&m);
+            assert_eq!(fast.is_some(), taken, "{m}");
+            match (factor_mass_matrix(&m), fast) {
+                (Ok(MassFactor::Cholesky(checked)), Some(fast)) => {
+                    assert_eq!(fast.pivots(), checked.pivots(), "{m}");
+                    assert_eq!(
+                        fast.solve(&b).map(f64::to_bits),
+                        checked.solve(&b).map(f64::to_bits),
+                        "{m}"
+                    );
+                }
+                (Ok(MassFactor::Cholesky(_)), None) => panic!("declined what Cholesky takes: {m}"),
+                (_, Some(_)) => panic!("took what Cholesky does not: {m}"),
+                (_, None) => {}
+            }
+        }
+    }
+
     #[test]
     fn coordinate_without_inertia_is_singular() {
         let m = Matrix2::new(1.0, 0.0, 0.0, 0.0);
