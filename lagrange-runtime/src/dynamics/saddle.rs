@@ -137,29 +137,41 @@ where
     checked((m, f, g, gamma))
 }
 
+/// `M`, `f`, `G` and `γ` of one right-hand side, as the model returns them.
+type System<S, const N: usize, const C: usize> = (
+    SMatrix<S, N, N>,
+    SVector<S, N>,
+    SMatrix<S, C, N>,
+    SVector<S, C>,
+);
+
 /// The saddle-point solve of [`solve_constrained`] with each of its checks
 /// in turn: the fallbacks (LU, the solve through `M⁻¹ Gᵀ`) and the
 /// errors, with whom they blame. Where the fast path declined, this
 /// factors `M` again, to the same bits.
 #[cold]
 #[inline(never)]
-#[allow(clippy::type_complexity)]
 fn checked<S: RealField + Copy, const N: usize, const C: usize>(
-    (m, f, g, gamma): (
-        SMatrix<S, N, N>,
-        SVector<S, N>,
-        SMatrix<S, C, N>,
-        SVector<S, C>,
-    ),
+    (m, f, g, gamma): System<S, N, C>,
 ) -> Result<(SVector<S, N>, SVector<S, C>), RhsError> {
     let mass = factor_mass_matrix(&m).map_err(RhsError::Mass)?;
+    finite_forcing_and_constraints(&f, &g, &gamma)?;
+    Ok(solve_saddle(&mass, &f, &g, &gamma)?)
+}
+
+/// `f`, then `G` and `γ`, checked finite, each blamed for itself.
+fn finite_forcing_and_constraints<S: RealField + Copy, const N: usize, const C: usize>(
+    f: &SVector<S, N>,
+    g: &SMatrix<S, C, N>,
+    gamma: &SVector<S, C>,
+) -> Result<(), RhsError> {
     if !all_finite(f.as_slice()) {
         return Err(RhsError::NonFinite(NonFiniteValue::Forcing));
     }
     if !(all_finite(g.as_slice()) && all_finite(gamma.as_slice())) {
         return Err(RhsError::NonFinite(NonFiniteValue::Constraints));
     }
-    Ok(solve_saddle(&mass, &f, &g, &gamma)?)
+    Ok(())
 }
 
 /// The saddle-point solve of a model whose `M` is regular only on the
@@ -168,24 +180,13 @@ fn checked<S: RealField + Copy, const N: usize, const C: usize>(
 /// before they are mixed, so that a non-finite value is still blamed on
 /// what produced it; a configuration where even `M + k GᵀG` is singular
 /// is [`SingularMassMatrix`](IntegrationError::SingularMassMatrix) there.
-#[allow(clippy::type_complexity)]
 fn regularized_accelerations<S: RealField + Copy, const N: usize, const C: usize>(
-    (m, f, g, gamma): (
-        SMatrix<S, N, N>,
-        SVector<S, N>,
-        SMatrix<S, C, N>,
-        SVector<S, C>,
-    ),
+    (m, f, g, gamma): System<S, N, C>,
 ) -> Result<(SVector<S, N>, SVector<S, C>), RhsError> {
     if !all_finite(m.as_slice()) {
         return Err(RhsError::Mass(SolveError::NonFiniteMassMatrix));
     }
-    if !all_finite(f.as_slice()) {
-        return Err(RhsError::NonFinite(NonFiniteValue::Forcing));
-    }
-    if !(all_finite(g.as_slice()) && all_finite(gamma.as_slice())) {
-        return Err(RhsError::NonFinite(NonFiniteValue::Constraints));
-    }
+    finite_forcing_and_constraints(&f, &g, &gamma)?;
     let (m, k) = regularized(&m, &g);
     let f = f - g.transpose() * (gamma * k);
     let mass = factor_mass_matrix(&m).map_err(RhsError::Mass)?;
