@@ -88,7 +88,9 @@ pub struct Options {
     /// products that occur, grouped into base parameters.
     pub regressor: Option<Vec<Ident>>,
     /// `#[lagrange(articulated)]`: the masses of `T` must hang on a tree of
-    /// increments, at any size, or the model is an error;
+    /// increments, at any size, or the model is an error (and `M` and `f`
+    /// are formed from the parts at any size, not from
+    /// [`FORMED_FROM`](crate::derive::articulated::FORMED_FROM) on);
     /// `#[lagrange(articulated = false)]`: the dense solve, whatever the
     /// model. Neither (`None`): looked for from
     /// [`FROM_COORDINATES`](crate::derive::articulated::FROM_COORDINATES)
