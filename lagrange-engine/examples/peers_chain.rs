@@ -15,7 +15,7 @@ fn main() {
         .and_then(|a| a.parse().ok())
         .expect("usage: peers_chain N");
     // The model of lagrange-studies/examples/scaling (indexed form) and of
-    // the script, with its generated `M` and `f` (from 10 coordinates the
+    // the script, with its generated `M` and `f` (from 18 coordinates the
     // chain would otherwise have them formed from its links' parts).
     let source = format!(
         "#[lagrange(articulated = false)]
