@@ -78,6 +78,7 @@ impl<S: RealField + Copy> GrowthGuard<S> {
     /// After a step of length `h` from `before` to `after`: `Some(steps)`
     /// once either signature has lasted long enough to stop, `steps` being
     /// how long.
+    #[inline]
     pub(crate) fn unstable<const N: usize>(
         &mut self,
         before: State<S, N>,

@@ -327,9 +327,15 @@ where
     }
 
     fn advance(&mut self) {
-        let step = self.step.take().expect("advanced after an accepted step");
+        // The step is read where it lies, not taken out of its `Option`:
+        // a move of a Dop853 step is eight vectors.
+        let step = self.step.as_ref().expect("advanced after an accepted step");
+        self.pair
+            .as_mut()
+            .expect("the pair is built at every start")
+            .advance(step);
+        self.step = None;
         self.dense = None;
-        self.pair().advance(&step);
     }
 }
 

@@ -24,6 +24,9 @@ pub struct Recorder<'a, S: RealField + Copy, const N: usize> {
     pub(crate) stats: Stats,
     /// The events watched, if any (`driver/events.rs`).
     pub(super) watch: Option<Watch<'a, S, N>>,
+    /// Whether the model has constraints, so that a model in minimal
+    /// coordinates skips the drift control's call after every step.
+    constrained: bool,
 }
 
 impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
@@ -47,6 +50,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
             trajectory: Trajectory::with_capacity(times.len()),
             stats: Stats::default(),
             watch: None,
+            constrained: false,
         };
         let (q0, qdot0) = match model.visit_constraints(StartOnManifold {
             t0,
@@ -55,7 +59,10 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
             stats: &mut recorder.stats,
         }) {
             None => (*q0, *qdot0),
-            Some(Ok(start)) => start,
+            Some(Ok(start)) => {
+                recorder.constrained = true;
+                start
+            }
             Some(Err(error)) => return Err(recorder.fail(error)),
         };
         while recorder.pending() == Some(t0) {
@@ -101,6 +108,9 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
         q: SVector<S, N>,
         qdot: SVector<S, N>,
     ) -> Result<State<S, N>, IntegrationError<S, N>> {
+        if !self.constrained {
+            return Ok((q, qdot));
+        }
         model.drift(&mut self.stats, t, q, qdot)
     }
 

@@ -108,6 +108,7 @@ impl<'a, S: RealField + Copy, const N: usize> Run<'a, S, N> {
     /// to the state after a reset, recording the samples too close after
     /// it to step to (`t_s − t*` at most `10 ε |t*|`, see `advances`) with
     /// that state, and starting a new segment.
+    #[inline]
     pub(crate) fn take(
         &mut self,
         (t, q, qdot): (S, SVector<S, N>, SVector<S, N>),
