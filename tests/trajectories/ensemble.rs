@@ -342,6 +342,90 @@ mod lanes {
         }
     }
 
+    /// The clock and the lanes' state move by the same step: far from
+    /// `t = 0`, where an ulp of `t` is large (`2⁻²³ s` at `t = 2³⁰ s`), the
+    /// harmonic oscillator's phase over 20 s, one frame a second, against
+    /// `x0 cos ωt + v0/ω sin ωt` (released at `x0 = 1` with `v0 = 0.3`, no
+    /// damping). The scalar driver's bound (`lagrange-runtime/tests/
+    /// integrators/clock.rs`): at `rtol = atol = 1e-12` a fifth-order pair's
+    /// global error over these 20 s stays within 10 tol per second, 1e-10;
+    /// the shared step is no longer than any lane's own, so each lane's
+    /// error is of its scalar run's order (measured 9.2e-12). A clock that
+    /// moved to `fl(t + h)` while the state moved by `h` (before issue 45)
+    /// put 4.7e-6 here: the rounding of each of a few hundred steps, up to
+    /// 6e-8 s, as a phase.
+    #[test]
+    fn the_adaptive_ensembles_clock_far_from_zero_keeps_the_phase() {
+        use lagrange::models::Oscillator;
+        let t0 = 1_073_741_824.0; // 2³⁰
+        let stiffness = [1.0, 2.0, 3.0, 4.0];
+        let lanes = Oscillator::new(
+            AutoF64x4::splat(1.0),
+            AutoF64x4::new(1.0, 2.0, 3.0, 4.0),
+            AutoF64x4::splat(0.0),
+        );
+        let (x0, v0) = (1.0, 0.3);
+        let q0 = [SVector::from([x0]); 4];
+        let qdot0 = [SVector::from([v0]); 4];
+        let tol = 1e-12;
+        let method = Dopri5::new().rtol(tol).atol(tol);
+        let mut ensemble = AdaptiveEnsemble::new(lanes, method, t0, &q0, &qdot0).unwrap();
+        let mut worst: f64 = 0.0;
+        for k in 1..=20 {
+            // t0 + k is exact, and so is its difference with t0.
+            let t = t0 + k as f64;
+            ensemble.advance_to(t).unwrap();
+            assert_eq!(ensemble.t(), t);
+            for (lane, k) in stiffness.iter().enumerate() {
+                let omega = f64::sqrt(*k);
+                let tau = t - t0;
+                let exact = x0 * (omega * tau).cos() + v0 / omega * (omega * tau).sin();
+                worst = worst.max((ensemble.q(lane)[0] - exact).abs());
+            }
+        }
+        println!("worst phase error of the lanes from t0 = 2^30: {worst:.1e}");
+        assert!(worst < 1e-10, "worst phase error {worst:e}");
+    }
+
+    /// Tolerances that leave Hairer's first-step estimate no number (an
+    /// `atol` so small that the sums of squares overflow): the ensemble
+    /// starts with RADAU5's default step, as a scalar run does, instead of a
+    /// step of zero that never moves `t` (before issue 45 it spent its whole
+    /// step budget at `t0` and stopped with `TooManySteps`). Each lane then
+    /// meets the relative tolerance as its scalar run does: within 100 rtol
+    /// of it after 1 s of the oscillator, each run's global error being a
+    /// few rtol grown over one period at most (measured 2.5e-12 to 4.8e-10
+    /// apart).
+    #[test]
+    fn a_first_step_without_an_estimate_is_the_default_step() {
+        use lagrange::models::Oscillator;
+        let lanes = Oscillator::new(
+            AutoF64x4::splat(1.0),
+            AutoF64x4::new(1.0, 2.0, 3.0, 4.0),
+            AutoF64x4::splat(0.0),
+        );
+        let (rtol, atol) = (1e-8, 1e-300);
+        let q0 = [SVector::from([1.0]); 4];
+        let qdot0 = [SVector::from([0.0]); 4];
+        let method = Dopri5::new().rtol(rtol).atol(atol);
+        let mut ensemble = AdaptiveEnsemble::new(lanes, method, 0.0, &q0, &qdot0).unwrap();
+        ensemble.advance_to(1.0).unwrap();
+        for (lane, k) in [1.0, 2.0, 3.0, 4.0].into_iter().enumerate() {
+            let scalar = Dopri5::new()
+                .rtol(rtol)
+                .atol(atol)
+                .integrate(&Oscillator::new(1.0, k, 0.0), 0.0, q0[0], qdot0[0], &[1.0])
+                .unwrap();
+            let last = scalar.last().expect("one sample");
+            let apart = (ensemble.q(lane) - last.q).amax();
+            println!("lane {lane}: {apart:.1e} from its scalar run");
+            assert!(
+                apart < 100.0 * rtol,
+                "lane {lane}: {apart:e} from its scalar run"
+            );
+        }
+    }
+
     /// Every method in `f64` lanes, and each model in `f32` and `f64`
     /// lanes (fewer pairs than all: each costs the build a model's run
     /// loops; the lanes' code is one for every method and model).

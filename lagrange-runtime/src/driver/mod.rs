@@ -37,5 +37,5 @@ pub(crate) use fixed::Interval;
 pub(crate) use growth::{GrowthGuard, measure};
 pub(crate) use newton::newton_noise_floor;
 pub(crate) use record::{Recorder, finite_state};
-pub(crate) use step_control::{advances, default_tolerance};
+pub(crate) use step_control::{FirstStep, advances, default_tolerance};
 pub(crate) use validate::{check_step_size, check_tolerances, finite_start, invalid};

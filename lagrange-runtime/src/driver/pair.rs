@@ -89,6 +89,104 @@ impl<S: RealField + Copy> Gains<S> {
     }
 }
 
+/// The step-size rules of the explicit pairs, for a run and a
+/// [`Stepper`](crate::stepper::Stepper) ([`PairWalk`]) and for the
+/// [`AdaptiveEnsemble`](crate::ensemble::AdaptiveEnsemble)'s one step of
+/// all lanes alike: which step to attempt, landing on a target, and the
+/// next step after an attempt. The callers check the budget and whether
+/// the step still moves `t` ([`advances`]) first.
+pub(crate) struct StepControl<S> {
+    gains: Gains<S>,
+    /// The controller's [`stretch`](Controller::stretch).
+    stretch: S,
+    /// The step size the control chose; `None` before the first guess.
+    pub(crate) h: Option<S>,
+    err_old: S,
+    rejected_last: bool,
+}
+
+/// A step to attempt, as [`StepControl::attempt`] proposes it.
+#[derive(Clone, Copy)]
+pub(crate) struct Attempt<S> {
+    /// Where it ends: the target, or `t + h` rounded.
+    pub(crate) t_new: S,
+    /// Its size, `t_new − t` exactly.
+    pub(crate) h: S,
+    /// Whether it lands on the target.
+    pub(crate) last: bool,
+    /// The step the control proposed, before it was cut or stretched to
+    /// land.
+    proposed: S,
+}
+
+impl<S: RealField + Copy> StepControl<S> {
+    pub(crate) fn new(control: &Controller) -> Self {
+        Self {
+            gains: control.gains(),
+            stretch: nalgebra::convert(control.stretch),
+            h: None,
+            err_old: nalgebra::convert(1e-4),
+            rejected_last: false,
+        }
+    }
+
+    /// A new segment (a start, or a reset by an event): no error history.
+    pub(crate) fn restart(&mut self) {
+        self.err_old = nalgebra::convert(1e-4);
+        self.rejected_last = false;
+    }
+
+    /// The attempt of the step `h` from `t` towards `target`. A step that
+    /// would stop just short of the target is stretched to land on it
+    /// (Hairer's 1 %), one beyond it cut. The state advances by exactly
+    /// the time the clock does: `t + h` rounds, so the step taken is the
+    /// representable `fl(t + h) − t` (else the clock drifts from the state
+    /// by up to half an ulp of `t` per step, 1e-10 s after 5e5 steps at
+    /// `t ≈ 70`).
+    #[inline]
+    pub(crate) fn attempt(&self, t: S, h: S, target: S) -> Attempt<S> {
+        let last = t + h * self.stretch >= target;
+        let t_new = if last { target } else { t + h };
+        Attempt {
+            t_new,
+            h: t_new - t,
+            last,
+            proposed: h,
+        }
+    }
+
+    /// After `attempt` was rejected with error `err` (above 1).
+    pub(crate) fn reject(&mut self, attempt: &Attempt<S>, err: S) {
+        self.rejected_last = true;
+        self.h = Some(self.gains.after_rejection(attempt.h, err));
+    }
+
+    /// After a stage of `attempt` could not be evaluated: `fac_min` of it.
+    pub(crate) fn fail(&mut self, attempt: &Attempt<S>) {
+        self.rejected_last = true;
+        self.h = Some(attempt.h * self.gains.fac_min);
+    }
+
+    /// After `attempt` was accepted with error `err`: the next step, which
+    /// the caller sets once the step's end is taken. No growth right after
+    /// a rejection; a step shortened to land on the target says little of
+    /// the step the solution allows, so the next is not shorter than the
+    /// one proposed.
+    #[inline]
+    pub(crate) fn accept(&mut self, attempt: &Attempt<S>, err: S) -> S {
+        let mut h_new = self.gains.after_acceptance(attempt.h, err, self.err_old);
+        if self.rejected_last {
+            h_new = h_new.min(attempt.h);
+        }
+        if attempt.last && attempt.h < attempt.proposed {
+            h_new = h_new.max(attempt.proposed);
+        }
+        self.err_old = err.max(nalgebra::convert(1e-4));
+        self.rejected_last = false;
+        h_new
+    }
+}
+
 /// The settings every adaptive method has.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tolerances<S> {
@@ -197,16 +295,10 @@ where
 
 /// The embedded pairs' loop's own state between calls.
 struct Course<S> {
-    gains: Gains<S>,
+    control: StepControl<S>,
     settings: Tolerances<S>,
-    /// The controller's [`order`](Controller::order) and
-    /// [`stretch`](Controller::stretch).
+    /// The controller's [`order`](Controller::order).
     order: u8,
-    stretch: S,
-    /// The step size the control chose; `None` before the first guess.
-    h: Option<S>,
-    err_old: S,
-    rejected_last: bool,
     growth: Option<GrowthGuard<S>>,
 }
 
@@ -214,13 +306,9 @@ impl<S: RealField + Copy, M: Embedded<S, N>, const N: usize> PairWalk<S, M, N> {
     pub(crate) fn new(method: M) -> Self {
         Self {
             course: Course {
-                gains: M::CONTROL.gains(),
+                control: StepControl::new(&M::CONTROL),
                 settings: method.tolerances(),
                 order: M::CONTROL.order,
-                stretch: nalgebra::convert(M::CONTROL.stretch),
-                h: None,
-                err_old: nalgebra::convert(1e-4),
-                rejected_last: false,
                 growth: None,
             },
             method,
@@ -369,7 +457,6 @@ impl<S: RealField + Copy> Course<S> {
         pairing: &mut dyn Pairing<S, N>,
         target: S,
     ) -> Result<Advanced, IntegrationError<S, N>> {
-        let c = |x: f64| -> S { nalgebra::convert(x) };
         let Tolerances {
             rtol,
             atol,
@@ -387,10 +474,10 @@ impl<S: RealField + Copy> Course<S> {
                 run.arm()?;
                 let (t, (q, qdot)) = (run.t, run.state());
                 let qddot = run.rec.rhs(model, t, &q, &qdot)?;
-                if run.fresh == Fresh::Segment || self.h.is_none() {
+                if run.fresh == Fresh::Segment || self.control.h.is_none() {
                     let start = (t, &q, &qdot, &qddot);
                     let h_max = run.rec.bound_step(target - t);
-                    self.h = Some(initial_step(
+                    self.control.h = Some(initial_step(
                         &mut run.rec,
                         model,
                         start,
@@ -402,14 +489,12 @@ impl<S: RealField + Copy> Course<S> {
                 }
                 if run.fresh == Fresh::Segment || self.growth.is_none() {
                     self.growth = Some(GrowthGuard::new(&q, &qdot));
-                    self.err_old = c(1e-4);
-                    self.rejected_last = false;
+                    self.control.restart();
                 }
                 pairing.start(&qdot, &qddot);
                 run.fresh = Fresh::No;
             }
-            let gains = &self.gains;
-            let (Some(h), Some(growth)) = (self.h, &mut self.growth) else {
+            let (Some(h), Some(growth)) = (self.control.h, &mut self.growth) else {
                 unreachable!("built above");
             };
             let h = run.rec.bound_step(h);
@@ -428,40 +513,23 @@ impl<S: RealField + Copy> Course<S> {
                     .take()
                     .unwrap_or(IntegrationError::StepSizeUnderflow { t, h, q, qdot }));
             }
-            // Land on the target rather than leave a sliver before it.
-            let last = t + h * self.stretch >= target;
-            let t_new = if last { target } else { t + h };
-            // The state advances by exactly the time the clock does: `t + h`
-            // rounds, so the step taken is the representable `fl(t + h) − t`
-            // (else the clock drifts from the state by up to half an ulp of
-            // `t` per step, 1e-10 s after 5e5 steps at t ≈ 70).
-            let h_try = t_new - t;
-
+            let step = self.control.attempt(t, h, target);
+            let (t_new, h_try) = (step.t_new, step.h);
             let err = match pairing.attempt(&mut run.rec, (t, t_new, h_try), (&q, &qdot)) {
                 Ok(Outcome::Accepted { step: (), err }) => err,
                 Ok(Outcome::Rejected { err }) => {
                     run.rec.stats.steps_rejected += 1;
-                    self.rejected_last = true;
-                    self.h = Some(gains.after_rejection(h_try, err));
+                    self.control.reject(&step, err);
                     continue;
                 }
                 Err(error) => {
                     stage_failure = Some(error);
                     run.rec.stats.steps_rejected += 1;
-                    self.rejected_last = true;
-                    self.h = Some(h_try * gains.fac_min);
+                    self.control.fail(&step);
                     continue;
                 }
             };
-            let mut h_new = gains.after_acceptance(h_try, err, self.err_old);
-            if self.rejected_last {
-                h_new = h_new.min(h_try);
-            }
-            if last && h_try < h {
-                h_new = h_new.max(h);
-            }
-            self.err_old = err.max(c(1e-4));
-            self.rejected_last = false;
+            let h_new = self.control.accept(&step, err);
             stage_failure = None;
             run.rec.stats.steps_accepted += 1;
 
@@ -478,7 +546,7 @@ impl<S: RealField + Copy> Course<S> {
                     qdot: qdot_new,
                 });
             }
-            self.h = Some(h_new);
+            self.control.h = Some(h_new);
             // The dense output is built from the step's slopes before the
             // pair moves on (its last slope becomes the next step's first),
             // only when a sample or an event needs it.

@@ -14,12 +14,16 @@
 //!
 //! The error is each lane's own, Hairer's root mean square of the
 //! estimate over `atol + rtol·max(|y|, |y_new|)`; the step is accepted when
-//! the largest over the lanes is at most 1, and the next step is chosen
-//! from it by the same controller as the scalar [`Dopri5`]'s (its gains,
-//! its stabilization, no growth right after a rejection). The first step
-//! is Hairer's estimate, the smallest over the lanes. A step that would
-//! pass the target is cut to end there, so that every frame is reached
-//! exactly.
+//! the largest over the lanes is at most 1. Everything else is the scalar
+//! runs' own code, not a copy of it: the step-size rules of
+//! [`Dopri5`]'s loop (`driver::pair::StepControl`: its gains and
+//! stabilization, no growth right after a rejection, a step that would
+//! stop within 1 % of the target stretched to land on it and one beyond
+//! it cut, the state moved by exactly the step the clock takes,
+//! `fl(t + h) − t`), its underflow rule (`driver::advances`), and Hairer's
+//! first step (`driver::FirstStep`, each lane's as its scalar run guesses
+//! it, the smallest taken), so that every frame is reached exactly and a
+//! fix to those rules reaches the lanes too.
 
 use nalgebra::{
     ComplexField, RealField, SVector, SimdComplexField, SimdPartialOrd, SimdRealField, SimdValue,
@@ -27,7 +31,9 @@ use nalgebra::{
 
 use super::solve::{Element, accelerations, gather, lane_of};
 use super::{EnsembleError, LaneModel, avx2_at_run_time, check_starts};
-use crate::driver::pair::{Embedded, Gains};
+use crate::driver::FirstStep;
+use crate::driver::advances;
+use crate::driver::pair::{Embedded, StepControl};
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::integrators::Dopri5;
 use crate::integrators::dopri5::tableau::{A, C, E};
@@ -81,16 +87,16 @@ pub struct AdaptiveEnsemble<L: LaneModel<N>, const N: usize> {
     rtol: Element<L, N>,
     atol: Element<L, N>,
     max_steps: usize,
-    gains: Gains<Element<L, N>>,
+    /// The step-size rules of the scalar pairs' loop, and the step they
+    /// chose (`None` before the first).
+    control: StepControl<Element<L, N>>,
     t: Element<L, N>,
     q: SVector<L::Lanes, N>,
     qdot: SVector<L::Lanes, N>,
     /// `q̈` at `(t, q, q̇)`: the next step's first stage (FSAL).
     qddot: SVector<L::Lanes, N>,
-    /// The next step to try; zero before the first.
-    h: Element<L, N>,
-    /// The last accepted step's error, for the controller's stabilization.
-    err_old: Element<L, N>,
+    /// The lane that last set the step, blamed if it underflows.
+    worst: usize,
     /// Whether to step in the copy of the loop compiled for AVX2, as
     /// [`Ensemble`](super::Ensemble) does.
     avx2: bool,
@@ -122,13 +128,12 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
             rtol: tolerances.rtol,
             atol: tolerances.atol,
             max_steps: tolerances.max_steps,
-            gains: control.gains(),
+            control: StepControl::new(&control),
             t: t0,
             q,
             qdot,
             qddot,
-            h: nalgebra::zero::<Element<L, N>>(),
-            err_old: nalgebra::convert(1e-4),
+            worst: 0,
             stats: Stats {
                 rhs_evals: 1,
                 ..Stats::default()
@@ -166,19 +171,27 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
         self.steps_to(target)
     }
 
-    /// The loop of [`advance_to`](Self::advance_to).
+    /// The loop of [`advance_to`](Self::advance_to): the scalar pairs'
+    /// rules ([`StepControl`]: the attempt landing on the target, the clock
+    /// and the state moved by the same representable step, the next step
+    /// after an acceptance or a rejection; [`advances`] for an underflow),
+    /// on the largest of the lanes' errors.
     #[inline(always)]
     fn steps_to(&mut self, target: Element<L, N>) -> Result<(), EnsembleError<Element<L, N>, N>> {
         let t0 = self.t;
         if !(target.is_finite() && target > t0) {
             return Err(InvalidInput::TargetNotAhead { t: t0, target }.into());
         }
-        if self.h == nalgebra::zero::<Element<L, N>>() {
-            self.h = self.initial_step(target - t0)?;
+        if self.control.h.is_none() {
+            self.control.h = Some(self.initial_step(target - t0)?);
+            self.control.restart();
         }
         let mut attempts = 0;
-        let mut rejected = false;
         while self.t < target {
+            let t = self.t;
+            let Some(h) = self.control.h else {
+                unreachable!("chosen above");
+            };
             if attempts == self.max_steps {
                 let (t, max_steps) = (self.t, self.max_steps);
                 let (q, qdot) = (self.q(0), self.qdot(0));
@@ -192,20 +205,25 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
                     },
                 });
             }
+            if !advances(t, h) {
+                let (lane, q, qdot) = (self.worst, self.q(self.worst), self.qdot(self.worst));
+                return Err(EnsembleError::Lane {
+                    lane,
+                    error: IntegrationError::StepSizeUnderflow { t, h, q, qdot },
+                });
+            }
             attempts += 1;
-            let t = self.t;
-            let last = self.h >= target - t;
-            let h = if last { target - t } else { self.h };
-            let t_new = if last { target } else { t + h };
-            let (q, qdot, qddot, errors) = self.attempt((t, t_new, h))?;
+            let step = self.control.attempt(t, h, target);
+            let (q, qdot, qddot, errors) = self.attempt((t, step.t_new, step.h))?;
             let (err, worst) = largest(errors);
+            self.worst = worst;
             if !err.is_finite() {
                 let (q, qdot) = (lane_of(&q, worst), lane_of(&qdot, worst));
                 let value = NonFiniteValue::State;
                 return Err(EnsembleError::Lane {
                     lane: worst,
                     error: IntegrationError::NonFiniteState {
-                        t: t_new,
+                        t: step.t_new,
                         q,
                         qdot,
                         value,
@@ -213,29 +231,12 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
                 });
             }
             if err <= nalgebra::one::<Element<L, N>>() {
-                let mut next = self.gains.after_acceptance(h, err, self.err_old);
-                if rejected {
-                    next = next.min(h);
-                }
-                self.err_old = err.max(nalgebra::convert(1e-4));
-                (self.t, self.q, self.qdot, self.qddot) = (t_new, q, qdot, qddot);
+                self.control.h = Some(self.control.accept(&step, err));
+                (self.t, self.q, self.qdot, self.qddot) = (step.t_new, q, qdot, qddot);
                 self.stats.steps_accepted += 1;
-                rejected = false;
-                // A step cut to reach the target says nothing of the step
-                // the motion allows: the controller's proposal stands.
-                self.h = if last { next.max(self.h) } else { next };
             } else {
                 self.stats.steps_rejected += 1;
-                rejected = true;
-                self.h = self.gains.after_rejection(h, err);
-                if t + self.h == t {
-                    let (q, qdot) = (self.q(worst), self.qdot(worst));
-                    let h = self.h;
-                    return Err(EnsembleError::Lane {
-                        lane: worst,
-                        error: IntegrationError::StepSizeUnderflow { t, h, q, qdot },
-                    });
-                }
+                self.control.reject(&step, err);
             }
         }
         Ok(())
@@ -351,44 +352,35 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
         (sum / L::Lanes::splat(n)).simd_sqrt()
     }
 
-    /// Hairer's first step, the smallest over the lanes: `h0` from the
-    /// sizes of `y` and `y'`, then one explicit Euler probe of the second
-    /// derivative, no longer than `span`.
+    /// Hairer's first step, the smallest over the lanes, each lane's as a
+    /// scalar run guesses it ([`FirstStep`]): the probe's step `h0`, then
+    /// one explicit Euler probe of all lanes at the smallest `h0`, no
+    /// longer than `span`.
     fn initial_step(
         &mut self,
         span: Element<L, N>,
     ) -> Result<Element<L, N>, EnsembleError<Element<L, N>, N>> {
-        let c = |x: f64| -> Element<L, N> { nalgebra::convert(x) };
+        let guess = FirstStep {
+            rtol: self.rtol,
+            atol: self.atol,
+            order: <Dopri5<Element<L, N>> as Embedded<Element<L, N>, N>>::CONTROL.order,
+        };
         let (q, qdot, qddot) = (self.q, self.qdot, self.qddot);
-        // Each size over `atol + rtol·|y|`: `rms` with `a = b = y`.
-        let d0 = self.rms([(&q, &q, &q), (&qdot, &qdot, &qdot)]);
-        let d1 = self.rms([(&qdot, &q, &q), (&qddot, &qdot, &qdot)]);
+        let lane = |x: &SVector<L::Lanes, N>, i| lane_of(x, i);
         let mut h0 = span;
-        for lane in 0..L::Lanes::LANES {
-            let (d0, d1) = (d0.extract(lane), d1.extract(lane));
-            let guess = if d0 < c(1e-5) || d1 < c(1e-5) || !(d0 / d1).is_finite() {
-                c(1e-6)
-            } else {
-                c(0.01) * d0 / d1
-            };
-            h0 = h0.min(guess);
+        for i in 0..L::Lanes::LANES {
+            h0 = h0.min(guess.probe((&lane(&q, i), &lane(&qdot, i), &lane(&qddot, i))));
         }
         let step = L::Lanes::splat(h0);
         let (q1, qdot1) = (q + qdot * step, qdot + qddot * step);
         let qddot1 = self.slope(self.t + h0, &q1, &qdot1)?;
         self.stats.rhs_evals += 1;
-        let d2 = self.rms([(&(qdot1 - qdot), &q, &q), (&(qddot1 - qddot), &qdot, &qdot)]) / step;
-        let mut h = c(100.0) * h0;
-        for lane in 0..L::Lanes::LANES {
-            let larger = d1.extract(lane).max(d2.extract(lane));
-            let h1 = if larger <= c(1e-15) {
-                c(1e-6).max(h0 * c(1e-3))
-            } else {
-                (c(0.01) / larger).powf(c(0.2))
-            };
-            h = h.min(h1);
+        let mut h = span;
+        for i in 0..L::Lanes::LANES {
+            let at = (&lane(&q, i), &lane(&qdot, i), &lane(&qddot, i));
+            h = h.min(guess.step(h0, at, (&lane(&qdot1, i), &lane(&qddot1, i))));
         }
-        Ok(h.min(span))
+        Ok(guess.finish(h0, span, h))
     }
 
     /// The time of every lane's state.
@@ -432,13 +424,13 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
         self.qddot = self.slope(self.t, &lanes_q, &lanes_qdot)?;
         self.stats.rhs_evals += 1;
         (self.q, self.qdot) = (lanes_q, lanes_qdot);
-        self.h = nalgebra::zero();
+        self.control.h = None;
         Ok(())
     }
 
     /// The step the next attempt will try (zero before the first).
     pub fn step_size(&self) -> Element<L, N> {
-        self.h
+        self.control.h.unwrap_or_else(nalgebra::zero)
     }
 
     /// The work so far: steps accepted and rejected (shared by every lane)
