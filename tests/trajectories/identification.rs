@@ -339,3 +339,44 @@ fn named_lets_at_irregular_times_fit_as_well() {
         "{error}"
     );
 }
+
+/// A controller whose torque turns NaN at `t = 0.5` is blamed as what it
+/// is, the inputs, whether the pendulum runs alone or with its
+/// sensitivities (as `identify::fit` runs it when it replays a recorded
+/// input): before issue 45 the sensitivities mapped the solve's errors
+/// themselves and called the NaN a non-finite forcing.
+#[test]
+fn a_controllers_nan_is_blamed_on_the_inputs_alone_and_with_sensitivities() {
+    use lagrange::sensitivity::{Sensitivity, coordinates};
+    use lagrange::{IntegrationError, NonFiniteValue};
+    let torque = |t: f64, _: &SVector<f64, 1>, _: &SVector<f64, 1>| {
+        SVector::<f64, 1>::from([if t < 0.5 { 0.1 } else { f64::NAN }])
+    };
+    let model = DrivenPendulum::new(1.3, 0.6, 0.15).with_controller(torque);
+    let (q0, v0) = (SVector::from([0.2]), SVector::from([0.0]));
+    let method = Dop853::new().rtol(1e-10).atol(1e-10);
+    let alone = method.integrate(&model, 0.0, q0, v0, &[1.0]).unwrap_err();
+    assert!(
+        matches!(
+            alone.error,
+            IntegrationError::NonFiniteState { t, value: NonFiniteValue::Inputs, .. } if t >= 0.5
+        ),
+        "alone: {}",
+        alone.error
+    );
+    let sensitivity =
+        Sensitivity::<_, 1, 3, 1, { coordinates(1, 1) }>::new(model, [Direction::Parameter(0)])
+            .unwrap();
+    let (x0, xdot0) = sensitivity.initial_state(&q0, &v0);
+    let with = method
+        .integrate(&sensitivity, 0.0, x0, xdot0, &[1.0])
+        .unwrap_err();
+    assert!(
+        matches!(
+            with.error,
+            IntegrationError::NonFiniteState { t, value: NonFiniteValue::Inputs, .. } if t >= 0.5
+        ),
+        "with sensitivities: {}",
+        with.error
+    );
+}

@@ -98,9 +98,10 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use crate::dynamics::acceleration_jacobians;
+use crate::dynamics::blame::blame;
+use crate::dynamics::{acceleration_jacobians, mass_error};
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::mass::{SolveError, factor_mass_matrix};
+use crate::linalg::mass::factor_mass_matrix;
 use crate::model::constraints::is_constrained;
 use crate::model::{Lagrangian, ParameterDerivatives};
 use crate::trajectory::Stats;
@@ -312,17 +313,19 @@ where
     ) -> Result<(SVector<L::Scalar, NA>, SMatrix<L::Scalar, N, N>), IntegrationError<L::Scalar, NA>>
     {
         let (q, qdot) = (self.state(x), self.state(v));
+        // Errors as `dynamics` reports them for any model, at the whole
+        // state, a non-finite value blamed on the model's inputs where they
+        // are to blame (a controller's NaN), as a run of the model alone
+        // blames it.
         let non_finite = |value| IntegrationError::NonFiniteState {
             t,
             q: *x,
             qdot: *v,
-            value,
+            value: blame(&self.model, value, t, &q, &qdot),
         };
-        let solve_error = |error| match error {
-            SolveError::NonFiniteMassMatrix => non_finite(NonFiniteValue::MassMatrix),
-            SolveError::NonFiniteForcing => non_finite(NonFiniteValue::Forcing),
-            SolveError::Singular => IntegrationError::SingularMassMatrix { t, q: *x, qdot: *v },
-            SolveError::Indefinite => IntegrationError::IndefiniteMassMatrix { t, q: *x, qdot: *v },
+        let solve_error = |error| match mass_error(error, t, x, v) {
+            IntegrationError::NonFiniteState { value, .. } => non_finite(value),
+            error => error,
         };
         let (m, f) = self.model.mass_matrix_and_forcing(t, &q, &qdot);
         if !crate::linalg::all_finite(f.as_slice()) {
