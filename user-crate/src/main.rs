@@ -26,16 +26,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let pendulum = DoublePendulum::new(1.0, 1.0, 1.0, 1.0, 9.81);
     let (q0, qdot0) = (Vector2::new(2.0, 2.5), Vector2::zeros());
 
-    let m = pendulum.mass_matrix(0.0, &q0);          // M(q)
-    let f = pendulum.forcing(0.0, &q0, &qdot0);      // f(q, q̇)
+    let m = pendulum.mass_matrix(0.0, &q0); // M(q)
+    let f = pendulum.forcing(0.0, &q0, &qdot0); // f(q, q̇)
     println!("M = {m}f = {f}");
     println!("{}", DoublePendulum::<f64>::EQUATIONS); // the derived equations as text
 
     // Adaptive Dormand–Prince, sampled at the times asked for.
-    let trajectory = Dopri5::new().rtol(1e-10).atol(1e-10)
-        .integrate(&pendulum, 0.0, q0, qdot0, &[0.5, 1.0, 2.0])?;
+    let method = Dopri5::new().rtol(1e-10).atol(1e-10);
+    let trajectory = method.integrate(&pendulum, 0.0, q0, qdot0, &[0.5, 1.0, 2.0])?;
     for s in &trajectory {
-        println!("t = {}: q = {}, energy = {}", s.t, s.q, pendulum.energy(s.t, &s.q, &s.qdot));
+        let energy = pendulum.energy(s.t, &s.q, &s.qdot);
+        println!("t = {}: q = {}, energy = {energy}", s.t, s.q);
     }
     println!("{:?}", trajectory.stats()); // steps accepted/rejected, rhs evaluations
     Ok(())

@@ -4,7 +4,7 @@ use nalgebra::{RealField, SVector};
 
 use super::{StepMethod, lane_step};
 use crate::driver::fixed::{FixedStep, FixedWalk};
-use crate::driver::{check_step_size, Recorder};
+use crate::driver::{Recorder, check_step_size};
 use crate::error::{IntegrationError, InvalidInput};
 use crate::model::Lagrangian;
 use crate::trajectory::State;
@@ -61,7 +61,6 @@ impl<S: RealField + Copy> ExplicitEuler<S> {
     pub fn step_size(&self) -> S {
         self.h
     }
-
 }
 
 impl<S: RealField + Copy> StepMethod<S> for ExplicitEuler<S> {

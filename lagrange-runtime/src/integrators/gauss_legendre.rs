@@ -2,8 +2,8 @@
 
 use nalgebra::{DMatrix, DVector, RealField};
 
-use super::implicit_rk::{self, Settings, StageSolver, Tableau};
 use super::StepMethod;
+use super::implicit_rk::{self, Settings, StageSolver, Tableau};
 use crate::driver::fixed::FixedWalk;
 use crate::error::InvalidInput;
 

@@ -46,8 +46,9 @@ macro_rules! registry {
             )+
         }
     )+) => {
+        // The modules are declared beside the registry, outside any macro,
+        // so that rustfmt reaches them; a module left out fails here.
         $(
-            pub(crate) mod $module;
             pub use $module::$ty;
         )+
 

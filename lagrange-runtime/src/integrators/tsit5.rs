@@ -13,10 +13,10 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::stages::{fsal_step, pair_settings, Stages as Slopes, Step};
 use super::StepMethod;
+use super::stages::{Stages as Slopes, Step, fsal_step, pair_settings};
 use crate::driver::pair::{Controller, Embedded, EmbeddedPair, Outcome, PairWalk, Tolerances};
-use crate::driver::{check_tolerances, Recorder};
+use crate::driver::{Recorder, check_tolerances};
 use crate::error::{IntegrationError, InvalidInput};
 use crate::model::Lagrangian;
 use crate::trajectory::State;

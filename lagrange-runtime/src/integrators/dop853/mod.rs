@@ -12,11 +12,11 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::stages::pair_settings;
 use super::StepMethod;
+use super::stages::pair_settings;
+use crate::driver::Recorder;
 use crate::driver::check_tolerances;
 use crate::driver::pair::{Controller, Embedded, EmbeddedPair, Outcome, PairWalk, Tolerances};
-use crate::driver::Recorder;
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::model::Lagrangian;
 use crate::trajectory::State;

@@ -8,13 +8,13 @@
 use nalgebra::{RealField, SVector};
 
 use super::StepMethod;
+use crate::driver::Recorder;
 use crate::driver::check_tolerances;
 use crate::driver::pair::{Controller, Embedded, EmbeddedPair, Outcome, PairWalk, Tolerances};
-use crate::driver::Recorder;
 use crate::error::{IntegrationError, InvalidInput};
+use crate::integrators::stages::{Step, pair_settings};
 use crate::model::Lagrangian;
 use crate::trajectory::State;
-use crate::integrators::stages::{pair_settings, Step};
 use tableau::{Dense, Stages, Tableau};
 
 pub(crate) mod tableau;
@@ -143,4 +143,3 @@ impl<S: RealField + Copy, const N: usize> EmbeddedPair<S, N> for Pair<S, N> {
         self.k.first_same_as_last(6);
     }
 }
-

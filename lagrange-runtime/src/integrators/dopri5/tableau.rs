@@ -5,7 +5,7 @@ use nalgebra::{RealField, SVector};
 
 use crate::driver::Recorder;
 use crate::error::IntegrationError;
-use crate::integrators::stages::{fsal_step, Step};
+use crate::integrators::stages::{Step, fsal_step};
 use crate::model::Lagrangian;
 
 /// The slopes of the seven stages of a step; the seventh is at the new

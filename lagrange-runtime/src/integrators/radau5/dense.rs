@@ -3,7 +3,7 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::work::{split, Work};
+use super::work::{Work, split};
 use crate::driver::Recorder;
 use crate::error::IntegrationError;
 use crate::model::Lagrangian;

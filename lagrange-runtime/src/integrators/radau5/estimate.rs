@@ -2,8 +2,8 @@
 
 use nalgebra::RealField;
 
-use super::work::{evaluate, Work};
 use super::ERR_FLOOR;
+use super::work::{Work, evaluate};
 use crate::driver::Recorder;
 use crate::linalg::second_order::solve_block;
 use crate::model::Lagrangian;

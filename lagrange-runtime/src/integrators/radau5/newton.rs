@@ -4,7 +4,7 @@
 
 use nalgebra::{Complex, RealField, SVector};
 
-use super::work::{evaluate, split, Work};
+use super::work::{Work, evaluate, split};
 use super::{MAX_NEWTON, THETA_REUSE};
 use crate::driver::Recorder;
 use crate::dynamics::acceleration_jacobians;

@@ -5,10 +5,10 @@
 use nalgebra::RealField;
 
 use super::newton::Newton;
-use super::work::{evaluate, split, Work};
-use super::{Radau5, FAC_L, FAC_R, KEEP_H, MAX_NEWTON, SAFETY, THETA_REUSE};
-use crate::driver::run::{Advanced, Flow, Fresh, Run, Walk};
+use super::work::{Work, evaluate, split};
+use super::{FAC_L, FAC_R, KEEP_H, MAX_NEWTON, Radau5, SAFETY, THETA_REUSE};
 use crate::driver::advances;
+use crate::driver::run::{Advanced, Flow, Fresh, Run, Walk};
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::model::Lagrangian;
 
@@ -216,9 +216,15 @@ impl<S: RealField + Copy, const N: usize> Walk<S, N> for Radau5Walk<S, N> {
             let h = t_new - t;
             self.h = h;
             self.work.starting_values(self.first, h / self.h_old);
-            let newton = self
-                .work
-                .newton(model, &mut run.rec, t, t_new, h, &mut self.faccon, &mut self.theta);
+            let newton = self.work.newton(
+                model,
+                &mut run.rec,
+                t,
+                t_new,
+                h,
+                &mut self.faccon,
+                &mut self.theta,
+            );
             let iterations = match newton {
                 Newton::Converged(iterations) => iterations,
                 Newton::TooSlow(factor) => retry_with!(h * factor),
@@ -271,7 +277,8 @@ impl<S: RealField + Copy, const N: usize> Walk<S, N> for Radau5Walk<S, N> {
             let crossed = if run.rec.watching() {
                 let work = &self.work;
                 let mut interpolant = |ts: S| work.dense((ts - t_new) / h);
-                run.rec.watch_dense(model, (t, t_new), &end, &mut interpolant)?
+                run.rec
+                    .watch_dense(model, (t, t_new), &end, &mut interpolant)?
             } else {
                 None
             };

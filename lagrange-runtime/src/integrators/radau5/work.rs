@@ -3,8 +3,8 @@
 
 use nalgebra::{Complex, DMatrix, DVector, RealField, SVector};
 
-use super::coefficients::Coefficients;
 use super::Radau5;
+use super::coefficients::Coefficients;
 use crate::driver::Recorder;
 use crate::error::IntegrationError;
 use crate::linalg::lu::Lu;

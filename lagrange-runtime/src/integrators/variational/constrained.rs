@@ -27,8 +27,8 @@ use nalgebra::{RealField, SVector};
 
 use super::newton::{DiscreteEulerLagrange, StepFailure};
 use super::rattle::{Outer, RattleStep};
-use super::velocity::{velocity, VelocityHistory};
-use super::{lacks, Variational};
+use super::velocity::{VelocityHistory, velocity};
+use super::{Variational, lacks};
 use crate::driver::Recorder;
 use crate::dynamics::projection::VelocityProjection;
 use crate::error::IntegrationError;
@@ -100,7 +100,9 @@ impl<S: RealField + Copy> Variational<S> {
             // The projected velocity minimizes the distance to `free` in
             // any metric `M + k GᵀG` alike; the momenta of `L'` are those of
             // `L` there, since `φ̇ = 0` (`augmented.rs`).
-            return model.momentum(t, q, &qdot).ok_or_else(|| lacks("momentum").into());
+            return model
+                .momentum(t, q, &qdot)
+                .ok_or_else(|| lacks("momentum").into());
         }
         Ok(p - impulse)
     }

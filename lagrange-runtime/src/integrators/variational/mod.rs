@@ -29,10 +29,10 @@
 use nalgebra::{RealField, SVector};
 
 use super::StepMethod;
-use crate::driver::{check_step_size, Recorder};
+use crate::driver::{Recorder, check_step_size};
 use crate::error::{IntegrationError, InvalidInput};
 use crate::model::Lagrangian;
-use velocity::{with_velocity, VelocityHistory};
+use velocity::{VelocityHistory, with_velocity};
 use walk::VariationalWalk;
 
 mod augmented;

@@ -3,11 +3,11 @@
 
 use nalgebra::{ComplexField, RealField, SMatrix, SVector};
 
-use super::{epsilon, lacks, Variational};
-use crate::linalg::all_finite;
+use super::{Variational, epsilon, lacks};
 use crate::driver::newton_noise_floor;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::mass::{lu_solve, solve_mass_matrix, SolveError};
+use crate::linalg::all_finite;
+use crate::linalg::mass::{SolveError, lu_solve, solve_mass_matrix};
 use crate::model::Lagrangian;
 use crate::trajectory::Stats;
 

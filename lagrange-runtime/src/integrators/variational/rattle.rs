@@ -25,8 +25,8 @@ use crate::dynamics::mass_error;
 use crate::dynamics::projection::position_tolerance;
 use crate::dynamics::saddle::Multipliers;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::schur::Schur;
 use crate::linalg::mass::factor_mass_matrix;
+use crate::linalg::schur::Schur;
 use crate::model::constraints::{Holonomic, Visitor};
 
 /// The constraint force `Gᵀ λ` at a state: the first step's guess.

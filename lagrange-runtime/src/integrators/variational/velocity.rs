@@ -4,10 +4,10 @@
 use nalgebra::{RealField, SVector};
 
 use super::lacks;
-use crate::linalg::all_finite;
 use crate::driver::Recorder;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::linalg::mass::{solve_mass_matrix, SolveError};
+use crate::linalg::all_finite;
+use crate::linalg::mass::{SolveError, solve_mass_matrix};
 use crate::model::Lagrangian;
 use crate::trajectory::Stats;
 

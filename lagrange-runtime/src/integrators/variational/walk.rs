@@ -4,20 +4,20 @@
 
 use nalgebra::{RealField, SVector};
 
-use super::newton::{DiscreteEulerLagrange, StepFailure};
 use super::augmented::Weight;
+use super::newton::{DiscreteEulerLagrange, StepFailure};
 use super::rattle::StartForce;
-use super::velocity::{velocity, with_velocity, VelocityHistory};
-use super::{lacks, out_of_budget, Variational};
-use crate::linalg::all_finite;
-use crate::driver::run::{Advanced, Flow, Fresh, Run, Walk};
+use super::velocity::{VelocityHistory, velocity, with_velocity};
+use super::{Variational, lacks, out_of_budget};
 use crate::driver::Interval;
+use crate::driver::run::{Advanced, Flow, Fresh, Run, Walk};
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
+use crate::linalg::all_finite;
 use crate::linalg::mass::positive_semidefinite;
+use crate::model::Lagrangian;
 use crate::model::constraints::{
     has_velocity_constraints, is_constrained, mass_regular_on_constraints_only,
 };
-use crate::model::Lagrangian;
 
 /// The variational method's work between steps: the state in `(q, p)`, the
 /// history of midpoint velocities (the Newton guesses), and the constraint
@@ -153,7 +153,11 @@ impl<S: RealField + Copy, const N: usize> Walk<S, N> for VariationalWalk<S, N> {
                 self.start(run, model)?;
                 run.fresh = Fresh::No;
             }
-            let stop = run.rec.pending().filter(|&ts| ts < target).unwrap_or(target);
+            let stop = run
+                .rec
+                .pending()
+                .filter(|&ts| ts < target)
+                .unwrap_or(target);
             let (t, q, p) = (self.t, self.q, self.p);
             let interval = Interval::new(t, stop, self.h);
             if interval.underflows() {
@@ -175,7 +179,13 @@ impl<S: RealField + Copy, const N: usize> Walk<S, N> for VariationalWalk<S, N> {
             let Some(steps) = interval.steps(max_steps) else {
                 let state = (t, q, p);
                 let velocities = &self.velocities;
-                return Err(out_of_budget(&mut run.rec, model, state, velocities, max_steps));
+                return Err(out_of_budget(
+                    &mut run.rec,
+                    model,
+                    state,
+                    velocities,
+                    max_steps,
+                ));
             };
             let mut restarted = false;
             for k in 1..=steps {
@@ -221,7 +231,13 @@ impl<S: RealField + Copy, const N: usize> Walk<S, N> for VariationalWalk<S, N> {
                         };
                         let state = (t, q, p);
                         let velocities = &self.velocities;
-                        return Err(with_velocity(&mut run.rec, model, state, velocities, diverged));
+                        return Err(with_velocity(
+                            &mut run.rec,
+                            model,
+                            state,
+                            velocities,
+                            diverged,
+                        ));
                     }
                 };
                 let before = (t, (q, self.qdot_now));
@@ -234,14 +250,18 @@ impl<S: RealField + Copy, const N: usize> Walk<S, N> for VariationalWalk<S, N> {
                     self.force = step_force;
                     self.p -= self.force * dt;
                     let state = (self.t, &self.q, &self.p);
-                    self.p = Variational::rattle_momenta(&mut run.rec, model, state, &self.velocities)?;
+                    self.p =
+                        Variational::rattle_momenta(&mut run.rec, model, state, &self.velocities)?;
                 }
                 if run.rec.watching() {
                     let (t, q, p) = (self.t, self.q, self.p);
-                    self.qdot_now = velocity(&mut run.rec.stats, model, t, &q, &p, &self.velocities)?;
+                    self.qdot_now =
+                        velocity(&mut run.rec.stats, model, t, &q, &p, &self.velocities)?;
                     let (t_before, start) = before;
                     let end = (q, self.qdot_now);
-                    let crossed = run.rec.watch_hermite(model, (t_before, &start), (t, &end))?;
+                    let crossed = run
+                        .rec
+                        .watch_hermite(model, (t_before, &start), (t, &end))?;
                     match run.take((t, end.0, end.1), crossed, target) {
                         Flow::Go => {}
                         Flow::Stopped => return Ok(Advanced::Stopped),
