@@ -251,7 +251,8 @@
 //!   method, each one entry of the registry (`integrators/mod.rs`) that
 //!   generates [`Method`], [`AnyIntegrator`] and the lists: [`ExplicitEuler`],
 //!   [`SymplecticEuler`] and [`Rk4`] (fixed step), [`Dopri5`] (adaptive, the
-//!   default), [`Tsit5`] and [`Dop853`] (adaptive), [`ImplicitMidpoint`] and
+//!   default), [`Bs3`], [`Tsit5`] (each its coefficients over
+//!   `integrators/fsal.rs`) and [`Dop853`] (adaptive), [`ImplicitMidpoint`] and
 //!   [`GaussLegendre`] (implicit, fixed step, sharing `implicit_rk.rs`),
 //!   [`Variational`] (fixed step, structure preserving), [`Radau5`]
 //!   (adaptive, implicit, L-stable, for stiff models). [`Method`]'s table

@@ -343,16 +343,15 @@ fn impossible_tolerances_end_in_a_clear_error() {
     let min_rtol = 10.0 * f64::EPSILON;
     for method in Method::ADAPTIVE {
         let name = &format!("{method:?}");
-        let run = |rtol, atol| {
-            adaptive(
-                method,
-                (rtol, atol),
-                ADAPTIVE_BUDGET,
-                &spring,
-                released(),
-                &[10.0],
-            )
+        // A third-order pair at 10 ε takes steps of the order of
+        // (10 ε)^(1/3) (340 000 over these 10 s, measured), beyond the
+        // budget the others meet.
+        let budget = if method.order() < 5 {
+            100 * ADAPTIVE_BUDGET
+        } else {
+            ADAPTIVE_BUDGET
         };
+        let run = |rtol, atol| adaptive(method, (rtol, atol), budget, &spring, released(), &[10.0]);
         let failure = run(1e-20, 1e-20).expect_err(name);
         assert!(
             matches!(
@@ -447,14 +446,20 @@ fn impossible_tolerances_end_in_a_clear_error() {
 /// ones (tolerance 1e-10) wherever 25 attempts got them. The state at the
 /// stop is the method's own: within its error of `cos t` (first order:
 /// ≈ h t / 2 ≈ 1.3e-3, so 5e-3; second order: the phase error h² t / 12 ≈
-/// 2e-6, so 1e-5; the others, and the adaptive ones at 1e-10, 1e-6).
+/// 2e-6, so 1e-5; the others, and the adaptive ones at 1e-10, 1e-6). The
+/// third-order pair runs at 1e-6 instead, where 25 of its steps pass a
+/// sample (at 1e-10 its steps of about 1e-3 reach none), its state within
+/// 1e-4 (25 steps, each within the tolerance, with room for the error's
+/// growth over a quarter period).
 #[test]
 fn an_exhausted_step_budget_is_too_many_steps_with_the_samples_so_far() {
     let spring = unit_spring(1.0, 0.0);
     let times = samples();
-    let (h, tol, budget) = (0.01, 1e-10, 25);
+    let (h, budget) = (0.01, 25);
     for method in Method::ALL {
         let name = &format!("{method:?}");
+        let third_order = method.is_adaptive() && method.order() < 5;
+        let tol = if third_order { 1e-6 } else { 1e-10 };
         let run = if method.is_adaptive() {
             adaptive(method, (tol, tol), budget, &spring, released(), &times)
         } else {
@@ -497,6 +502,7 @@ fn an_exhausted_step_budget_is_too_many_steps_with_the_samples_so_far() {
         let allowed = match method.order() {
             1 => 5e-3,
             2 => 1e-5,
+            _ if third_order => 1e-4,
             _ => 1e-6,
         };
         assert!(error <= allowed, "{name}: error {error:e}");

@@ -43,6 +43,7 @@
 //! to choose, and what the implicit ones conserve, is in the
 //! [crate documentation](crate#choosing-a-method).
 
+pub mod fsal;
 mod implicit_rk;
 mod registry;
 mod stages;
@@ -50,6 +51,7 @@ mod stages;
 // One module per integrator, each named again by its registry entry below
 // (declared here, not by the registry's macro, so that rustfmt reaches
 // them: `.ci/run` checks every file).
+pub(crate) mod bs3;
 pub(crate) mod dop853;
 pub(crate) mod dopri5;
 pub(crate) mod euler;
@@ -100,6 +102,10 @@ registry! {
     variational::Variational {
         Variational = "variational", order 2, fixed, jacobians false, |h| Variational::new(h),
         "fixed step, implicit, symplectic in `(q, p)` for any `M(q)` | one `N × N` Newton solve per step | Exact discrete momentum maps (discrete Noether) and no energy drift, from the same Lagrangian.";
+    }
+    bs3::Bs3 {
+        Bs3 = "bs3", order 3, adaptive, jacobians false, |h| Bs3::new(),
+        "adaptive (estimate of order 2), cubic Hermite dense output | 3 | Loose tolerances, `1e-3` to `1e-6`: half Dopri5's evaluations a step (MATLAB's `ode23`).";
     }
     dopri5::Dopri5 {
         Dopri5 = "dopri5", order 5, adaptive, jacobians false, |h| Dopri5::new(),

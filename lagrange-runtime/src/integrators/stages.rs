@@ -170,14 +170,19 @@ where
     })
 }
 
-/// The settings of an explicit embedded pair `$ty<S>` (a struct with one
-/// field, `settings: Tolerances<S>`): `new` with the shared defaults
-/// (`rtol = atol = 1e-8`, raised to `100 ε` for scalar types with fewer
-/// digits; a budget of 100 000 steps), the three builders and `Default`.
-/// `$new` is the pair's own line on its defaults.
+/// The settings of an explicit embedded pair `$ty<S>` (a struct whose
+/// field `settings: Tolerances<S>` holds them): `new` with the shared
+/// defaults (`rtol = atol = 1e-8`, raised to `100 ε` for scalar types with
+/// fewer digits; a budget of 100 000 steps), the three builders and
+/// `Default`. `$new` is the pair's own line on its defaults. A generic
+/// settings type names its parameters in brackets and the initializers of
+/// its other fields in braces: `pair_settings!([T: Tr] Ty<T, S>, { f: v }, "…")`.
 macro_rules! pair_settings {
     ($ty:ident, $new:literal) => {
-        impl<S: RealField + Copy> $ty<S> {
+        $crate::integrators::stages::pair_settings!([] $ty<S>, {}, $new);
+    };
+    ([$($generics:tt)*] $ty:ty, { $($field:ident: $value:expr),* }, $new:literal) => {
+        impl<S: RealField + Copy, $($generics)*> $ty {
             #[doc = $new]
             pub fn new() -> Self {
                 let tol = $crate::driver::default_tolerance::<S>();
@@ -187,6 +192,7 @@ macro_rules! pair_settings {
                         atol: tol,
                         max_steps: 100_000,
                     },
+                    $($field: $value),*
                 }
             }
 
@@ -217,7 +223,7 @@ macro_rules! pair_settings {
             }
         }
 
-        impl<S: RealField + Copy> Default for $ty<S> {
+        impl<S: RealField + Copy, $($generics)*> Default for $ty {
             fn default() -> Self {
                 Self::new()
             }

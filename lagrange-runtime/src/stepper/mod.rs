@@ -19,8 +19,8 @@
 //!   kind of method (`driver/run.rs`), each call an advance to the frame's
 //!   time where `integrate` is one advance through the samples.
 //! - **The step size is kept** between calls by the adaptive methods
-//!   ([`Dopri5`], [`Dop853`], [`Radau5`], with its Jacobian and LU
-//!   factors): a frame shorter than the step the error control wants is one
+//!   ([`Bs3`], [`Dopri5`], [`Tsit5`], [`Dop853`], [`Radau5`], with its
+//!   Jacobian and LU factors): a frame shorter than the step the error control wants is one
 //!   shortened step that lands on the frame time, and the next frame starts
 //!   again from the step the control had chosen.
 //!   Fixed-step methods cut each frame into the fewest equal steps no longer
@@ -50,7 +50,7 @@
 //! ([`ExplicitEuler`], [`SymplecticEuler`], [`Rk4`], [`ImplicitMidpoint`],
 //! [`GaussLegendre`], [`Variational`]; the implicit ones' workspace and the
 //! variational step's history allocated in [`Stepper::new`]), the
-//! adaptive ones ([`Dopri5`], [`Dop853`], [`Radau5`], whose `O(N²)`
+//! adaptive ones ([`Bs3`], [`Dopri5`], [`Tsit5`], [`Dop853`], [`Radau5`], whose `O(N²)`
 //! workspace is allocated there too), and [`AnyIntegrator`], any of them
 //! chosen at run time. The variational step's state between frames is
 //! `(q, p)`: its `q̇` is worked out at each frame's end (one conversion,
@@ -98,7 +98,9 @@
 //! # Ok::<(), lagrange_runtime::IntegrationError<f64, 1>>(())
 //! ```
 //!
+//! [`Bs3`]: crate::integrators::Bs3
 //! [`Dopri5`]: crate::integrators::Dopri5
+//! [`Tsit5`]: crate::integrators::Tsit5
 //! [`Dop853`]: crate::integrators::Dop853
 //! [`ExplicitEuler`]: crate::integrators::ExplicitEuler
 //! [`SymplecticEuler`]: crate::integrators::SymplecticEuler

@@ -175,23 +175,26 @@ fn study<L: Lagrangian<N, Scalar = f64>, const N: usize>(p: &Problem<L, N>, runs
     bar.finish_and_clear();
 }
 
-/// The right-hand sides each fifth- or eighth-order pair needs to reach an
-/// error: between the two runs of the sweep whose errors bracket it, the
-/// evaluations interpolated linearly in log(error)–log(evaluations) (the
-/// the guide's table (docs/guides/README.md) of Tsit5 beside Dopri5 and Dop853).
+/// The right-hand sides each explicit pair (third, fifth or eighth order)
+/// needs to reach an error: between the two runs of the sweep whose errors
+/// bracket it, the evaluations interpolated linearly in
+/// log(error)–log(evaluations) (BENCHMARKS.md's table of the explicit
+/// pairs, and the methods guide's).
 fn pairs_at_equal_error(runs: &[Run]) {
     let cases = [
+        ("double_pendulum", 1e-2),
         ("double_pendulum", 1e-4),
         ("double_pendulum", 1e-8),
         ("kepler_e0.9", 1e-4),
         ("stiff_chain_1e6", 1e-4),
+        ("cartesian_pendulum", 1e-4),
         ("cartesian_pendulum", 1e-8),
         ("slider_crank", 1e-8),
     ];
     println!("\nEvaluations to reach an error (log-log interpolation):");
     println!(
-        "{:<20} {:>7} {:>9} {:>9} {:>9}",
-        "system", "error", "dopri5", "tsit5", "dop853"
+        "{:<20} {:>7} {:>9} {:>9} {:>9} {:>9}",
+        "system", "error", "bs3", "dopri5", "tsit5", "dop853"
     );
     for (system, target) in cases {
         let cell = |method: &str| -> String {
@@ -214,7 +217,8 @@ fn pairs_at_equal_error(runs: &[Run]) {
                 .unwrap_or_else(|| "-".into())
         };
         println!(
-            "{system:<20} {target:>7.0e} {:>9} {:>9} {:>9}",
+            "{system:<20} {target:>7.0e} {:>9} {:>9} {:>9} {:>9}",
+            cell("bs3"),
             cell("dopri5"),
             cell("tsit5"),
             cell("dop853")
