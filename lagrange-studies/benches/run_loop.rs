@@ -318,18 +318,41 @@ fn main() {
         println!("baseline {path}: {}", first.lines().next().unwrap_or(""));
     }
     println!();
-    println!("| problem | method | evaluations | ns per evaluation | baseline (ns) | ratio |");
-    println!("|---|---|---:|---:|---:|---:|");
+    // Each run against its problem's evaluation alone, in this run and in
+    // the baseline's: a machine slower for a while slows both alike, so
+    // this ratio moves less with the load than the times do.
+    let alone = |problem: &str, get: &dyn Fn(&str) -> Option<f64>| {
+        get(&format!("{problem}|evaluation alone"))
+    };
+    let here = |key: &str| table.iter().find(|r| r.0 == key).map(|r| r.2);
+    let there = |key: &str| baseline.as_ref().and_then(|(b, _)| b.get(key)).map(|b| b.0);
+    println!(
+        "| problem | method | evaluations | ns per evaluation | ÷ evaluation alone | baseline (ns) | ratio | ratio of the ÷ |"
+    );
+    println!("|---|---|---:|---:|---:|---:|---:|---:|");
     for (key, evals, ns) in &table {
         let (problem, method) = key.split_once('|').expect("problem|method");
-        let (base, ratio) = match baseline.as_ref().and_then(|(b, _)| b.get(key)) {
+        let per = alone(problem, &here).map(|a| ns / a);
+        let (base, ratio, relative) = match baseline.as_ref().and_then(|(b, _)| b.get(key)) {
             // A run whose evaluations moved is not the same work.
             Some(&(base, base_evals)) if base_evals == *evals => {
-                (format!("{base:.1}"), format!("{:.3}", ns / base))
+                let base_per = alone(problem, &there).map(|a| base / a);
+                let relative = match (per, base_per) {
+                    (Some(per), Some(base_per)) => format!("{:.3}", per / base_per),
+                    _ => "-".to_string(),
+                };
+                (format!("{base:.1}"), format!("{:.3}", ns / base), relative)
             }
-            Some(&(_, base_evals)) => (format!("{base_evals} evaluations"), "-".to_string()),
-            None => ("-".to_string(), "-".to_string()),
+            Some(&(_, base_evals)) => (
+                format!("{base_evals} evaluations"),
+                "-".to_string(),
+                "-".to_string(),
+            ),
+            None => ("-".to_string(), "-".to_string(), "-".to_string()),
         };
-        println!("| {problem} | {method} | {evals} | {ns:.1} | {base} | {ratio} |");
+        let per = per.map_or("-".to_string(), |p| format!("{p:.2}"));
+        println!(
+            "| {problem} | {method} | {evals} | {ns:.1} | {per} | {base} | {ratio} | {relative} |"
+        );
     }
 }
