@@ -36,8 +36,8 @@ use std::time::Instant;
 /// One row: a run of one method on one problem, timed as a whole.
 struct Row<'a> {
     key: String,
-    evals: usize,
-    /// One run, returning its evaluations.
+    /// One run, returning its evaluations (none is run before the rows
+    /// are chosen, so that `--only` runs only its own).
     run: Box<dyn FnMut() -> usize + 'a>,
 }
 
@@ -64,7 +64,6 @@ where
     };
     Row {
         key: format!("{problem}|{name}"),
-        evals: run(),
         run: Box::new(run),
     }
 }
@@ -85,7 +84,6 @@ fn evaluation<'a, L: Lagrangian<N, Scalar = f64>, const N: usize>(
     let calls = 20_000 / N.max(1);
     Row {
         key: format!("{problem}|evaluation alone"),
-        evals: calls,
         run: Box::new(move || {
             for k in 0..calls {
                 let (q, v) = &states[k & 63];
@@ -273,11 +271,13 @@ fn main() {
         }
         return;
     }
+    // Each row's evaluations, from a first run that also warms it.
+    let evals: Vec<usize> = all.iter_mut().map(|row| (row.run)()).collect();
     let mut best = vec![f64::INFINITY; all.len()];
     for _ in 0..rounds {
-        for (row, best) in all.iter_mut().zip(&mut best) {
+        for ((row, best), &evals) in all.iter_mut().zip(&mut best).zip(&evals) {
             let start = Instant::now();
-            let evals = (row.run)();
+            (row.run)();
             let ns = start.elapsed().as_secs_f64() * 1e9 / evals as f64;
             *best = best.min(ns);
         }
@@ -285,7 +285,8 @@ fn main() {
     let table: Vec<(String, usize, f64)> = all
         .iter()
         .zip(&best)
-        .map(|(r, &ns)| (r.key.clone(), r.evals, ns))
+        .zip(&evals)
+        .map(|((r, &ns), &evals)| (r.key.clone(), evals, ns))
         .collect();
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     let header = format!(

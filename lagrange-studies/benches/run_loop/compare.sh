@@ -2,30 +2,39 @@
 # The run loop's time per evaluation at REV against the work tree, both
 # builds timed in one run, interleaved: ROUNDS times, each build runs every
 # row once, and each row keeps its best. A slow spell of the machine then
-# falls on both builds alike, so a change of a few percent shows (a stored
-# baseline, taken under another load, cannot tell 5 % from the noise).
+# falls on both builds alike (a stored baseline, taken under another load,
+# cannot tell 5 % from the noise; BENCHMARKS.md, "The run loop's
+# baseline").
 #
-#   lagrange-studies/benches/run_loop/compare.sh REV [ROUNDS] [--instructions] [--only TEXT]
+#   lagrange-studies/benches/run_loop/compare.sh REV [ROUNDS] [--instructions] [--only TEXT] [--seed]
 #
-# REV must have benches/run_loop.rs. With --instructions (needs valgrind),
-# also each row's instructions per evaluation under cachegrind, which the
-# machine's load does not move. Builds REV in a temporary worktree, into
-# this repo's target directory; prints a markdown table, last column
+# The rows are benches/run_loop.rs's, which REV must have; with --seed,
+# the seed double pendulum's runs by Dop853 and Dopri5 alone (seed/, a
+# scratch crate that builds against any commit, older ones included).
+# With --instructions (needs valgrind), also each row's instructions per
+# evaluation under cachegrind, which the machine's load does not move.
+# Builds REV in a temporary worktree; prints a markdown table, the ratio
 # work tree / REV.
 set -euo pipefail
-rev=${1:?usage: compare.sh REV [ROUNDS] [--instructions] [--only TEXT]}
+rev=${1:?usage: compare.sh REV [ROUNDS] [--instructions] [--only TEXT] [--seed]}
 shift
 rounds=10
 instructions=0
+seed=0
 only=()
 while [ $# -gt 0 ]; do
   case $1 in
     --instructions) instructions=1 ;;
-    --only) only=(--only "$2"); shift ;;
+    --seed) seed=1 ;;
+    --only)
+      only=(--only "$2")
+      shift
+      ;;
     *) rounds=$1 ;;
   esac
   shift
 done
+here=$(cd "$(dirname "$0")" && pwd)
 root=$(git rev-parse --show-toplevel)
 work=$(mktemp -d)
 cleanup() {
@@ -35,41 +44,70 @@ cleanup() {
 trap cleanup EXIT
 git -C "$root" worktree add --detach "$work/base" "$rev" >/dev/null
 
-# The bench's executable, built from the tree in $1, copied to $2.
+# The executable for the tree in $1, copied to $2.
 build() {
   local exe
-  exe=$(cd "$1" && CARGO_TARGET_DIR="$root/target" cargo bench -p lagrange-studies --bench run_loop --no-run 2>&1 \
-    | sed -n 's/.*Executable .*(\(.*\)).*/\1/p' | tail -n 1)
-  [ -n "$exe" ] || { echo "no run_loop bench built from $1" >&2; exit 1; }
-  case $exe in /*) ;; *) exe="$1/$exe" ;; esac
+  if [ "$seed" = 1 ]; then
+    local crate="$work/seed-$(basename "$2" .bin)"
+    mkdir -p "$crate/src"
+    sed "s|@LAGRANGE@|$1|" "$here/seed/Cargo.toml.in" >"$crate/Cargo.toml"
+    cp "$here/seed/main.rs" "$crate/src/main.rs"
+    cargo build --release --quiet --manifest-path "$crate/Cargo.toml" --target-dir "$root/target/run_loop_seed"
+    exe="$root/target/run_loop_seed/release/run_loop_seed"
+  else
+    exe=$(cd "$1" && CARGO_TARGET_DIR="$root/target" cargo bench -p lagrange-studies --bench run_loop --no-run 2>&1 |
+      sed -n 's/.*Executable .*(\(.*\)).*/\1/p' | tail -n 1)
+    [ -n "$exe" ] || {
+      echo "no run_loop bench built from $1" >&2
+      exit 1
+    }
+    case $exe in /*) ;; *) exe="$1/$exe" ;; esac
+  fi
   cp "$exe" "$2"
 }
 build "$work/base" "$work/base.bin"
 build "$root" "$work/head.bin"
 
+# One round of every row: key, evaluations, ns per evaluation.
+rows() {
+  if [ "$seed" = 1 ]; then
+    "$1" 1 | awk -F'\t' '{ printf "seed double pendulum|%s\t%s\t%.3f\n", $1, $2, $3 * 1e6 / $2 }'
+  else
+    "$1" --bench --raw --rounds 1 "${only[@]}"
+  fi
+}
 for _ in $(seq "$rounds"); do
-  "$work/base.bin" --bench --raw --rounds 1 "${only[@]}" >>"$work/base.tsv"
-  "$work/head.bin" --bench --raw --rounds 1 "${only[@]}" >>"$work/head.tsv"
+  rows "$work/base.bin" >>"$work/base.tsv"
+  rows "$work/head.bin" >>"$work/head.tsv"
 done
 
 # Instructions per evaluation of each row, counted by cachegrind.
 count() {
-  "$1" --bench --once "${only[@]}" | while IFS=$'\t' read -r key evals; do
+  local bin=$1
+  cut -f1,2 "$2" | sort -u | while IFS=$'\t' read -r key evals; do
+    local args=(--bench --once --only "$key")
+    if [ "$seed" = 1 ]; then
+      read -r -a args <<<"${key#*|}"
+    fi
     ir=$(valgrind --tool=cachegrind --cache-sim=no --cachegrind-out-file=/dev/null \
-      "$1" --bench --once --only "$key" 2>&1 >/dev/null | sed -n 's/.*I *refs: *//p' | tr -d ',')
+      "$bin" "${args[@]}" 2>&1 >/dev/null | sed -n 's/.*I *refs: *//p' | tr -d ',')
     printf '%s\t%s\n' "$key" "$(awk -v i="$ir" -v e="$evals" 'BEGIN{printf "%.1f", i/e}')"
   done
 }
 if [ "$instructions" = 1 ]; then
-  command -v valgrind >/dev/null || { echo "--instructions needs valgrind" >&2; exit 1; }
-  count "$work/base.bin" >"$work/base.ir"
-  count "$work/head.bin" >"$work/head.ir"
+  command -v valgrind >/dev/null || {
+    echo "--instructions needs valgrind" >&2
+    exit 1
+  }
+  count "$work/base.bin" "$work/base.tsv" >"$work/base.ir"
+  count "$work/head.bin" "$work/head.tsv" >"$work/head.ir"
 else
   : >"$work/base.ir"
   : >"$work/head.ir"
 fi
 
-echo "# $rev against the work tree ($(git -C "$root" rev-parse --short HEAD)$(git -C "$root" diff --quiet HEAD || echo +)), best of $rounds interleaved rounds, load average $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
+dirty=$(git -C "$root" diff --quiet HEAD || echo +)
+echo "# $rev against the work tree ($(git -C "$root" rev-parse --short HEAD)$dirty), best of $rounds interleaved rounds, load average $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
 echo
 echo "| problem | method | evaluations | $rev (ns) | work tree (ns) | ratio | $rev (instructions) | work tree (instructions) |"
 echo "|---|---|---:|---:|---:|---:|---:|---:|"
