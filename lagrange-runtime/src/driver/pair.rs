@@ -324,13 +324,18 @@ trait Pairing<S: RealField + Copy, const N: usize> {
     /// The pair anew from `(q̇, q̈)` at a start ([`Embedded::pair`]).
     fn start(&mut self, qdot: &SVector<S, N>, qddot: &SVector<S, N>);
 
-    /// [`EmbeddedPair::attempt`], keeping an accepted step.
+    /// [`EmbeddedPair::attempt`], keeping an accepted step; `None` where
+    /// it failed, its error kept for [`failure`](Pairing::failure) (the
+    /// outcome alone, a few words, comes back in registers).
     fn attempt(
         &mut self,
         rec: &mut Recorder<'_, S, N>,
         times: (S, S, S),
         state: (&SVector<S, N>, &SVector<S, N>),
-    ) -> Result<Outcome<S, ()>, IntegrationError<S, N>>;
+    ) -> Option<Outcome<S, ()>>;
+
+    /// The error of the last attempt that failed.
+    fn failure(&mut self) -> IntegrationError<S, N>;
 
     /// The state at the end of the accepted step.
     fn end(&self) -> State<S, N>;
@@ -353,6 +358,7 @@ where
     model: &'a L,
     step: Option<<M::Pair as EmbeddedPair<S, N>>::Step>,
     dense: Option<<M::Pair as EmbeddedPair<S, N>>::Dense>,
+    failure: Option<IntegrationError<S, N>>,
 }
 
 impl<S, M, L, const N: usize> Bound<'_, S, M, L, N>
@@ -386,16 +392,24 @@ where
         rec: &mut Recorder<'_, S, N>,
         times: (S, S, S),
         state: (&SVector<S, N>, &SVector<S, N>),
-    ) -> Result<Outcome<S, ()>, IntegrationError<S, N>> {
+    ) -> Option<Outcome<S, ()>> {
         let model = self.model;
-        Ok(match self.pair().attempt(rec, model, times, state)? {
-            Outcome::Rejected { err } => Outcome::Rejected { err },
-            Outcome::Accepted { step, err } => {
+        Some(match self.pair().attempt(rec, model, times, state) {
+            Ok(Outcome::Rejected { err }) => Outcome::Rejected { err },
+            Ok(Outcome::Accepted { step, err }) => {
                 self.step = Some(step);
                 self.dense = None;
                 Outcome::Accepted { step: (), err }
             }
+            Err(error) => {
+                self.failure = Some(error);
+                return None;
+            }
         })
+    }
+
+    fn failure(&mut self) -> IntegrationError<S, N> {
+        self.failure.take().expect("read after a failed attempt")
     }
 
     fn end(&self) -> State<S, N> {
@@ -444,6 +458,7 @@ where
             model,
             step: None,
             dense: None,
+            failure: None,
         };
         self.course.advance(run, model, &mut bound, target)
     }
@@ -516,14 +531,14 @@ impl<S: RealField + Copy> Course<S> {
             let step = self.control.attempt(t, h, target);
             let (t_new, h_try) = (step.t_new, step.h);
             let err = match pairing.attempt(&mut run.rec, (t, t_new, h_try), (&q, &qdot)) {
-                Ok(Outcome::Accepted { step: (), err }) => err,
-                Ok(Outcome::Rejected { err }) => {
+                Some(Outcome::Accepted { step: (), err }) => err,
+                Some(Outcome::Rejected { err }) => {
                     run.rec.stats.steps_rejected += 1;
                     self.control.reject(&step, err);
                     continue;
                 }
-                Err(error) => {
-                    stage_failure = Some(error);
+                None => {
+                    stage_failure = Some(pairing.failure());
                     run.rec.stats.steps_rejected += 1;
                     self.control.fail(&step);
                     continue;
