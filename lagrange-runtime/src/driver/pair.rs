@@ -1,9 +1,14 @@
-//! The embedded-pair kind ([`Dopri5`] and [`Dop853`]): Hairer's step loop
-//! with its stabilized step-size control, the step budget, the underflow
-//! check, and samples from the continuous extension, resumable, so that the
-//! methods only supply their stages, error estimate and dense output.
+//! The embedded-pair kind ([`Bs3`], [`Dopri5`], [`Tsit5`] and [`Dop853`]):
+//! Hairer's step loop with its stabilized step-size control (its rules,
+//! [`StepControl`], also step the
+//! [`AdaptiveEnsemble`](crate::ensemble::AdaptiveEnsemble)), the step
+//! budget, the underflow check, and samples from the continuous extension,
+//! resumable, so that the methods only supply their stages, error estimate
+//! and dense output.
 //!
+//! [`Bs3`]: crate::integrators::Bs3
 //! [`Dopri5`]: crate::integrators::Dopri5
+//! [`Tsit5`]: crate::integrators::Tsit5
 //! [`Dop853`]: crate::integrators::Dop853
 
 use nalgebra::{RealField, SVector};

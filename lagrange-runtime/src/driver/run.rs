@@ -7,7 +7,7 @@
 //!
 //! The kinds, each a [`Walk`]: fixed steps (`fixed.rs`: the explicit
 //! methods and the Gauss collocation methods), embedded pairs (`pair.rs`:
-//! Dopri5, Dop853), the implicit adaptive method (Radau5,
+//! Bs3, Dopri5, Tsit5, Dop853), the implicit adaptive method (Radau5,
 //! `integrators/radau5/walk.rs`) and the variational step
 //! (`integrators/variational/walk.rs`).
 
