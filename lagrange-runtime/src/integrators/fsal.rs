@@ -4,9 +4,8 @@
 //! continuous extension, its step-size controller) and a type alias,
 //! `Fsal<Its, S, K, P>`. Everything else — the settings and their
 //! builders, the [`StepMethod`], the pair the driver's loop steps
-//! ([`driver::pair`](crate::driver::pair)), the stages over
-//! [`stages.rs`](super::stages), the error test and the continuous
-//! extension — is here, once. [`Tsit5`](super::Tsit5) and
+//! (`driver/pair.rs`), the stages over `integrators/stages.rs`, the error
+//! test and the continuous extension — is here, once. [`Tsit5`](super::Tsit5) and
 //! [`Bs3`](super::Bs3) are such pairs. [`Dopri5`](super::Dopri5) keeps its
 //! own continuous extension (Hairer's `d` coefficients, whose order of
 //! operations its recorded results hold) and [`Dop853`](super::Dop853)
