@@ -37,7 +37,7 @@
 //!
 //! Integrating `q̈` keeps `φ̈ = 0` only to the method's error, so `φ` and `φ̇`
 //! drift away from zero, linearly and quadratically in time. A model has
-//! the default, and [`Holonomic::with_drift`] layers another on it
+//! the default, and [`WithLayers::with_drift`](crate::model::WithLayers::with_drift) layers another on it
 //! ([`Constrained`]); the run reads it from the model's visit
 //! ([`Visitor::visit`]'s settings):
 //!
@@ -83,7 +83,7 @@
 //! `100 ε (‖G_i‖₁ ‖q̇‖∞ + |∂φ_i/∂t|)`: the rounding of evaluating them,
 //! whatever the units. A consistent start is integrated as given. An
 //! inconsistent one is, as the run's [`ConstraintSettings::initial`] says
-//! ([`Holonomic::with_initial_conditions`]), projected
+//! ([`WithLayers::with_initial_conditions`](crate::model::WithLayers::with_initial_conditions)), projected
 //! as after a step ([`InitialConditions::Project`], the default; the
 //! sizes of the corrections are in [`Stats`](crate::Stats), and the sample
 //! at `t0` is the corrected state), or refused with
@@ -125,6 +125,5 @@ pub use crate::dynamics::saddle::Multipliers;
 #[doc(no_inline)]
 pub use crate::model::Lagrangian;
 pub use crate::model::constraints::{Holonomic, Visitor};
-pub use crate::model::settings::{
-    Constrained, ConstraintHandling, ConstraintSettings, Drift, InitialConditions,
-};
+pub use crate::model::handling::{Constrained, ConstraintHandling};
+pub use crate::model::settings::{ConstraintSettings, Drift, InitialConditions};

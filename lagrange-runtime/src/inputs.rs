@@ -13,7 +13,7 @@
 //!
 //! - **constant inputs**: [`model.with_inputs(&u)`](Actuated::with_inputs),
 //!   integrated like any model;
-//! - **a controller**: [`model.with_controller(|t, q, qdot| u)`](Actuated::with_controller),
+//! - **a controller**: [`model.with_controller(|t, q, qdot| u)`](crate::model::WithLayers::with_controller),
 //!   a [`Controlled`] model (the model under the [`Controller`] layer) that
 //!   calls the controller once per evaluation of the right-hand side and
 //!   integrates like any model. A prescribed input

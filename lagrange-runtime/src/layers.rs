@@ -107,3 +107,83 @@ fn every_module_imports_only_from_the_layers_below_it() {
     }
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
 }
+
+/// The files of `model/`: the contract (what a model is and can do, and
+/// the data it is read as), then the layers over it. A contract file names
+/// no layer, so that the contract has no import circle through them and a
+/// layer is added without touching it.
+const MODEL_CONTRACT: &[&str] = &[
+    "mod",
+    "constraints",
+    "inputs",
+    "lets",
+    "parameters",
+    "settings",
+    "reference",
+];
+const MODEL_LAYERS: &[&str] = &["layer", "controller", "handling", "passed_on", "with"];
+
+/// The `model/` modules a file's code names, as `super::x` or
+/// `crate::model::x` (comments skipped; the module root's `mod` and
+/// `pub use` lines declare and re-export, they import nothing).
+fn model_modules_named(source: &str) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    for line in source.lines() {
+        let code = line.split("//").next().unwrap_or("");
+        let declaration = code.trim_start();
+        if declaration.starts_with("pub use ")
+            || declaration.starts_with("mod ")
+            || declaration.starts_with("pub mod ")
+            || declaration.starts_with("pub(crate) mod ")
+        {
+            continue;
+        }
+        for prefix in ["super::", "crate::model::"] {
+            let mut rest = code;
+            while let Some(at) = rest.find(prefix) {
+                rest = &rest[at + prefix.len()..];
+                let names: Vec<&str> = match rest.strip_prefix('{') {
+                    Some(group) => group[..group.find('}').unwrap_or(group.len())]
+                        .split(',')
+                        .map(|item| item.trim().split("::").next().unwrap_or(""))
+                        .collect(),
+                    None => vec![
+                        rest.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                            .next()
+                            .unwrap_or(""),
+                    ],
+                };
+                out.extend(names.into_iter().map(|n| n.trim().to_string()));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn the_model_contract_names_no_layer() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/model");
+    let mut files = Vec::new();
+    sources(&dir, &mut files);
+    let mut wrong = Vec::new();
+    for (path, text) in &files {
+        let name = Path::new(path)
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("");
+        let known = MODEL_CONTRACT.contains(&name) || MODEL_LAYERS.contains(&name);
+        if !known {
+            wrong.push(format!("model/{name}.rs is neither contract nor layer"));
+        }
+        if MODEL_CONTRACT.contains(&name) {
+            for named in model_modules_named(text) {
+                if MODEL_LAYERS.contains(&named.as_str()) {
+                    wrong.push(format!(
+                        "model/{name}.rs (contract) names the layer `{named}`"
+                    ));
+                }
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}

@@ -318,7 +318,7 @@ pub use inputs::Actuated;
 pub use integrators::StepMethod;
 pub use integrators::all::*;
 pub use integrators::{AnyIntegrator, Integrator, LaneStep, Method, integrate};
-pub use model::{Lagrangian, ParameterDerivatives, lets};
+pub use model::{Lagrangian, ParameterDerivatives, WithLayers, lets};
 pub use nalgebra;
 /// The ode_solvers crate (feature `ode_solvers`), for its solvers beside
 /// [`interop::ode_solvers`].
@@ -333,6 +333,6 @@ pub mod prelude {
     pub use crate::integrators::all::*;
     pub use crate::{
         Actuated, Event, Events, Failure, Holonomic, IntegrationError, Integrator, Lagrangian,
-        StepMethod, Stepper, Trajectory, integrate,
+        StepMethod, Stepper, Trajectory, WithLayers, integrate,
     };
 }

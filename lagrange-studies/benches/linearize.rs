@@ -16,11 +16,11 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use criterion::{Criterion, criterion_group};
-use lagrange::Lagrangian;
 use lagrange::analysis::linearize;
 use lagrange::dynamics::acceleration;
 use lagrange::lagrangian;
 use lagrange::nalgebra::{SMatrix, SVector};
+use lagrange::{Lagrangian, WithLayers};
 use num_dual::{DualSVec64, jacobian};
 
 lagrangian! {

@@ -153,7 +153,7 @@ use crate::model::Lagrangian;
 /// ```
 /// use lagrange::models::DoublePendulum;
 /// use lagrange_runtime::analysis::{linearize, Derivatives};
-/// use lagrange_runtime::Lagrangian;
+/// use lagrange_runtime::WithLayers;
 /// use lagrange_runtime::nalgebra::Vector2;
 ///
 /// let (q, v) = (Vector2::new(0.1, 0.2), Vector2::zeros());

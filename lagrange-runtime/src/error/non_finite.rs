@@ -27,7 +27,7 @@ pub enum NonFiniteValue {
     /// returned by the model.
     Constraints,
     /// The control inputs `u` a controller returned
-    /// ([`Actuated::with_controller`](crate::model::inputs::Actuated::with_controller)).
+    /// ([`WithLayers::with_controller`](crate::model::WithLayers::with_controller)).
     Inputs,
     /// An [event](crate::events) function's value `g(t, q, q̇)`.
     EventFunction,

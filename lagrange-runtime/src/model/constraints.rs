@@ -5,10 +5,7 @@
 use nalgebra::{RealField, SMatrix, SVector};
 
 use super::Lagrangian;
-use super::layer::Layered;
-use super::settings::{
-    Constrained, ConstraintHandling, ConstraintSettings, Drift, InitialConditions,
-};
+use super::settings::ConstraintSettings;
 
 /// A model with `C` holonomic constraints `φ(t, q) = 0` on its `N`
 /// coordinates (`C < N`).
@@ -122,25 +119,6 @@ pub trait Holonomic<const N: usize, const C: usize>: Lagrangian<N> {
     #[inline]
     fn has_velocity_constraints(&self) -> bool {
         self.velocity_constraint_rows().contains(&true)
-    }
-
-    /// This model with another drift control, for its runs:
-    /// `method.integrate(&model.with_drift(Drift::None), ..)`. The model
-    /// is taken by value (a model from `lagrangian!` is `Copy`; borrow one
-    /// that is not: `(&model).with_drift(..)`).
-    fn with_drift(self, drift: Drift<Self::Scalar>) -> Constrained<Self, Self::Scalar>
-    where
-        Self: Sized,
-    {
-        Layered::new(self, ConstraintHandling::default()).drift(drift)
-    }
-
-    /// This model with another rule for inconsistent initial conditions.
-    fn with_initial_conditions(self, initial: InitialConditions) -> Constrained<Self, Self::Scalar>
-    where
-        Self: Sized,
-    {
-        Layered::new(self, ConstraintHandling::default()).initial_conditions(initial)
     }
 }
 

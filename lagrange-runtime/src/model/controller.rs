@@ -13,7 +13,7 @@ use crate::model::{Layer, Layered};
 
 /// The layer that sets a model's `K` inputs to `controller(t, q, q̇)` at
 /// every evaluation: the model is copied, its inputs set, and the
-/// evaluation made by the copy. Built by [`Actuated::with_controller`].
+/// evaluation made by the copy. Built by [`WithLayers::with_controller`](crate::model::WithLayers::with_controller).
 ///
 /// The controller is called once per right-hand side
 /// ([`mass_matrix_and_forcing`](crate::model::Lagrangian::mass_matrix_and_forcing);
@@ -67,7 +67,7 @@ impl<F, const K: usize> core::fmt::Debug for Controller<F, K> {
 
 /// A model whose `K` inputs are `controller(t, q, q̇)` at every
 /// evaluation: the model under the [`Controller`] layer. Build it with
-/// [`Actuated::with_controller`] and integrate it like the model itself.
+/// [`WithLayers::with_controller`](crate::model::WithLayers::with_controller) and integrate it like the model itself.
 pub type Controlled<M, F, const K: usize> = Layered<M, Controller<F, K>>;
 
 impl<M, F, const K: usize> Layered<M, Controller<F, K>> {

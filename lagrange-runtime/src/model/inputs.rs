@@ -6,14 +6,11 @@
 use nalgebra::{RealField, SMatrix, SVector};
 
 use super::Lagrangian;
-use super::controller::{Controlled, Controller};
-use super::layer::{FiniteDifferences, Layer, Layered};
-use super::settings::ConstraintHandling;
 
 /// What the runtime reads of a model's `K` control inputs: their names,
 /// the values the model evaluates with at a state, and the values it
 /// holds, if it holds them. Every [`Actuated`] model is one; so is a model
-/// under a [`Controller`], whose inputs are the controller's.
+/// under a [`Controller`](crate::inputs::Controller), whose inputs are the controller's.
 pub trait Inputs<const N: usize, const K: usize>: Lagrangian<N> {
     /// Names of the inputs, in the order of `u`.
     const NAMES: [&'static str; K];
@@ -71,7 +68,7 @@ pub trait Visitor<S: RealField + Copy, const N: usize> {
 /// A hand-written implementation must keep the inputs out of
 /// [`mass_matrix`](Lagrangian::mass_matrix),
 /// [`momentum`](Lagrangian::momentum) and the constraints, which a
-/// [`Controlled`] model evaluates without its controller (they take no
+/// [`Controlled`](crate::inputs::Controlled) model evaluates without its controller (they take no
 /// `q̇`, or are checked free of inputs by the macro).
 pub trait Actuated<const N: usize, const K: usize>: Lagrangian<N> {
     /// Names of the inputs, in the order of `u` (an indexed input `tau[3]`
@@ -105,64 +102,15 @@ pub trait Actuated<const N: usize, const K: usize>: Lagrangian<N> {
         q: &SVector<Self::Scalar, N>,
         qdot: &SVector<Self::Scalar, N>,
     ) -> SMatrix<Self::Scalar, N, K>;
-
-    /// This model driven by `controller`, which maps `(t, q, q̇)` to the
-    /// inputs `u` at each evaluation of the right-hand side: integrate the
-    /// [`Controlled`] model it returns like the model itself. The model is
-    /// taken by value and copied per evaluation with the controller's
-    /// inputs set, so it must be `Copy` (generated models are).
-    ///
-    /// A prescribed input `u(t)` is a controller that ignores the state:
-    /// `model.with_controller(|t, _, _| Vector1::new(t.sin()))`.
-    fn with_controller<F>(self, controller: F) -> Controlled<Self, F, K>
-    where
-        Self: Copy + Sized,
-        F: Fn(
-            Self::Scalar,
-            &SVector<Self::Scalar, N>,
-            &SVector<Self::Scalar, N>,
-        ) -> SVector<Self::Scalar, K>,
-    {
-        Layered::new(self, Controller::new(controller))
-    }
 }
 
 /// A layer that leaves the inputs alone: a model under it is
 /// [`Actuated`] as the model is, so that a controller can go on top of it
-/// (`model.with_drift(..).with_controller(..)`). Not a [`Controller`]: a
-/// controlled model's inputs are the controller's, never set by hand.
+/// (`model.with_drift(..).with_controller(..)`). Not a
+/// [`Controller`](crate::inputs::Controller): a controlled model's inputs
+/// are the controller's, never set by hand. Each such layer says so beside
+/// itself.
 pub trait KeepsInputs {}
-
-impl<S> KeepsInputs for ConstraintHandling<S> {}
-impl KeepsInputs for FiniteDifferences {}
-
-impl<M, A, const N: usize, const K: usize> Actuated<N, K> for Layered<M, A>
-where
-    M: Actuated<N, K>,
-    A: Layer<M, N> + KeepsInputs,
-{
-    const INPUTS: [&'static str; K] = M::INPUTS;
-
-    #[inline]
-    fn inputs(&self) -> SVector<Self::Scalar, K> {
-        self.model().inputs()
-    }
-
-    #[inline]
-    fn set_inputs(&mut self, u: &SVector<Self::Scalar, K>) {
-        self.model_mut().set_inputs(u);
-    }
-
-    #[inline]
-    fn input_jacobian(
-        &self,
-        t: Self::Scalar,
-        q: &SVector<Self::Scalar, N>,
-        qdot: &SVector<Self::Scalar, N>,
-    ) -> SMatrix<Self::Scalar, N, K> {
-        self.model().input_jacobian(t, q, qdot)
-    }
-}
 
 /// The names of `model`'s inputs, if it holds inputs that were never set
 /// (not finite): refused before a run's first step. `None` for a model

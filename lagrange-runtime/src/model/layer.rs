@@ -11,14 +11,14 @@ use nalgebra::{RealField, SMatrix, SVector};
 
 use super::Lagrangian;
 use crate::model::constraints::{Holonomic, Visitor as ConstraintVisitor};
-use crate::model::inputs::Visitor as InputVisitor;
+use crate::model::inputs::{KeepsInputs, Visitor as InputVisitor};
 use crate::model::lets::Visitor as LetVisitor;
 use crate::model::settings::ConstraintSettings;
 
 /// A model `M` with a [`Layer`] `A` that changes one of its capabilities:
-/// another drift control ([`Holonomic::with_drift`]), a controller
-/// ([`Actuated::with_controller`](crate::model::inputs::Actuated::with_controller)), no
-/// exact Jacobians ([`Lagrangian::without_jacobians`]). Integrate it like
+/// another drift control ([`WithLayers::with_drift`](crate::model::WithLayers::with_drift)), a controller
+/// ([`WithLayers::with_controller`](crate::model::WithLayers::with_controller)), no
+/// exact Jacobians ([`WithLayers::without_jacobians`](crate::model::WithLayers::without_jacobians)). Integrate it like
 /// the model itself; layers nest in any order
 /// (`model.with_controller(..).with_drift(..)`), the outer one applied
 /// last.
@@ -148,10 +148,14 @@ pub trait Layer<M: Lagrangian<N>, const N: usize>: Sized {
     }
 }
 
-/// The layer of [`Lagrangian::without_jacobians`]: the residual Jacobians
+/// The layer of [`WithLayers::without_jacobians`](crate::model::WithLayers::without_jacobians): the residual Jacobians
 /// are taken by finite differences of the acceleration.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct FiniteDifferences;
+
+/// Differences of the Jacobians change no input: a controller can go on
+/// top.
+impl KeepsInputs for FiniteDifferences {}
 
 impl<M: Lagrangian<N>, const N: usize> Layer<M, N> for FiniteDifferences {
     #[inline]
@@ -168,7 +172,7 @@ impl<M: Lagrangian<N>, const N: usize> Layer<M, N> for FiniteDifferences {
 }
 
 /// A model seen without its exact residual Jacobians:
-/// [`Lagrangian::without_jacobians`].
+/// [`WithLayers::without_jacobians`](crate::model::WithLayers::without_jacobians).
 pub type WithoutJacobians<M> = Layered<M, FiniteDifferences>;
 
 /// NaN in every entry: what an evaluation returns where no model answers.
@@ -367,10 +371,6 @@ where
     #[inline]
     fn parameters_are_finite(&self) -> bool {
         self.model.parameters_are_finite()
-    }
-
-    fn without_jacobians(self) -> Layered<Self, FiniteDifferences> {
-        Layered::new(self, FiniteDifferences)
     }
 }
 
@@ -597,9 +597,6 @@ where
     #[inline]
     fn parameters_are_finite(&self) -> bool {
         self.dynamics.parameters_are_finite()
-    }
-    fn without_jacobians(self) -> Layered<Self, FiniteDifferences> {
-        Layered::new(self, FiniteDifferences)
     }
 }
 

@@ -28,9 +28,9 @@
 //!
 //! # Layers
 //!
-//! A model with another drift control ([`Holonomic::with_drift`](crate::model::constraints::Holonomic::with_drift)),
-//! driven by a controller ([`Actuated::with_controller`](crate::model::inputs::Actuated::with_controller))
-//! or seen without its exact Jacobians ([`Lagrangian::without_jacobians`])
+//! A model with another drift control ([`WithLayers::with_drift`]),
+//! driven by a controller ([`WithLayers::with_controller`])
+//! or seen without its exact Jacobians ([`WithLayers::without_jacobians`])
 //! is a [`Layered`] model: the model and a [`Layer`] that changes one
 //! capability. Every other capability is passed on by `Layered`'s one
 //! implementation of this trait, so a layer cannot lose what it does not
@@ -40,15 +40,19 @@ use nalgebra::{RealField, SMatrix, SVector};
 
 pub(crate) mod constraints;
 pub(crate) mod controller;
+pub(crate) mod handling;
 pub(crate) mod inputs;
 pub(crate) mod layer;
 pub mod lets;
 pub(crate) mod parameters;
+mod passed_on;
 mod reference;
 pub(crate) mod settings;
+mod with;
 
 pub use layer::{At, FiniteDifferences, Layer, Layered, WithoutJacobians};
 pub use parameters::ParameterDerivatives;
+pub use with::WithLayers;
 
 /// A mechanical system written as `M(t, q) q̈ = f(t, q, q̇)`: the contract
 /// between a model and everything that runs it.
@@ -289,17 +293,6 @@ pub trait Lagrangian<const N: usize> {
     /// reject a model with a NaN or infinite parameter before the first step.
     fn parameters_are_finite(&self) -> bool {
         true
-    }
-
-    /// This model without its exact [`residual_jacobians`](Self::residual_jacobians):
-    /// the implicit methods and the linearizations take theirs by finite
-    /// differences instead, the path of a model written without
-    /// `#[lagrange(jacobians)]`. Everything else is the model's own.
-    fn without_jacobians(self) -> Layered<Self, FiniteDifferences>
-    where
-        Self: Sized,
-    {
-        Layered::new(self, FiniteDifferences)
     }
 }
 

@@ -5,7 +5,6 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::Lagrangian;
-use super::layer::{FiniteDifferences, Layered};
 use crate::model::constraints::{Holonomic, Visitor as ConstraintVisitor};
 use crate::model::inputs::Visitor as InputVisitor;
 use crate::model::lets::Visitor as LetVisitor;
@@ -133,9 +132,6 @@ impl<L: Lagrangian<N> + ?Sized, const N: usize> Lagrangian<N> for &L {
     #[inline]
     fn parameters_are_finite(&self) -> bool {
         (**self).parameters_are_finite()
-    }
-    fn without_jacobians(self) -> Layered<Self, FiniteDifferences> {
-        Layered::new(self, FiniteDifferences)
     }
 }
 

@@ -2,7 +2,7 @@
 //! there is none to find.
 
 use lagrange::models::{CartPole, CartesianPendulum, DoublePendulum};
-use lagrange_runtime::Lagrangian;
+use lagrange_runtime::WithLayers;
 use lagrange_runtime::analysis::{
     AnalysisError, EquilibriumSearch, equilibrium, is_equilibrium, linearize,
 };

@@ -2,10 +2,10 @@
 //! accelerations.
 
 use lagrange::models::DoublePendulum;
-use lagrange_runtime::Lagrangian;
 use lagrange_runtime::analysis::{AnalysisError, Derivatives, linearize};
 use lagrange_runtime::linalg::mass::solve_mass_matrix;
 use lagrange_runtime::nalgebra::{Matrix2, Vector2};
+use lagrange_runtime::{Lagrangian, WithLayers};
 
 use super::{Rng, differences};
 

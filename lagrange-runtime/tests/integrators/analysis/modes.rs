@@ -1,7 +1,7 @@
 //! Normal modes against closed forms; points that have none refused.
 
 use lagrange::models::{DoublePendulum, TwoMassChain};
-use lagrange_runtime::Lagrangian;
+use lagrange_runtime::WithLayers;
 use lagrange_runtime::analysis::{AnalysisError, Derivatives, ModeKind, Modes, modes};
 use lagrange_runtime::nalgebra::{Matrix2, Vector2};
 
