@@ -83,7 +83,7 @@ pub trait Actuated<const N: usize, const K: usize>: Lagrangian<N> {
 
     /// This model with constant inputs `u`: what a run with inputs that
     /// never change integrates (a controller is
-    /// [`with_controller`](Self::with_controller)).
+    /// [`with_controller`](crate::model::WithLayers::with_controller)).
     #[must_use]
     fn with_inputs(mut self, u: &SVector<Self::Scalar, K>) -> Self
     where
