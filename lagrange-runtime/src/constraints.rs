@@ -114,7 +114,10 @@
 //! its settings, or joined to its dynamics.
 //!
 //! Where it lives: the contract, [`Holonomic`], its [`Visitor`] and the
-//! settings, in `model/constraints.rs` and `model/settings.rs`; the solve,
+//! settings, in `model/constraints.rs` and `model/settings.rs`; the layer
+//! that changes the settings, [`ConstraintHandling`], in
+//! `model/handling.rs`, built by `model/with.rs`'s
+//! [`WithLayers`](crate::model::WithLayers); the solve,
 //! the projections, the start and [`annotate`] in `dynamics/` (`saddle.rs`,
 //! `projection.rs`, `start.rs`, `annotate.rs`); the constrained variational
 //! step in `integrators/variational/` (`constrained.rs`, `rattle.rs`). This
