@@ -52,10 +52,14 @@ build() {
     mkdir -p "$crate/src"
     sed "s|@LAGRANGE@|$1|" "$here/seed/Cargo.toml.in" >"$crate/Cargo.toml"
     cp "$here/seed/main.rs" "$crate/src/main.rs"
-    cargo build --release --quiet --manifest-path "$crate/Cargo.toml" --target-dir "$root/target/run_loop_seed"
-    exe="$root/target/run_loop_seed/release/run_loop_seed"
+    local target="$root/target/run_loop_seed_$(basename "$2" .bin)"
+    cargo build --release --quiet --manifest-path "$crate/Cargo.toml" --target-dir "$target"
+    exe="$target/release/run_loop_seed"
   else
-    exe=$(cd "$1" && CARGO_TARGET_DIR="$root/target" cargo bench -p lagrange-studies --bench run_loop --no-run 2>&1 |
+    # Each tree its own target directory: cargo names a workspace
+    # member's build the same from any checkout, and would take one tree's
+    # build for the other's.
+    exe=$(cd "$1" && CARGO_TARGET_DIR="$root/target/run_loop_$(basename "$2" .bin)" cargo bench -p lagrange-studies --bench run_loop --no-run 2>&1 |
       sed -n 's/.*Executable .*(\(.*\)).*/\1/p' | tail -n 1)
     [ -n "$exe" ] || {
       echo "no run_loop bench built from $1" >&2
