@@ -152,9 +152,9 @@ impl<V: SimdRealField + Copy> Measured<V> {
     /// the disagreement if that is more; zero where the sizes are.
     #[inline]
     pub(crate) fn unresolved(&self, last: V) -> V {
-        let (zero, whole) = (V::zero(), self.size.simd_max(last));
+        let (zero, whole) = (V::zero(), larger(self.size, last));
         let ratio = (self.change / whole).select(whole.simd_gt(zero), zero);
-        ratio.simd_max(self.disagreement)
+        larger(ratio, self.disagreement)
     }
 }
 
@@ -172,17 +172,16 @@ pub(crate) fn measure<V: SimdRealField + Copy, const N: usize>(
     let (mut size, mut change, mut dq_max, mut trapezoid_max, mut apart) =
         (zero, zero, zero, zero, zero);
     for i in 0..N {
-        size = size
-            .simd_max(after.0[i].simd_abs())
-            .simd_max(after.1[i].simd_abs());
+        size = larger(larger(size, after.0[i].simd_abs()), after.1[i].simd_abs());
         let dq = after.0[i] - before.0[i];
         let trapezoid = (before.1[i] + after.1[i]) * half_h;
-        change = change
-            .simd_max(dq.simd_abs())
-            .simd_max((after.1[i] - before.1[i]).simd_abs());
-        dq_max = dq_max.simd_max(dq.simd_abs());
-        trapezoid_max = trapezoid_max.simd_max(trapezoid.simd_abs());
-        apart = apart.simd_max((dq - trapezoid).simd_abs());
+        change = larger(
+            larger(change, dq.simd_abs()),
+            (after.1[i] - before.1[i]).simd_abs(),
+        );
+        dq_max = larger(dq_max, dq.simd_abs());
+        trapezoid_max = larger(trapezoid_max, trapezoid.simd_abs());
+        apart = larger(apart, (dq - trapezoid).simd_abs());
     }
     let whole = dq_max + trapezoid_max;
     let disagreement = (apart / whole).select(whole.simd_gt(zero), zero);
@@ -191,6 +190,15 @@ pub(crate) fn measure<V: SimdRealField + Copy, const N: usize>(
         change,
         disagreement,
     }
+}
+
+/// The larger of `a` and `b`, both finite and not `−0` (sizes, absolute
+/// values): `a > b ? a : b`, one `maxsd` for a scalar, where
+/// `simd_max`'s `a >= b ? a : b` is a compare and three logical
+/// operations (issue 49). The same value for such arguments.
+#[inline]
+fn larger<V: SimdRealField + Copy>(a: V, b: V) -> V {
+    a.select(a.simd_gt(b), b)
 }
 
 #[cfg(test)]

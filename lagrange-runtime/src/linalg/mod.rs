@@ -60,5 +60,8 @@ pub(crate) fn finite_lanes<V: SimdRealField + Copy>(parts: &[&[V]]) -> V::SimdBo
 /// factorization).
 #[inline]
 pub(crate) fn all_finite<S: nalgebra::RealField + Copy>(values: &[S]) -> bool {
-    values.iter().all(|x| x.is_finite())
+    // Every value tested, without a branch per value (`&`, not `all`'s
+    // `&&`): the tests become a few vector compares, where `all` is a
+    // compare and a jump per value (issue 49).
+    values.iter().fold(true, |finite, x| finite & x.is_finite())
 }
