@@ -312,6 +312,7 @@ pub use constraints::Holonomic;
 pub use diffsol;
 pub use error::{
     ConstraintLevel, Failure, IntegrationError, IntegrationResult, InvalidInput, NonFiniteValue,
+    ResetFailure,
 };
 pub use events::{Event, Events};
 pub use inputs::Actuated;

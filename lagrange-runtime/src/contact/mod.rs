@@ -113,9 +113,13 @@
 //! - A contact that was touching counts as touching at the next decision
 //!   even where the integration let its gap drift beyond the gap
 //!   tolerance; the projection after the decision takes the drift back.
-//! - A failure inside a decision or an evaluation (no consistent mode,
-//!   dependent contacts) ends the run with that error and the trajectory
-//!   so far, not with the NaN the run loop saw.
+//! - A switch that cannot be decided (no consistent mode, dependent
+//!   contacts, chattering) fails its event's reset: the run ends with
+//!   [`IntegrationError::ResetFailed`](crate::error::IntegrationError::ResetFailed)
+//!   and the trajectory so far, its [`ResetFailure`](crate::error::ResetFailure)
+//!   saying which; forces that are not determined between switches end it
+//!   with [`UndeterminedContactForces`](crate::error::IntegrationError::UndeterminedContactForces).
+//!   [`integrate`] reports both as the [`ContactError`] they are.
 //!
 //! # What the contacts need, and what they do not support yet
 //!

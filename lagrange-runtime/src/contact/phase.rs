@@ -7,8 +7,12 @@ use std::sync::{Arc, Mutex};
 use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::erased::Erased;
-use super::{ContactError, ContactForces, ContactLaw, Contacts, Mode, Switch};
-use crate::linalg::mass::{MassFactor, factor_mass_matrix};
+use super::{ContactForces, ContactLaw, Contacts, Mode, Switch};
+use crate::dynamics::blame::blame;
+use crate::dynamics::mass_error;
+use crate::error::{IntegrationError, NonFiniteValue};
+use crate::linalg::all_finite;
+use crate::linalg::mass::{MassFactor, SolveError, factor_mass_matrix, solve_mass_matrix};
 use crate::model::Lagrangian;
 
 /// The accelerations and the contact forces at a state.
@@ -225,13 +229,14 @@ pub(crate) fn min_norm_solve<S: RealField + Copy>(
     (crate::linalg::all_finite(x.as_slice()) && residual <= c(1e-8) * size).then_some(x)
 }
 
-/// What the run shares with its events: the modes, the switches so far,
-/// and the first failure met inside an evaluation (reported instead of the
-/// NaN that stopped the run).
+/// What the run shares with its events: the modes and the switches so
+/// far. A failure is no longer kept here: a switch that cannot be decided
+/// fails its event's reset ([`ResetFailure`](crate::error::ResetFailure)),
+/// forces that are not determined fail the evaluation
+/// ([`UndeterminedContactForces`](IntegrationError::UndeterminedContactForces)).
 pub(crate) struct Shared<S: RealField + Copy, const N: usize, const K: usize> {
     pub(crate) modes: Mutex<[Mode; K]>,
     pub(crate) switches: Mutex<Vec<Switch<S, N>>>,
-    pub(crate) failure: Mutex<Option<ContactError<S, N>>>,
     /// The time of the last switch and how many switches in a row fell on
     /// it: the guard against modes that undo each other.
     pub(crate) streak: Mutex<(S, usize)>,
@@ -242,21 +247,12 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Shared<S, N, K> {
         Self {
             modes: Mutex::new(modes),
             switches: Mutex::new(Vec::new()),
-            failure: Mutex::new(None),
             streak: Mutex::new((S::zero(), 0)),
         }
     }
 
     pub(crate) fn modes(&self) -> [Mode; K] {
         *self.modes.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
-    /// Keeps the first failure.
-    pub(crate) fn fail(&self, error: ContactError<S, N>) {
-        let mut slot = self.failure.lock().unwrap_or_else(|e| e.into_inner());
-        if slot.is_none() {
-            *slot = Some(error);
-        }
     }
 }
 
@@ -284,7 +280,7 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Clone for Phase<'_, S,
 
 impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
     /// The accelerations and forces at a state in the current modes;
-    /// `None` (the failure kept) where they are not determined.
+    /// `None` where they are not determined.
     pub(crate) fn solve(
         &self,
         t: S,
@@ -305,22 +301,15 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
         f: SVector<S, N>,
     ) -> Option<Solved<S, N, K>> {
         let modes = self.shared.modes();
-        let solved = Terms::with(&self.model, (t, q, qdot), m, f)
-            .and_then(|terms| accelerations(&self.model, &modes, &terms));
-        if solved.is_none() && q.iter().chain(qdot.iter()).all(|x| x.is_finite()) {
-            self.shared.fail(ContactError::DependentContacts {
-                t,
-                q: *q,
-                qdot: *qdot,
-            });
-        }
-        solved
+        Terms::with(&self.model, (t, q, qdot), m, f)
+            .and_then(|terms| accelerations(&self.model, &modes, &terms))
     }
 }
 
 impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Phase<'_, S, N, K> {
     type Scalar = S;
     const COORDINATES: [&'static str; N] = [""; N];
+    const SOLVES_ACCELERATIONS: bool = true;
 
     fn mass_matrix(&self, t: S, q: &SVector<S, N>) -> SMatrix<S, N, N> {
         self.model.mass_matrix(t, q)
@@ -331,7 +320,8 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Phas
     }
 
     /// `M`, and `f` with the contact forces `Dᵀ λ` added (NaN where they
-    /// are not determined: the run stops, and reports the failure kept).
+    /// are not determined; a run reads [`accelerations`](Self::accelerations),
+    /// which says so).
     fn mass_matrix_and_forcing(
         &self,
         t: S,
@@ -344,6 +334,45 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Phas
             None => SVector::repeat(S::zero() / S::zero()),
         };
         (m, f)
+    }
+
+    /// `M q̈ = f + Dᵀ λ` solved as for any model (the same arithmetic as
+    /// from [`mass_matrix_and_forcing`](Self::mass_matrix_and_forcing)),
+    /// or why not: the contact forces not determined
+    /// ([`UndeterminedContactForces`](IntegrationError::UndeterminedContactForces)),
+    /// a non-finite `M` or `f`, a singular `M`.
+    fn accelerations(
+        &self,
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) -> Option<Result<SVector<S, N>, IntegrationError<S, N>>> {
+        let (m, f) = self.model.mass_matrix_and_forcing(t, q, qdot);
+        let non_finite = |value| IntegrationError::NonFiniteState {
+            t,
+            q: *q,
+            qdot: *qdot,
+            value: blame(self, value, t, q, qdot),
+        };
+        if !all_finite(m.as_slice()) {
+            return Some(Err(non_finite(NonFiniteValue::MassMatrix)));
+        }
+        if !all_finite(f.as_slice()) {
+            return Some(Err(non_finite(NonFiniteValue::Forcing)));
+        }
+        let Some((_, forces)) = self.solve_with(t, q, qdot, &m, f) else {
+            return Some(Err(IntegrationError::UndeterminedContactForces {
+                t,
+                q: *q,
+                qdot: *qdot,
+            }));
+        };
+        Some(
+            solve_mass_matrix(&m, &(f + forces.generalized)).map_err(|error| match error {
+                SolveError::NonFiniteForcing => non_finite(NonFiniteValue::Forcing),
+                error => mass_error(error, t, q, qdot),
+            }),
+        )
     }
 
     fn kinetic_energy(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> S {

@@ -9,7 +9,7 @@ use super::decide::{impact, modes, project, record, touching};
 use super::erased::Erased;
 use super::phase::{Phase, Shared, Terms, accelerations};
 use super::{Cause, ContactError, ContactForces, ContactSettings, Contacts, Mode, Switch};
-use crate::error::IntegrationError;
+use crate::error::{IntegrationError, ResetFailure};
 use crate::events::{Event, Events};
 use crate::integrators::{Integrator, StepMethod};
 use crate::model::Lagrangian;
@@ -333,7 +333,6 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
     /// (see [`integrate`](super::integrate)).
     pub fn integrate<I: Integrator<S>>(&self, method: &I, times: &[S]) -> ContactResult<S, N, K> {
         self.restart();
-        let shared = &self.phase.shared;
         let (q0, qdot0) = self.start;
         let run =
             method.integrate_with_events(&self.phase, self.t0, q0, qdot0, times, &self.events);
@@ -341,18 +340,10 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
         let switches = self.switches();
         match run {
             Ok(trajectory) => Ok(results(model, trajectory, switches, self.start_modes)),
-            Err(failure) => {
-                let kept = shared
-                    .failure
-                    .lock()
-                    .unwrap_or_else(|e| e.into_inner())
-                    .take();
-                let error = kept.unwrap_or(ContactError::Integration(failure.error));
-                Err(Box::new(ContactFailure {
-                    error,
-                    trajectory: results(model, failure.trajectory, switches, self.start_modes),
-                }))
-            }
+            Err(failure) => Err(Box::new(ContactFailure {
+                error: contact_error(failure.error),
+                trajectory: results(model, failure.trajectory, switches, self.start_modes),
+            })),
         }
     }
 
@@ -360,8 +351,12 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
     /// from the scene's start, watching the
     /// switches: [`Stepper::events`] lists the switches' events of each
     /// call, [`switches`](Self::switches) all the switches so far. A
-    /// failure inside the contacts' decisions shows in the stepper's error
-    /// as a non-finite event; [`failure`](Self::failure) says what it was.
+    /// switch that cannot be decided ends the stepper's call with
+    /// [`IntegrationError::ResetFailed`], its reason a
+    /// [`ResetFailure`](crate::error::ResetFailure) (no consistent mode,
+    /// dependent contacts, chattering); forces that are not determined
+    /// between switches, with
+    /// [`IntegrationError::UndeterminedContactForces`].
     pub fn stepper<M: StepMethod<S>>(
         &self,
         method: M,
@@ -373,13 +368,12 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
             .map_err(ContactError::Integration)
     }
 
-    /// The modes and switches back to the start's, no failure kept: what
-    /// every run of the scene begins with.
+    /// The modes and switches back to the start's: what every run of the
+    /// scene begins with.
     fn restart(&self) {
         let shared = &self.phase.shared;
         *shared.modes.lock().unwrap_or_else(|e| e.into_inner()) = self.start_modes;
         *shared.switches.lock().unwrap_or_else(|e| e.into_inner()) = self.start_switches.clone();
-        *shared.failure.lock().unwrap_or_else(|e| e.into_inner()) = None;
         *shared.streak.lock().unwrap_or_else(|e| e.into_inner()) = (self.t0, 0);
     }
 
@@ -410,18 +404,6 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
         let modes = self.modes();
         let terms = Terms::new(&self.phase.model, t, q, qdot)?;
         accelerations(&self.phase.model, &modes, &terms).map(|(_, f)| f)
-    }
-
-    /// The failure met inside a decision or an evaluation, if a run
-    /// stopped on one (the stepper's error then says only that an event's
-    /// reset or the forcing was not finite).
-    pub fn failure(&self) -> Option<ContactError<S, N>> {
-        self.phase
-            .shared
-            .failure
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .clone()
     }
 
     /// The settings the scene runs with.
@@ -495,22 +477,22 @@ fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
             .with(
                 Event::new(name, arrival)
                     .falling()
-                    .reset(switch(Cause::Impact)),
+                    .try_reset(switch(Cause::Impact)),
             )
             .with(
                 Event::new(name, release)
                     .falling()
-                    .reset(switch(Cause::Release)),
+                    .try_reset(switch(Cause::Release)),
             )
             .with(
                 Event::new(name, slide_stop)
                     .falling()
-                    .reset(switch(Cause::SlideStopped)),
+                    .try_reset(switch(Cause::SlideStopped)),
             )
             .with(
                 Event::new(name, stick_limit)
                     .falling()
-                    .reset(switch(Cause::StickLimit)),
+                    .try_reset(switch(Cause::StickLimit)),
             );
     }
     events
@@ -648,7 +630,7 @@ fn decide_switch<S: RealField + Copy, const N: usize, const K: usize>(
 
 impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
     /// An event's reset: the switch decided, the modes changed, the state
-    /// after it; NaN (the failure kept) where it cannot be decided.
+    /// after it; why not, where it cannot be decided.
     fn switch(
         &self,
         settings: &ContactSettings<S>,
@@ -656,7 +638,7 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
         cause: Cause,
         t: S,
         state: (SVector<S, N>, SVector<S, N>),
-    ) -> (SVector<S, N>, SVector<S, N>) {
+    ) -> Result<State<S, N>, ResetFailure> {
         let from = self.shared.modes();
         {
             let mut streak = self.shared.streak.lock().unwrap_or_else(|e| e.into_inner());
@@ -666,13 +648,7 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
                 (t, 1)
             };
             if streak.1 > MAX_SWITCHES_AT_ONCE {
-                self.shared.fail(ContactError::Chattering {
-                    t,
-                    q: state.0,
-                    qdot: state.1,
-                    switches: streak.1,
-                });
-                return (SVector::repeat(nan()), SVector::repeat(nan()));
+                return Err(ResetFailure::Chattering { switches: streak.1 });
             }
         }
         let forced = match cause {
@@ -692,7 +668,7 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
             .switches
             .lock()
             .unwrap_or_else(|e| e.into_inner());
-        match decide_switch(
+        let (state, to) = decide_switch(
             &self.model,
             settings,
             t,
@@ -701,16 +677,62 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
             forced,
             cause,
             &mut switches,
-        ) {
-            Ok((state, to)) => {
-                *self.shared.modes.lock().unwrap_or_else(|e| e.into_inner()) = to;
-                state
+        )
+        .map_err(|error| match error {
+            ContactError::NoConsistentMode { at_impact, .. } => {
+                ResetFailure::NoConsistentMode { at_impact }
             }
-            Err(error) => {
-                self.shared.fail(error);
-                (SVector::repeat(nan()), SVector::repeat(nan()))
-            }
+            ContactError::DependentContacts { .. } => ResetFailure::DependentContacts,
+            error => ResetFailure::refused(error.to_string()),
+        })?;
+        *self.shared.modes.lock().unwrap_or_else(|e| e.into_inner()) = to;
+        Ok(state)
+    }
+}
+
+/// A contact run's failure as a [`ContactError`]: a switch that could not
+/// be decided, or forces not determined, as the contacts name them; any
+/// other failure as the run loop's.
+fn contact_error<S: RealField + Copy, const N: usize>(
+    error: IntegrationError<S, N>,
+) -> ContactError<S, N> {
+    use IntegrationError::ResetFailed;
+    match error {
+        ResetFailed {
+            t,
+            q,
+            qdot,
+            reason: ResetFailure::NoConsistentMode { at_impact },
+            ..
+        } => ContactError::NoConsistentMode {
+            t,
+            q,
+            qdot,
+            at_impact,
+        },
+        ResetFailed {
+            t,
+            q,
+            qdot,
+            reason: ResetFailure::DependentContacts,
+            ..
+        } => ContactError::DependentContacts { t, q, qdot },
+        ResetFailed {
+            t,
+            q,
+            qdot,
+            reason: ResetFailure::Chattering { switches },
+            ..
+        } => ContactError::Chattering {
+            t,
+            q,
+            qdot,
+            switches,
+        },
+        IntegrationError::UndeterminedContactForces { t, q, qdot } => {
+            ContactError::DependentContacts { t, q, qdot }
         }
+        error => ContactError::Integration(error),
     }
 }
 

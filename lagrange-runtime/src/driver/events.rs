@@ -294,9 +294,16 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
             if interrupts {
                 let mut state = (q, qdot);
                 for &i in &crossing.events {
-                    let Some((q, qdot)) = list[i].apply_reset(at, &state) else {
+                    let Some(reset) = list[i].apply_reset(at, &state) else {
                         continue;
                     };
+                    let (q, qdot) = reset.map_err(|reason| IntegrationError::ResetFailed {
+                        event: list[i].name(),
+                        t: at,
+                        q: state.0,
+                        qdot: state.1,
+                        reason,
+                    })?;
                     if !finite_state(&q, &qdot) {
                         let (event, value) = (list[i].name(), NonFiniteValue::EventReset);
                         return Err(IntegrationError::NonFiniteEvent {

@@ -11,8 +11,10 @@ use nalgebra::{RealField, SVector};
 use crate::trajectory::Trajectory;
 
 mod non_finite;
+mod reset;
 
 pub use non_finite::NonFiniteValue;
+pub use reset::ResetFailure;
 
 pub use crate::trajectory::Name;
 
@@ -244,6 +246,48 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         value: NonFiniteValue,
     },
 
+    /// An [event](crate::events)'s reset refused the state at the event:
+    /// the reset of [`Event::try_reset`](crate::events::Event::try_reset)
+    /// returned `reason`, or a contact's switch could not be decided (see
+    /// [`contact`](crate::contact)). The [`Failure`] holds the samples and
+    /// the events before it; `(t, q, q̇)` is the state at the event, before
+    /// any reset.
+    #[error(
+        "event `{event}`: its reset failed at t = {t:?} (q = {}, q̇ = {}): {reason}",
+        Row(.q), Row(.qdot)
+    )]
+    ResetFailed {
+        /// The event's name.
+        #[cfg_attr(feature = "serde", serde(with = "crate::names::one"))]
+        event: Name,
+        /// Time of the event.
+        t: S,
+        /// Generalized coordinates at `t`.
+        q: SVector<S, N>,
+        /// Generalized velocities at `t`.
+        qdot: SVector<S, N>,
+        /// Why.
+        reason: ResetFailure,
+    },
+
+    /// The forces of the touching contacts are not determined in their
+    /// current modes (see [`contact`](crate::contact)): their rows of `G`
+    /// (and of `T` for stuck ones) are dependent in the metric of `M`, or
+    /// `M` cannot be factored.
+    #[error(
+        "the touching contacts' forces are not determined at t = {t:?} (q = {}, q̇ = {}): \
+         their constraints are dependent in the metric of M, or M is singular",
+        Row(.q), Row(.qdot)
+    )]
+    UndeterminedContactForces {
+        /// Time of the evaluation.
+        t: S,
+        /// Generalized coordinates at `t`.
+        q: SVector<S, N>,
+        /// Generalized velocities at `t`.
+        qdot: SVector<S, N>,
+    },
+
     /// Events accumulate: `gaps` gaps in a row between events were shorter
     /// than the minimum separation (a bouncing ball coming to rest bounces
     /// infinitely often before a finite time). The
@@ -291,6 +335,8 @@ impl<S: RealField + Copy, const N: usize> IntegrationError<S, N> {
             | Self::SingularConstraints { t, .. }
             | Self::ProjectionFailed { t, .. }
             | Self::NonFiniteEvent { t, .. }
+            | Self::ResetFailed { t, .. }
+            | Self::UndeterminedContactForces { t, .. }
             | Self::Zeno { t, .. } => Some(*t),
             Self::InvalidInput(_) => None,
         }

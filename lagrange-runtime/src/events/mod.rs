@@ -165,6 +165,10 @@
 //!   a non-finite state, is
 //!   [`IntegrationError::NonFiniteEvent`](crate::error::IntegrationError::NonFiniteEvent),
 //!   naming the event.
+//! - A reset that refuses the state at its event
+//!   ([`Event::try_reset`]) ends the run with
+//!   [`IntegrationError::ResetFailed`](crate::error::IntegrationError::ResetFailed),
+//!   naming the event and saying why.
 //! - Settings out of range (a negative or NaN tolerance, a non-positive
 //!   step bound) are [`InvalidInput::InvalidEventSetting`],
 //!   before any work.
@@ -173,7 +177,8 @@ use core::fmt;
 
 use nalgebra::{RealField, SVector};
 
-use crate::error::InvalidInput;
+use crate::error::{InvalidInput, ResetFailure};
+use crate::trajectory::State;
 
 mod guard;
 mod hermite;
@@ -189,9 +194,12 @@ pub(crate) use watch::Watch;
 type Function<'a, S, const N: usize> =
     Box<dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> S + Send + Sync + 'a>;
 
-/// A reset `(t, q, q̇) ↦ (q⁺, q̇⁺)`.
+/// A reset `(t, q, q̇) ↦ (q⁺, q̇⁺)`, or why there is none.
 type ResetMap<'a, S, const N: usize> = Box<
-    dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> (SVector<S, N>, SVector<S, N>) + Send + Sync + 'a,
+    dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> Result<State<S, N>, ResetFailure>
+        + Send
+        + Sync
+        + 'a,
 >;
 
 /// Which zero crossings of an event function count.
@@ -292,8 +300,48 @@ impl<'a, S: RealField + Copy, const N: usize> Event<'a, S, N> {
     /// Record the crossing, replace the state by `reset(t, q, q̇)` and
     /// restart the integration from it.
     pub fn reset(
-        mut self,
+        self,
         reset: impl Fn(S, &SVector<S, N>, &SVector<S, N>) -> (SVector<S, N>, SVector<S, N>)
+        + Send
+        + Sync
+        + 'a,
+    ) -> Self {
+        self.try_reset(move |t, q, qdot| Ok(reset(t, q, qdot)))
+    }
+
+    /// As [`reset`](Self::reset), with a reset that may refuse the state
+    /// at the event: a [`ResetFailure`] (for a reason of its own,
+    /// [`ResetFailure::refused`]) ends the run with
+    /// [`IntegrationError::ResetFailed`](crate::error::IntegrationError::ResetFailed),
+    /// naming the event, at its time and state, the trajectory up to it
+    /// kept in the [`Failure`](crate::error::Failure).
+    ///
+    /// ```
+    /// use lagrange_runtime::error::{IntegrationError, ResetFailure};
+    /// use lagrange_runtime::events::{Event, Events};
+    /// use lagrange_runtime::nalgebra::SVector;
+    ///
+    /// // A ball that may bounce only three times on z = 0.
+    /// let bounces = std::sync::atomic::AtomicUsize::new(0);
+    /// let floor = Event::new("floor", |_t, q: &SVector<f64, 1>, _qd: &SVector<f64, 1>| q[0])
+    ///     .falling()
+    ///     .try_reset(move |_t, q, qd| {
+    ///         use std::sync::atomic::Ordering::Relaxed;
+    ///         if bounces.fetch_add(1, Relaxed) == 3 {
+    ///             return Err(ResetFailure::refused("a fourth bounce"));
+    ///         }
+    ///         Ok((*q, -0.9 * qd))
+    ///     });
+    /// let events = Events::new().with(floor);
+    /// # let _ = events;
+    /// ```
+    pub fn try_reset(
+        mut self,
+        reset: impl Fn(
+            S,
+            &SVector<S, N>,
+            &SVector<S, N>,
+        ) -> Result<(SVector<S, N>, SVector<S, N>), ResetFailure>
         + Send
         + Sync
         + 'a,
@@ -325,13 +373,13 @@ impl<'a, S: RealField + Copy, const N: usize> Event<'a, S, N> {
         matches!(self.action, Action::Stop)
     }
 
-    /// The state its reset makes of `(t, q, q̇)`; `None` if it does not
-    /// reset.
+    /// The state its reset makes of `(t, q, q̇)`, or why it makes none;
+    /// `None` if it does not reset.
     pub(crate) fn apply_reset(
         &self,
         t: S,
         (q, qdot): &(SVector<S, N>, SVector<S, N>),
-    ) -> Option<(SVector<S, N>, SVector<S, N>)> {
+    ) -> Option<Result<State<S, N>, ResetFailure>> {
         match &self.action {
             Action::Reset(reset) => Some(reset(t, q, qdot)),
             _ => None,
