@@ -696,38 +696,34 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
 fn contact_error<S: RealField + Copy, const N: usize>(
     error: IntegrationError<S, N>,
 ) -> ContactError<S, N> {
-    use IntegrationError::ResetFailed;
     match error {
-        ResetFailed {
+        IntegrationError::ResetFailed {
+            event,
             t,
             q,
             qdot,
-            reason: ResetFailure::NoConsistentMode { at_impact },
-            ..
-        } => ContactError::NoConsistentMode {
-            t,
-            q,
-            qdot,
-            at_impact,
-        },
-        ResetFailed {
-            t,
-            q,
-            qdot,
-            reason: ResetFailure::DependentContacts,
-            ..
-        } => ContactError::DependentContacts { t, q, qdot },
-        ResetFailed {
-            t,
-            q,
-            qdot,
-            reason: ResetFailure::Chattering { switches },
-            ..
-        } => ContactError::Chattering {
-            t,
-            q,
-            qdot,
-            switches,
+            reason,
+        } => match *reason {
+            ResetFailure::NoConsistentMode { at_impact } => ContactError::NoConsistentMode {
+                t,
+                q,
+                qdot,
+                at_impact,
+            },
+            ResetFailure::DependentContacts => ContactError::DependentContacts { t, q, qdot },
+            ResetFailure::Chattering { switches } => ContactError::Chattering {
+                t,
+                q,
+                qdot,
+                switches,
+            },
+            reason => ContactError::Integration(IntegrationError::ResetFailed {
+                event,
+                t,
+                q,
+                qdot,
+                reason: Box::new(reason),
+            }),
         },
         IntegrationError::UndeterminedContactForces { t, q, qdot } => {
             ContactError::DependentContacts { t, q, qdot }

@@ -302,7 +302,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
                         t: at,
                         q: state.0,
                         qdot: state.1,
-                        reason,
+                        reason: Box::new(reason),
                     })?;
                     if !finite_state(&q, &qdot) {
                         let (event, value) = (list[i].name(), NonFiniteValue::EventReset);

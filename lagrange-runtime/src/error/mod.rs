@@ -266,8 +266,13 @@ pub enum IntegrationError<S: RealField + Copy, const N: usize> {
         q: SVector<S, N>,
         /// Generalized velocities at `t`.
         qdot: SVector<S, N>,
-        /// Why.
-        reason: ResetFailure,
+        /// Why. Boxed: a field with a niche of its own (an enum's tag, a
+        /// `String`'s capacity) would let the compiler fold this enum's
+        /// tag into it, and that layout made every adaptive run 35–45 %
+        /// slower on the 2-coordinate models (issue 49's seed problem;
+        /// same instructions, the time lost to how `Result`s of this type
+        /// are stored and read in the stages).
+        reason: Box<ResetFailure>,
     },
 
     /// The forces of the touching contacts are not determined in their

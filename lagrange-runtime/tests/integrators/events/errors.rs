@@ -139,8 +139,8 @@ fn a_reset_that_refuses_ends_the_run_with_its_reason_at_the_event_and_the_trajec
         assert!(q[0].abs() < 1e-9, "{method:?}: {q}");
         assert!((qdot[0] + 1.0).abs() < 1e-2, "{method:?}: {qdot}");
         assert_eq!(
-            reason,
-            &lagrange_runtime::ResetFailure::refused(format!(
+            **reason,
+            lagrange_runtime::ResetFailure::refused(format!(
                 "no reflection at t = {t:.3} with velocity {:.3}",
                 qdot[0]
             ))
