@@ -56,6 +56,14 @@ pub(super) fn validate<L: Lagrangian<N>, const N: usize>(
         return Err(InvalidInput::ContactsNotRun);
     }
     finite_start(L::COORDINATES, q0, qdot0)?;
+    // A method without its flag would be ignored in silence: asked once,
+    // at the start (a model with constraints is never asked).
+    if !L::SOLVES_ACCELERATIONS
+        && !crate::model::constraints::is_constrained(model)
+        && model.accelerations(t0, q0, qdot0).is_some()
+    {
+        return Err(InvalidInput::AccelerationsNotFlagged);
+    }
     for (index, &time) in times.iter().enumerate() {
         if !time.is_finite() {
             return Err(InvalidInput::NonFiniteSampleTime { index, time });

@@ -416,6 +416,16 @@ pub enum InvalidInput<S: RealField + Copy> {
     )]
     ContactsNotRun,
 
+    /// The model's [`SOLVES_ACCELERATIONS`](crate::model::Lagrangian::SOLVES_ACCELERATIONS)
+    /// is `false` while its [`accelerations`](crate::model::Lagrangian::accelerations)
+    /// answers at the start: a run would never ask it, and integrate `M q̈ =
+    /// f` instead. Set the flag with the method (or leave both out).
+    #[error(
+        "the model's `accelerations` answers but its `SOLVES_ACCELERATIONS` is false: a run \
+         would ignore the method; set `const SOLVES_ACCELERATIONS: bool = true`"
+    )]
+    AccelerationsNotFlagged,
+
     /// A sample time is NaN or infinite.
     #[error("sample time times[{index}] = {time:?} is not finite")]
     NonFiniteSampleTime {

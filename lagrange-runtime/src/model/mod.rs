@@ -176,7 +176,10 @@ pub trait Lagrangian<const N: usize> {
     /// `lagrangian!`) solves `M q̈ = f` from
     /// [`mass_matrix_and_forcing`](Self::mass_matrix_and_forcing). A model
     /// with constraints is not asked: its `q̈` is the saddle-point solve.
-    /// A model that overrides it sets [`SOLVES_ACCELERATIONS`](Self::SOLVES_ACCELERATIONS).
+    /// A model that overrides it sets [`SOLVES_ACCELERATIONS`](Self::SOLVES_ACCELERATIONS);
+    /// a run refuses one whose method answers without the flag
+    /// ([`InvalidInput::AccelerationsNotFlagged`](crate::error::InvalidInput::AccelerationsNotFlagged)),
+    /// rather than ignore the method.
     #[allow(clippy::type_complexity)]
     fn accelerations(
         &self,

@@ -228,3 +228,57 @@ fn a_tiny_motion_with_a_tinier_absolute_tolerance_is_integrated() {
         );
     }
 }
+
+/// `ẍ = −x` solved by hand in `accelerations`; its `M` and `f` say
+/// `ẍ = 0`, so a run that ignored the method would leave `x` at 1.
+struct SolvedSpring<const FLAGGED: bool>;
+
+impl<const FLAGGED: bool> Lagrangian<1> for SolvedSpring<FLAGGED> {
+    type Scalar = f64;
+    const COORDINATES: [&'static str; 1] = ["x"];
+    const SOLVES_ACCELERATIONS: bool = FLAGGED;
+    fn mass_matrix(&self, _: f64, _: &Vector1<f64>) -> lagrange_runtime::nalgebra::Matrix1<f64> {
+        lagrange_runtime::nalgebra::Matrix1::new(1.0)
+    }
+    fn forcing(&self, _: f64, _: &Vector1<f64>, _: &Vector1<f64>) -> Vector1<f64> {
+        Vector1::new(0.0)
+    }
+    fn kinetic_energy(&self, _: f64, _: &Vector1<f64>, v: &Vector1<f64>) -> f64 {
+        0.5 * v[0] * v[0]
+    }
+    fn potential_energy(&self, _: f64, q: &Vector1<f64>) -> f64 {
+        0.5 * q[0] * q[0]
+    }
+    fn accelerations(
+        &self,
+        _: f64,
+        q: &Vector1<f64>,
+        _: &Vector1<f64>,
+    ) -> Option<Result<Vector1<f64>, IntegrationError<f64, 1>>> {
+        Some(Ok(-q))
+    }
+}
+
+#[test]
+fn accelerations_without_their_flag_are_refused_instead_of_ignored() {
+    let (q0, qdot0) = (Vector1::new(1.0), Vector1::new(0.0));
+    let failure = Dop853::new()
+        .integrate(&SolvedSpring::<false>, 0.0, q0, qdot0, &[1.0])
+        .unwrap_err();
+    assert!(
+        matches!(
+            failure.error,
+            IntegrationError::InvalidInput(InvalidInput::AccelerationsNotFlagged)
+        ),
+        "{}",
+        failure.error
+    );
+    assert!(failure.trajectory.is_empty());
+    // Flagged, the method is what the run integrates: x = cos t (Dop853 at
+    // its default tolerances, 1e-6, is within 1e-6 of it at t = 1).
+    let run = Dop853::new()
+        .integrate(&SolvedSpring::<true>, 0.0, q0, qdot0, &[1.0])
+        .unwrap();
+    let x = run.iter().last().unwrap().q[0];
+    assert!((x - 1f64.cos()).abs() < 1e-6, "{x}");
+}
