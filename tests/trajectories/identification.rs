@@ -380,3 +380,37 @@ fn a_controllers_nan_is_blamed_on_the_inputs_alone_and_with_sensitivities() {
         with.error
     );
 }
+
+/// Inputs set to NaN after the sensitivities were built (through
+/// `model_mut`) are refused before any work, as for the model alone: the
+/// sensitivities pass their model's inputs on to the run's checks (before
+/// issue 45 they had none, and the run failed at its first evaluation).
+#[test]
+fn inputs_unset_behind_the_sensitivities_are_refused_as_for_the_model_alone() {
+    use lagrange::sensitivity::{Sensitivity, coordinates};
+    use lagrange::{IntegrationError, InvalidInput};
+    let nan = SVector::<f64, 1>::from([f64::NAN]);
+    let model = DrivenPendulum::new(1.3, 0.6, 0.15).with_inputs(&SVector::from([0.1]));
+    let (q0, v0) = (SVector::from([0.2]), SVector::from([0.0]));
+    let method = Dop853::new().rtol(1e-10).atol(1e-10);
+    fn refused<const N: usize>(error: &IntegrationError<f64, N>) -> bool {
+        matches!(
+            error,
+            IntegrationError::InvalidInput(InvalidInput::InputsNotSet { inputs }) if *inputs == ["tau"]
+        )
+    }
+    let alone = method
+        .integrate(&model.with_inputs(&nan), 0.0, q0, v0, &[1.0])
+        .unwrap_err();
+    assert!(refused(&alone.error), "alone: {}", alone.error);
+    let mut sensitivity =
+        Sensitivity::<_, 1, 3, 1, { coordinates(1, 1) }>::new(model, [Direction::Parameter(0)])
+            .unwrap();
+    sensitivity.model_mut().set_inputs(&nan);
+    let (x0, xdot0) = sensitivity.initial_state(&q0, &v0);
+    let with = method
+        .integrate(&sensitivity, 0.0, x0, xdot0, &[1.0])
+        .unwrap_err();
+    assert!(refused(&with.error), "with sensitivities: {}", with.error);
+    assert!(with.trajectory.is_empty());
+}

@@ -103,6 +103,7 @@ use crate::dynamics::{acceleration_jacobians, mass_error};
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::linalg::mass::factor_mass_matrix;
 use crate::model::constraints::is_constrained;
+use crate::model::inputs::{self, Inputs};
 use crate::model::{Lagrangian, ParameterDerivatives};
 use crate::trajectory::Stats;
 
@@ -380,8 +381,7 @@ where
 // Every capability not written here is the trait's default, none: no
 // exact Jacobians (the implicit methods take differences of the whole
 // system), no momenta (the variational method refuses the model), no
-// constraints (`new` refuses a constrained model), no inputs (`new`
-// checked the model's), no `let`s.
+// constraints (`new` refuses a constrained model), no `let`s.
 impl<L, const N: usize, const P: usize, const D: usize, const NA: usize> Lagrangian<NA>
     for Sensitivity<L, N, P, D, NA>
 where
@@ -460,5 +460,128 @@ where
 
     fn parameters_are_finite(&self) -> bool {
         self.model.parameters_are_finite()
+    }
+
+    /// The model's inputs, read at the model's part of the state: a run
+    /// refuses inputs never set, and blames a controller's NaN, as for the
+    /// model alone.
+    fn visit_inputs<V>(&self, visitor: V) -> Option<V::Output>
+    where
+        V: inputs::Visitor<L::Scalar, NA>,
+    {
+        self.model.visit_inputs(PassInputs {
+            sensitivity: self,
+            visitor,
+        })
+    }
+}
+
+/// Hands a visitor of the augmented model the model's inputs, as the
+/// augmented model's ([`WithInputs`]).
+struct PassInputs<'a, L, V, const N: usize, const P: usize, const D: usize, const NA: usize> {
+    sensitivity: &'a Sensitivity<L, N, P, D, NA>,
+    visitor: V,
+}
+
+impl<L, V, const N: usize, const P: usize, const D: usize, const NA: usize>
+    inputs::Visitor<L::Scalar, N> for PassInputs<'_, L, V, N, P, D, NA>
+where
+    L: ParameterDerivatives<N, P>,
+    V: inputs::Visitor<L::Scalar, NA>,
+{
+    type Output = V::Output;
+
+    fn visit<A, const K: usize>(self, model: &A) -> V::Output
+    where
+        A: Inputs<N, K, Scalar = L::Scalar> + ?Sized,
+    {
+        let augmented = WithInputs {
+            sensitivity: self.sensitivity,
+            inputs: model,
+        };
+        self.visitor.visit::<_, K>(&augmented)
+    }
+}
+
+/// The augmented model with the model's `K` inputs (`inputs`, the model
+/// or the layer that holds them), read at the model's part of the state.
+struct WithInputs<'a, L, A: ?Sized, const N: usize, const P: usize, const D: usize, const NA: usize>
+{
+    sensitivity: &'a Sensitivity<L, N, P, D, NA>,
+    inputs: &'a A,
+}
+
+impl<L, A, const N: usize, const P: usize, const D: usize, const NA: usize> Lagrangian<NA>
+    for WithInputs<'_, L, A, N, P, D, NA>
+where
+    L: ParameterDerivatives<N, P>,
+    A: ?Sized,
+{
+    type Scalar = L::Scalar;
+    const COORDINATES: [&'static str; NA] =
+        <Sensitivity<L, N, P, D, NA> as Lagrangian<NA>>::COORDINATES;
+    const SOLVES_ACCELERATIONS: bool = true;
+
+    fn mass_matrix(&self, t: L::Scalar, x: &SVector<L::Scalar, NA>) -> SMatrix<L::Scalar, NA, NA> {
+        self.sensitivity.mass_matrix(t, x)
+    }
+
+    fn forcing(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> SVector<L::Scalar, NA> {
+        self.sensitivity.forcing(t, x, v)
+    }
+
+    fn kinetic_energy(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> L::Scalar {
+        self.sensitivity.kinetic_energy(t, x, v)
+    }
+
+    fn potential_energy(&self, t: L::Scalar, x: &SVector<L::Scalar, NA>) -> L::Scalar {
+        self.sensitivity.potential_energy(t, x)
+    }
+
+    #[allow(clippy::type_complexity)]
+    fn accelerations(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> Option<Result<SVector<L::Scalar, NA>, IntegrationError<L::Scalar, NA>>> {
+        self.sensitivity.accelerations(t, x, v)
+    }
+
+    fn parameters_are_finite(&self) -> bool {
+        self.sensitivity.parameters_are_finite()
+    }
+}
+
+impl<L, A, const N: usize, const P: usize, const D: usize, const NA: usize, const K: usize>
+    Inputs<NA, K> for WithInputs<'_, L, A, N, P, D, NA>
+where
+    L: ParameterDerivatives<N, P>,
+    A: Inputs<N, K, Scalar = L::Scalar> + ?Sized,
+{
+    const NAMES: [&'static str; K] = A::NAMES;
+
+    fn inputs_at(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> SVector<L::Scalar, K> {
+        let (q, qdot) = (self.sensitivity.state(x), self.sensitivity.state(v));
+        self.inputs.inputs_at(t, &q, &qdot)
+    }
+
+    fn held_inputs(&self) -> Option<SVector<L::Scalar, K>> {
+        self.inputs.held_inputs()
     }
 }
