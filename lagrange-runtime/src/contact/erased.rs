@@ -7,6 +7,7 @@
 use nalgebra::{RealField, SMatrix, SVector};
 
 use super::{ContactLaw, Contacts};
+use crate::error::{IntegrationError, NonFiniteValue};
 use crate::model::Lagrangian;
 
 /// What a contact run evaluates of a model, object-safe.
@@ -32,6 +33,15 @@ pub(crate) trait DynContacts<S: RealField + Copy, const N: usize, const K: usize
     fn slip_velocities(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> SVector<S, K>;
     fn slip_bias(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> SVector<S, K>;
     fn contact_laws(&self) -> [ContactLaw<S>; K];
+    /// [`blame`](crate::dynamics::blame::blame) on the model itself: its
+    /// inputs, which the erased model cannot hand a visitor.
+    fn blame(
+        &self,
+        value: NonFiniteValue,
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) -> NonFiniteValue;
 }
 
 impl<L, const N: usize, const K: usize> DynContacts<L::Scalar, N, K> for L
@@ -115,6 +125,15 @@ where
     fn contact_laws(&self) -> [ContactLaw<L::Scalar>; K] {
         Contacts::contact_laws(self)
     }
+    fn blame(
+        &self,
+        value: NonFiniteValue,
+        t: L::Scalar,
+        q: &SVector<L::Scalar, N>,
+        qdot: &SVector<L::Scalar, N>,
+    ) -> NonFiniteValue {
+        crate::dynamics::blame::blame(self, value, t, q, qdot)
+    }
 }
 
 /// A model with contacts, erased: the one model type the contact runs are
@@ -149,8 +168,23 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Erased<'a, S, N, K
     pub fn names(&self) -> &[&'static str; K] {
         &self.names
     }
+
+    /// A non-finite `value` at `(t, q, q̇)` blamed on the model's inputs
+    /// where they are to blame (see [`blame`](crate::dynamics::blame::blame)).
+    pub(crate) fn blame(
+        &self,
+        value: NonFiniteValue,
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) -> NonFiniteValue {
+        self.model.blame(value, t, q, qdot)
+    }
 }
 
+// Every method written out (the lint holds it so): a capability added to
+// the contract is passed on here, or said not to be.
+#[warn(clippy::missing_trait_methods)]
 impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Erased<'_, S, N, K> {
     type Scalar = S;
     const COORDINATES: [&'static str; N] = [""; N];
@@ -175,8 +209,83 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Eras
     fn potential_energy(&self, t: S, q: &SVector<S, N>) -> S {
         self.model.potential_energy(t, q)
     }
+    fn energy(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> S {
+        self.model.kinetic_energy(t, q, qdot) + self.model.potential_energy(t, q)
+    }
     fn parameters_are_finite(&self) -> bool {
         self.model.parameters_are_finite()
+    }
+
+    // Not passed on, each for its reason:
+
+    /// None: the contact runs' implicit methods take differences (of the
+    /// phase's forcing, which adds the contact forces to the model's).
+    fn residual_jacobians(
+        &self,
+        _: S,
+        _: &SVector<S, N>,
+        _: &SVector<S, N>,
+        _: &SVector<S, N>,
+    ) -> Option<(SMatrix<S, N, N>, SMatrix<S, N, N>)> {
+        None
+    }
+    /// None: the phase solves from `M` and `f` (a model's own solve, a
+    /// tree's recursion, would give the same `q̈` without the contacts'
+    /// forces, which the phase adds to `f`).
+    fn accelerations(
+        &self,
+        _: S,
+        _: &SVector<S, N>,
+        _: &SVector<S, N>,
+    ) -> Option<Result<SVector<S, N>, IntegrationError<S, N>>> {
+        None
+    }
+    /// None: the variational method does not run contacts.
+    fn momentum(&self, _: S, _: &SVector<S, N>, _: &SVector<S, N>) -> Option<SVector<S, N>> {
+        None
+    }
+    /// None: the variational method does not run contacts.
+    fn lagrangian_gradient(
+        &self,
+        _: S,
+        _: &SVector<S, N>,
+        _: &SVector<S, N>,
+    ) -> Option<SVector<S, N>> {
+        None
+    }
+    /// None: the variational method does not run contacts.
+    fn nonconservative_forces(
+        &self,
+        _: S,
+        _: &SVector<S, N>,
+        _: &SVector<S, N>,
+    ) -> Option<SVector<S, N>> {
+        None
+    }
+    /// None: a model with constraints of its own is refused by
+    /// [`Scene::new`](super::Scene::new).
+    fn visit_constraints<V>(&self, _: V) -> Option<V::Output>
+    where
+        V: crate::model::constraints::Visitor<S, N>,
+    {
+        None
+    }
+    /// None: the model's inputs are checked before the erasure
+    /// ([`Scene::new`](super::Scene::new)), and a non-finite value is
+    /// blamed on them by the erased model itself (the visitor cannot pass
+    /// through the object-safe interface).
+    fn visit_inputs<V>(&self, _: V) -> Option<V::Output>
+    where
+        V: crate::model::inputs::Visitor<S, N>,
+    {
+        None
+    }
+    /// None: no contact run reads the model's `let`s.
+    fn visit_lets<V>(&self, _: V) -> Option<V::Output>
+    where
+        V: crate::model::lets::Visitor<S, N>,
+    {
+        None
     }
 }
 

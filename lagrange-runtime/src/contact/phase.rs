@@ -8,7 +8,6 @@ use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::erased::Erased;
 use super::{ContactForces, ContactLaw, Contacts, Mode, Switch};
-use crate::dynamics::blame::blame;
 use crate::dynamics::mass_error;
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::linalg::all_finite;
@@ -306,6 +305,9 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
     }
 }
 
+// Every method written out (the lint holds it so): a capability added to
+// the contract is passed on here, or said not to be.
+#[warn(clippy::missing_trait_methods)]
 impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Phase<'_, S, N, K> {
     type Scalar = S;
     const COORDINATES: [&'static str; N] = [""; N];
@@ -352,7 +354,7 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Phas
             t,
             q: *q,
             qdot: *qdot,
-            value: blame(self, value, t, q, qdot),
+            value: self.model.blame(value, t, q, qdot),
         };
         if !all_finite(m.as_slice()) {
             return Some(Err(non_finite(NonFiniteValue::MassMatrix)));
@@ -383,7 +385,72 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Phas
         self.model.potential_energy(t, q)
     }
 
+    fn energy(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> S {
+        self.kinetic_energy(t, q, qdot) + self.potential_energy(t, q)
+    }
+
     fn parameters_are_finite(&self) -> bool {
         self.model.parameters_are_finite()
+    }
+
+    // Not passed on, each for its reason:
+
+    /// None: the model's Jacobians leave out the contacts' forces, which
+    /// move with the state; the implicit methods take differences of the
+    /// phase's accelerations.
+    fn residual_jacobians(
+        &self,
+        _: S,
+        _: &SVector<S, N>,
+        _: &SVector<S, N>,
+        _: &SVector<S, N>,
+    ) -> Option<(SMatrix<S, N, N>, SMatrix<S, N, N>)> {
+        None
+    }
+    /// None: the variational method does not run contacts.
+    fn momentum(&self, _: S, _: &SVector<S, N>, _: &SVector<S, N>) -> Option<SVector<S, N>> {
+        None
+    }
+    /// None: the variational method does not run contacts.
+    fn lagrangian_gradient(
+        &self,
+        _: S,
+        _: &SVector<S, N>,
+        _: &SVector<S, N>,
+    ) -> Option<SVector<S, N>> {
+        None
+    }
+    /// None: the variational method does not run contacts.
+    fn nonconservative_forces(
+        &self,
+        _: S,
+        _: &SVector<S, N>,
+        _: &SVector<S, N>,
+    ) -> Option<SVector<S, N>> {
+        None
+    }
+    /// None: a model with constraints of its own is refused by
+    /// [`Scene::new`](super::Scene::new).
+    fn visit_constraints<V>(&self, _: V) -> Option<V::Output>
+    where
+        V: crate::model::constraints::Visitor<S, N>,
+    {
+        None
+    }
+    /// None: the model's inputs are checked by
+    /// [`Scene::new`](super::Scene::new), and a non-finite value blamed on
+    /// them in [`accelerations`](Self::accelerations).
+    fn visit_inputs<V>(&self, _: V) -> Option<V::Output>
+    where
+        V: crate::model::inputs::Visitor<S, N>,
+    {
+        None
+    }
+    /// None: no contact run reads the model's `let`s.
+    fn visit_lets<V>(&self, _: V) -> Option<V::Output>
+    where
+        V: crate::model::lets::Visitor<S, N>,
+    {
+        None
     }
 }

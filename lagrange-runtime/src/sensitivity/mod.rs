@@ -378,10 +378,9 @@ where
     }
 }
 
-// Every capability not written here is the trait's default, none: no
-// exact Jacobians (the implicit methods take differences of the whole
-// system), no momenta (the variational method refuses the model), no
-// constraints (`new` refuses a constrained model), no `let`s.
+// Every method written out (the lint holds it so): a capability added to
+// the contract is passed on here, or said not to be.
+#[warn(clippy::missing_trait_methods)]
 impl<L, const N: usize, const P: usize, const D: usize, const NA: usize> Lagrangian<NA>
     for Sensitivity<L, N, P, D, NA>
 where
@@ -474,6 +473,86 @@ where
             visitor,
         })
     }
+
+    /// `M` and `f` as [`mass_matrix`](Self::mass_matrix) and
+    /// [`forcing`](Self::forcing) give them (a run asks
+    /// [`accelerations`](Self::accelerations) instead).
+    fn mass_matrix_and_forcing(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> (SMatrix<L::Scalar, NA, NA>, SVector<L::Scalar, NA>) {
+        (self.mass_matrix(t, x), self.forcing(t, x, v))
+    }
+
+    /// The model's `T + V`.
+    fn energy(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> L::Scalar {
+        self.kinetic_energy(t, x, v) + self.potential_energy(t, x)
+    }
+
+    // Not passed on, each for its reason:
+
+    /// None: the implicit methods take differences of the whole system
+    /// (the model's exact Jacobians are for its own `q`, not the
+    /// sensitivities').
+    fn residual_jacobians(
+        &self,
+        _: L::Scalar,
+        _: &SVector<L::Scalar, NA>,
+        _: &SVector<L::Scalar, NA>,
+        _: &SVector<L::Scalar, NA>,
+    ) -> Option<(SMatrix<L::Scalar, NA, NA>, SMatrix<L::Scalar, NA, NA>)> {
+        None
+    }
+    /// None: the variational method refuses the model (its sensitivities
+    /// have no Lagrangian of their own).
+    fn momentum(
+        &self,
+        _: L::Scalar,
+        _: &SVector<L::Scalar, NA>,
+        _: &SVector<L::Scalar, NA>,
+    ) -> Option<SVector<L::Scalar, NA>> {
+        None
+    }
+    /// None: as [`momentum`](Self::momentum).
+    fn lagrangian_gradient(
+        &self,
+        _: L::Scalar,
+        _: &SVector<L::Scalar, NA>,
+        _: &SVector<L::Scalar, NA>,
+    ) -> Option<SVector<L::Scalar, NA>> {
+        None
+    }
+    /// None: as [`momentum`](Self::momentum).
+    fn nonconservative_forces(
+        &self,
+        _: L::Scalar,
+        _: &SVector<L::Scalar, NA>,
+        _: &SVector<L::Scalar, NA>,
+    ) -> Option<SVector<L::Scalar, NA>> {
+        None
+    }
+    /// None: [`Sensitivity::new`] refuses a constrained model.
+    fn visit_constraints<V>(&self, _: V) -> Option<V::Output>
+    where
+        V: crate::model::constraints::Visitor<L::Scalar, NA>,
+    {
+        None
+    }
+    /// None: the model's `let`s are functions of its own `q`, not of the
+    /// augmented state.
+    fn visit_lets<V>(&self, _: V) -> Option<V::Output>
+    where
+        V: crate::model::lets::Visitor<L::Scalar, NA>,
+    {
+        None
+    }
 }
 
 /// Hands a visitor of the augmented model the model's inputs, as the
@@ -511,6 +590,8 @@ struct WithInputs<'a, L, A: ?Sized, const N: usize, const P: usize, const D: usi
     inputs: &'a A,
 }
 
+// Every method written out (the lint holds it so): the sensitivity's.
+#[warn(clippy::missing_trait_methods)]
 impl<L, A, const N: usize, const P: usize, const D: usize, const NA: usize> Lagrangian<NA>
     for WithInputs<'_, L, A, N, P, D, NA>
 where
@@ -560,6 +641,82 @@ where
 
     fn parameters_are_finite(&self) -> bool {
         self.sensitivity.parameters_are_finite()
+    }
+
+    fn mass_matrix_and_forcing(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> (SMatrix<L::Scalar, NA, NA>, SVector<L::Scalar, NA>) {
+        self.sensitivity.mass_matrix_and_forcing(t, x, v)
+    }
+
+    fn energy(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> L::Scalar {
+        self.sensitivity.energy(t, x, v)
+    }
+
+    fn residual_jacobians(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+        a: &SVector<L::Scalar, NA>,
+    ) -> Option<(SMatrix<L::Scalar, NA, NA>, SMatrix<L::Scalar, NA, NA>)> {
+        self.sensitivity.residual_jacobians(t, x, v, a)
+    }
+
+    fn momentum(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> Option<SVector<L::Scalar, NA>> {
+        self.sensitivity.momentum(t, x, v)
+    }
+
+    fn lagrangian_gradient(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> Option<SVector<L::Scalar, NA>> {
+        self.sensitivity.lagrangian_gradient(t, x, v)
+    }
+
+    fn nonconservative_forces(
+        &self,
+        t: L::Scalar,
+        x: &SVector<L::Scalar, NA>,
+        v: &SVector<L::Scalar, NA>,
+    ) -> Option<SVector<L::Scalar, NA>> {
+        self.sensitivity.nonconservative_forces(t, x, v)
+    }
+
+    fn visit_constraints<V>(&self, visitor: V) -> Option<V::Output>
+    where
+        V: crate::model::constraints::Visitor<L::Scalar, NA>,
+    {
+        self.sensitivity.visit_constraints(visitor)
+    }
+
+    fn visit_inputs<V>(&self, visitor: V) -> Option<V::Output>
+    where
+        V: inputs::Visitor<L::Scalar, NA>,
+    {
+        self.sensitivity.visit_inputs(visitor)
+    }
+
+    fn visit_lets<V>(&self, visitor: V) -> Option<V::Output>
+    where
+        V: crate::model::lets::Visitor<L::Scalar, NA>,
+    {
+        self.sensitivity.visit_lets(visitor)
     }
 }
 
