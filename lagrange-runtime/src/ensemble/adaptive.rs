@@ -117,7 +117,7 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
     ) -> Result<Self, EnsembleError<Element<L, N>, N>> {
         let tolerances = <Dopri5<Element<L, N>> as Embedded<Element<L, N>, N>>::tolerances(&method);
         crate::driver::check_tolerances(tolerances.rtol, tolerances.atol)?;
-        check_starts::<L, N>(t0, q0, qdot0)?;
+        check_starts::<L, N>(&model, t0, q0, qdot0)?;
         let (q, qdot) = (gather(q0), gather(qdot0));
         let qddot = accelerations(&model, t0, &q, &qdot)
             .map_err(|(lane, error)| EnsembleError::Lane { lane, error })?;

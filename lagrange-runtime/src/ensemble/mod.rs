@@ -155,8 +155,11 @@ pub trait LaneModel<const N: usize> {
 }
 
 /// A start of every lane, as a `Stepper` checks its own: as many states as
-/// lanes, `t0` finite, each state finite.
+/// lanes, `t0` finite, each state finite; and a model whose
+/// `accelerations` answer without its flag refused, as a scalar run
+/// refuses one ([`InvalidInput::AccelerationsNotFlagged`]).
 pub(super) fn check_starts<L: LaneModel<N>, const N: usize>(
+    model: &L,
     t0: Element<L, N>,
     q0: &[SVector<Element<L, N>, N>],
     qdot0: &[SVector<Element<L, N>, N>],
@@ -175,6 +178,13 @@ pub(super) fn check_starts<L: LaneModel<N>, const N: usize>(
             lane,
             error: input.into(),
         })?;
+    }
+    if !L::SOLVES_ACCELERATIONS
+        && model
+            .accelerations(L::Lanes::splat(t0), &gather(q0), &gather(qdot0))
+            .is_some()
+    {
+        return Err(InvalidInput::AccelerationsNotFlagged.into());
     }
     Ok(())
 }
@@ -255,7 +265,7 @@ where
         qdot0: &[SVector<Element<L, N>, N>],
     ) -> Result<Self, EnsembleError<Element<L, N>, N>> {
         let (h, max_steps) = method.lane_course()?;
-        check_starts::<L, N>(t0, q0, qdot0)?;
+        check_starts::<L, N>(&model, t0, q0, qdot0)?;
         let growth: Vec<_> = q0
             .iter()
             .zip(qdot0)
