@@ -55,6 +55,9 @@ for bench in "${benches[@]}"; do
   cp "${head[$bench]}" "$work/head.$bench"
 done
 echo "# $rev against the work tree ($(git -C "$root" rev-parse --short HEAD)$(git -C "$root" diff --quiet HEAD || echo +)), $rounds interleaved rounds, load average at the start $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
+# Criterion's reports under the target directory, not beside the sources
+# (a bench runs from its crate's folder, as `cargo bench` runs it).
+export CARGO_TARGET_DIR="$root/target/interleave_runs"
 for round in $(seq "$rounds"); do
   for bench in "${benches[@]}"; do
     (cd "$root/lagrange-studies" && "$work/base.$bench" --bench "${args[@]}") >"$out/$rev.$bench.$round" 2>&1
