@@ -393,8 +393,6 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Phas
         self.model.parameters_are_finite()
     }
 
-    // Not passed on, each for its reason:
-
     /// None: the model's Jacobians leave out the contacts' forces, which
     /// move with the state; the implicit methods take differences of the
     /// phase's accelerations.
@@ -407,49 +405,47 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Phas
     ) -> Option<(SMatrix<S, N, N>, SMatrix<S, N, N>)> {
         None
     }
-    /// None: the variational method does not run contacts.
-    fn momentum(&self, _: S, _: &SVector<S, N>, _: &SVector<S, N>) -> Option<SVector<S, N>> {
-        None
+
+    // The erased model's, which says why each is absent.
+
+    fn momentum(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> Option<SVector<S, N>> {
+        self.model.momentum(t, q, qdot)
     }
-    /// None: the variational method does not run contacts.
     fn lagrangian_gradient(
         &self,
-        _: S,
-        _: &SVector<S, N>,
-        _: &SVector<S, N>,
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
     ) -> Option<SVector<S, N>> {
-        None
+        self.model.lagrangian_gradient(t, q, qdot)
     }
-    /// None: the variational method does not run contacts.
     fn nonconservative_forces(
         &self,
-        _: S,
-        _: &SVector<S, N>,
-        _: &SVector<S, N>,
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
     ) -> Option<SVector<S, N>> {
-        None
+        self.model.nonconservative_forces(t, q, qdot)
     }
-    /// None: a model with constraints of its own is refused by
-    /// [`Scene::new`](super::Scene::new).
-    fn visit_constraints<V>(&self, _: V) -> Option<V::Output>
+    fn visit_constraints<V>(&self, visitor: V) -> Option<V::Output>
     where
         V: crate::model::constraints::Visitor<S, N>,
     {
-        None
+        self.model.visit_constraints(visitor)
     }
+    fn visit_lets<V>(&self, visitor: V) -> Option<V::Output>
+    where
+        V: crate::model::lets::Visitor<S, N>,
+    {
+        self.model.visit_lets(visitor)
+    }
+
     /// None: the model's inputs are checked by
     /// [`Scene::new`](super::Scene::new), and a non-finite value blamed on
     /// them in [`accelerations`](Self::accelerations).
     fn visit_inputs<V>(&self, _: V) -> Option<V::Output>
     where
         V: crate::model::inputs::Visitor<S, N>,
-    {
-        None
-    }
-    /// None: no contact run reads the model's `let`s.
-    fn visit_lets<V>(&self, _: V) -> Option<V::Output>
-    where
-        V: crate::model::lets::Visitor<S, N>,
     {
         None
     }
