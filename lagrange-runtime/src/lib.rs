@@ -242,8 +242,8 @@
 //!   default, Baumgarte, none), consistent initial conditions, the
 //!   multipliers; [`Actuated`] models and the
 //!   [`Controlled`](inputs::Controlled) model a controller drives.
-//! - `driver/` (private): the one run loop ([`integrate`] and the
-//!   [`Stepper`] both drive it, `run.rs`) over a walker per kind of method
+//! - `driver/` (private): the run loop, one per kind of method (a walker;
+//!   [`integrate`] and the [`Stepper`] both drive it, `run.rs`)
 //!   (`fixed.rs`, `pair.rs` for the embedded pairs), sample recording,
 //!   event location and actions (`events.rs`), input validation, the
 //!   growth guard, step-size control, Newton's noise floor.

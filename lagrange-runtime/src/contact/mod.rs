@@ -10,7 +10,7 @@
 //! kinetic friction coefficients; `lagrangian!` writes all of it from a
 //! `contacts:` section (`floor: y >= 0 { restitution: e, friction: mu,
 //! slip: dot(x) }`). [`integrate`] runs it with any
-//! [`Integrator`](crate::integrators::Integrator) through the one run loop,
+//! [`Integrator`](crate::integrators::Integrator) through the run loops every model runs through,
 //! and a [`Scene`] advances it frame by frame with a
 //! [`Stepper`](crate::stepper::Stepper) through the same loop: the
 //! contacts' state (their [`Mode`]s) is discrete, it changes only at

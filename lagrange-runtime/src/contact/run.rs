@@ -1,5 +1,5 @@
 //! A contact run: the start decided, the switches wired as events of the
-//! one run loop, and the forces of every sample.
+//! run loops every model runs through, and the forces of every sample.
 
 use std::sync::Arc;
 
@@ -106,7 +106,7 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for HasConstraints {
 
 /// Integrates a model with contacts from `(t0, q0, q̇0)` through `times`
 /// with `method`: the contacts' modes decided at the start and at every
-/// switch, each switch located as an event of the one run loop (see the
+/// switch, each switch located as an event of the method's run loop (see the
 /// [module documentation](super)).
 ///
 /// ```

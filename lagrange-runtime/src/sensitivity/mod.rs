@@ -22,7 +22,7 @@
 //! ([`Lagrangian::accelerations`]): its `M`, the model's repeated down the
 //! diagonal, is never formed on the run's path.
 //!
-//! It is a model like any other, so it runs through the one run loop with
+//! It is a model like any other, so it runs through the run loops every model runs through, with
 //! every method but the variational one (which needs momenta a sensitivity
 //! does not have). The adaptive methods control the error of the whole
 //! state, the sensitivities included, with the same tolerances: a
