@@ -2,7 +2,7 @@
 //! fingerprints recorded in `tests/data/fingerprints.txt`.
 //!
 //! A restructuring must keep every method's samples, events and statistics
-//! bit-identical; a fix that moves them re-blesses the file
+//! (and a contact run's switches and forces) bit-identical; a fix that moves them re-blesses the file
 //! (`LAGRANGE_BLESS=1 cargo test --test suite trajectories::fingerprints`) and says in its
 //! commit which lines moved and by how much (`FINGERPRINT_DUMP=FILE` writes
 //! every sample in full, to compare two builds).
@@ -17,8 +17,8 @@ use std::fmt::Write as _;
 use lagrange::Method;
 use lagrange::constraints::Drift;
 use lagrange::models::{
-    BouncingBall, CartPole, CartesianPendulum, Chain, DoublePendulum, FourBar, Kepler, Oscillator,
-    Pendulum, PendulumWall, SliderCrank, StiffChain,
+    BlockOnBelt, BouncingBall, CartPole, CartesianPendulum, Chain, DoublePendulum, FourBar, Kepler,
+    Oscillator, Pendulum, PendulumWall, SliderCrank, StiffChain, TumblingBox,
 };
 use lagrange::nalgebra::{SVector, Vector1, Vector2};
 use lagrange::prelude::*;
@@ -109,6 +109,37 @@ fn fingerprint<const N: usize>(result: &IntegrationResult<f64, N>, dump: &mut St
         let _ = writeln!(dump, "  error {error}");
     }
     let _ = writeln!(dump, "  stats {s:?}");
+    h.0
+}
+
+/// A contact run fingerprinted as a run (its samples, events, work and
+/// error), with its switches and the contact forces at every sample.
+fn contact_fingerprint<const N: usize, const K: usize>(
+    result: &lagrange::contact::ContactResult<f64, N, K>,
+    dump: &mut String,
+) -> u64 {
+    let (run, error) = match result {
+        Ok(run) => (run, None),
+        Err(failure) => (&failure.trajectory, Some(failure.error.to_string())),
+    };
+    let mut h = Fnv(fingerprint(&Ok(run.trajectory().clone()), dump));
+    for s in run.switches() {
+        h.f(s.t);
+        h.word(s.contact as u64);
+        h.text(&format!("{:?} {:?} {:?}", s.cause, s.from, s.to));
+        h.state(&s.q, &s.qdot);
+        let _ = writeln!(dump, "  switch {:?} {} {:?}", s.t, s.contact, s.to);
+    }
+    for f in run.forces() {
+        f.normal
+            .iter()
+            .chain(f.friction.iter())
+            .for_each(|&x| h.f(x));
+    }
+    if let Some(error) = error {
+        h.text(&error);
+        let _ = writeln!(dump, "  contact error {error}");
+    }
     h.0
 }
 
@@ -385,6 +416,33 @@ fn cases(dump: &mut String) -> Vec<(String, u64)> {
                 fingerprint(&run, d)
             },
         );
+    }
+
+    // Contact scenes: four corners of a tumbling box (impacts, sliding,
+    // sticking) and a block on a belt (stick-slip), every method.
+    let boxed = TumblingBox::new(2.0, 0.6, 0.3, 9.81, 0.4, 0.5);
+    let belt = BlockOnBelt::new(1.0, 9.81, 40.0, 0.3, 0.6, 0.4);
+    let ts = times(0.1, 15);
+    for (m, tol) in every(false) {
+        let method = m.integrator(1e-3, tol);
+        let settings = lagrange::contact::ContactSettings::default();
+        case(
+            format!("contact tumbling_box {} {tol:e}", m.id()),
+            dump,
+            &mut |d| {
+                let (q, v) = (
+                    SVector::from([0.0, 0.5, 0.3]),
+                    SVector::from([0.8, 0.0, 4.0]),
+                );
+                let run = lagrange::contact::integrate(&method, &boxed, 0.0, q, v, &ts, settings);
+                contact_fingerprint(&run, d)
+            },
+        );
+        case(format!("contact belt {} {tol:e}", m.id()), dump, &mut |d| {
+            let (q, v) = (Vector2::zeros(), Vector2::new(0.3, 0.0));
+            let run = lagrange::contact::integrate(&method, &belt, 0.0, q, v, &ts, settings);
+            contact_fingerprint(&run, d)
+        });
     }
 
     // Frame by frame, every method a stepper takes.
