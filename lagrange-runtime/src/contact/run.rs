@@ -13,8 +13,6 @@ use crate::error::{IntegrationError, ResetFailure};
 use crate::events::{Event, Events};
 use crate::integrators::{Integrator, StepMethod};
 use crate::model::Lagrangian;
-use crate::model::constraints::{Holonomic, Visitor};
-use crate::model::settings::ConstraintSettings;
 use crate::stepper::Stepper;
 use crate::trajectory::{State, Trajectory};
 
@@ -91,18 +89,6 @@ impl<S: RealField + Copy, const N: usize, const K: usize> std::error::Error
 /// What [`integrate`] returns.
 pub type ContactResult<S, const N: usize, const K: usize> =
     Result<ContactTrajectory<S, N, K>, Box<ContactFailure<S, N, K>>>;
-
-/// Whether a model has constraints of its own.
-struct HasConstraints;
-
-impl<S: RealField + Copy, const N: usize> Visitor<S, N> for HasConstraints {
-    type Output = ();
-    fn visit<H, const C: usize>(self, _model: &H, _settings: ConstraintSettings<S>)
-    where
-        H: Holonomic<N, C, Scalar = S> + ?Sized,
-    {
-    }
-}
 
 /// Integrates a model with contacts from `(t0, q0, q̇0)` through `times`
 /// with `method`: the contacts' modes decided at the start and at every
@@ -515,7 +501,7 @@ fn validate<L, const N: usize, const K: usize>(
 where
     L: Contacts<N, K>,
 {
-    if model.visit_constraints(HasConstraints).is_some() {
+    if crate::model::constraints::is_constrained(model) {
         return Err(ContactError::Unsupported {
             what: "a model with constraints of its own (`constraints:`)",
         });
