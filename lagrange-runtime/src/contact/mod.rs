@@ -9,12 +9,12 @@
 //! which friction acts, and its [`ContactLaw`]: restitution, static and
 //! kinetic friction coefficients; `lagrangian!` writes all of it from a
 //! `contacts:` section (`floor: y >= 0 { restitution: e, friction: mu,
-//! slip: dot(x) }`). [`integrate`] runs it with any
-//! [`Integrator`](crate::integrators::Integrator) through the run loops every model runs through,
+//! slip: dot(x) }`). [`integrate`] runs it with any method
+//! ([`StepMethod`](crate::integrators::StepMethod)) through the run loops every model runs through,
 //! and a [`Scene`] advances it frame by frame with a
 //! [`Stepper`](crate::stepper::Stepper) through the same loop: the
 //! contacts' state (their [`Mode`]s) is discrete, it changes only at
-//! events, and between events the model is integrated with the closed
+//! events, where it is data the run owns (each run its own), and between events the model is integrated with the closed
 //! contacts as equality constraints and the sliding ones' friction as known
 //! forces. The runs see the model through one object-safe interface
 //! ([`Erased`]), so they are compiled once per scalar, `N` and `K`, not

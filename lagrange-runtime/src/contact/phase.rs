@@ -2,12 +2,10 @@
 //! forces solved with the accelerations, and the model a run integrates
 //! between switches ([`Phase`]), whose forcing includes them.
 
-use std::sync::{Arc, Mutex};
-
 use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::erased::Erased;
-use super::{ContactForces, ContactLaw, Contacts, Mode, Switch};
+use super::{ContactForces, ContactLaw, Contacts, Mode};
 use crate::dynamics::mass_error;
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::linalg::all_finite;
@@ -228,53 +226,21 @@ pub(crate) fn min_norm_solve<S: RealField + Copy>(
     (crate::linalg::all_finite(x.as_slice()) && residual <= c(1e-8) * size).then_some(x)
 }
 
-/// What the run shares with its events: the modes and the switches so
-/// far. A failure is no longer kept here: a switch that cannot be decided
-/// fails its event's reset ([`ResetFailure`](crate::error::ResetFailure)),
-/// forces that are not determined fail the evaluation
-/// ([`UndeterminedContactForces`](IntegrationError::UndeterminedContactForces)).
-pub(crate) struct Shared<S: RealField + Copy, const N: usize, const K: usize> {
-    pub(crate) modes: Mutex<[Mode; K]>,
-    pub(crate) switches: Mutex<Vec<Switch<S, N>>>,
-    /// The time of the last switch and how many switches in a row fell on
-    /// it: the guard against modes that undo each other.
-    pub(crate) streak: Mutex<(S, usize)>,
-}
-
-impl<S: RealField + Copy, const N: usize, const K: usize> Shared<S, N, K> {
-    pub(crate) fn new(modes: [Mode; K]) -> Self {
-        Self {
-            modes: Mutex::new(modes),
-            switches: Mutex::new(Vec::new()),
-            streak: Mutex::new((S::zero(), 0)),
-        }
-    }
-
-    pub(crate) fn modes(&self) -> [Mode; K] {
-        *self.modes.lock().unwrap_or_else(|e| e.into_inner())
-    }
-}
-
 /// The model a run integrates between switches: the contact model with the
-/// touching contacts' forces in its forcing, in the modes `shared` holds.
+/// touching contacts' forces in its forcing, in its modes.
 ///
 /// A [`Scene`](super::Scene)'s [`Stepper`](crate::stepper::Stepper) steps
-/// it; it is not built by hand. It is the same type for every model with
-/// the same scalar, `N` and `K` (the model behind [`Erased`]), so the
-/// loops that run it are compiled once for all of them; its
-/// `COORDINATES` are blank (the model's own are the model's).
+/// it; it is not built by hand. It is plain data: the modes are the run's
+/// (kept with its switches as the data its events read and their resets
+/// change), and the run builds the phase anew from them at each switch.
+/// It is the same type for every model with the same scalar, `N` and `K`
+/// (the model behind [`Erased`]), so the loops that run it are compiled
+/// once for all of them; its `COORDINATES` are blank (the model's own are
+/// the model's).
+#[derive(Clone, Copy)]
 pub struct Phase<'a, S: RealField + Copy, const N: usize, const K: usize> {
     pub(crate) model: Erased<'a, S, N, K>,
-    pub(crate) shared: Arc<Shared<S, N, K>>,
-}
-
-impl<S: RealField + Copy, const N: usize, const K: usize> Clone for Phase<'_, S, N, K> {
-    fn clone(&self) -> Self {
-        Self {
-            model: self.model,
-            shared: Arc::clone(&self.shared),
-        }
-    }
+    pub(crate) modes: [Mode; K],
 }
 
 impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
@@ -299,9 +265,8 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
         m: &SMatrix<S, N, N>,
         f: SVector<S, N>,
     ) -> Option<Solved<S, N, K>> {
-        let modes = self.shared.modes();
         Terms::with(&self.model, (t, q, qdot), m, f)
-            .and_then(|terms| accelerations(&self.model, &modes, &terms))
+            .and_then(|terms| accelerations(&self.model, &self.modes, &terms))
     }
 }
 

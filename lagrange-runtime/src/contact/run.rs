@@ -1,17 +1,17 @@
 //! A contact run: the start decided, the switches wired as events of the
 //! run loops every model runs through, and the forces of every sample.
 
-use std::sync::Arc;
-
 use nalgebra::{ComplexField, RealField, SVector};
 
 use super::decide::{impact, modes, project, record, touching};
 use super::erased::Erased;
-use super::phase::{Phase, Shared, Terms, accelerations};
+use super::phase::{Phase, Terms, accelerations};
 use super::{Cause, ContactError, ContactForces, ContactSettings, Contacts, Mode, Switch};
+use crate::driver::invalid;
+use crate::driver::run::integrate_segments;
 use crate::error::{IntegrationError, ResetFailure};
-use crate::events::{Event, Events};
-use crate::integrators::{Integrator, StepMethod};
+use crate::events::{Event, Events, RunData};
+use crate::integrators::StepMethod;
 use crate::model::Lagrangian;
 use crate::stepper::Stepper;
 use crate::trajectory::{State, Trajectory};
@@ -155,7 +155,7 @@ pub fn integrate<I, L, const N: usize, const K: usize>(
     settings: ContactSettings<L::Scalar>,
 ) -> ContactResult<L::Scalar, N, K>
 where
-    I: Integrator<L::Scalar>,
+    I: StepMethod<L::Scalar>,
     L: Contacts<N, K> + Sync,
 {
     match Scene::new(model, t0, q0, qdot0, settings) {
@@ -180,9 +180,10 @@ where
 /// by frame through the same loop, its switches located in the frame they
 /// fall in.
 ///
-/// A scene holds the contacts' modes and the switches so far: it drives
-/// one run at a time, and each run (an `integrate`, a new stepper) starts
-/// again from the scene's start, forgetting the last one's switches.
+/// A scene holds its start; each run (an `integrate`, a stepper) starts
+/// from it and owns its modes and switches from then on, as plain data of
+/// the run: several runs of one scene, in turn or side by side, do not
+/// touch each other.
 ///
 /// ```
 /// use lagrange_runtime::contact::{Cause, ContactLaw, ContactSettings, Contacts, Scene};
@@ -217,11 +218,11 @@ where
 /// }
 /// // It lands at √(2/g) = 0.4515 s: in the 28th frame, (0.45, 0.4667].
 /// assert_eq!(first_bounce_frame, Some(28));
-/// assert_eq!(scene.switches()[0].cause, Cause::Impact);
+/// assert_eq!(stepper.switches()[0].cause, Cause::Impact);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub struct Scene<'a, S: RealField + Copy, const N: usize, const K: usize> {
-    phase: Phase<'a, S, N, K>,
+    model: Erased<'a, S, N, K>,
     settings: ContactSettings<S>,
     events: Events<'a, S, N>,
     t0: S,
@@ -297,15 +298,14 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
             Cause::Start,
             &mut start_switches,
         )?;
-        let shared = Arc::new(Shared::new(start_modes));
-        *shared.switches.lock().unwrap_or_else(|e| e.into_inner()) = start_switches.clone();
-        let phase = Phase {
-            model: erased,
-            shared,
+        let first = ContactRun {
+            modes: start_modes,
+            switches: start_switches.clone(),
+            streak: (t0, 0),
         };
-        let events = events(&phase, settings);
+        let events = events(erased, settings, first);
         Ok(Self {
-            phase,
+            model: erased,
             settings,
             events,
             t0,
@@ -316,14 +316,26 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
     }
 
     /// Integrates the scene from its start through `times` with `method`
-    /// (see [`integrate`](super::integrate)).
-    pub fn integrate<I: Integrator<S>>(&self, method: &I, times: &[S]) -> ContactResult<S, N, K> {
-        self.restart();
+    /// (see [`integrate`](super::integrate)). Each run is the run's own:
+    /// its modes and switches are data of the run, not of the scene.
+    pub fn integrate<M: StepMethod<S>>(&self, method: &M, times: &[S]) -> ContactResult<S, N, K> {
         let (q0, qdot0) = self.start;
-        let run =
-            method.integrate_with_events(&self.phase, self.t0, q0, qdot0, times, &self.events);
-        let model = &self.phase.model;
-        let switches = self.switches();
+        let (run, data) = match method.walker::<N>() {
+            Ok(walker) => integrate_segments(
+                walker,
+                &self.first_phase(),
+                (self.t0, q0, qdot0),
+                times,
+                &self.events,
+                next_phase,
+            ),
+            Err(error) => (Err(invalid(error)), self.events.fresh_data()),
+        };
+        let switches = match data.downcast::<ContactRun<S, N, K>>() {
+            Ok(run) => run.switches,
+            Err(_) => self.start_switches.clone(),
+        };
+        let model = &self.model;
         match run {
             Ok(trajectory) => Ok(results(model, trajectory, switches, self.start_modes)),
             Err(failure) => Err(Box::new(ContactFailure {
@@ -334,10 +346,13 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
     }
 
     /// A [`Stepper`] that advances the scene frame by frame with `method`,
-    /// from the scene's start, watching the
-    /// switches: [`Stepper::events`] lists the switches' events of each
-    /// call, [`switches`](Self::switches) all the switches so far. A
-    /// switch that cannot be decided ends the stepper's call with
+    /// from the scene's start, watching the switches:
+    /// [`Stepper::events`] lists the switches' events of each call,
+    /// [`Stepper::switches`] all the switches of its run so far,
+    /// [`Stepper::modes`] the modes now. Each stepper's run is its own:
+    /// two steppers of one scene, or a stepper and an
+    /// [`integrate`](Self::integrate), do not touch each other's modes.
+    /// A switch that cannot be decided ends the stepper's call with
     /// [`IntegrationError::ResetFailed`], its reason a
     /// [`ResetFailure`](crate::error::ResetFailure) (no consistent mode,
     /// dependent contacts, chattering); forces that are not determined
@@ -347,49 +362,32 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
         &self,
         method: M,
     ) -> Result<Stepper<'_, Phase<'a, S, N, K>, M, N>, ContactError<S, N>> {
-        self.restart();
         let (q0, qdot0) = self.start;
-        Stepper::new(self.phase.clone(), method, self.t0, q0, qdot0)
+        Stepper::new(self.first_phase(), method, self.t0, q0, qdot0)
             .and_then(|stepper| stepper.with_events(&self.events))
+            .map(|stepper| stepper.with_segments(next_phase))
             .map_err(ContactError::Integration)
     }
 
-    /// The modes and switches back to the start's: what every run of the
-    /// scene begins with.
-    fn restart(&self) {
-        let shared = &self.phase.shared;
-        *shared.modes.lock().unwrap_or_else(|e| e.into_inner()) = self.start_modes;
-        *shared.switches.lock().unwrap_or_else(|e| e.into_inner()) = self.start_switches.clone();
-        *shared.streak.lock().unwrap_or_else(|e| e.into_inner()) = (self.t0, 0);
+    /// The model in the start's modes: what every run begins with.
+    fn first_phase(&self) -> Phase<'a, S, N, K> {
+        Phase {
+            model: self.model,
+            modes: self.start_modes,
+        }
     }
 
-    /// Every switch of the current run so far, in time order (the
-    /// start's first).
-    pub fn switches(&self) -> Vec<Switch<S, N>> {
-        self.phase
-            .shared
-            .switches
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .clone()
+    /// The switches decided at the start (an impact where a touching
+    /// contact approached, the modes), in order: every run's first. A
+    /// run's own are in its [`ContactTrajectory::switches`] or its
+    /// stepper's [`Stepper::switches`].
+    pub fn start_switches(&self) -> &[Switch<S, N>] {
+        &self.start_switches
     }
 
-    /// The contacts' modes now.
-    pub fn modes(&self) -> [Mode; K] {
-        self.phase.shared.modes()
-    }
-
-    /// The contact forces at `(t, q, q̇)` in the current modes; `None`
-    /// where they are not determined.
-    pub fn forces(
-        &self,
-        t: S,
-        q: &SVector<S, N>,
-        qdot: &SVector<S, N>,
-    ) -> Option<ContactForces<S, N, K>> {
-        let modes = self.modes();
-        let terms = Terms::new(&self.phase.model, t, q, qdot)?;
-        accelerations(&self.phase.model, &modes, &terms).map(|(_, f)| f)
+    /// The contacts' modes decided at the start: every run's first.
+    pub fn start_modes(&self) -> [Mode; K] {
+        self.start_modes
     }
 
     /// The settings the scene runs with.
@@ -398,24 +396,53 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
     }
 }
 
+/// What a contact run carries from switch to switch: the data its
+/// switches' events read and their resets change (`Events::keeping`),
+/// owned by the run.
+#[derive(Clone)]
+pub(crate) struct ContactRun<S: RealField + Copy, const N: usize, const K: usize> {
+    /// The contacts' modes now.
+    modes: [Mode; K],
+    /// Every switch so far, the start's first.
+    switches: Vec<Switch<S, N>>,
+    /// The time of the last switch and how many switches in a row fell on
+    /// it: the guard against modes that undo each other.
+    streak: (S, usize),
+}
+
+/// The phase a run goes on with after a switch: the model in the run's
+/// new modes.
+fn next_phase<'a, S: RealField + Copy, const N: usize, const K: usize>(
+    phase: &Phase<'a, S, N, K>,
+    data: &RunData,
+) -> Option<Phase<'a, S, N, K>> {
+    let run = data.downcast_ref::<ContactRun<S, N, K>>()?;
+    Some(Phase {
+        model: phase.model,
+        modes: run.modes,
+    })
+}
+
 /// Four events per contact, each a switch when it crosses zero falling:
 /// its arrival, its release, its slide stopping and its stick limit (see
 /// [the table](super#modes-and-switches)); each a constant one while the
-/// contact's mode does not watch it.
+/// contact's mode does not watch it. Each run starts from `first`.
 fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
-    phase: &Phase<'a, S, N, K>,
+    model: Erased<'a, S, N, K>,
     settings: ContactSettings<S>,
+    first: ContactRun<S, N, K>,
 ) -> Events<'a, S, N> {
     // The run's Zeno guard is off: impacts that accumulate settle into a
     // persistent contact instead (`shortest_flight`).
-    let mut events = Events::new().min_separation(nalgebra::zero());
+    let mut events = Events::new()
+        .min_separation(nalgebra::zero())
+        .keeping(move || Box::new(first.clone()));
     let one = nalgebra::one::<S>;
     for i in 0..K {
-        let name = phase.model.names[i];
+        let name = model.names[i];
         let switch = |cause: Cause| {
-            let phase = phase.clone();
-            move |t, q: &SVector<S, N>, qdot: &SVector<S, N>| {
-                phase.switch(&settings, i, cause, t, (*q, *qdot))
+            move |run: &mut ContactRun<S, N, K>, t, q: &SVector<S, N>, qdot: &SVector<S, N>| {
+                switch(model, &settings, run, (i, cause), t, (*q, *qdot))
             }
         };
         // The gap, looking one time unit ahead while it opens: `g + max(ġ,
@@ -423,62 +450,76 @@ fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
         // where the contact arrives, and it is positive from the start of
         // a rebound on, when `g` itself is zero: a bounce shorter than a
         // step is not lost to an unarmed start.
-        let p = phase.clone();
-        let arrival = move |t, q: &SVector<S, N>, qdot: &SVector<S, N>| match p.shared.modes()[i] {
-            Mode::Open => {
-                let rate = p.model.gap_velocities(t, q, qdot)[i];
-                p.model.gaps(t, q)[i] + rate.max(nalgebra::zero())
-            }
-            _ => one(),
-        };
+        let arrival =
+            move |run: &ContactRun<S, N, K>, t, q: &SVector<S, N>, qdot: &SVector<S, N>| match run
+                .modes[i]
+            {
+                Mode::Open => {
+                    let rate = model.gap_velocities(t, q, qdot)[i];
+                    model.gaps(t, q)[i] + rate.max(nalgebra::zero())
+                }
+                _ => one(),
+            };
         // A given normal force never releases.
-        let given = phase.model.contact_laws()[i].normal.is_some();
-        let p = phase.clone();
-        let release = move |t, q: &SVector<S, N>, qdot: &SVector<S, N>| {
-            if p.shared.modes()[i].touching() && !given {
-                p.solve(t, q, qdot).map_or(nan(), |(_, f)| f.normal[i])
-            } else {
-                one()
-            }
-        };
-        let p = phase.clone();
-        let slide_stop = move |t, q: &SVector<S, N>, qdot: &SVector<S, N>| match p.shared.modes()[i]
-        {
-            Mode::Sliding { forward } => {
-                let v = p.model.slip_velocities(t, q, qdot)[i];
-                if forward { v } else { -v }
-            }
-            _ => one(),
-        };
-        let mu_s = phase.model.contact_laws()[i].static_friction;
-        let p = phase.clone();
+        let given = model.contact_laws()[i].normal.is_some();
+        let release =
+            move |run: &ContactRun<S, N, K>, t, q: &SVector<S, N>, qdot: &SVector<S, N>| {
+                if run.modes[i].touching() && !given {
+                    let phase = Phase {
+                        model,
+                        modes: run.modes,
+                    };
+                    phase.solve(t, q, qdot).map_or(nan(), |(_, f)| f.normal[i])
+                } else {
+                    one()
+                }
+            };
+        let slide_stop =
+            move |run: &ContactRun<S, N, K>, t, q: &SVector<S, N>, qdot: &SVector<S, N>| match run
+                .modes[i]
+            {
+                Mode::Sliding { forward } => {
+                    let v = model.slip_velocities(t, q, qdot)[i];
+                    if forward { v } else { -v }
+                }
+                _ => one(),
+            };
+        let mu_s = model.contact_laws()[i].static_friction;
         let stick_limit =
-            move |t, q: &SVector<S, N>, qdot: &SVector<S, N>| match p.shared.modes()[i] {
-                Mode::Stuck => p
-                    .solve(t, q, qdot)
-                    .map_or(nan(), |(_, f)| mu_s * f.normal[i] - f.friction[i].abs()),
+            move |run: &ContactRun<S, N, K>, t, q: &SVector<S, N>, qdot: &SVector<S, N>| match run
+                .modes[i]
+            {
+                Mode::Stuck => {
+                    let phase = Phase {
+                        model,
+                        modes: run.modes,
+                    };
+                    phase
+                        .solve(t, q, qdot)
+                        .map_or(nan(), |(_, f)| mu_s * f.normal[i] - f.friction[i].abs())
+                }
                 _ => one(),
             };
         events = events
             .with(
-                Event::new(name, arrival)
+                Event::keeping(name, arrival)
                     .falling()
-                    .try_reset(switch(Cause::Impact)),
+                    .try_reset_keeping(switch(Cause::Impact)),
             )
             .with(
-                Event::new(name, release)
+                Event::keeping(name, release)
                     .falling()
-                    .try_reset(switch(Cause::Release)),
+                    .try_reset_keeping(switch(Cause::Release)),
             )
             .with(
-                Event::new(name, slide_stop)
+                Event::keeping(name, slide_stop)
                     .falling()
-                    .try_reset(switch(Cause::SlideStopped)),
+                    .try_reset_keeping(switch(Cause::SlideStopped)),
             )
             .with(
-                Event::new(name, stick_limit)
+                Event::keeping(name, stick_limit)
                     .falling()
-                    .try_reset(switch(Cause::StickLimit)),
+                    .try_reset_keeping(switch(Cause::StickLimit)),
             );
     }
     events
@@ -614,65 +655,88 @@ fn decide_switch<S: RealField + Copy, const N: usize, const K: usize>(
     Ok((state, to))
 }
 
-impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
-    /// An event's reset: the switch decided, the modes changed, the state
-    /// after it; why not, where it cannot be decided.
-    fn switch(
-        &self,
-        settings: &ContactSettings<S>,
-        i: usize,
-        cause: Cause,
-        t: S,
-        state: (SVector<S, N>, SVector<S, N>),
-    ) -> Result<State<S, N>, ResetFailure> {
-        let from = self.shared.modes();
-        {
-            let mut streak = self.shared.streak.lock().unwrap_or_else(|e| e.into_inner());
-            *streak = if streak.1 > 0 && streak.0 == t {
-                (t, streak.1 + 1)
-            } else {
-                (t, 1)
-            };
-            if streak.1 > MAX_SWITCHES_AT_ONCE {
-                return Err(ResetFailure::Chattering { switches: streak.1 });
-            }
+/// An event's reset: the switch of contact `i` for `cause` decided, the
+/// run's modes changed and the switch recorded, the state after it; why
+/// not, where it cannot be decided.
+fn switch<S: RealField + Copy, const N: usize, const K: usize>(
+    model: Erased<'_, S, N, K>,
+    settings: &ContactSettings<S>,
+    run: &mut ContactRun<S, N, K>,
+    (i, cause): (usize, Cause),
+    t: S,
+    state: (SVector<S, N>, SVector<S, N>),
+) -> Result<State<S, N>, ResetFailure> {
+    let from = run.modes;
+    run.streak = if run.streak.1 > 0 && run.streak.0 == t {
+        (t, run.streak.1 + 1)
+    } else {
+        (t, 1)
+    };
+    if run.streak.1 > MAX_SWITCHES_AT_ONCE {
+        return Err(ResetFailure::Chattering {
+            switches: run.streak.1,
+        });
+    }
+    let forced = match cause {
+        Cause::Release => Some((i, Mode::Open)),
+        Cause::StickLimit => {
+            // It slides the way its friction force was holding it from.
+            let phase = Phase { model, modes: from };
+            let friction = phase
+                .solve(t, &state.0, &state.1)
+                .map(|(_, f)| f.friction[i]);
+            let forward = friction.is_some_and(|f| f < nalgebra::zero::<S>());
+            Some((i, Mode::Sliding { forward }))
         }
-        let forced = match cause {
-            Cause::Release => Some((i, Mode::Open)),
-            Cause::StickLimit => {
-                // It slides the way its friction force was holding it from.
-                let friction = self
-                    .solve(t, &state.0, &state.1)
-                    .map(|(_, f)| f.friction[i]);
-                let forward = friction.is_some_and(|f| f < nalgebra::zero::<S>());
-                Some((i, Mode::Sliding { forward }))
-            }
-            _ => None,
-        };
-        let mut switches = self
-            .shared
-            .switches
-            .lock()
-            .unwrap_or_else(|e| e.into_inner());
-        let (state, to) = decide_switch(
-            &self.model,
-            settings,
-            t,
-            state,
-            &from,
-            forced,
-            cause,
-            &mut switches,
-        )
-        .map_err(|error| match error {
-            ContactError::NoConsistentMode { at_impact, .. } => {
-                ResetFailure::NoConsistentMode { at_impact }
-            }
-            ContactError::DependentContacts { .. } => ResetFailure::DependentContacts,
-            error => ResetFailure::refused(error.to_string()),
-        })?;
-        *self.shared.modes.lock().unwrap_or_else(|e| e.into_inner()) = to;
-        Ok(state)
+        _ => None,
+    };
+    let (state, to) = decide_switch(
+        &model,
+        settings,
+        t,
+        state,
+        &from,
+        forced,
+        cause,
+        &mut run.switches,
+    )
+    .map_err(|error| match error {
+        ContactError::NoConsistentMode { at_impact, .. } => {
+            ResetFailure::NoConsistentMode { at_impact }
+        }
+        ContactError::DependentContacts { .. } => ResetFailure::DependentContacts,
+        error => ResetFailure::refused(error.to_string()),
+    })?;
+    run.modes = to;
+    Ok(state)
+}
+
+/// A contact scene's stepper: its run's switches and modes, and the
+/// contact forces at its state.
+impl<S, M, const N: usize, const K: usize> Stepper<'_, Phase<'_, S, N, K>, M, N>
+where
+    S: RealField + Copy,
+    M: StepMethod<S>,
+{
+    /// Every switch of this stepper's run so far, in time order (the
+    /// start's first).
+    pub fn switches(&self) -> &[Switch<S, N>] {
+        self.data()
+            .downcast_ref::<ContactRun<S, N, K>>()
+            .map_or(&[], |run| &run.switches)
+    }
+
+    /// The contacts' modes now.
+    pub fn modes(&self) -> [Mode; K] {
+        self.model().modes
+    }
+
+    /// The contact forces at the stepper's state in its modes; `None`
+    /// where they are not determined.
+    pub fn forces(&self) -> Option<ContactForces<S, N, K>> {
+        self.model()
+            .solve(self.t(), self.q(), self.qdot())
+            .map(|(_, forces)| forces)
     }
 }
 

@@ -11,7 +11,7 @@ use nalgebra::RealField;
 use super::record::{Evaluate, Recorder, finite_state};
 use super::run::Segment;
 use crate::error::{IntegrationError, NonFiniteValue};
-use crate::events::{Events, Hermite, Watch, evaluate_into, first_crossing};
+use crate::events::{Events, Hermite, RunData, Watch, evaluate_into, first_crossing};
 use crate::trajectory::EventRecord;
 use crate::trajectory::State;
 
@@ -48,6 +48,36 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
 
     pub(crate) fn put_watch(&mut self, watch: Option<Watch<'a, S, N>>) {
         self.watch = watch;
+    }
+
+    /// The run's data, which the events keep (`()` where they keep none,
+    /// or no events are watched).
+    pub(crate) fn data(&self) -> &RunData {
+        match &self.watch {
+            Some(watch) => &*watch.data,
+            None => &(),
+        }
+    }
+
+    /// Whether a reset changed the run's data since the model was last
+    /// built from it.
+    pub(crate) fn data_changed(&self) -> bool {
+        self.watch.as_ref().is_some_and(|watch| watch.changed)
+    }
+
+    /// The run's data, taken at its end (`()` in its place).
+    pub(crate) fn take_data(&mut self) -> Box<RunData> {
+        match &mut self.watch {
+            Some(watch) => core::mem::replace(&mut watch.data, Box::new(())),
+            None => Box::new(()),
+        }
+    }
+
+    /// [`data_changed`](Self::data_changed), and it is built anew now.
+    pub(crate) fn take_changed(&mut self) -> bool {
+        self.watch
+            .as_mut()
+            .is_some_and(|watch| core::mem::take(&mut watch.changed))
     }
 
     /// Whether events are watched: the drivers do the extra work events
@@ -195,7 +225,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
         }
         let mut g = core::mem::take(&mut watch.scratch);
         evaluate_into(
-            watch.events,
+            (watch.events, &*watch.data),
             t_new,
             end,
             &mut g,
@@ -242,7 +272,7 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
             let evaluations = &mut self.stats.event_evals;
             let start = (from, g_from.as_slice());
             let found = first_crossing(
-                events,
+                (events, &*watch.data),
                 start,
                 (t_new, &g_end),
                 tolerance,
@@ -294,9 +324,10 @@ impl<'a, S: RealField + Copy, const N: usize> Recorder<'a, S, N> {
             if interrupts {
                 let mut state = (q, qdot);
                 for &i in &crossing.events {
-                    let Some(reset) = list[i].apply_reset(at, &state) else {
+                    let Some(reset) = list[i].apply_reset(&mut *watch.data, at, &state) else {
                         continue;
                     };
+                    watch.changed |= list[i].changes_data();
                     let (q, qdot) = reset.map_err(|reason| IntegrationError::ResetFailed {
                         event: list[i].name(),
                         t: at,

@@ -146,7 +146,6 @@ impl<S: RealField + Copy> Course<S> {
         target: S,
     ) -> Result<Advanced, IntegrationError<S, N>> {
         let max_steps = self.max_steps;
-        let budget_start = run.rec.stats.steps_accepted;
         loop {
             if run.fresh != Fresh::No {
                 if run.fresh == Fresh::Segment {
@@ -191,7 +190,7 @@ impl<S: RealField + Copy> Course<S> {
             let mut restarted = false;
             for k in 1..=steps {
                 let (t, before) = (run.t, run.state());
-                if run.rec.stats.steps_accepted - budget_start >= max_steps {
+                if run.steps_this_call().0 >= max_steps {
                     let (q, qdot) = before;
                     return Err(IntegrationError::TooManySteps {
                         t,
@@ -234,6 +233,7 @@ impl<S: RealField + Copy> Course<S> {
                 match run.take((t_next, q, qdot), crossed, target) {
                     Flow::Go => {}
                     Flow::Stopped => return Ok(Advanced::Stopped),
+                    Flow::Rebuild => return Ok(Advanced::Rebuild),
                     Flow::Restarted(at_target) => {
                         if at_target {
                             run.t = target;

@@ -482,7 +482,6 @@ impl<S: RealField + Copy> Course<S> {
             atol,
             max_steps,
         } = self.settings;
-        let attempts_before = run.rec.stats.steps_accepted + run.rec.stats.steps_rejected;
         // The evaluation failure that made us shrink h, reported if h
         // underflows before we get past it.
         let mut stage_failure = None;
@@ -519,8 +518,7 @@ impl<S: RealField + Copy> Course<S> {
             };
             let h = run.rec.bound_step(h);
             let (t, (q, qdot)) = (run.t, run.state());
-            let attempts = run.rec.stats.steps_accepted + run.rec.stats.steps_rejected;
-            if attempts - attempts_before >= max_steps {
+            if run.steps_this_call().1 >= max_steps {
                 return Err(IntegrationError::TooManySteps {
                     t,
                     max_steps,
@@ -593,6 +591,7 @@ impl<S: RealField + Copy> Course<S> {
             match run.take((t_new, q_new, qdot_new), crossed, target) {
                 Flow::Go => {}
                 Flow::Stopped => return Ok(Advanced::Stopped),
+                Flow::Rebuild => return Ok(Advanced::Rebuild),
                 Flow::Restarted(true) => {
                     run.t = target;
                     return Ok(Advanced::Reached);

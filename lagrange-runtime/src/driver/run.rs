@@ -17,9 +17,9 @@ use super::record::Recorder;
 use super::step_control::advances;
 use super::validate::invalid;
 use crate::error::{IntegrationError, IntegrationResult};
-use crate::events::Events;
+use crate::events::{Events, RunData};
 use crate::model::Lagrangian;
-use crate::trajectory::State;
+use crate::trajectory::{State, Stats};
 
 /// How the events of an accepted step ended the stretch of run it was in.
 pub enum Segment<S, const N: usize> {
@@ -53,6 +53,10 @@ pub struct Run<'a, S: RealField + Copy, const N: usize> {
     /// The samples (none for a stepper), the work counted, the events.
     pub(crate) rec: Recorder<'a, S, N>,
     pub(crate) fresh: Fresh,
+    /// The work counted when the caller's call began (`integrate`'s run, a
+    /// stepper's frame): the step budget is per call, however often the
+    /// walker returns within it to have the model built anew.
+    pub(crate) call_start: Stats,
 }
 
 /// How a call to [`Walk::advance`] ended.
@@ -63,6 +67,10 @@ pub enum Advanced {
     /// Before it, at an event that stops the run or where the observer
     /// stopped it.
     Stopped,
+    /// Before it, at an event whose reset changed the run's data (see
+    /// `Recorder::data`): the caller builds the model anew from the data
+    /// and advances again, in the same call.
+    Rebuild,
 }
 
 /// What the events of a step did to the run, after [`Run::take`].
@@ -74,6 +82,9 @@ pub enum Flow {
     /// An event reset the state; `true` when the target is too close to
     /// the reset to step to, which ends the call there.
     Restarted(bool),
+    /// An event reset the state and the run's data, short of the target:
+    /// the walker returns [`Advanced::Rebuild`].
+    Rebuild,
 }
 
 /// One kind of method's loop, resumable: the method's work between steps
@@ -93,6 +104,20 @@ pub trait Walk<S: RealField + Copy, const N: usize> {
 impl<'a, S: RealField + Copy, const N: usize> Run<'a, S, N> {
     pub(crate) fn state(&self) -> State<S, N> {
         (self.q, self.qdot)
+    }
+
+    /// A call begins: its step budget counts from here.
+    pub(crate) fn begin_call(&mut self) {
+        self.call_start = self.rec.stats;
+    }
+
+    /// The steps accepted in the current call, and those attempted
+    /// (accepted or rejected): what each kind's budget counts.
+    pub(crate) fn steps_this_call(&self) -> (usize, usize) {
+        let (now, then) = (&self.rec.stats, &self.call_start);
+        let accepted = now.steps_accepted - then.steps_accepted;
+        let rejected = now.steps_rejected - then.steps_rejected;
+        (accepted, accepted + rejected)
     }
 
     /// A fresh start's first duty: the events' values at the state (an
@@ -134,7 +159,12 @@ impl<'a, S: RealField + Copy, const N: usize> Run<'a, S, N> {
                 while let Some(ts) = self.rec.pending().filter(|&ts| !advances(t, ts - t)) {
                     self.rec.record(ts, state.0, state.1);
                 }
-                Flow::Restarted(!advances(t, target - t))
+                let at_target = !advances(t, target - t);
+                if !at_target && self.rec.data_changed() {
+                    Flow::Rebuild
+                } else {
+                    Flow::Restarted(at_target)
+                }
             }
         }
     }
@@ -156,7 +186,7 @@ impl<'a, S: RealField + Copy, const N: usize> Run<'a, S, N> {
 /// with an empty trajectory, as every invalid input is.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn integrate<S, L, W, const N: usize>(
-    mut walker: W,
+    walker: W,
     model: &L,
     t0: S,
     q0: SVector<S, N>,
@@ -169,25 +199,76 @@ where
     L: Lagrangian<N, Scalar = S>,
     W: Walk<S, N>,
 {
-    events.validate().map_err(invalid)?;
-    let (rec, (q, qdot)) = Recorder::start(model, t0, &q0, &qdot0, times)?;
+    let start = (t0, q0, qdot0);
+    integrate_segments(walker, model, start, times, events, |_, _| None).0
+}
+
+/// [`integrate`] for events that keep data (`Events::keeping`): each time
+/// a reset changes it, `segment` builds the model the run goes on with
+/// from the last one and the data. Returns the run's data at its end, or
+/// where it failed, beside the result.
+#[allow(clippy::type_complexity)]
+pub(crate) fn integrate_segments<S, L, W, const N: usize>(
+    mut walker: W,
+    model: &L,
+    (t0, q0, qdot0): (S, SVector<S, N>, SVector<S, N>),
+    times: &[S],
+    events: &Events<'_, S, N>,
+    segment: impl Fn(&L, &RunData) -> Option<L>,
+) -> (IntegrationResult<S, N>, Box<RunData>)
+where
+    S: RealField + Copy,
+    L: Lagrangian<N, Scalar = S>,
+    W: Walk<S, N>,
+{
+    if let Err(error) = events.validate() {
+        return (Err(invalid(error)), events.fresh_data());
+    }
+    let (rec, (q, qdot)) = match Recorder::start(model, t0, &q0, &qdot0, times) {
+        Ok(started) => started,
+        Err(failure) => return (Err(failure), events.fresh_data()),
+    };
     let mut run = Run {
         t: t0,
         q,
         qdot,
+        call_start: rec.stats,
         rec,
         fresh: Fresh::Segment,
     };
     run.rec.watch_events(events);
     let end = match run.rec.end() {
         Some(end) if run.rec.pending().is_some() => end,
-        _ => return Ok(run.rec.finish()),
+        _ => return finish(run, Ok(())),
     };
-    match walker.advance(&mut run, model, end) {
-        Ok(_) => Ok(run.rec.finish()),
+    let mut rebuilt: Option<L> = None;
+    let advanced = loop {
+        let current = rebuilt.as_ref().unwrap_or(model);
+        match walker.advance(&mut run, current, end) {
+            Ok(Advanced::Rebuild) => {
+                if run.rec.take_changed() {
+                    rebuilt = segment(current, run.rec.data()).or(rebuilt);
+                }
+            }
+            Ok(_) => break Ok(()),
+            Err(error) => break Err(error),
+        }
+    };
+    finish(run, advanced)
+}
+
+/// A run's result, and its data.
+fn finish<S: RealField + Copy, const N: usize>(
+    mut run: Run<'_, S, N>,
+    advanced: Result<(), IntegrationError<S, N>>,
+) -> (IntegrationResult<S, N>, Box<RunData>) {
+    let data = run.rec.take_data();
+    let result = match advanced {
+        Ok(()) => Ok(run.rec.finish()),
         Err(IntegrationError::InvalidInput(error)) if run.rec.stats.steps_accepted == 0 => {
             Err(invalid(error))
         }
         Err(error) => Err(run.rec.fail(error)),
-    }
+    };
+    (result, data)
 }

@@ -13,7 +13,7 @@
 
 use nalgebra::RealField;
 
-use super::Events;
+use super::{Events, RunData};
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::trajectory::State;
 
@@ -54,7 +54,7 @@ const MAX_ITERATIONS: usize = 3000;
 const STEP_FRACTION: f64 = 1.0 / 1_048_576.0;
 
 pub(crate) fn first_crossing<S: RealField + Copy, const N: usize>(
-    events: &Events<'_, S, N>,
+    (events, data): (&Events<'_, S, N>, &RunData),
     (t0, g0): (S, &[S]),
     (t1, g1): (S, &[S]),
     tolerance: S,
@@ -67,7 +67,7 @@ pub(crate) fn first_crossing<S: RealField + Copy, const N: usize>(
         let mut g = |t: S| {
             let (q, qdot) = state_at(t);
             *evaluations += 1;
-            finite(event.value(t, &q, &qdot), event.name(), t, (q, qdot))
+            finite(event.value(data, t, &q, &qdot), event.name(), t, (q, qdot))
         };
         // The bracket: from a point not yet crossed to one crossed, and
         // the value crossing is judged from.
@@ -108,7 +108,7 @@ pub(crate) fn first_crossing<S: RealField + Copy, const N: usize>(
         return Ok(None);
     };
     let state = state_at(t);
-    let g = evaluate(events, t, &state, evaluations)?;
+    let g = evaluate((events, data), t, &state, evaluations)?;
     let events = (0..list.len())
         .filter(|&i| i == located || list[i].crosses(g0[i], g[i]))
         .collect();
@@ -218,7 +218,7 @@ fn hidden_extremum<S: RealField + Copy, E>(
 /// [`evaluate`] into `g` (cleared first), so that a buffer kept from step
 /// to step is not allocated again.
 pub(crate) fn evaluate_into<S: RealField + Copy, const N: usize>(
-    events: &Events<'_, S, N>,
+    (events, data): (&Events<'_, S, N>, &RunData),
     t: S,
     state: &State<S, N>,
     g: &mut Vec<S>,
@@ -228,20 +228,25 @@ pub(crate) fn evaluate_into<S: RealField + Copy, const N: usize>(
     g.clear();
     for event in events.list() {
         *evaluations += 1;
-        g.push(finite(event.value(t, q, qdot), event.name(), t, *state)?);
+        g.push(finite(
+            event.value(data, t, q, qdot),
+            event.name(),
+            t,
+            *state,
+        )?);
     }
     Ok(())
 }
 
 /// Every event's `g` at `(t, q, q̇)`; the first non-finite one is an error.
 pub(crate) fn evaluate<S: RealField + Copy, const N: usize>(
-    events: &Events<'_, S, N>,
+    (events, data): (&Events<'_, S, N>, &RunData),
     t: S,
     state: &State<S, N>,
     evaluations: &mut usize,
 ) -> Result<Vec<S>, IntegrationError<S, N>> {
     let mut g = Vec::with_capacity(events.len());
-    evaluate_into(events, t, state, &mut g, evaluations)?;
+    evaluate_into((events, data), t, state, &mut g, evaluations)?;
     Ok(g)
 }
 
@@ -331,9 +336,10 @@ mod tests {
         tolerance: f64,
     ) -> Option<Crossing<f64, 1>> {
         let mut n = 0;
-        let g0 = evaluate(events, t0, &cosine(t0), &mut n).unwrap();
-        let g1 = evaluate(events, t1, &cosine(t1), &mut n).unwrap();
-        first_crossing(events, (t0, &g0), (t1, &g1), tolerance, &mut cosine, &mut n).unwrap()
+        let bound = (events, &() as &RunData);
+        let g0 = evaluate(bound, t0, &cosine(t0), &mut n).unwrap();
+        let g1 = evaluate(bound, t1, &cosine(t1), &mut n).unwrap();
+        first_crossing(bound, (t0, &g0), (t1, &g1), tolerance, &mut cosine, &mut n).unwrap()
     }
 
     #[test]
@@ -377,7 +383,8 @@ mod tests {
         let events = Events::new().with(Event::new("broken", nan));
         let mut n = 0;
         let (start, end) = ((0.5, &[0.5][..]), (2.0, &[-1.0][..]));
-        let error = first_crossing(&events, start, end, 1e-12, &mut cosine, &mut n);
+        let bound = (&events, &() as &RunData);
+        let error = first_crossing(bound, start, end, 1e-12, &mut cosine, &mut n);
         assert!(matches!(
             error,
             Err(IntegrationError::NonFiniteEvent {

@@ -173,6 +173,7 @@
 //!   step bound) are [`InvalidInput::InvalidEventSetting`],
 //!   before any work.
 
+use core::any::Any;
 use core::fmt;
 
 use nalgebra::{RealField, SVector};
@@ -190,17 +191,27 @@ pub(crate) use hermite::Hermite;
 pub(crate) use locate::{evaluate_into, first_crossing};
 pub(crate) use watch::Watch;
 
-/// An event function `g(t, q, q̇)`.
-type Function<'a, S, const N: usize> =
-    Box<dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> S + Send + Sync + 'a>;
+/// What a run carries from event to event for the events that keep state
+/// (the contacts' modes and switches): owned by the run, made anew for
+/// each run by its [`Events`], read by the events' functions and changed
+/// by their resets only. `()` for a run whose events keep nothing.
+pub(crate) type RunData = dyn Any + Send + Sync;
 
-/// A reset `(t, q, q̇) ↦ (q⁺, q̇⁺)`, or why there is none.
+/// An event function `g(t, q, q̇)`, given the run's data.
+type Function<'a, S, const N: usize> =
+    Box<dyn Fn(&RunData, S, &SVector<S, N>, &SVector<S, N>) -> S + Send + Sync + 'a>;
+
+/// A reset `(t, q, q̇) ↦ (q⁺, q̇⁺)`, or why there is none, given the run's
+/// data to change.
 type ResetMap<'a, S, const N: usize> = Box<
-    dyn Fn(S, &SVector<S, N>, &SVector<S, N>) -> Result<State<S, N>, ResetFailure>
+    dyn Fn(&mut RunData, S, &SVector<S, N>, &SVector<S, N>) -> Result<State<S, N>, ResetFailure>
         + Send
         + Sync
         + 'a,
 >;
+
+/// How a run's data is made at its start.
+type DataFactory<'a> = Box<dyn Fn() -> Box<RunData> + Send + Sync + 'a>;
 
 /// Which zero crossings of an event function count.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -232,7 +243,9 @@ impl Direction {
 enum Action<'a, S, const N: usize> {
     Record,
     Stop,
-    Reset(ResetMap<'a, S, N>),
+    /// The reset, and whether it changes the run's data (the model the
+    /// run integrates is then built anew from it).
+    Reset(ResetMap<'a, S, N>, bool),
 }
 
 /// A function of the state whose zero crossings are located and acted on
@@ -263,10 +276,49 @@ impl<'a, S: RealField + Copy, const N: usize> Event<'a, S, N> {
     ) -> Self {
         Self {
             name,
-            g: Box::new(g),
+            g: Box::new(move |_, t, q, qdot| g(t, q, qdot)),
             direction: Direction::Both,
             action: Action::Record,
         }
+    }
+
+    /// An event whose `g` reads the run's data `D` (made by
+    /// [`Events::keeping`]); NaN where the run's data is not a `D`, which
+    /// ends the run with a typed error naming the event.
+    pub(crate) fn keeping<D: Any>(
+        name: &'static str,
+        g: impl Fn(&D, S, &SVector<S, N>, &SVector<S, N>) -> S + Send + Sync + 'a,
+    ) -> Self {
+        Self {
+            name,
+            g: Box::new(move |data, t, q, qdot| match data.downcast_ref::<D>() {
+                Some(data) => g(data, t, q, qdot),
+                None => S::zero() / S::zero(),
+            }),
+            direction: Direction::Both,
+            action: Action::Record,
+        }
+    }
+
+    /// A reset that changes the run's data `D` as well as the state: the
+    /// run goes on from the new state with the model built anew from the
+    /// new data.
+    pub(crate) fn try_reset_keeping<D: Any>(
+        mut self,
+        reset: impl Fn(&mut D, S, &SVector<S, N>, &SVector<S, N>) -> Result<State<S, N>, ResetFailure>
+        + Send
+        + Sync
+        + 'a,
+    ) -> Self {
+        let map: ResetMap<'a, S, N> =
+            Box::new(move |data, t, q, qdot| match data.downcast_mut::<D>() {
+                Some(data) => reset(data, t, q, qdot),
+                None => Err(ResetFailure::refused(
+                    "the run's data is not the kind this event's reset keeps",
+                )),
+            });
+        self.action = Action::Reset(map, true);
+        self
     }
 
     /// Only crossings from `g < 0` to `g ≥ 0`.
@@ -346,7 +398,7 @@ impl<'a, S: RealField + Copy, const N: usize> Event<'a, S, N> {
         + Sync
         + 'a,
     ) -> Self {
-        self.action = Action::Reset(Box::new(reset));
+        self.action = Action::Reset(Box::new(move |_, t, q, qdot| reset(t, q, qdot)), false);
         self
     }
 
@@ -355,9 +407,9 @@ impl<'a, S: RealField + Copy, const N: usize> Event<'a, S, N> {
         self.name
     }
 
-    /// `g` at `(t, q, q̇)`.
-    pub(crate) fn value(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> S {
-        (self.g)(t, q, qdot)
+    /// `g` at `(t, q, q̇)`, given the run's data.
+    pub(crate) fn value(&self, data: &RunData, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> S {
+        (self.g)(data, t, q, qdot)
     }
 
     pub(crate) fn crosses(&self, before: S, after: S) -> bool {
@@ -373,17 +425,24 @@ impl<'a, S: RealField + Copy, const N: usize> Event<'a, S, N> {
         matches!(self.action, Action::Stop)
     }
 
-    /// The state its reset makes of `(t, q, q̇)`, or why it makes none;
-    /// `None` if it does not reset.
+    /// The state its reset makes of `(t, q, q̇)` (changing the run's
+    /// data, for a reset that keeps some), or why it makes none; `None` if
+    /// it does not reset.
     pub(crate) fn apply_reset(
         &self,
+        data: &mut RunData,
         t: S,
         (q, qdot): &(SVector<S, N>, SVector<S, N>),
     ) -> Option<Result<State<S, N>, ResetFailure>> {
         match &self.action {
-            Action::Reset(reset) => Some(reset(t, q, qdot)),
+            Action::Reset(reset, _) => Some(reset(data, t, q, qdot)),
             _ => None,
         }
+    }
+
+    /// Whether its reset changes the run's data.
+    pub(crate) fn changes_data(&self) -> bool {
+        matches!(self.action, Action::Reset(_, true))
     }
 }
 
@@ -392,7 +451,7 @@ impl<S, const N: usize> fmt::Debug for Event<'_, S, N> {
         let action = match self.action {
             Action::Record => "record",
             Action::Stop => "stop",
-            Action::Reset(_) => "reset",
+            Action::Reset(..) => "reset",
         };
         f.debug_struct("Event")
             .field("name", &self.name)
@@ -424,6 +483,16 @@ pub struct Events<'a, S, const N: usize> {
     min_separation: Option<S>,
     max_step: Option<S>,
     observer: Option<Observer<'a, S, N>>,
+    data: Option<Factory<'a>>,
+}
+
+/// How a run's data is made, with a `Debug` that names it only.
+struct Factory<'a>(DataFactory<'a>);
+
+impl fmt::Debug for Factory<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("RunData")
+    }
 }
 
 /// What an observer tells the run: go on, or stop here.
@@ -458,6 +527,23 @@ impl<'a, S: RealField + Copy, const N: usize> Events<'a, S, N> {
             min_separation: None,
             max_step: None,
             observer: None,
+            data: None,
+        }
+    }
+
+    /// Each run watching these events carries the data `make()` returns
+    /// at its start, for the events made by [`Event::keeping`] and
+    /// [`Event::try_reset_keeping`] to read and change.
+    pub(crate) fn keeping(mut self, make: impl Fn() -> Box<RunData> + Send + Sync + 'a) -> Self {
+        self.data = Some(Factory(Box::new(make)));
+        self
+    }
+
+    /// A run's data at its start: `()` for events that keep none.
+    pub(crate) fn fresh_data(&self) -> Box<RunData> {
+        match &self.data {
+            Some(make) => (make.0)(),
+            None => Box::new(()),
         }
     }
 

@@ -1,9 +1,9 @@
 //! What a run keeps of its events between steps: the events, their values
 //! at the current time and the Zeno guard.
 
-use super::Events;
 use super::guard::ZenoGuard;
 use super::locate::evaluate_into;
+use super::{Events, RunData};
 use crate::error::IntegrationError;
 use crate::trajectory::State;
 use nalgebra::{RealField, SVector};
@@ -23,6 +23,12 @@ pub(crate) struct Watch<'a, S, const N: usize> {
     /// `q̈` at the end of the last step a Hermite interpolant was built
     /// for, with that time and state: the next step's slope at its start.
     pub(crate) slope: Option<(S, State<S, N>, SVector<S, N>)>,
+    /// The run's data, which the events read and their resets change
+    /// (`()` where they keep none): the run's own, made at its start.
+    pub(crate) data: Box<RunData>,
+    /// Whether a reset changed `data` since the model was last built from
+    /// it.
+    pub(crate) changed: bool,
 }
 
 impl<'a, S: RealField + Copy, const N: usize> Watch<'a, S, N> {
@@ -34,6 +40,8 @@ impl<'a, S: RealField + Copy, const N: usize> Watch<'a, S, N> {
             guard: ZenoGuard::new(),
             resolution: S::zero(),
             slope: None,
+            data: events.fresh_data(),
+            changed: false,
         }
     }
 
@@ -44,6 +52,12 @@ impl<'a, S: RealField + Copy, const N: usize> Watch<'a, S, N> {
         state: &State<S, N>,
         evaluations: &mut usize,
     ) -> Result<(), IntegrationError<S, N>> {
-        evaluate_into(self.events, t, state, &mut self.g, evaluations)
+        evaluate_into(
+            (self.events, &*self.data),
+            t,
+            state,
+            &mut self.g,
+            evaluations,
+        )
     }
 }

@@ -115,9 +115,9 @@
 use nalgebra::{ComplexField, SVector};
 
 use crate::driver::Recorder;
-use crate::driver::run::{Fresh, Run, Walk};
+use crate::driver::run::{Advanced, Fresh, Run, Walk};
 use crate::error::{IntegrationError, InvalidInput};
-use crate::events::Events;
+use crate::events::{Events, RunData};
 use crate::integrators::StepMethod;
 use crate::model::Lagrangian;
 use crate::trajectory::{EventRecord, Stats};
@@ -133,7 +133,14 @@ where
     model: L,
     walker: M::Walker<N>,
     run: Run<'e, L::Scalar, N>,
+    /// For events that keep data (a contact scene's modes): the model the
+    /// run goes on with after a reset changed the data, built from the
+    /// last one and the data.
+    segment: Option<Segment<L>>,
 }
+
+/// How a stepper's model is built anew from the run's data.
+pub(crate) type Segment<L> = fn(&L, &RunData) -> Option<L>;
 
 impl<'e, L, M, const N: usize> Stepper<'e, L, M, N>
 where
@@ -159,10 +166,16 @@ where
             t: t0,
             q,
             qdot,
+            call_start: rec.stats,
             rec,
             fresh: Fresh::Segment,
         };
-        Ok(Self { model, walker, run })
+        Ok(Self {
+            model,
+            walker,
+            run,
+            segment: None,
+        })
     }
 
     /// Watches `events` from now on: each call locates, records and acts
@@ -217,8 +230,34 @@ where
             return Err(InvalidInput::TargetNotAhead { t, target }.into());
         }
         self.run.rec.forget_events();
-        self.walker.advance(&mut self.run, &self.model, target)?;
-        Ok(())
+        self.run.begin_call();
+        loop {
+            let advanced = self.walker.advance(&mut self.run, &self.model, target);
+            if self.run.rec.take_changed() {
+                if let Some(model) = self
+                    .segment
+                    .and_then(|segment| segment(&self.model, self.run.rec.data()))
+                {
+                    self.model = model;
+                }
+            }
+            if advanced? != Advanced::Rebuild {
+                return Ok(());
+            }
+        }
+    }
+
+    /// Builds the model anew with `segment` each time a reset of the
+    /// watched events changes the run's data (`Events::keeping`).
+    pub(crate) fn with_segments(mut self, segment: Segment<L>) -> Self {
+        self.segment = Some(segment);
+        self
+    }
+
+    /// The run's data, kept by the watched events (`()` where they keep
+    /// none).
+    pub(crate) fn data(&self) -> &RunData {
+        self.run.rec.data()
     }
 
     /// The caller changed the model, the state, the clock or the events:

@@ -18,7 +18,7 @@ const H: f64 = 1e-3;
 /// The switches after the start of a scene from `(q0, v0)` to `end`, by
 /// `method` with `settings`.
 fn switches<L>(
-    method: &impl Integrator<f64>,
+    method: &impl StepMethod<f64>,
     model: &L,
     (q0, v0): ([f64; 2], [f64; 2]),
     end: f64,

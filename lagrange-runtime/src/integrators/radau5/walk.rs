@@ -115,7 +115,6 @@ impl<S: RealField + Copy, const N: usize> Walk<S, N> for Radau5Walk<S, N> {
         // The controller trusts a step less the more Newton iterations it took.
         let cfac = safety * c((1 + 2 * MAX_NEWTON) as f64);
         let half = c(0.5);
-        let attempts_before = run.rec.stats.steps_accepted + run.rec.stats.steps_rejected;
         // The evaluation failure that made us shrink h, reported if h
         // underflows before we get past it.
         let mut stage_failure = None;
@@ -163,8 +162,7 @@ impl<S: RealField + Copy, const N: usize> Walk<S, N> for Radau5Walk<S, N> {
                 self.place(t, h_new, reuse, target);
             }
 
-            let attempts = run.rec.stats.steps_accepted + run.rec.stats.steps_rejected;
-            if attempts - attempts_before >= self.max_steps {
+            if run.steps_this_call().1 >= self.max_steps {
                 let (q, qdot) = split(&self.work.y);
                 let max_steps = self.max_steps;
                 return Err(IntegrationError::TooManySteps {
@@ -295,6 +293,7 @@ impl<S: RealField + Copy, const N: usize> Walk<S, N> for Radau5Walk<S, N> {
             match run.take((t_new, end.0, end.1), crossed, target) {
                 Flow::Go => {}
                 Flow::Stopped => return Ok(Advanced::Stopped),
+                Flow::Rebuild => return Ok(Advanced::Rebuild),
                 Flow::Restarted(true) => {
                     run.t = target;
                     return Ok(Advanced::Reached);

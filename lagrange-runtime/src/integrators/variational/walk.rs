@@ -143,7 +143,6 @@ impl<S: RealField + Copy, const N: usize> Walk<S, N> for VariationalWalk<S, N> {
     ) -> Result<Advanced, IntegrationError<S, N>> {
         let method = self.method;
         let max_steps = method.max_steps;
-        let budget_start = run.rec.stats.steps_accepted;
         loop {
             if run.t >= target {
                 return Ok(Advanced::Reached);
@@ -190,7 +189,7 @@ impl<S: RealField + Copy, const N: usize> Walk<S, N> for VariationalWalk<S, N> {
             let mut restarted = false;
             for k in 1..=steps {
                 let (t, q, p) = (self.t, self.q, self.p);
-                if run.rec.stats.steps_accepted - budget_start >= max_steps {
+                if run.steps_this_call().0 >= max_steps {
                     let velocities = &self.velocities;
                     return Err(out_of_budget(
                         &mut run.rec,
@@ -265,6 +264,7 @@ impl<S: RealField + Copy, const N: usize> Walk<S, N> for VariationalWalk<S, N> {
                     match run.take((t, end.0, end.1), crossed, target) {
                         Flow::Go => {}
                         Flow::Stopped => return Ok(Advanced::Stopped),
+                        Flow::Rebuild => return Ok(Advanced::Rebuild),
                         Flow::Restarted(at_target) => {
                             if at_target {
                                 run.t = target;
