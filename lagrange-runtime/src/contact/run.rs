@@ -320,7 +320,8 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
     /// its modes and switches are data of the run, not of the scene.
     pub fn integrate<M: StepMethod<S>>(&self, method: &M, times: &[S]) -> ContactResult<S, N, K> {
         let (q0, qdot0) = self.start;
-        let (run, data) = match method.walker::<N>() {
+        let mut data = self.events.fresh_data();
+        let run = match method.walker::<N>() {
             Ok(walker) => integrate_segments(
                 walker,
                 &self.first_phase(),
@@ -328,8 +329,9 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
                 times,
                 &self.events,
                 next_phase,
+                Some(&mut data),
             ),
-            Err(error) => (Err(invalid(error)), self.events.fresh_data()),
+            Err(error) => Err(invalid(error)),
         };
         let switches = match data.downcast::<ContactRun<S, N, K>>() {
             Ok(run) => run.switches,
@@ -450,16 +452,16 @@ fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
         // where the contact arrives, and it is positive from the start of
         // a rebound on, when `g` itself is zero: a bounce shorter than a
         // step is not lost to an unarmed start.
-        let arrival =
-            move |run: &ContactRun<S, N, K>, t, q: &SVector<S, N>, qdot: &SVector<S, N>| match run
-                .modes[i]
-            {
-                Mode::Open => {
-                    let rate = model.gap_velocities(t, q, qdot)[i];
-                    model.gaps(t, q)[i] + rate.max(nalgebra::zero())
-                }
-                _ => one(),
-            };
+        let arrival = move |run: &ContactRun<S, N, K>,
+                            t,
+                            q: &SVector<S, N>,
+                            qdot: &SVector<S, N>| match run.modes[i] {
+            Mode::Open => {
+                let rate = model.gap_velocities(t, q, qdot)[i];
+                model.gaps(t, q)[i] + rate.max(nalgebra::zero())
+            }
+            _ => one(),
+        };
         // A given normal force never releases.
         let given = model.contact_laws()[i].normal.is_some();
         let release =
@@ -474,32 +476,32 @@ fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
                     one()
                 }
             };
-        let slide_stop =
-            move |run: &ContactRun<S, N, K>, t, q: &SVector<S, N>, qdot: &SVector<S, N>| match run
-                .modes[i]
-            {
-                Mode::Sliding { forward } => {
-                    let v = model.slip_velocities(t, q, qdot)[i];
-                    if forward { v } else { -v }
-                }
-                _ => one(),
-            };
+        let slide_stop = move |run: &ContactRun<S, N, K>,
+                               t,
+                               q: &SVector<S, N>,
+                               qdot: &SVector<S, N>| match run.modes[i] {
+            Mode::Sliding { forward } => {
+                let v = model.slip_velocities(t, q, qdot)[i];
+                if forward { v } else { -v }
+            }
+            _ => one(),
+        };
         let mu_s = model.contact_laws()[i].static_friction;
-        let stick_limit =
-            move |run: &ContactRun<S, N, K>, t, q: &SVector<S, N>, qdot: &SVector<S, N>| match run
-                .modes[i]
-            {
-                Mode::Stuck => {
-                    let phase = Phase {
-                        model,
-                        modes: run.modes,
-                    };
-                    phase
-                        .solve(t, q, qdot)
-                        .map_or(nan(), |(_, f)| mu_s * f.normal[i] - f.friction[i].abs())
-                }
-                _ => one(),
-            };
+        let stick_limit = move |run: &ContactRun<S, N, K>,
+                                t,
+                                q: &SVector<S, N>,
+                                qdot: &SVector<S, N>| match run.modes[i] {
+            Mode::Stuck => {
+                let phase = Phase {
+                    model,
+                    modes: run.modes,
+                };
+                phase
+                    .solve(t, q, qdot)
+                    .map_or(nan(), |(_, f)| mu_s * f.normal[i] - f.friction[i].abs())
+            }
+            _ => one(),
+        };
         events = events
             .with(
                 Event::keeping(name, arrival)

@@ -19,7 +19,7 @@ use super::validate::invalid;
 use crate::error::{IntegrationError, IntegrationResult};
 use crate::events::{Events, RunData};
 use crate::model::Lagrangian;
-use crate::trajectory::{State, Stats};
+use crate::trajectory::State;
 
 /// How the events of an accepted step ended the stretch of run it was in.
 pub enum Segment<S, const N: usize> {
@@ -53,10 +53,11 @@ pub struct Run<'a, S: RealField + Copy, const N: usize> {
     /// The samples (none for a stepper), the work counted, the events.
     pub(crate) rec: Recorder<'a, S, N>,
     pub(crate) fresh: Fresh,
-    /// The work counted when the caller's call began (`integrate`'s run, a
-    /// stepper's frame): the step budget is per call, however often the
-    /// walker returns within it to have the model built anew.
-    pub(crate) call_start: Stats,
+    /// The steps accepted and rejected when the caller's call began
+    /// (`integrate`'s run, a stepper's frame): the step budget is per
+    /// call, however often the walker returns within it to have the model
+    /// built anew.
+    pub(crate) call_start: (usize, usize),
 }
 
 /// How a call to [`Walk::advance`] ended.
@@ -108,15 +109,15 @@ impl<'a, S: RealField + Copy, const N: usize> Run<'a, S, N> {
 
     /// A call begins: its step budget counts from here.
     pub(crate) fn begin_call(&mut self) {
-        self.call_start = self.rec.stats;
+        self.call_start = (self.rec.stats.steps_accepted, self.rec.stats.steps_rejected);
     }
 
     /// The steps accepted in the current call, and those attempted
     /// (accepted or rejected): what each kind's budget counts.
     pub(crate) fn steps_this_call(&self) -> (usize, usize) {
-        let (now, then) = (&self.rec.stats, &self.call_start);
-        let accepted = now.steps_accepted - then.steps_accepted;
-        let rejected = now.steps_rejected - then.steps_rejected;
+        let (now, (accepted, rejected)) = (&self.rec.stats, self.call_start);
+        let accepted = now.steps_accepted - accepted;
+        let rejected = now.steps_rejected - rejected;
         (accepted, accepted + rejected)
     }
 
@@ -200,14 +201,15 @@ where
     W: Walk<S, N>,
 {
     let start = (t0, q0, qdot0);
-    integrate_segments(walker, model, start, times, events, |_, _| None).0
+    integrate_segments(walker, model, start, times, events, |_, _| None, None)
 }
 
 /// [`integrate`] for events that keep data (`Events::keeping`): each time
 /// a reset changes it, `segment` builds the model the run goes on with
-/// from the last one and the data. Returns the run's data at its end, or
-/// where it failed, beside the result.
-#[allow(clippy::type_complexity)]
+/// from the last one and the data. The run's data at its end, or where it
+/// failed, is left in `keep` (if given; untouched where the run did not
+/// start).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn integrate_segments<S, L, W, const N: usize>(
     mut walker: W,
     model: &L,
@@ -215,60 +217,50 @@ pub(crate) fn integrate_segments<S, L, W, const N: usize>(
     times: &[S],
     events: &Events<'_, S, N>,
     segment: impl Fn(&L, &RunData) -> Option<L>,
-) -> (IntegrationResult<S, N>, Box<RunData>)
+    keep: Option<&mut Box<RunData>>,
+) -> IntegrationResult<S, N>
 where
     S: RealField + Copy,
     L: Lagrangian<N, Scalar = S>,
     W: Walk<S, N>,
 {
-    if let Err(error) = events.validate() {
-        return (Err(invalid(error)), events.fresh_data());
-    }
-    let (rec, (q, qdot)) = match Recorder::start(model, t0, &q0, &qdot0, times) {
-        Ok(started) => started,
-        Err(failure) => return (Err(failure), events.fresh_data()),
-    };
+    events.validate().map_err(invalid)?;
+    let (rec, (q, qdot)) = Recorder::start(model, t0, &q0, &qdot0, times)?;
     let mut run = Run {
         t: t0,
         q,
         qdot,
-        call_start: rec.stats,
+        call_start: (rec.stats.steps_accepted, rec.stats.steps_rejected),
         rec,
         fresh: Fresh::Segment,
     };
     run.rec.watch_events(events);
-    let end = match run.rec.end() {
-        Some(end) if run.rec.pending().is_some() => end,
-        _ => return finish(run, Ok(())),
-    };
-    let mut rebuilt: Option<L> = None;
-    let advanced = loop {
-        let current = rebuilt.as_ref().unwrap_or(model);
-        match walker.advance(&mut run, current, end) {
-            Ok(Advanced::Rebuild) => {
-                if run.rec.take_changed() {
-                    rebuilt = segment(current, run.rec.data()).or(rebuilt);
+    let advanced = match run.rec.end() {
+        Some(end) if run.rec.pending().is_some() => {
+            let mut rebuilt: Option<L> = None;
+            loop {
+                let current = rebuilt.as_ref().unwrap_or(model);
+                match walker.advance(&mut run, current, end) {
+                    Ok(Advanced::Rebuild) => {
+                        if run.rec.take_changed() {
+                            rebuilt = segment(current, run.rec.data()).or(rebuilt);
+                        }
+                    }
+                    Ok(_) => break Ok(()),
+                    Err(error) => break Err(error),
                 }
             }
-            Ok(_) => break Ok(()),
-            Err(error) => break Err(error),
         }
+        _ => Ok(()),
     };
-    finish(run, advanced)
-}
-
-/// A run's result, and its data.
-fn finish<S: RealField + Copy, const N: usize>(
-    mut run: Run<'_, S, N>,
-    advanced: Result<(), IntegrationError<S, N>>,
-) -> (IntegrationResult<S, N>, Box<RunData>) {
-    let data = run.rec.take_data();
-    let result = match advanced {
+    if let Some(keep) = keep {
+        *keep = run.rec.take_data();
+    }
+    match advanced {
         Ok(()) => Ok(run.rec.finish()),
         Err(IntegrationError::InvalidInput(error)) if run.rec.stats.steps_accepted == 0 => {
             Err(invalid(error))
         }
         Err(error) => Err(run.rec.fail(error)),
-    };
-    (result, data)
+    }
 }

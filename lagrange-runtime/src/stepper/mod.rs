@@ -166,7 +166,7 @@ where
             t: t0,
             q,
             qdot,
-            call_start: rec.stats,
+            call_start: (rec.stats.steps_accepted, rec.stats.steps_rejected),
             rec,
             fresh: Fresh::Segment,
         };
