@@ -288,11 +288,11 @@ pub enum InTrait {
     Provided,
     /// A provided method returning `Option` (`None` by default): the impl
     /// returns `Some` of the inherent one. Where a model has no such method,
-    /// the impl sets `flag_if_absent` (if any) to `true` instead.
+    /// the impl returns `Some` of zeros if `zero_if_absent` (the model has
+    /// them, and they are zero), and leaves the default otherwise.
     Optional {
-        /// The name of the trait's flag (an associated `const`) to set where the
-        /// model has no such method, if any.
-        flag_if_absent: Option<&'static str>,
+        /// Whether a model without the method has it as zero.
+        zero_if_absent: bool,
     },
     /// Not a method of `Lagrangian` but of `Holonomic<N, C>`, which only a
     /// constrained model implements: its impl calls the inherent one.
@@ -413,7 +413,7 @@ pub const METHODS: &[Method] = &[
         returns: Returns::Vector,
         roots: |_, eq| Some(eq.momenta.clone()),
         in_trait: InTrait::Optional {
-            flag_if_absent: None,
+            zero_if_absent: false,
         },
     },
     Method {
@@ -423,7 +423,7 @@ pub const METHODS: &[Method] = &[
         returns: Returns::Vector,
         roots: |_, eq| Some(eq.lagrangian_gradient.clone()),
         in_trait: InTrait::Optional {
-            flag_if_absent: None,
+            zero_if_absent: false,
         },
     },
     Method {
@@ -431,14 +431,14 @@ pub const METHODS: &[Method] = &[
         doc: &["The non-conservative generalized forces `Q − ∂R/∂q̇`."],
         args: &[Arg::T, Arg::Q, Arg::Qdot],
         returns: Returns::Vector,
-        // Only a model with forces or dissipation has them; a conservative
-        // one says so and emits no code for them.
+        // Only a model with forces or dissipation has code for them; a
+        // conservative one's are zero, and its impl says so.
         roots: |model, eq| {
             let conservative = model.forces.is_empty() && model.dissipation.is_none();
             (!conservative).then(|| eq.nonconservative.clone())
         },
         in_trait: InTrait::Optional {
-            flag_if_absent: Some("CONSERVATIVE"),
+            zero_if_absent: true,
         },
     },
     Method {
@@ -455,7 +455,7 @@ pub const METHODS: &[Method] = &[
             Some([column_major(jq), column_major(jv)].concat())
         },
         in_trait: InTrait::Optional {
-            flag_if_absent: None,
+            zero_if_absent: false,
         },
     },
     Method {

@@ -554,18 +554,25 @@ fn trait_method(cx: &Context, m: &Method, present: bool) -> TokenStream {
     ) {
         return TokenStream::new();
     }
+    let signature = m.trait_signature(&cx.types);
     if !present {
         return match m.in_trait {
             InTrait::Optional {
-                flag_if_absent: Some(flag),
+                zero_if_absent: true,
             } => {
-                let flag = Ident::new(flag, proc_macro2::Span::call_site());
-                quote!(const #flag: bool = true;)
+                let args = m.arg_idents();
+                let na = nalgebra();
+                quote! {
+                    #[inline]
+                    #signature {
+                        let _ = (#(#args),*);
+                        ::core::option::Option::Some(#na::SVector::zeros())
+                    }
+                }
             }
             _ => TokenStream::new(),
         };
     }
-    let signature = m.trait_signature(&cx.types);
     let model = cx.outline.name;
     let method = m.ident();
     let args = m.arg_idents();

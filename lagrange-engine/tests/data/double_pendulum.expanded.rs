@@ -437,7 +437,16 @@ for DoublePendulum<S> {
             DoublePendulum::lagrangian_gradient(self, t, q, qdot),
         )
     }
-    const CONSERVATIVE: bool = true;
+    #[inline]
+    fn nonconservative_forces(
+        &self,
+        t: S,
+        q: &::lagrange::nalgebra::SVector<S, 2>,
+        qdot: &::lagrange::nalgebra::SVector<S, 2>,
+    ) -> ::core::option::Option<::lagrange::nalgebra::SVector<S, 2>> {
+        let _ = (t, q, qdot);
+        ::core::option::Option::Some(::lagrange::nalgebra::SVector::zeros())
+    }
     #[inline]
     fn parameters_are_finite(&self) -> bool {
         ::lagrange::nalgebra::ComplexField::is_finite(&self.m1)

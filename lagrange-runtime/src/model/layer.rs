@@ -198,7 +198,6 @@ where
 {
     type Scalar = M::Scalar;
     const COORDINATES: [&'static str; N] = M::COORDINATES;
-    const CONSERVATIVE: bool = M::CONSERVATIVE;
     const HAS_CONTACTS: bool = M::HAS_CONTACTS;
     const SOLVES_ACCELERATIONS: bool = M::SOLVES_ACCELERATIONS;
 
@@ -328,9 +327,6 @@ where
         q: &SVector<M::Scalar, N>,
         qdot: &SVector<M::Scalar, N>,
     ) -> Option<SVector<M::Scalar, N>> {
-        if M::CONSERVATIVE {
-            return Some(SVector::zeros());
-        }
         at!(
             self,
             t,
@@ -478,7 +474,6 @@ where
 {
     type Scalar = L::Scalar;
     const COORDINATES: [&'static str; N] = L::COORDINATES;
-    const CONSERVATIVE: bool = L::CONSERVATIVE;
 
     #[inline]
     fn mass_matrix(&self, t: L::Scalar, q: &SVector<L::Scalar, N>) -> SMatrix<L::Scalar, N, N> {

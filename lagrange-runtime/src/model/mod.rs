@@ -221,18 +221,13 @@ pub trait Lagrangian<const N: usize> {
         None
     }
 
-    /// Whether the model has no non-conservative forces at all (no
-    /// `forces:` and no `dissipation:`): then
-    /// [`nonconservative_forces`](Self::nonconservative_forces) is zero
-    /// without any code for it. Generated models set it; hand-written ones
-    /// that leave it `false` and provide no `nonconservative_forces` are
-    /// refused by the variational integrator rather than assumed conservative.
-    const CONSERVATIVE: bool = false;
-
     /// The non-conservative generalized forces `Q − ∂R/∂q̇`, if the model
-    /// provides them (generated models with `forces:` or `dissipation:` do;
-    /// a [`CONSERVATIVE`](Self::CONSERVATIVE) model gets zero from this
-    /// default). Variational integrators need them.
+    /// provides them: every model from `lagrangian!` does (zero, without
+    /// any code to evaluate, for one with neither `forces:` nor
+    /// `dissipation:`); a hand-written conservative model returns
+    /// `Some(SVector::zeros())`. Variational integrators need them, and
+    /// refuse a model that leaves the default `None` rather than assume it
+    /// conservative.
     fn nonconservative_forces(
         &self,
         t: Self::Scalar,
@@ -240,7 +235,7 @@ pub trait Lagrangian<const N: usize> {
         qdot: &SVector<Self::Scalar, N>,
     ) -> Option<SVector<Self::Scalar, N>> {
         let _ = (t, q, qdot);
-        Self::CONSERVATIVE.then(SVector::zeros)
+        None
     }
 
     /// Whether the model has unilateral contacts (`contacts:`, see

@@ -13,7 +13,6 @@ use crate::model::lets::Visitor as LetVisitor;
 impl<L: Lagrangian<N> + ?Sized, const N: usize> Lagrangian<N> for &L {
     type Scalar = L::Scalar;
     const COORDINATES: [&'static str; N] = L::COORDINATES;
-    const CONSERVATIVE: bool = L::CONSERVATIVE;
     const HAS_CONTACTS: bool = L::HAS_CONTACTS;
     const SOLVES_ACCELERATIONS: bool = L::SOLVES_ACCELERATIONS;
 

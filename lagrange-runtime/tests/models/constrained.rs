@@ -57,7 +57,16 @@ impl<S: RealField + Copy> CartesianPendulum<S> {
 impl<S: RealField + Copy> Lagrangian<2> for CartesianPendulum<S> {
     type Scalar = S;
     const COORDINATES: [&'static str; 2] = ["x", "y"];
-    const CONSERVATIVE: bool = true;
+
+    /// No forces but the potential's (the variational integrator asks).
+    fn nonconservative_forces(
+        &self,
+        _t: S,
+        _q: &lagrange_runtime::nalgebra::SVector<S, 2>,
+        _qdot: &lagrange_runtime::nalgebra::SVector<S, 2>,
+    ) -> Option<lagrange_runtime::nalgebra::SVector<S, 2>> {
+        Some(lagrange_runtime::nalgebra::SVector::zeros())
+    }
 
     fn mass_matrix(&self, _t: S, _q: &Vector2<S>) -> Matrix2<S> {
         Matrix2::identity() * self.m
@@ -118,7 +127,16 @@ pub struct ParallelAtOne;
 impl Lagrangian<3> for ParallelAtOne {
     type Scalar = f64;
     const COORDINATES: [&'static str; 3] = ["x", "y", "z"];
-    const CONSERVATIVE: bool = true;
+
+    /// No forces but the potential's (the variational integrator asks).
+    fn nonconservative_forces(
+        &self,
+        _t: f64,
+        _q: &lagrange_runtime::nalgebra::SVector<f64, 3>,
+        _qdot: &lagrange_runtime::nalgebra::SVector<f64, 3>,
+    ) -> Option<lagrange_runtime::nalgebra::SVector<f64, 3>> {
+        Some(lagrange_runtime::nalgebra::SVector::zeros())
+    }
 
     fn mass_matrix(&self, _t: f64, _q: &Vector3<f64>) -> Matrix3<f64> {
         Matrix3::identity()
@@ -179,7 +197,16 @@ pub struct VanishingGradient;
 impl Lagrangian<2> for VanishingGradient {
     type Scalar = f64;
     const COORDINATES: [&'static str; 2] = ["x", "y"];
-    const CONSERVATIVE: bool = true;
+
+    /// No forces but the potential's (the variational integrator asks).
+    fn nonconservative_forces(
+        &self,
+        _t: f64,
+        _q: &lagrange_runtime::nalgebra::SVector<f64, 2>,
+        _qdot: &lagrange_runtime::nalgebra::SVector<f64, 2>,
+    ) -> Option<lagrange_runtime::nalgebra::SVector<f64, 2>> {
+        Some(lagrange_runtime::nalgebra::SVector::zeros())
+    }
 
     fn mass_matrix(&self, _t: f64, _q: &Vector2<f64>) -> Matrix2<f64> {
         Matrix2::identity()
