@@ -14,7 +14,7 @@
 //! |---|---|---|
 //! | exact derivatives | [`Lagrangian::residual_jacobians`] | the implicit methods' Newton iterations, [`analysis`](crate::analysis) |
 //! | its own solve of `M q̈ = f` | [`Lagrangian::accelerations`] | every method's right-hand side ([`dynamics::acceleration`](crate::dynamics::acceleration)), for a model whose `M` has a structure it exploits |
-//! | the action | [`Lagrangian::momentum`], [`Lagrangian::lagrangian_gradient`], [`Lagrangian::nonconservative_forces`], [`Lagrangian::CONSERVATIVE`] | [`Variational`](crate::integrators::Variational) |
+//! | the action | [`Lagrangian::momentum`], [`Lagrangian::lagrangian_gradient`], [`Lagrangian::nonconservative_forces`] | [`Variational`](crate::integrators::Variational) |
 //! | holonomic constraints | [`Lagrangian::visit_constraints`] → [`Holonomic<N, C>`](crate::model::constraints::Holonomic) and the run's [`ConstraintSettings`](crate::constraints::ConstraintSettings) | every method (the saddle-point solve, drift control) |
 //! | control inputs | [`Lagrangian::visit_inputs`] → [`Inputs<N, K>`](crate::inputs::Inputs) | the checks before a run (inputs never set) and the blame for a non-finite value |
 //! | named `let`s | [`Lagrangian::visit_lets`] → [`Lets<N, K>`](lets::Lets) | drawing, export, fits of measured outputs |
