@@ -136,11 +136,11 @@ where
     /// For events that keep data (a contact scene's modes): the model the
     /// run goes on with after a reset changed the data, built from the
     /// last one and the data.
-    segment: Option<Segment<L>>,
+    segment: Option<SegmentModel<L>>,
 }
 
 /// How a stepper's model is built anew from the run's data.
-pub(crate) type Segment<L> = fn(&L, &RunData) -> Option<L>;
+pub(crate) type SegmentModel<L> = fn(&L, &RunData) -> Option<L>;
 
 impl<'e, L, M, const N: usize> Stepper<'e, L, M, N>
 where
@@ -249,7 +249,7 @@ where
 
     /// Builds the model anew with `segment` each time a reset of the
     /// watched events changes the run's data (`Events::keeping`).
-    pub(crate) fn with_segments(mut self, segment: Segment<L>) -> Self {
+    pub(crate) fn with_segments(mut self, segment: SegmentModel<L>) -> Self {
         self.segment = Some(segment);
         self
     }
