@@ -15,7 +15,10 @@
 //! The error is each lane's own, Hairer's root mean square of the
 //! estimate over `atol + rtol·max(|y|, |y_new|)`; the step is accepted when
 //! the largest over the lanes is at most 1. Everything else is the scalar
-//! runs' own code, not a copy of it: the step-size rules of
+//! runs' own code, not a copy of it: the stage loop and the error norm of
+//! the scalar pairs (`integrators::stages::fsal_step` and `Step::error`,
+//! written once for scalars and lanes, over Dopri5's tableau), the
+//! step-size rules of
 //! [`Dopri5`]'s loop (`driver::pair::StepControl`: its gains and
 //! stabilization, no growth right after a rejection, a step that would
 //! stop within 1 % of the target stretched to land on it and one beyond
@@ -23,11 +26,11 @@
 //! `fl(t + h) − t`), its underflow rule (`driver::advances`), and Hairer's
 //! first step (`driver::FirstStep`, each lane's as its scalar run guesses
 //! it, the smallest taken), so that every frame is reached exactly and a
-//! fix to those rules reaches the lanes too.
+//! fix to those rules reaches the lanes too. The loop around them (attempt,
+//! accept or reject, the step budget, the lane blamed for a failure) is
+//! still the ensemble's own: `driver/pair.rs`'s loop runs on scalars.
 
-use nalgebra::{
-    ComplexField, RealField, SVector, SimdComplexField, SimdPartialOrd, SimdRealField, SimdValue,
-};
+use nalgebra::{ComplexField, RealField, SVector, SimdRealField, SimdValue};
 
 use super::solve::{Element, accelerations, gather, lane_of};
 use super::{EnsembleError, LaneModel, avx2_at_run_time, check_starts};
@@ -37,6 +40,7 @@ use crate::driver::pair::{Embedded, StepControl};
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::integrators::Dopri5;
 use crate::integrators::dopri5::tableau::{A, C, E};
+use crate::integrators::stages::{Stages, fsal_step};
 use crate::trajectory::Stats;
 
 /// An ensemble of states stepped together in SIMD lanes by Dormand–Prince
@@ -93,8 +97,11 @@ pub struct AdaptiveEnsemble<L: LaneModel<N>, const N: usize> {
     t: Element<L, N>,
     q: SVector<L::Lanes, N>,
     qdot: SVector<L::Lanes, N>,
-    /// `q̈` at `(t, q, q̇)`: the next step's first stage (FSAL).
-    qddot: SVector<L::Lanes, N>,
+    /// The slopes of the last step; the first, `q̈` at `(t, q, q̇)`, is
+    /// the next step's first stage (FSAL).
+    k: Stages<L::Lanes, N, 7>,
+    /// Dopri5's nodes in the working precision.
+    c: [Element<L, N>; 7],
     /// The lane that last set the step, blamed if it underflows.
     worst: usize,
     /// Whether to step in the copy of the loop compiled for AVX2, as
@@ -130,9 +137,10 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
             max_steps: tolerances.max_steps,
             control: StepControl::new(&control),
             t: t0,
+            k: Stages::new(&qdot, &qddot),
+            c: C.map(nalgebra::convert),
             q,
             qdot,
-            qddot,
             worst: 0,
             stats: Stats {
                 rhs_evals: 1,
@@ -214,7 +222,7 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
             }
             attempts += 1;
             let step = self.control.attempt(t, h, target);
-            let (q, qdot, qddot, errors) = self.attempt((t, step.t_new, step.h))?;
+            let (q, qdot, errors) = self.attempt((t, step.t_new, step.h))?;
             let (err, worst) = largest(errors);
             self.worst = worst;
             if !err.is_finite() {
@@ -232,7 +240,8 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
             }
             if err <= nalgebra::one::<Element<L, N>>() {
                 self.control.h = Some(self.control.accept(&step, err));
-                (self.t, self.q, self.qdot, self.qddot) = (step.t_new, q, qdot, qddot);
+                (self.t, self.q, self.qdot) = (step.t_new, q, qdot);
+                self.k.first_same_as_last(6);
                 self.stats.steps_accepted += 1;
             } else {
                 self.stats.steps_rejected += 1;
@@ -247,56 +256,29 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
         self.advance_to(self.t + dt)
     }
 
-    /// One Dormand–Prince step of `h` from `t` to `t_new`: the new state,
-    /// its `q̈` (the last stage, the next step's first) and each lane's
-    /// error over its tolerance.
+    /// One Dormand–Prince step of `h` from `t` to `t_new`, by the scalar
+    /// pairs' own stage loop ([`fsal_step`], over Dopri5's tableau): the
+    /// new state (its `q̈`, the last stage, left in the stages as the next
+    /// step's first) and each lane's error over its tolerance (the scalar
+    /// pairs' norm, `Step::error`).
     #[allow(clippy::type_complexity)]
     #[inline(always)]
     fn attempt(
         &mut self,
-        (t, t_new, h): (Element<L, N>, Element<L, N>, Element<L, N>),
+        times: (Element<L, N>, Element<L, N>, Element<L, N>),
     ) -> Result<
-        (
-            SVector<L::Lanes, N>,
-            SVector<L::Lanes, N>,
-            SVector<L::Lanes, N>,
-            L::Lanes,
-        ),
+        (SVector<L::Lanes, N>, SVector<L::Lanes, N>, L::Lanes),
         EnsembleError<Element<L, N>, N>,
     > {
-        let c = |x: f64| -> Element<L, N> { nalgebra::convert(x) };
-        let lanes = |x: Element<L, N>| L::Lanes::splat(x);
-        let mut kq = [SVector::<L::Lanes, N>::zeros(); 7];
-        let mut kv = [SVector::<L::Lanes, N>::zeros(); 7];
-        (kq[0], kv[0]) = (self.qdot, self.qddot);
-        // The last row of `A` is the weights: the seventh stage is the new
-        // state.
-        let (mut q_new, mut qdot_new) = (self.q, self.qdot);
-        for i in 1..7 {
-            let (mut qi, mut vi) = (self.q, self.qdot);
-            for (j, &a) in A[i].iter().enumerate() {
-                if a != 0.0 {
-                    let ha = lanes(h * c(a));
-                    qi += kq[j] * ha;
-                    vi += kv[j] * ha;
-                }
-            }
-            let ti = if i == 6 { t_new } else { t + c(C[i]) * h };
-            kv[i] = self.slope(ti, &qi, &vi)?;
-            self.stats.rhs_evals += 1;
-            kq[i] = vi;
-            (q_new, qdot_new) = (qi, vi);
-        }
-        let (mut eq, mut ev) = (SVector::<L::Lanes, N>::zeros(), SVector::zeros());
-        for (j, &e) in E.iter().enumerate() {
-            if e != 0.0 {
-                let he = lanes(h * c(e));
-                eq += kq[j] * he;
-                ev += kv[j] * he;
-            }
-        }
-        let errors = self.errors((&eq, &ev), (&q_new, &qdot_new));
-        Ok((q_new, qdot_new, kv[6], errors))
+        let (model, avx2, stats) = (&self.model, self.avx2, &mut self.stats);
+        let mut slope = |t, q: &SVector<L::Lanes, N>, qdot: &SVector<L::Lanes, N>| {
+            stats.rhs_evals += 1;
+            lanes_slope(model, avx2, t, q, qdot)
+        };
+        let state = (&self.q, &self.qdot);
+        let step = fsal_step(&mut slope, times, state, &mut self.k, &A, &self.c, &E)?;
+        let errors = step.error((self.rtol, self.atol), &self.q, &self.qdot);
+        Ok((step.q, step.qdot, errors))
     }
 
     /// `q̈` of every lane, in the AVX2 copy where the loop runs in it.
@@ -307,49 +289,7 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
         q: &SVector<L::Lanes, N>,
         qdot: &SVector<L::Lanes, N>,
     ) -> Result<SVector<L::Lanes, N>, EnsembleError<Element<L, N>, N>> {
-        #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
-        if self.avx2 {
-            // SAFETY: `avx2` is set only where the CPU has it.
-            return unsafe { super::solve::accelerations_avx2(&self.model, t, q, qdot) }
-                .map_err(|(lane, error)| EnsembleError::Lane { lane, error });
-        }
-        accelerations(&self.model, t, q, qdot)
-            .map_err(|(lane, error)| EnsembleError::Lane { lane, error })
-    }
-
-    /// Each lane's error: the root mean square of the estimate `(e_q, e_v)`
-    /// over `atol + rtol·max(|y|, |y_new|)`, as the scalar pairs weigh it.
-    #[inline(always)]
-    fn errors(
-        &self,
-        (eq, ev): (&SVector<L::Lanes, N>, &SVector<L::Lanes, N>),
-        (q, qdot): (&SVector<L::Lanes, N>, &SVector<L::Lanes, N>),
-    ) -> L::Lanes {
-        self.rms([(eq, &self.q, q), (ev, &self.qdot, qdot)])
-    }
-
-    /// Per lane, the root mean square of `x` over `atol + rtol·max(|a|, |b|)`,
-    /// for each of the two parts `(x, a, b)` (positions, velocities).
-    #[inline(always)]
-    #[allow(clippy::type_complexity)]
-    fn rms(
-        &self,
-        parts: [(
-            &SVector<L::Lanes, N>,
-            &SVector<L::Lanes, N>,
-            &SVector<L::Lanes, N>,
-        ); 2],
-    ) -> L::Lanes {
-        let (rtol, atol) = (L::Lanes::splat(self.rtol), L::Lanes::splat(self.atol));
-        let mut sum = nalgebra::zero::<L::Lanes>();
-        for (x, a, b) in parts {
-            for i in 0..N {
-                let v = x[i] / (atol + rtol * a[i].simd_abs().simd_max(b[i].simd_abs()));
-                sum += v * v;
-            }
-        }
-        let n: Element<L, N> = nalgebra::convert((2 * N) as f64);
-        (sum / L::Lanes::splat(n)).simd_sqrt()
+        lanes_slope(&self.model, self.avx2, t, q, qdot)
     }
 
     /// Hairer's first step, the smallest over the lanes, each lane's as a
@@ -365,7 +305,7 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
             atol: self.atol,
             order: <Dopri5<Element<L, N>> as Embedded<Element<L, N>, N>>::CONTROL.order,
         };
-        let (q, qdot, qddot) = (self.q, self.qdot, self.qddot);
+        let (q, qdot, qddot) = (self.q, self.qdot, self.k.qdot[0]);
         let lane = |x: &SVector<L::Lanes, N>, i| lane_of(x, i);
         let mut h0 = span;
         for i in 0..L::Lanes::LANES {
@@ -421,7 +361,7 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
             lanes_q[i].replace(lane, q[i]);
             lanes_qdot[i].replace(lane, qdot[i]);
         }
-        self.qddot = self.slope(self.t, &lanes_q, &lanes_qdot)?;
+        self.k.qdot[0] = self.slope(self.t, &lanes_q, &lanes_qdot)?;
         self.stats.rhs_evals += 1;
         (self.q, self.qdot) = (lanes_q, lanes_qdot);
         self.control.h = None;
@@ -443,6 +383,26 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
     pub fn model(&self) -> &L {
         &self.model
     }
+}
+
+/// `q̈` of every lane of `model`, in the AVX2 copy where the loop runs in
+/// it.
+#[inline(always)]
+fn lanes_slope<L: LaneModel<N>, const N: usize>(
+    model: &L,
+    avx2: bool,
+    t: Element<L, N>,
+    q: &SVector<L::Lanes, N>,
+    qdot: &SVector<L::Lanes, N>,
+) -> Result<SVector<L::Lanes, N>, EnsembleError<Element<L, N>, N>> {
+    #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+    if avx2 {
+        // SAFETY: `avx2` is set only where the CPU has it.
+        return unsafe { super::solve::accelerations_avx2(model, t, q, qdot) }
+            .map_err(|(lane, error)| EnsembleError::Lane { lane, error });
+    }
+    let _ = avx2;
+    accelerations(model, t, q, qdot).map_err(|(lane, error)| EnsembleError::Lane { lane, error })
 }
 
 /// The largest of the lanes' errors (NaN if any is), and its lane.

@@ -16,7 +16,7 @@ use core::marker::PhantomData;
 use nalgebra::{RealField, SVector};
 
 use super::StepMethod;
-use super::stages::{Stages, Step, fsal_step, pair_settings};
+use super::stages::{Stages, Step, fsal_step, model_slope, pair_settings};
 use crate::driver::pair::{Controller, Embedded, EmbeddedPair, Outcome, PairWalk, Tolerances};
 use crate::driver::{Recorder, check_tolerances};
 use crate::error::{IntegrationError, InvalidInput};
@@ -127,7 +127,8 @@ where
         times: (S, S, S),
         state: (&SVector<S, N>, &SVector<S, N>),
     ) -> Result<Outcome<S, Step<S, N>>, IntegrationError<S, N>> {
-        let step = fsal_step(rec, model, times, state, &mut self.k, &T::A, &self.c, &T::E)?;
+        let slope = &mut model_slope(rec, model);
+        let step = fsal_step(slope, times, state, &mut self.k, &T::A, &self.c, &T::E)?;
         step.judge((self.rtol, self.atol), state, times.1)
     }
 

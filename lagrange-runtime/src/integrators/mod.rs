@@ -46,7 +46,7 @@
 pub mod fsal;
 mod implicit_rk;
 mod registry;
-mod stages;
+pub(crate) mod stages;
 
 // One module per integrator, each named again by its registry entry below
 // (declared here, not by the registry's macro, so that rustfmt reaches

@@ -4,12 +4,15 @@
 //! with one error estimate share: their stage loop over a tableau's
 //! constant rows ([`fsal_step`]), the step it makes ([`Step`]) and the
 //! test of its error ([`Step::judge`]), and their settings' builders
-//! (`pair_settings!`).
+//! (`pair_settings!`). The stages, the step and its error are written once
+//! for scalars and SIMD lanes of them (`V`, `V = S` for a scalar run): the
+//! [`AdaptiveEnsemble`](crate::ensemble::AdaptiveEnsemble) steps its lanes
+//! with Dopri5's tableau through the same [`fsal_step`].
 //!
 //! [`Dopri5`]: crate::integrators::Dopri5
 //! [`Dop853`]: crate::integrators::Dop853
 
-use nalgebra::{RealField, SVector};
+use nalgebra::{RealField, SVector, SimdRealField};
 
 use crate::driver::Recorder;
 use crate::driver::pair::Outcome;
@@ -18,17 +21,21 @@ use crate::model::Lagrangian;
 
 /// The slopes of the `K` stages of a step, split as the state is: stage
 /// `j`'s slope is `(k_q[j], k_q̇[j]) = (q̇_j, q̈_j)`.
-pub(crate) struct Stages<S, const N: usize, const K: usize> {
+pub(crate) struct Stages<V, const N: usize, const K: usize> {
     /// The `q` part of each slope, which is the stage's own `q̇`.
-    pub(crate) q: [SVector<S, N>; K],
+    pub(crate) q: [SVector<V, N>; K],
     /// The `q̇` part of each slope, `q̈`.
-    pub(crate) qdot: [SVector<S, N>; K],
+    pub(crate) qdot: [SVector<V, N>; K],
 }
 
-impl<S: RealField + Copy, const N: usize, const K: usize> Stages<S, N, K> {
+impl<V, const N: usize, const K: usize> Stages<V, N, K>
+where
+    V: SimdRealField + Copy,
+    V::Element: RealField + Copy,
+{
     /// Stage 1 is `f` at the start, `(q̇, q̈)`; the others are filled by each
     /// step before anything reads them.
-    pub(crate) fn new(qdot: &SVector<S, N>, qddot: &SVector<S, N>) -> Self {
+    pub(crate) fn new(qdot: &SVector<V, N>, qddot: &SVector<V, N>) -> Self {
         Self {
             q: [*qdot; K],
             qdot: [*qddot; K],
@@ -44,11 +51,11 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Stages<S, N, K> {
     /// accepted) and a sum begun at `+0` is never `−0`, so adding `±0`
     /// leaves it unchanged.
     #[inline(always)]
-    pub(crate) fn sum(&self, weights: &'static [f64]) -> (SVector<S, N>, SVector<S, N>) {
-        let (mut sq, mut sqdot) = (SVector::<S, N>::zeros(), SVector::<S, N>::zeros());
+    pub(crate) fn sum(&self, weights: &'static [f64]) -> (SVector<V, N>, SVector<V, N>) {
+        let (mut sq, mut sqdot) = (SVector::<V, N>::zeros(), SVector::<V, N>::zeros());
         for (j, &x) in weights.iter().enumerate() {
             if x != 0.0 {
-                let w: S = nalgebra::convert(x);
+                let w = V::splat(nalgebra::convert::<f64, V::Element>(x));
                 sq += self.q[j] * w;
                 sqdot += self.qdot[j] * w;
             }
@@ -72,32 +79,45 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Stages<S, N, K> {
 /// the double pendulum instead of 41.0, the two builds alternating in one
 /// run of `cargo bench -p lagrange-studies --bench rhs_overhead` when this
 /// changed; BENCHMARKS.md, "Constant weights, no copies", says why).
-pub struct Step<S, const N: usize> {
-    pub(crate) q: SVector<S, N>,
-    pub(crate) qdot: SVector<S, N>,
-    pub(crate) err_q: SVector<S, N>,
-    pub(crate) err_qdot: SVector<S, N>,
+pub struct Step<V, const N: usize> {
+    pub(crate) q: SVector<V, N>,
+    pub(crate) qdot: SVector<V, N>,
+    pub(crate) err_q: SVector<V, N>,
+    pub(crate) err_qdot: SVector<V, N>,
 }
 
-impl<S: RealField + Copy, const N: usize> Step<S, N> {
-    /// Hairer's error norm: the RMS over `q` and `q̇` of the embedded error
-    /// relative to `atol + rtol max(|y_old|, |y_new|)`.
-    fn error(&self, (rtol, atol): (S, S), q: &SVector<S, N>, qdot: &SVector<S, N>) -> S {
-        let mut sum = S::zero();
+impl<V, const N: usize> Step<V, N>
+where
+    V: SimdRealField + Copy,
+    V::Element: RealField + Copy,
+{
+    /// Hairer's error norm, lane by lane: the RMS over `q` and `q̇` of the
+    /// embedded error relative to `atol + rtol max(|y_old|, |y_new|)`.
+    pub(crate) fn error(
+        &self,
+        (rtol, atol): (V::Element, V::Element),
+        q: &SVector<V, N>,
+        qdot: &SVector<V, N>,
+    ) -> V {
+        let (rtol, atol) = (V::splat(rtol), V::splat(atol));
+        let mut sum = V::zero();
         let parts = [
             (q, &self.q, &self.err_q),
             (qdot, &self.qdot, &self.err_qdot),
         ];
         for (y0, y1, e) in parts {
             for i in 0..N {
-                let sk = atol + rtol * y0[i].abs().max(y1[i].abs());
-                sum += (e[i] / sk).powi(2);
+                let sk = atol + rtol * y0[i].simd_abs().simd_max(y1[i].simd_abs());
+                let x = e[i] / sk;
+                sum += x * x;
             }
         }
-        let n: S = nalgebra::convert((2 * N).max(1) as f64);
-        (sum / n).sqrt()
+        let n = V::splat(nalgebra::convert::<f64, V::Element>((2 * N).max(1) as f64));
+        (sum / n).simd_sqrt()
     }
+}
 
+impl<S: RealField + Copy, const N: usize> Step<S, N> {
     /// The step from `(q, q̇)` judged: accepted when its error is within
     /// the tolerances, rejected with the error otherwise. Finite stages
     /// with a non-finite error are an overflow in the sums: an error at
@@ -132,32 +152,34 @@ impl<S: RealField + Copy, const N: usize> Step<S, N> {
 /// `b`, so the last stage is the new state (and the next step's first);
 /// `e = b − b̂` the error estimate's weights. The stages are left in `k`.
 /// Inlined, the rows are constants at each call: unrolled sums with the
-/// zeros dropped and the weights immediates ([`Stages::sum`]).
+/// zeros dropped and the weights immediates ([`Stages::sum`]). `slope` is
+/// `q̈ = a(t, q, q̇)`: a run's right-hand side through its recorder
+/// ([`model_slope`]), or every lane's at once for an ensemble.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn fsal_step<L, S, const N: usize, const K: usize>(
-    rec: &mut Recorder<'_, S, N>,
-    model: &L,
-    (t, t_new, h): (S, S, S),
-    (q, qdot): (&SVector<S, N>, &SVector<S, N>),
-    k: &mut Stages<S, N, K>,
+pub(crate) fn fsal_step<V, E, const N: usize, const K: usize>(
+    slope: &mut impl FnMut(V::Element, &SVector<V, N>, &SVector<V, N>) -> Result<SVector<V, N>, E>,
+    (t, t_new, h): (V::Element, V::Element, V::Element),
+    (q, qdot): (&SVector<V, N>, &SVector<V, N>),
+    k: &mut Stages<V, N, K>,
     a: &[&'static [f64]; K],
-    c: &[S; K],
+    c: &[V::Element; K],
     e: &'static [f64],
-) -> Result<Step<S, N>, IntegrationError<S, N>>
+) -> Result<Step<V, N>, E>
 where
-    S: RealField + Copy,
-    L: Lagrangian<N, Scalar = S>,
+    V: SimdRealField + Copy,
+    V::Element: RealField + Copy,
 {
+    let hv = V::splat(h);
     k.q[0] = *qdot;
     let mut q_new = *q;
     for (i, (&row, &c)) in a.iter().zip(c).enumerate().skip(1) {
         let (dq, dqdot) = k.sum(row);
-        let (qi, qdoti) = (q + dq * h, qdot + dqdot * h);
+        let (qi, qdoti) = (q + dq * hv, qdot + dqdot * hv);
         // The last row holds the weights b, so the last stage is the new
         // state, at exactly the time the clock moves to.
         let ti = if i == K - 1 { t_new } else { t + c * h };
-        k.qdot[i] = rec.rhs(model, ti, &qi, &qdoti)?;
+        k.qdot[i] = slope(ti, &qi, &qdoti)?;
         k.q[i] = qdoti;
         q_new = qi;
     }
@@ -165,9 +187,23 @@ where
     Ok(Step {
         q: q_new,
         qdot: k.q[K - 1],
-        err_q: err_q * h,
-        err_qdot: err_qdot * h,
+        err_q: err_q * hv,
+        err_qdot: err_qdot * hv,
     })
+}
+
+/// A run's right-hand side as [`fsal_step`]'s `slope`: the model's `q̈`
+/// through the recorder, which counts it.
+#[inline(always)]
+pub(crate) fn model_slope<'r, L, S, const N: usize>(
+    rec: &'r mut Recorder<'_, S, N>,
+    model: &'r L,
+) -> impl FnMut(S, &SVector<S, N>, &SVector<S, N>) -> Result<SVector<S, N>, IntegrationError<S, N>> + 'r
+where
+    S: RealField + Copy,
+    L: Lagrangian<N, Scalar = S>,
+{
+    move |t, q, qdot| rec.rhs(model, t, q, qdot)
 }
 
 /// The settings of an explicit embedded pair `$ty<S>` (a struct whose

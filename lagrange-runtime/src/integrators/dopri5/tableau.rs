@@ -5,7 +5,7 @@ use nalgebra::{RealField, SVector};
 
 use crate::driver::Recorder;
 use crate::error::IntegrationError;
-use crate::integrators::stages::{Step, fsal_step};
+use crate::integrators::stages::{Step, fsal_step, model_slope};
 use crate::model::Lagrangian;
 
 /// The slopes of the seven stages of a step; the seventh is at the new
@@ -90,7 +90,15 @@ impl<S: RealField + Copy> Tableau<S> {
         state: (&SVector<S, N>, &SVector<S, N>),
         k: &mut Stages<S, N>,
     ) -> Result<Step<S, N>, IntegrationError<S, N>> {
-        fsal_step(rec, model, times, state, k, &A, &self.c, &E)
+        fsal_step(
+            &mut model_slope(rec, model),
+            times,
+            state,
+            k,
+            &A,
+            &self.c,
+            &E,
+        )
     }
 }
 
