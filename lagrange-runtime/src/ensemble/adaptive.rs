@@ -9,8 +9,8 @@
 //! that could have taken longer steps take more than they need. Measured
 //! (BENCHMARKS.md, "Ensembles in SIMD lanes"): at `1e-8` on four `f64`
 //! lanes, the lanes took a fifth more steps per state than scalar `Dopri5`
-//! runs (the sharing, and the steps cut at frames), for twice their
-//! throughput.
+//! runs (the sharing, and the steps cut at frames), for about two and a
+//! half times their throughput.
 //!
 //! The error is each lane's own, Hairer's root mean square of the
 //! estimate over `atol + rtol·max(|y|, |y_new|)`; the step is accepted when
