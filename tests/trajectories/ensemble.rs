@@ -548,6 +548,44 @@ mod lanes {
         assert_eq!(ensemble.t(), scalar.t());
     }
 
+    /// The same stiff lane (`g = 10⁶`) under the adaptive ensemble at
+    /// tolerances too loose to hold Dopri5 within its stability region
+    /// (0.1 and 1): the lane's scalar run stops `Unstable`, and so does the
+    /// ensemble, naming the lane, with its state still of the size the
+    /// guard allows (within a few doublings of 1000 times its start, far
+    /// from overflow). Without the guard the lanes ran on to a step-size
+    /// underflow at `|q̇| ≈ 10¹⁶`. (At `10³` the shared steps grow so fast
+    /// that one step overflows a stage's forcing before any guard can see
+    /// growth: a `NonFiniteState` at its state, a typed stop too.)
+    #[test]
+    fn an_unstable_lane_stops_the_adaptive_ensemble_as_its_scalar_run() {
+        for tol in [1e-1, 1.0] {
+            let mut model = pendulum::<AutoF64x4>();
+            model.g.replace(3, 1e6);
+            let mut stiff = pendulum_lane::<f64>(3);
+            stiff.g = 1e6;
+            let (q0, qdot0): (Vec<_>, Vec<_>) = (0..4).map(pendulum_start::<f64>).unzip();
+            let method = Dopri5::new().rtol(tol).atol(tol);
+            let mut scalar = Stepper::new(stiff, method, 0.0, q0[3], qdot0[3]).unwrap();
+            let alone = scalar.advance_to(5.0).unwrap_err();
+            assert!(
+                matches!(alone, IntegrationError::Unstable { .. }),
+                "{tol}: {alone:?}"
+            );
+            let mut ensemble = AdaptiveEnsemble::new(model, method, 0.0, &q0, &qdot0).unwrap();
+            let together = ensemble.advance_to(5.0);
+            let Err(EnsembleError::Lane {
+                lane: 3,
+                error: IntegrationError::Unstable { q, qdot, .. },
+            }) = together
+            else {
+                panic!("{tol}: expected lane 3 Unstable, got {together:?}");
+            };
+            let size = q.amax().max(qdot.amax());
+            assert!(size < 1e12, "{tol}: the lane grew to {size:e}");
+        }
+    }
+
     /// The start and the settings are refused as a `Stepper` refuses them,
     /// naming the lane; a wrong number of states is refused too.
     #[test]

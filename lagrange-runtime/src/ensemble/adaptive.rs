@@ -23,7 +23,8 @@
 //! stabilization, no growth right after a rejection, a step that would
 //! stop within 1 % of the target stretched to land on it and one beyond
 //! it cut, the state moved by exactly the step the clock takes,
-//! `fl(t + h) − t`), its underflow rule (`driver::advances`), and Hairer's
+//! `fl(t + h) − t`), its underflow rule (`driver::advances`), its growth
+//! guard (each lane's, as for the fixed-step ensemble), and Hairer's
 //! first step (`driver::FirstStep`, each lane's as its scalar run guesses
 //! it, the smallest taken), so that every frame is reached exactly and a
 //! fix to those rules reaches the lanes too. The loop around them (attempt,
@@ -33,7 +34,7 @@
 use nalgebra::{ComplexField, RealField, SVector, SimdRealField, SimdValue};
 
 use super::solve::{Element, accelerations, gather, lane_of};
-use super::{EnsembleError, LaneModel, avx2_at_run_time, check_starts};
+use super::{EnsembleError, Guards, LaneModel, avx2_at_run_time, check_starts};
 use crate::driver::FirstStep;
 use crate::driver::advances;
 use crate::driver::pair::{Embedded, StepControl};
@@ -102,6 +103,10 @@ pub struct AdaptiveEnsemble<L: LaneModel<N>, const N: usize> {
     k: Stages<L::Lanes, N, 7>,
     /// Dopri5's nodes in the working precision.
     c: [Element<L, N>; 7],
+    /// The growth guard of every lane, as the scalar pairs' loop guards
+    /// each run: a lane beyond the method's stability limit stops the
+    /// ensemble with [`Unstable`](IntegrationError::Unstable).
+    guards: Guards<Element<L, N>>,
     /// The lane that last set the step, blamed if it underflows.
     worst: usize,
     /// Whether to step in the copy of the loop compiled for AVX2, as
@@ -137,6 +142,7 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
             max_steps: tolerances.max_steps,
             control: StepControl::new(&control),
             t: t0,
+            guards: Guards::new(q0, qdot0),
             k: Stages::new(&qdot, &qddot),
             c: C.map(nalgebra::convert),
             q,
@@ -239,7 +245,13 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
                 });
             }
             if err <= nalgebra::one::<Element<L, N>>() {
-                self.control.h = Some(self.control.accept(&step, err));
+                // As the scalar pairs' loop: the step accepted, then each
+                // lane's growth judged before the step size is kept.
+                let h_new = self.control.accept(&step, err);
+                let (before, after) = ((&self.q, &self.qdot), (&q, &qdot));
+                let lengths = (step.h, step.h);
+                self.guards.judge(before, after, step.t_new, lengths)?;
+                self.control.h = Some(h_new);
                 (self.t, self.q, self.qdot) = (step.t_new, q, qdot);
                 self.k.first_same_as_last(6);
                 self.stats.steps_accepted += 1;
@@ -364,6 +376,7 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
         self.k.qdot[0] = self.slope(self.t, &lanes_q, &lanes_qdot)?;
         self.stats.rhs_evals += 1;
         (self.q, self.qdot) = (lanes_q, lanes_qdot);
+        self.guards.restart(lane, &q, &qdot);
         self.control.h = None;
         Ok(())
     }

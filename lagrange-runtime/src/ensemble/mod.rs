@@ -43,7 +43,9 @@
 //! all completed: [`t`](Ensemble::t), [`q`](Ensemble::q) and
 //! [`qdot`](Ensemble::qdot) are there, nothing computed before is lost, and
 //! [`set_lane`](Ensemble::set_lane) replaces the lane that failed before
-//! going on. The growth guard of the fixed-step runs watches every lane.
+//! going on. The runs' growth guard watches every lane, in both ensembles:
+//! a lane beyond its method's stability limit stops them with its
+//! [`Unstable`](IntegrationError::Unstable).
 //! One check differs from a `Stepper`'s: a parameter that is not finite is
 //! not refused up front (a lane model has no such check); it shows as its
 //! lane's `M` or `f` not finite, at the first step.
@@ -189,6 +191,96 @@ pub(super) fn check_starts<L: LaneModel<N>, const N: usize>(
     Ok(())
 }
 
+/// The growth guard of every lane: the guard of the runs (`driver/growth.rs`),
+/// one per lane, judging each step of the lanes as it judges a run's.
+pub(super) struct Guards<S> {
+    growth: Vec<GrowthGuard<S>>,
+    /// The guards before a step, restored if a lane stops it.
+    spare: Vec<GrowthGuard<S>>,
+}
+
+impl<S: RealField + Copy> Guards<S> {
+    pub(super) fn new<const N: usize>(q0: &[SVector<S, N>], qdot0: &[SVector<S, N>]) -> Self {
+        let growth: Vec<_> = q0
+            .iter()
+            .zip(qdot0)
+            .map(|(q, v)| GrowthGuard::new(q, v))
+            .collect();
+        Self {
+            spare: growth.clone(),
+            growth,
+        }
+    }
+
+    /// Lane `lane` starts again from `(q, q̇)`.
+    pub(super) fn restart<const N: usize>(
+        &mut self,
+        lane: usize,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) {
+        self.growth[lane] = GrowthGuard::new(q, qdot);
+    }
+
+    /// A step of the lanes from `before` to `after`, of length `dt`
+    /// (`h` the step asked for, which an error reports), judged lane by
+    /// lane in lane order as the runs judge theirs: a lane whose state is
+    /// not finite, or that grows beyond its method's stability limit
+    /// ([`Unstable`](IntegrationError::Unstable)), stops the step with its
+    /// error, the guards as they were before it.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    pub(super) fn judge<V, const N: usize>(
+        &mut self,
+        before: (&SVector<V, N>, &SVector<V, N>),
+        (q, qdot): (&SVector<V, N>, &SVector<V, N>),
+        t_next: S,
+        (h, dt): (S, S),
+    ) -> Result<(), EnsembleError<S, N>>
+    where
+        V: SimdRealField<Element = S> + Copy,
+    {
+        let finite = finite_lanes(&[q.as_slice(), qdot.as_slice()]);
+        let step = measure(before, (q, qdot), V::splat(dt));
+        let mut last = step.size;
+        for (lane, growth) in self.growth.iter().enumerate() {
+            last.replace(lane, growth.last());
+        }
+        let unresolved = step.unresolved(last);
+        self.spare.clone_from_slice(&self.growth);
+        for (lane, growth) in self.growth.iter_mut().enumerate() {
+            let error = if finite.bitmask() & (1 << lane) == 0 {
+                let (q, qdot) = (lane_of(q, lane), lane_of(qdot, lane));
+                let value = NonFiniteValue::State;
+                Some(IntegrationError::NonFiniteState {
+                    t: t_next,
+                    q,
+                    qdot,
+                    value,
+                })
+            } else {
+                let size = step.size.extract(lane);
+                let unresolved = unresolved.extract(lane);
+                growth.judge_unresolved(size, unresolved).map(|steps| {
+                    let (q, qdot) = (lane_of(q, lane), lane_of(qdot, lane));
+                    IntegrationError::Unstable {
+                        t: t_next,
+                        h,
+                        steps,
+                        q,
+                        qdot,
+                    }
+                })
+            };
+            if let Some(error) = error {
+                self.growth.clone_from_slice(&self.spare);
+                return Err(EnsembleError::Lane { lane, error });
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Whether to step in the copies of the loops compiled for AVX2: the CPU
 /// has it and the build does not.
 pub(super) fn avx2_at_run_time() -> bool {
@@ -240,12 +332,10 @@ pub struct Ensemble<L: LaneModel<N>, M, const N: usize> {
     t: Element<L, N>,
     q: SVector<L::Lanes, N>,
     qdot: SVector<L::Lanes, N>,
-    growth: Vec<GrowthGuard<Element<L, N>>>,
+    guards: Guards<Element<L, N>>,
     /// Whether to step in the copy of the loop compiled for AVX2: the CPU
     /// has it and the build does not (see [`advance_to`](Self::advance_to)).
     avx2: bool,
-    /// The guards before a step, restored if a lane stops it.
-    spare: Vec<GrowthGuard<Element<L, N>>>,
     stats: Stats,
 }
 
@@ -266,15 +356,10 @@ where
     ) -> Result<Self, EnsembleError<Element<L, N>, N>> {
         let (h, max_steps) = method.lane_course()?;
         check_starts::<L, N>(&model, t0, q0, qdot0)?;
-        let growth: Vec<_> = q0
-            .iter()
-            .zip(qdot0)
-            .map(|(q, v)| GrowthGuard::new(q, v))
-            .collect();
+        let guards = Guards::new(q0, qdot0);
         Ok(Self {
             avx2: avx2_at_run_time(),
-            spare: growth.clone(),
-            growth,
+            guards,
             model,
             method,
             h,
@@ -376,45 +461,10 @@ where
                 .map_err(|(lane, error)| EnsembleError::Lane { lane, error })?;
             // As the fixed-step loop does for each run: the step's end
             // checked before it becomes the state, then its growth, lane
-            // by lane; the guards as they were if a lane stops the step.
-            let finite = finite_lanes(&[q.as_slice(), qdot.as_slice()]);
-            let step = measure((&self.q, &self.qdot), (&q, &qdot), L::Lanes::splat(dt));
-            let mut last = step.size;
-            for (lane, growth) in self.growth.iter().enumerate() {
-                last.replace(lane, growth.last());
-            }
-            let unresolved = step.unresolved(last);
-            self.spare.clone_from_slice(&self.growth);
-            for (lane, growth) in self.growth.iter_mut().enumerate() {
-                let error = if finite.bitmask() & (1 << lane) == 0 {
-                    let (q, qdot) = (lane_of(&q, lane), lane_of(&qdot, lane));
-                    let value = NonFiniteValue::State;
-                    Some(IntegrationError::NonFiniteState {
-                        t: t_next,
-                        q,
-                        qdot,
-                        value,
-                    })
-                } else {
-                    let size = step.size.extract(lane);
-                    let unresolved = unresolved.extract(lane);
-                    growth.judge_unresolved(size, unresolved).map(|steps| {
-                        let (q, qdot) = (lane_of(&q, lane), lane_of(&qdot, lane));
-                        let (t, h) = (t_next, interval.step);
-                        IntegrationError::Unstable {
-                            t,
-                            h,
-                            steps,
-                            q,
-                            qdot,
-                        }
-                    })
-                };
-                if let Some(error) = error {
-                    self.growth.clone_from_slice(&self.spare);
-                    return Err(EnsembleError::Lane { lane, error });
-                }
-            }
+            // by lane.
+            let step = (interval.step, dt);
+            self.guards
+                .judge((&self.q, &self.qdot), (&q, &qdot), t_next, step)?;
             self.stats.steps_accepted += 1;
             (self.t, self.q, self.qdot) = (t_next, q, qdot);
         }
@@ -456,7 +506,7 @@ where
             self.q[i].replace(lane, q[i]);
             self.qdot[i].replace(lane, qdot[i]);
         }
-        self.growth[lane] = GrowthGuard::new(&q, &qdot);
+        self.guards.restart(lane, &q, &qdot);
         Ok(())
     }
 
