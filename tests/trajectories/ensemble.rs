@@ -586,6 +586,63 @@ mod lanes {
         }
     }
 
+    lagrange::lagrangian! {
+        /// `x = cos ω t`, with a force `a √(t* − t)`: with `a = 0`, zero up
+        /// to `t*` and NaN after (`tests/extremes/nonfinite.rs`'s model).
+        pub struct RunsOut {
+            coordinates: x;
+            parameters: omega, a, t_star;
+            kinetic: dot(x)^2/2;
+            potential: omega^2*x^2/2;
+            forces: x = a*sqrt(t_star - t);
+        }
+    }
+
+    /// A lane whose force turns NaN at `t* = 2.3456` (the others' at 100)
+    /// stops the adaptive ensemble where its scalar `Dopri5` run stops: a
+    /// step with a stage past `t*` is retried shorter, as the scalar pairs
+    /// retry it, until the step no longer moves `t`, so the failing
+    /// evaluation is within `10 ε t*` of `t*` (1e-12 relative leaves a
+    /// factor of 100), naming the lane and its forcing. Before, the
+    /// ensemble stopped at the first stage past `t*`, up to a step later.
+    #[test]
+    fn a_lane_that_fails_inside_a_step_is_retried_shorter_as_its_scalar_run() {
+        let t_star = 2.3456;
+        let lane_t_star = [100.0, 100.0, t_star, 100.0];
+        let model = RunsOut::<AutoF64x4>::new(
+            AutoF64x4::splat(1.0),
+            AutoF64x4::splat(0.0),
+            AutoF64x4::from(lane_t_star),
+        );
+        let (q0, qdot0) = ([SVector::from([1.0]); 4], [SVector::from([0.0]); 4]);
+        let method = Dopri5::new();
+        let alone = Stepper::new(RunsOut::new(1.0, 0.0, t_star), method, 0.0, q0[2], qdot0[2])
+            .unwrap()
+            .advance_to(3.0)
+            .unwrap_err();
+        let mut ensemble = AdaptiveEnsemble::new(model, method, 0.0, &q0, &qdot0).unwrap();
+        let together = ensemble.advance_to(3.0);
+        let Err(EnsembleError::Lane {
+            lane: 2,
+            error: IntegrationError::NonFiniteState { t, value, .. },
+        }) = together
+        else {
+            panic!("expected lane 2 NonFiniteState, got {together:?}");
+        };
+        let IntegrationError::NonFiniteState { t: t_alone, .. } = alone else {
+            panic!("expected NonFiniteState alone, got {alone:?}");
+        };
+        assert_eq!(value, lagrange::NonFiniteValue::Forcing);
+        for at in [t, t_alone] {
+            assert!(at > t_star && at - t_star <= 1e-12 * t_star, "t = {at}");
+        }
+        assert!(
+            ensemble.t() < t_star && ensemble.t() > 2.0,
+            "{}",
+            ensemble.t()
+        );
+    }
+
     /// The start and the settings are refused as a `Stepper` refuses them,
     /// naming the lane; a wrong number of states is refused too.
     #[test]

@@ -188,8 +188,9 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
     /// The loop of [`advance_to`](Self::advance_to): the scalar pairs'
     /// rules ([`StepControl`]: the attempt landing on the target, the clock
     /// and the state moved by the same representable step, the next step
-    /// after an acceptance or a rejection; [`advances`] for an underflow),
-    /// on the largest of the lanes' errors.
+    /// after an acceptance or a rejection, a step whose stage fails retried
+    /// shorter; [`advances`] for an underflow), on the largest of the
+    /// lanes' errors.
     #[inline(always)]
     fn steps_to(&mut self, target: Element<L, N>) -> Result<(), EnsembleError<Element<L, N>, N>> {
         let t0 = self.t;
@@ -201,6 +202,9 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
             self.control.restart();
         }
         let mut attempts = 0;
+        // The failure that made the step shorter, reported if the step
+        // underflows before getting past it (as the scalar pairs' loop).
+        let mut stage_failure = None;
         while self.t < target {
             let t = self.t;
             let Some(h) = self.control.h else {
@@ -221,30 +225,49 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
             }
             if !advances(t, h) {
                 let (lane, q, qdot) = (self.worst, self.q(self.worst), self.qdot(self.worst));
-                return Err(EnsembleError::Lane {
+                let underflow = EnsembleError::Lane {
                     lane,
                     error: IntegrationError::StepSizeUnderflow { t, h, q, qdot },
-                });
+                };
+                return Err(stage_failure.take().unwrap_or(underflow));
             }
             attempts += 1;
             let step = self.control.attempt(t, h, target);
-            let (q, qdot, errors) = self.attempt((t, step.t_new, step.h))?;
-            let (err, worst) = largest(errors);
-            self.worst = worst;
-            if !err.is_finite() {
-                let (q, qdot) = (lane_of(&q, worst), lane_of(&qdot, worst));
-                let value = NonFiniteValue::State;
-                return Err(EnsembleError::Lane {
-                    lane: worst,
-                    error: IntegrationError::NonFiniteState {
-                        t: step.t_new,
-                        q,
-                        qdot,
-                        value,
-                    },
+            // A lane that cannot be evaluated at a stage, or whose error is
+            // not finite, rejects the step, which is retried shorter, as
+            // the scalar pairs' loop retries it.
+            let attempted = self
+                .attempt((t, step.t_new, step.h))
+                .and_then(|(q, qdot, errors)| {
+                    let (err, worst) = largest(errors);
+                    if err.is_finite() {
+                        return Ok((q, qdot, err, worst));
+                    }
+                    let (q, qdot) = (lane_of(&q, worst), lane_of(&qdot, worst));
+                    let value = NonFiniteValue::State;
+                    Err(EnsembleError::Lane {
+                        lane: worst,
+                        error: IntegrationError::NonFiniteState {
+                            t: step.t_new,
+                            q,
+                            qdot,
+                            value,
+                        },
+                    })
                 });
-            }
+            let (q, qdot, err, worst) = match attempted {
+                Ok(attempted) => attempted,
+                Err(failure @ EnsembleError::Lane { .. }) => {
+                    stage_failure = Some(failure);
+                    self.stats.steps_rejected += 1;
+                    self.control.fail(&step);
+                    continue;
+                }
+                Err(error) => return Err(error),
+            };
+            self.worst = worst;
             if err <= nalgebra::one::<Element<L, N>>() {
+                stage_failure = None;
                 // As the scalar pairs' loop: the step accepted, then each
                 // lane's growth judged before the step size is kept.
                 let h_new = self.control.accept(&step, err);
