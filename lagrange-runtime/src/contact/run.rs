@@ -438,7 +438,7 @@ fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
     // persistent contact instead (`shortest_flight`).
     let mut events = Events::new()
         .min_separation(nalgebra::zero())
-        .keeping(move || Box::new(first.clone()));
+        .keeping(first);
     let one = nalgebra::one::<S>;
     for i in 0..K {
         let name = model.names[i];
@@ -723,8 +723,7 @@ where
     /// Every switch of this stepper's run so far, in time order (the
     /// start's first).
     pub fn switches(&self) -> &[Switch<S, N>] {
-        self.data()
-            .downcast_ref::<ContactRun<S, N, K>>()
+        self.data::<ContactRun<S, N, K>>()
             .map_or(&[], |run| &run.switches)
     }
 

@@ -146,6 +146,17 @@
 //! constraints like any sample from an interpolant, and so is a reset's
 //! result (when the model's drift control projects, the default).
 //!
+//! # State of a run
+//!
+//! A reset that must remember something (the bounces so far, a mode) keeps
+//! it as data of the run, not in its closure: [`Events::keeping`] gives
+//! each run its own copy of a start value, [`Event::keeping`]'s function
+//! reads it and [`Event::try_reset_keeping`]'s reset changes it. Two runs
+//! of the same events, one after the other or side by side, each start
+//! from the start value; a [`Stepper`](crate::stepper::Stepper)'s is read
+//! with [`Stepper::data`](crate::stepper::Stepper::data). The contacts keep
+//! their modes so ([`contact`](crate::contact)).
+//!
 //! # Guards
 //!
 //! - **Zeno**: a run of events accumulating in finite time (a bouncing
@@ -282,10 +293,12 @@ impl<'a, S: RealField + Copy, const N: usize> Event<'a, S, N> {
         }
     }
 
-    /// An event whose `g` reads the run's data `D` (made by
-    /// [`Events::keeping`]); NaN where the run's data is not a `D`, which
-    /// ends the run with a typed error naming the event.
-    pub(crate) fn keeping<D: Any>(
+    /// An event whose `g` also reads the run's data `D` (see
+    /// [`Events::keeping`]). Where the run's data is not a `D` (the events
+    /// keep another type, or none), `g` is NaN, which ends the run with
+    /// [`NonFiniteEvent`](crate::error::IntegrationError::NonFiniteEvent)
+    /// naming the event.
+    pub fn keeping<D: Any>(
         name: &'static str,
         g: impl Fn(&D, S, &SVector<S, N>, &SVector<S, N>) -> S + Send + Sync + 'a,
     ) -> Self {
@@ -300,10 +313,55 @@ impl<'a, S: RealField + Copy, const N: usize> Event<'a, S, N> {
         }
     }
 
-    /// A reset that changes the run's data `D` as well as the state: the
-    /// run goes on from the new state with the model built anew from the
-    /// new data.
-    pub(crate) fn try_reset_keeping<D: Any>(
+    /// As [`try_reset`](Self::try_reset), with a reset that also reads
+    /// and changes the run's data `D` (see [`Events::keeping`]): state of
+    /// each run, which a second run of the same events does not inherit.
+    /// Where the run's data is not a `D`, the reset refuses
+    /// ([`ResetFailure::Refused`]).
+    ///
+    /// ```
+    /// use lagrange_runtime::error::{IntegrationError, ResetFailure};
+    /// use lagrange_runtime::events::{Event, Events};
+    /// use lagrange_runtime::nalgebra::{SMatrix, SVector, Vector1};
+    /// use lagrange_runtime::prelude::*;
+    /// # struct Ball;
+    /// # impl Lagrangian<1> for Ball {
+    /// #     type Scalar = f64;
+    /// #     const COORDINATES: [&'static str; 1] = ["z"];
+    /// #     fn mass_matrix(&self, _t: f64, _q: &SVector<f64, 1>) -> SMatrix<f64, 1, 1> { SMatrix::<f64, 1, 1>::new(1.0) }
+    /// #     fn forcing(&self, _t: f64, _q: &SVector<f64, 1>, _qd: &SVector<f64, 1>) -> SVector<f64, 1> { Vector1::new(-9.81) }
+    /// #     fn kinetic_energy(&self, _t: f64, _q: &SVector<f64, 1>, qd: &SVector<f64, 1>) -> f64 { 0.5 * qd[0] * qd[0] }
+    /// #     fn potential_energy(&self, _t: f64, q: &SVector<f64, 1>) -> f64 { 9.81 * q[0] }
+    /// # }
+    ///
+    /// // A ball that may bounce three times on z = 0, counted per run.
+    /// let floor = Event::keeping("floor", |_: &usize, _t, q: &SVector<f64, 1>, _qd: &SVector<f64, 1>| q[0])
+    ///     .falling()
+    ///     .try_reset_keeping(|bounces: &mut usize, _t, q, qd| {
+    ///         *bounces += 1;
+    ///         if *bounces > 3 {
+    ///             return Err(ResetFailure::refused("a fourth bounce"));
+    ///         }
+    ///         Ok((*q, -0.9 * qd))
+    ///     });
+    /// let events = Events::new().keeping(0usize).with(floor);
+    /// let drop = || Dopri5::new().integrate_with_events(
+    ///     &Ball, 0.0, Vector1::new(1.0), Vector1::new(0.0), &[10.0], &events,
+    /// );
+    /// // Each run refuses its own fourth bounce, after three.
+    /// for _ in 0..2 {
+    ///     let failure = drop().unwrap_err();
+    ///     assert!(matches!(failure.error, IntegrationError::ResetFailed { .. }));
+    ///     assert_eq!(failure.trajectory.events().len(), 3);
+    /// }
+    /// // A stepper's count is read from the stepper.
+    /// let mut stepper = Stepper::new(Ball, Dopri5::new(), 0.0, Vector1::new(1.0), Vector1::new(0.0))?
+    ///     .with_events(&events)?;
+    /// stepper.advance_to(1.0)?;
+    /// assert_eq!(stepper.data::<usize>(), Some(&1));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn try_reset_keeping<D: Any>(
         mut self,
         reset: impl Fn(&mut D, S, &SVector<S, N>, &SVector<S, N>) -> Result<State<S, N>, ResetFailure>
         + Send
@@ -367,6 +425,11 @@ impl<'a, S: RealField + Copy, const N: usize> Event<'a, S, N> {
     /// [`IntegrationError::ResetFailed`](crate::error::IntegrationError::ResetFailed),
     /// naming the event, at its time and state, the trajectory up to it
     /// kept in the [`Failure`](crate::error::Failure).
+    ///
+    /// State the closure keeps (the counter below) is the events', not a
+    /// run's: every run watching these events shares it, and a second run
+    /// starts where the first left it. For state of each run, see
+    /// [`try_reset_keeping`](Self::try_reset_keeping).
     ///
     /// ```
     /// use lagrange_runtime::error::{IntegrationError, ResetFailure};
@@ -531,11 +594,12 @@ impl<'a, S: RealField + Copy, const N: usize> Events<'a, S, N> {
         }
     }
 
-    /// Each run watching these events carries the data `make()` returns
-    /// at its start, for the events made by [`Event::keeping`] and
-    /// [`Event::try_reset_keeping`] to read and change.
-    pub(crate) fn keeping(mut self, make: impl Fn() -> Box<RunData> + Send + Sync + 'a) -> Self {
-        self.data = Some(Factory(Box::new(make)));
+    /// Each run watching these events carries data of its own, a copy of
+    /// `start` at the run's start, for the events made by
+    /// [`Event::keeping`] to read and by [`Event::try_reset_keeping`] to
+    /// change (see [the module](self#state-of-a-run)).
+    pub fn keeping<D: Any + Clone + Send + Sync>(mut self, start: D) -> Self {
+        self.data = Some(Factory(Box::new(move || Box::new(start.clone()))));
         self
     }
 

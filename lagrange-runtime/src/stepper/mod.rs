@@ -254,10 +254,10 @@ where
         self
     }
 
-    /// The run's data, kept by the watched events (`()` where they keep
-    /// none).
-    pub(crate) fn data(&self) -> &RunData {
-        self.run.rec.data()
+    /// The data of this stepper's run that its events keep
+    /// ([`Events::keeping`]), if it is a `D`: where the last call left it.
+    pub fn data<D: core::any::Any>(&self) -> Option<&D> {
+        self.run.rec.data().downcast_ref::<D>()
     }
 
     /// The caller changed the model, the state, the clock or the events:

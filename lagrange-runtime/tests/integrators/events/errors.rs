@@ -176,3 +176,62 @@ fn a_stepper_whose_reset_refuses_stops_at_the_event_with_its_reason() {
     assert_eq!(event, "x");
     assert!((t - std::f64::consts::FRAC_PI_2).abs() < 1e-6, "{t}");
 }
+
+/// A reset that keeps a count as data of the run (`Events::keeping`,
+/// `Event::try_reset_keeping`) refuses the spring's third falling crossing
+/// of `x = 0` (at `π/2 + 4π`, where `x = cos t`) in every run of the same
+/// events, by every method: each run counts from the start value, and the
+/// reset's changes reach the next crossing. A count kept in the closure
+/// instead (an atomic, the only way before) is shared by the runs: the
+/// second run refuses at its first crossing.
+#[test]
+fn data_kept_by_a_reset_is_each_runs_own() {
+    let count = |seen: &mut usize, _: f64, q: &Vector1<f64>, qd: &Vector1<f64>| {
+        *seen += 1;
+        if *seen == 3 {
+            return Err(lagrange_runtime::ResetFailure::refused("a third crossing"));
+        }
+        Ok((*q, *qd))
+    };
+    let third = std::f64::consts::FRAC_PI_2 + 4.0 * std::f64::consts::PI;
+    let keeping = Events::new().keeping(0usize).with(
+        Event::keeping("x", |_: &usize, t, q, qd| x(t, q, qd))
+            .falling()
+            .try_reset_keeping(count),
+    );
+    let (q0, v0) = (Vector1::new(1.0), Vector1::new(0.0));
+    for method in Method::ALL {
+        for _ in 0..2 {
+            let failure = method
+                .integrator(0.01, 1e-8)
+                .integrate_with_events(&spring(), 0.0, q0, v0, &[30.0], &keeping)
+                .unwrap_err();
+            let IntegrationError::ResetFailed { t, .. } = failure.error else {
+                panic!("{method:?}: {}", failure.error);
+            };
+            // As above: the first-order methods' crossings are O(h) off the
+            // cosine's, by a few 1e-2 over two more periods; 0.1 holds.
+            assert!((t - third).abs() < 0.1, "{method:?}: {t}");
+            assert_eq!(failure.trajectory.events().len(), 2, "{method:?}");
+        }
+    }
+
+    let shared = std::sync::atomic::AtomicUsize::new(0);
+    let in_closure = Events::new().with(Event::new("x", x).falling().try_reset(
+        |_, q: &Vector1<f64>, qd: &Vector1<f64>| {
+            if shared.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1 >= 3 {
+                return Err(lagrange_runtime::ResetFailure::refused("a third crossing"));
+            }
+            Ok((*q, *qd))
+        },
+    ));
+    let crossings = |events: &Events<'_, f64, 1>| {
+        let failure = Method::Dopri5
+            .with_tolerance(1e-8)
+            .integrate_with_events(&spring(), 0.0, q0, v0, &[30.0], events)
+            .unwrap_err();
+        failure.trajectory.events().len()
+    };
+    assert_eq!(crossings(&in_closure), 2);
+    assert_eq!(crossings(&in_closure), 0);
+}
