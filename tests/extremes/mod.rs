@@ -13,7 +13,7 @@ mod f32;
 mod kepler;
 mod long_runs;
 mod mass_ratio;
-mod nonfinite;
+pub(crate) mod nonfinite;
 mod order;
 mod reversibility;
 mod separatrix;

@@ -586,17 +586,9 @@ mod lanes {
         }
     }
 
-    lagrange::lagrangian! {
-        /// `x = cos ω t`, with a force `a √(t* − t)`: with `a = 0`, zero up
-        /// to `t*` and NaN after (`tests/extremes/nonfinite.rs`'s model).
-        pub struct RunsOut {
-            coordinates: x;
-            parameters: omega, a, t_star;
-            kinetic: dot(x)^2/2;
-            potential: omega^2*x^2/2;
-            forces: x = a*sqrt(t_star - t);
-        }
-    }
+    // `tests/extremes/nonfinite.rs`'s spring whose force `a √(t* − t)` is
+    // zero up to `t*` (with `a = 0`) and NaN after.
+    use crate::extremes::nonfinite::RunsOut;
 
     /// A lane whose force turns NaN at `t* = 2.3456` (the others' at 100)
     /// stops the adaptive ensemble where its scalar `Dopri5` run stops: a
