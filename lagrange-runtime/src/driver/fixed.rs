@@ -40,34 +40,45 @@ pub trait FixedStep<S: RealField + Copy, const N: usize> {
 /// back onto its constraints after each step
 /// ([`Recorder::control_drift`]).
 ///
-/// The loop itself ([`Course::advance`]) sees the method's step and the
-/// model only behind a `dyn` ([`Stepping`], [`Evaluate`]): it is compiled
-/// once per scalar and size, not once per model and method. Only the
-/// step, where the model is evaluated, keeps both types.
+/// The loop itself ([`Course::walk`]) is written once for a run and for
+/// the SIMD lanes of an [`Ensemble`](crate::ensemble::Ensemble)
+/// ([`Track`]: what differs between them, the state and what is done with
+/// a step's end). For a run it sees the method's step and the model only
+/// behind a `dyn` ([`Stepping`], [`Evaluate`]): it is compiled once per
+/// scalar and size, not once per model and method. Only the step, where
+/// the model is evaluated, keeps both types.
 pub struct FixedWalk<S, F> {
     pub(crate) step: F,
     course: Course<S>,
+    growth: Option<GrowthGuard<S>>,
 }
 
-/// The fixed-step loop's own state between calls.
-struct Course<S> {
+/// The fixed-step loop's own state between calls: the step asked for,
+/// and the budget.
+pub(crate) struct Course<S> {
     h: S,
     max_steps: usize,
     /// `h` bounded by the events' `max_step`, for the current segment.
     bounded: S,
-    growth: Option<GrowthGuard<S>>,
+}
+
+impl<S: RealField + Copy> Course<S> {
+    /// The loop's state before a method's first step.
+    pub(crate) fn new(h: S, max_steps: usize) -> Self {
+        Self {
+            h,
+            max_steps,
+            bounded: h,
+        }
+    }
 }
 
 impl<S: RealField + Copy, F> FixedWalk<S, F> {
     pub(crate) fn new(step: F, h: S, max_steps: usize) -> Self {
         Self {
             step,
-            course: Course {
-                h,
-                max_steps,
-                bounded: h,
-                growth: None,
-            },
+            course: Course::new(h, max_steps),
+            growth: None,
         }
     }
 }
@@ -133,121 +144,289 @@ where
             step: &mut self.step,
             model,
         };
-        self.course.advance(run, model, &mut bound, target)
+        walk_run(
+            &mut self.course,
+            &mut self.growth,
+            run,
+            model,
+            &mut bound,
+            target,
+        )
     }
 }
 
+/// The loop over one run, compiled once per scalar and size.
+fn walk_run<S: RealField + Copy, const N: usize>(
+    course: &mut Course<S>,
+    growth: &mut Option<GrowthGuard<S>>,
+    run: &mut Run<'_, S, N>,
+    model: &dyn Evaluate<S, N>,
+    stepping: &mut dyn Stepping<S, N>,
+    target: S,
+) -> Result<Advanced, IntegrationError<S, N>> {
+    let zeros = (SVector::zeros(), SVector::zeros());
+    let mut track = OneRun {
+        run,
+        model,
+        stepping,
+        growth,
+        before: zeros,
+        end: zeros,
+    };
+    course.walk(&mut track, target)
+}
+
+/// What the fixed-step loop walks: one run (its state, samples and
+/// events, [`OneRun`]) or the SIMD lanes of an
+/// [`Ensemble`](crate::ensemble::Ensemble). The loop ([`Course::walk`])
+/// cuts each interval to the next stop into steps, keeps the budget and
+/// hands the steps' ends on; the track steps, judges and keeps the state.
+pub(crate) trait Track<S: RealField + Copy> {
+    /// What ends a walk in failure.
+    type Error;
+
+    /// The time of the state.
+    fn t(&self) -> S;
+
+    /// What must be built anew before the next step.
+    fn fresh(&self) -> Fresh;
+
+    /// A fresh start (see [`fresh`](Track::fresh)), after which `fresh`
+    /// is [`Fresh::No`]: the events armed, what the method carries from
+    /// step to step forgotten; for a new segment, the growth guard anew
+    /// and the step `h` bounded by the events' `max_step`, which it
+    /// returns.
+    fn begin(&mut self, fresh: Fresh, h: S) -> Result<Option<S>, Self::Error>;
+
+    /// The next stop: the next sample time before `target`, or `target`.
+    fn next_stop(&self, target: S) -> S;
+
+    /// The error of an interval whose steps are too short to move `t`.
+    fn underflow(&self, h: S) -> Self::Error;
+
+    /// The error of a call that spent its step budget, at the state.
+    fn too_many_steps(&self, max_steps: usize) -> Self::Error;
+
+    /// The steps taken in the current call: what the budget counts.
+    fn steps_this_call(&self) -> usize;
+
+    /// One step from the state at `t` to `t_next = t + dt`, its end kept
+    /// (and, for a run, checked finite: the model does not evaluate it).
+    fn step(&mut self, t: S, dt: S, t_next: S) -> Result<(), Self::Error>;
+
+    /// Counts a step taken.
+    fn count(&mut self);
+
+    /// The growth guard's judgement of the step (`h` the interval's step,
+    /// which an error reports, `dt` its length).
+    fn judge(&mut self, t_next: S, h_dt: (S, S)) -> Result<(), Self::Error>;
+
+    /// Moves to the end of the step: its events, then the state.
+    /// [`Flow::Restarted`]`(true)` has left the state at `target`.
+    fn take(&mut self, times: (S, S), target: S) -> Result<Flow, Self::Error>;
+
+    /// The samples due where the last step of an interval landed.
+    fn landed(&mut self);
+}
+
 impl<S: RealField + Copy> Course<S> {
-    fn advance<const N: usize>(
+    /// Advances `track` to `target`, or to an event that stops it, each
+    /// interval between stops in the fewest equal steps no longer than
+    /// `h`. On error the track holds the end of the last step that
+    /// succeeded.
+    #[inline(always)]
+    pub(crate) fn walk<T: Track<S>>(
         &mut self,
-        run: &mut Run<'_, S, N>,
-        model: &dyn Evaluate<S, N>,
-        stepping: &mut dyn Stepping<S, N>,
+        track: &mut T,
         target: S,
-    ) -> Result<Advanced, IntegrationError<S, N>> {
+    ) -> Result<Advanced, T::Error> {
         let max_steps = self.max_steps;
         loop {
-            if run.fresh != Fresh::No {
-                if run.fresh == Fresh::Segment {
-                    run.arm()?;
-                    // Events closer than a few steps are beyond a fixed
-                    // step (the Zeno guard's default separation).
-                    self.bounded = run.rec.bound_step(self.h);
-                    run.rec.resolve_events(self.bounded);
-                    self.growth = Some(GrowthGuard::new(&run.q, &run.qdot));
-                } else {
-                    run.arm()?;
+            let fresh = track.fresh();
+            if fresh != Fresh::No {
+                if let Some(bounded) = track.begin(fresh, self.h)? {
+                    self.bounded = bounded;
                 }
-                stepping.restart();
-                run.fresh = Fresh::No;
             }
-            if run.t >= target {
+            if track.t() >= target {
                 return Ok(Advanced::Reached);
             }
-            // The next stop: a sample time, or the target.
-            let stop = run
-                .rec
-                .pending()
-                .filter(|&ts| ts < target)
-                .unwrap_or(target);
-            let (t, (q, qdot)) = (run.t, run.state());
-            let interval = Interval::new(t, stop, self.bounded);
+            let interval = Interval::new(track.t(), track.next_stop(target), self.bounded);
             if interval.underflows() {
-                let h = interval.step;
-                return Err(IntegrationError::StepSizeUnderflow { t, h, q, qdot });
+                return Err(track.underflow(interval.step));
             }
             let Some(steps) = interval.steps(max_steps) else {
-                return Err(IntegrationError::TooManySteps {
-                    t,
-                    max_steps,
-                    q,
-                    qdot,
-                });
+                return Err(track.too_many_steps(max_steps));
             };
-            let growth = self
-                .growth
-                .get_or_insert_with(|| GrowthGuard::new(&q, &qdot));
             let mut restarted = false;
             for k in 1..=steps {
-                let (t, before) = (run.t, run.state());
-                if run.steps_this_call().0 >= max_steps {
-                    let (q, qdot) = before;
-                    return Err(IntegrationError::TooManySteps {
-                        t,
-                        max_steps,
-                        q,
-                        qdot,
-                    });
+                if track.steps_this_call() >= max_steps {
+                    return Err(track.too_many_steps(max_steps));
                 }
+                let t = track.t();
                 let t_next = interval.time(k, steps);
                 let dt = t_next - t;
-                let (q, qdot) =
-                    stepping.step(&mut run.rec, t, (&before.0, &before.1), dt, t_next)?;
-                // The step's end is not evaluated by the model: check it
-                // before it becomes the state.
-                if !finite_state(&q, &qdot) {
-                    let value = NonFiniteValue::State;
-                    return Err(IntegrationError::NonFiniteState {
-                        t: t_next,
-                        q,
-                        qdot,
-                        value,
-                    });
-                }
-                run.rec.stats.steps_accepted += 1;
-                if let Some(steps) = growth.unstable(before, (&q, &qdot), dt) {
-                    return Err(IntegrationError::Unstable {
-                        t: t_next,
-                        h: interval.step,
-                        steps,
-                        q,
-                        qdot,
-                    });
-                }
-                let crossed = if run.rec.watching() {
-                    run.rec
-                        .watch_hermite(model, (t, &before), (t_next, &(q, qdot)))?
-                } else {
-                    None
-                };
-                match run.take((t_next, q, qdot), crossed, target) {
+                track.step(t, dt, t_next)?;
+                track.count();
+                track.judge(t_next, (interval.step, dt))?;
+                match track.take((t, t_next), target)? {
                     Flow::Go => {}
                     Flow::Stopped => return Ok(Advanced::Stopped),
                     Flow::Rebuild => return Ok(Advanced::Rebuild),
-                    Flow::Restarted(at_target) => {
-                        if at_target {
-                            run.t = target;
-                            return Ok(Advanced::Reached);
-                        }
+                    Flow::Restarted(true) => return Ok(Advanced::Reached),
+                    Flow::Restarted(false) => {
                         restarted = true;
                         break;
                     }
                 }
             }
             if !restarted {
-                run.record_landed();
+                track.landed();
             }
         }
+    }
+}
+
+/// One run as the fixed-step loop walks it: its state, samples and
+/// events, the model and the step behind a `dyn`, its growth guard (kept
+/// between calls by the walker), and the step's start and end.
+struct OneRun<'r, 'a, S: RealField + Copy, const N: usize> {
+    run: &'r mut Run<'a, S, N>,
+    model: &'r dyn Evaluate<S, N>,
+    stepping: &'r mut dyn Stepping<S, N>,
+    growth: &'r mut Option<GrowthGuard<S>>,
+    /// The state the step starts from.
+    before: State<S, N>,
+    /// Its end.
+    end: State<S, N>,
+}
+
+impl<S: RealField + Copy, const N: usize> Track<S> for OneRun<'_, '_, S, N> {
+    type Error = IntegrationError<S, N>;
+
+    #[inline(always)]
+    fn t(&self) -> S {
+        self.run.t
+    }
+
+    #[inline(always)]
+    fn fresh(&self) -> Fresh {
+        self.run.fresh
+    }
+
+    #[inline(always)]
+    fn begin(&mut self, fresh: Fresh, h: S) -> Result<Option<S>, Self::Error> {
+        let run = &mut *self.run;
+        run.arm()?;
+        let bounded = if fresh == Fresh::Segment {
+            // Events closer than a few steps are beyond a fixed step (the
+            // Zeno guard's default separation).
+            let bounded = run.rec.bound_step(h);
+            run.rec.resolve_events(bounded);
+            *self.growth = Some(GrowthGuard::new(&run.q, &run.qdot));
+            Some(bounded)
+        } else {
+            None
+        };
+        self.stepping.restart();
+        run.fresh = Fresh::No;
+        Ok(bounded)
+    }
+
+    #[inline(always)]
+    fn next_stop(&self, target: S) -> S {
+        self.run
+            .rec
+            .pending()
+            .filter(|&ts| ts < target)
+            .unwrap_or(target)
+    }
+
+    fn underflow(&self, h: S) -> Self::Error {
+        let (t, (q, qdot)) = (self.run.t, self.run.state());
+        IntegrationError::StepSizeUnderflow { t, h, q, qdot }
+    }
+
+    fn too_many_steps(&self, max_steps: usize) -> Self::Error {
+        let (t, (q, qdot)) = (self.run.t, self.run.state());
+        IntegrationError::TooManySteps {
+            t,
+            max_steps,
+            q,
+            qdot,
+        }
+    }
+
+    #[inline(always)]
+    fn steps_this_call(&self) -> usize {
+        self.run.steps_this_call().0
+    }
+
+    #[inline(always)]
+    fn step(&mut self, t: S, dt: S, t_next: S) -> Result<(), Self::Error> {
+        self.before = self.run.state();
+        let (q0, qdot0) = &self.before;
+        let (q, qdot) = self
+            .stepping
+            .step(&mut self.run.rec, t, (q0, qdot0), dt, t_next)?;
+        // The step's end is not evaluated by the model: check it before it
+        // becomes the state.
+        if !finite_state(&q, &qdot) {
+            let value = NonFiniteValue::State;
+            return Err(IntegrationError::NonFiniteState {
+                t: t_next,
+                q,
+                qdot,
+                value,
+            });
+        }
+        self.end = (q, qdot);
+        Ok(())
+    }
+
+    #[inline(always)]
+    fn count(&mut self) {
+        self.run.rec.stats.steps_accepted += 1;
+    }
+
+    #[inline(always)]
+    fn judge(&mut self, t_next: S, (h, dt): (S, S)) -> Result<(), Self::Error> {
+        let before = self.before;
+        let growth = self
+            .growth
+            .get_or_insert_with(|| GrowthGuard::new(&before.0, &before.1));
+        let (q, qdot) = &self.end;
+        match growth.unstable(before, (q, qdot), dt) {
+            Some(steps) => Err(IntegrationError::Unstable {
+                t: t_next,
+                h,
+                steps,
+                q: *q,
+                qdot: *qdot,
+            }),
+            None => Ok(()),
+        }
+    }
+
+    #[inline(always)]
+    fn take(&mut self, (t, t_next): (S, S), target: S) -> Result<Flow, Self::Error> {
+        let run = &mut *self.run;
+        let crossed = if run.rec.watching() {
+            run.rec
+                .watch_hermite(self.model, (t, &self.before), (t_next, &self.end))?
+        } else {
+            None
+        };
+        let flow = run.take((t_next, self.end.0, self.end.1), crossed, target);
+        if let Flow::Restarted(true) = flow {
+            run.t = target;
+        }
+        Ok(flow)
+    }
+
+    #[inline(always)]
+    fn landed(&mut self) {
+        self.run.record_landed();
     }
 }
 

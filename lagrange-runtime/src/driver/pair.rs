@@ -16,7 +16,7 @@ use nalgebra::{RealField, SVector};
 use super::growth::GrowthGuard;
 use super::record::{Evaluate, Recorder};
 use super::run::{Advanced, Flow, Fresh, Run, Walk};
-use super::step_control::{advances, initial_step};
+use super::step_control::{FirstStep, advances, initial_step};
 use crate::error::IntegrationError;
 use crate::model::Lagrangian;
 use crate::trajectory::State;
@@ -285,10 +285,13 @@ pub trait Embedded<S: RealField + Copy, const N: usize> {
 /// frame's end says little about the step the solution allows: the next
 /// one is not shorter than the control had chosen before it.
 ///
-/// The loop itself ([`Course::advance`]) sees the pair and the model only
-/// behind a `dyn` ([`Pairing`], [`Evaluate`]): it is compiled once per
-/// scalar and size, not once per model and method. Only the pair's
-/// attempts, where the model is evaluated, keep both types.
+/// The loop itself ([`Course::walk`]) is written once for a run and for
+/// the SIMD lanes of the [`AdaptiveEnsemble`](crate::ensemble::AdaptiveEnsemble)
+/// ([`Track`]: what differs between them, the state and what is done with
+/// a step's end). For a run it sees the pair and the model only behind a
+/// `dyn` ([`Pairing`], [`Evaluate`]): it is compiled once per scalar and
+/// size, not once per model and method. Only the pair's attempts, where
+/// the model is evaluated, keep both types.
 pub struct PairWalk<S, M: Embedded<S, N>, const N: usize>
 where
     S: RealField + Copy,
@@ -296,26 +299,34 @@ where
     method: M,
     pair: Option<M::Pair>,
     course: Course<S>,
+    growth: Option<GrowthGuard<S>>,
 }
 
-/// The embedded pairs' loop's own state between calls.
-struct Course<S> {
-    control: StepControl<S>,
+/// The embedded pairs' loop's own state between calls: the step-size
+/// rules and the step they chose, the tolerances and the step budget.
+pub(crate) struct Course<S> {
+    pub(crate) control: StepControl<S>,
     settings: Tolerances<S>,
     /// The controller's [`order`](Controller::order).
     order: u8,
-    growth: Option<GrowthGuard<S>>,
+}
+
+impl<S: RealField + Copy> Course<S> {
+    /// The loop's state before a method's first step.
+    pub(crate) fn new(control: &Controller, settings: Tolerances<S>) -> Self {
+        Self {
+            control: StepControl::new(control),
+            settings,
+            order: control.order,
+        }
+    }
 }
 
 impl<S: RealField + Copy, M: Embedded<S, N>, const N: usize> PairWalk<S, M, N> {
     pub(crate) fn new(method: M) -> Self {
         Self {
-            course: Course {
-                control: StepControl::new(&M::CONTROL),
-                settings: method.tolerances(),
-                order: M::CONTROL.order,
-                growth: None,
-            },
+            course: Course::new(&M::CONTROL, method.tolerances()),
+            growth: None,
             method,
             pair: None,
         }
@@ -465,18 +476,120 @@ where
             dense: None,
             failure: None,
         };
-        self.course.advance(run, model, &mut bound, target)
+        walk_run(
+            &mut self.course,
+            &mut self.growth,
+            run,
+            model,
+            &mut bound,
+            target,
+        )
     }
 }
 
-impl<S: RealField + Copy> Course<S> {
-    fn advance<const N: usize>(
+/// The loop over one run, compiled once per scalar and size.
+fn walk_run<S: RealField + Copy, const N: usize>(
+    course: &mut Course<S>,
+    growth: &mut Option<GrowthGuard<S>>,
+    run: &mut Run<'_, S, N>,
+    model: &dyn Evaluate<S, N>,
+    pairing: &mut dyn Pairing<S, N>,
+    target: S,
+) -> Result<Advanced, IntegrationError<S, N>> {
+    let zeros = (SVector::zeros(), SVector::zeros());
+    let mut track = OneRun {
+        run,
+        model,
+        pairing,
+        growth,
+        at: zeros,
+        end: zeros,
+    };
+    course.walk(&mut track, target)
+}
+
+/// A fresh start's outcome, as [`Track::begin`] reports it.
+pub(crate) struct Begun<S> {
+    /// Hairer's first step, where the loop asked for one.
+    pub(crate) h: Option<S>,
+    /// Whether the step control's error history starts anew (a new
+    /// segment, or a run without a growth guard yet).
+    pub(crate) restart: bool,
+}
+
+/// What the embedded pairs' loop walks: one run (its state, samples and
+/// events, [`OneRun`]) or the SIMD lanes of an
+/// [`AdaptiveEnsemble`](crate::ensemble::AdaptiveEnsemble). The loop
+/// ([`Course::walk`]) decides every step: the budget, the underflow rule,
+/// the attempt, its rejection, retry or acceptance, and the next step
+/// size; the track evaluates and keeps the state.
+pub(crate) trait Track<S: RealField + Copy> {
+    /// What ends a walk in failure.
+    type Error;
+
+    /// The time of the state.
+    fn t(&self) -> S;
+
+    /// What must be built anew before the next step.
+    fn fresh(&self) -> Fresh;
+
+    /// A fresh start (see [`fresh`](Track::fresh)), after which
+    /// `fresh` is [`Fresh::No`]: the pair's first slope at the state, the
+    /// growth guard anew for a new segment, and where `first` asks,
+    /// Hairer's first step towards `target`.
+    fn begin(
         &mut self,
-        run: &mut Run<'_, S, N>,
-        model: &dyn Evaluate<S, N>,
-        pairing: &mut dyn Pairing<S, N>,
+        fresh: Fresh,
+        first: Option<FirstStep<S>>,
         target: S,
-    ) -> Result<Advanced, IntegrationError<S, N>> {
+    ) -> Result<Begun<S>, Self::Error>;
+
+    /// `h` bounded by the events' `max_step`.
+    fn bound_step(&self, h: S) -> S;
+
+    /// The steps attempted (accepted or rejected) in the current call:
+    /// what the step budget counts.
+    fn attempts_this_call(&self) -> usize;
+
+    /// The error of a call that spent its step budget, at the state.
+    fn too_many_steps(&self, max_steps: usize) -> Self::Error;
+
+    /// The error of a step `h` too short to move `t`, at the state.
+    fn underflow(&self, h: S) -> Self::Error;
+
+    /// Attempts the step `(t, t_new, h)` from the state: its error
+    /// estimate, or the failure of a stage (which the loop retries
+    /// shorter, and reports if the step underflows before getting past it).
+    fn attempt(&mut self, times: (S, S, S)) -> Result<Outcome<S, ()>, Self::Error>;
+
+    /// Counts an attempt, accepted or rejected.
+    fn count(&mut self, accepted: bool);
+
+    /// The end of the accepted attempt: a constrained model's state
+    /// projected, and the growth guard's judgement of the step.
+    fn end(&mut self, times: (S, S, S)) -> Result<(), Self::Error>;
+
+    /// Moves to the end of the accepted step: the events and the samples
+    /// inside it, then the state. [`Flow::Restarted`]`(true)` has left the
+    /// state at `target`.
+    fn take(&mut self, times: (S, S, S), target: S) -> Result<Flow, Self::Error>;
+}
+
+impl<S: RealField + Copy> Course<S> {
+    /// Advances `track` to `target`, or to an event that stops it. On
+    /// error the track holds the end of the last step that succeeded.
+    ///
+    /// At a fresh start (the run's, after a reset by an event, or a change
+    /// by the caller): the first slope, Hairer's first step if none was
+    /// chosen or a segment begins. Then attempts until the target: a step
+    /// whose stage fails is retried with `fac_min` of it, and if `h` then
+    /// underflows, that failure is the error reported.
+    #[inline(always)]
+    pub(crate) fn walk<T: Track<S>>(
+        &mut self,
+        track: &mut T,
+        target: S,
+    ) -> Result<Advanced, T::Error> {
         let Tolerances {
             rtol,
             atol,
@@ -486,118 +599,216 @@ impl<S: RealField + Copy> Course<S> {
         // underflows before we get past it.
         let mut stage_failure = None;
         loop {
-            if run.t >= target {
+            let t = track.t();
+            if t >= target {
                 return Ok(Advanced::Reached);
             }
-            if run.fresh != Fresh::No {
-                run.arm()?;
-                let (t, (q, qdot)) = (run.t, run.state());
-                let qddot = run.rec.rhs(model, t, &q, &qdot)?;
-                if run.fresh == Fresh::Segment || self.control.h.is_none() {
-                    let start = (t, &q, &qdot, &qddot);
-                    let h_max = run.rec.bound_step(target - t);
-                    self.control.h = Some(initial_step(
-                        &mut run.rec,
-                        model,
-                        start,
-                        h_max,
-                        rtol,
-                        atol,
-                        self.order,
-                    ));
+            let fresh = track.fresh();
+            if fresh != Fresh::No {
+                let guess = fresh == Fresh::Segment || self.control.h.is_none();
+                let order = self.order;
+                let first = guess.then_some(FirstStep { rtol, atol, order });
+                let begun = track.begin(fresh, first, target)?;
+                if let Some(h) = begun.h {
+                    self.control.h = Some(h);
                 }
-                if run.fresh == Fresh::Segment || self.growth.is_none() {
-                    self.growth = Some(GrowthGuard::new(&q, &qdot));
+                if begun.restart {
                     self.control.restart();
                 }
-                pairing.start(&qdot, &qddot);
-                run.fresh = Fresh::No;
             }
-            let (Some(h), Some(growth)) = (self.control.h, &mut self.growth) else {
-                unreachable!("built above");
+            let Some(h) = self.control.h else {
+                unreachable!("chosen at the start");
             };
-            let h = run.rec.bound_step(h);
-            let (t, (q, qdot)) = (run.t, run.state());
-            if run.steps_this_call().1 >= max_steps {
-                return Err(IntegrationError::TooManySteps {
-                    t,
-                    max_steps,
-                    q,
-                    qdot,
-                });
+            let h = track.bound_step(h);
+            if track.attempts_this_call() >= max_steps {
+                return Err(track.too_many_steps(max_steps));
             }
             if !advances(t, h) {
-                return Err(stage_failure
-                    .take()
-                    .unwrap_or(IntegrationError::StepSizeUnderflow { t, h, q, qdot }));
+                return Err(stage_failure.take().unwrap_or_else(|| track.underflow(h)));
             }
             let step = self.control.attempt(t, h, target);
-            let (t_new, h_try) = (step.t_new, step.h);
-            let err = match pairing.attempt(&mut run.rec, (t, t_new, h_try), (&q, &qdot)) {
-                Some(Outcome::Accepted { step: (), err }) => err,
-                Some(Outcome::Rejected { err }) => {
-                    run.rec.stats.steps_rejected += 1;
+            let times = (t, step.t_new, step.h);
+            let err = match track.attempt(times) {
+                Ok(Outcome::Accepted { step: (), err }) => err,
+                Ok(Outcome::Rejected { err }) => {
+                    track.count(false);
                     self.control.reject(&step, err);
                     continue;
                 }
-                None => {
-                    stage_failure = Some(pairing.failure());
-                    run.rec.stats.steps_rejected += 1;
+                Err(failure) => {
+                    stage_failure = Some(failure);
+                    track.count(false);
                     self.control.fail(&step);
                     continue;
                 }
             };
             let h_new = self.control.accept(&step, err);
             stage_failure = None;
-            run.rec.stats.steps_accepted += 1;
-
-            // A constrained model's end state is projected; the pair keeps
-            // its last slope, evaluated before that (see `constraints`).
-            let (q_end, qdot_end) = pairing.end();
-            let (q_new, qdot_new) = run.rec.control_drift(model, t_new, q_end, qdot_end)?;
-            if let Some(steps) = growth.unstable((q, qdot), (&q_new, &qdot_new), h_try) {
-                return Err(IntegrationError::Unstable {
-                    t: t_new,
-                    h: h_try,
-                    steps,
-                    q: q_new,
-                    qdot: qdot_new,
-                });
-            }
+            track.count(true);
+            track.end(times)?;
             self.control.h = Some(h_new);
-            // The dense output is built from the step's slopes before the
-            // pair moves on (its last slope becomes the next step's first),
-            // only when a sample or an event needs it.
-            let crossed = if run.rec.watching() {
-                let mut interpolant =
-                    |ts: S| pairing.dense_at(h_try, (&q, &qdot), (ts - t) / h_try);
-                let end = (q_new, qdot_new);
-                run.rec
-                    .watch_dense(model, (t, t_new), &end, &mut interpolant)?
-            } else {
-                None
-            };
-            if crossed.is_none() {
-                while let Some(ts) = run.rec.pending().filter(|&ts| ts <= t_new) {
-                    if ts < t_new {
-                        let (qs, qdots) = pairing.dense_at(h_try, (&q, &qdot), (ts - t) / h_try);
-                        run.rec.record_dense(model, ts, qs, qdots)?;
-                    } else {
-                        run.rec.record(ts, q_new, qdot_new);
-                    }
-                }
-            }
-            pairing.advance();
-            match run.take((t_new, q_new, qdot_new), crossed, target) {
-                Flow::Go => {}
+            match track.take(times, target)? {
+                Flow::Go | Flow::Restarted(false) => {}
                 Flow::Stopped => return Ok(Advanced::Stopped),
                 Flow::Rebuild => return Ok(Advanced::Rebuild),
-                Flow::Restarted(true) => {
-                    run.t = target;
-                    return Ok(Advanced::Reached);
-                }
-                Flow::Restarted(false) => {}
+                Flow::Restarted(true) => return Ok(Advanced::Reached),
             }
         }
+    }
+}
+
+/// One run as the pair loop walks it: its state, samples and events, the
+/// model and the pair behind a `dyn`, its growth guard (kept between
+/// calls by the walker), and the attempted step's start and end.
+struct OneRun<'r, 'a, S: RealField + Copy, const N: usize> {
+    run: &'r mut Run<'a, S, N>,
+    model: &'r dyn Evaluate<S, N>,
+    pairing: &'r mut dyn Pairing<S, N>,
+    growth: &'r mut Option<GrowthGuard<S>>,
+    /// The state the attempted step starts from.
+    at: State<S, N>,
+    /// The accepted step's end, its drift controlled.
+    end: State<S, N>,
+}
+
+impl<S: RealField + Copy, const N: usize> Track<S> for OneRun<'_, '_, S, N> {
+    type Error = IntegrationError<S, N>;
+
+    #[inline(always)]
+    fn t(&self) -> S {
+        self.run.t
+    }
+
+    #[inline(always)]
+    fn fresh(&self) -> Fresh {
+        self.run.fresh
+    }
+
+    #[inline(always)]
+    fn begin(
+        &mut self,
+        fresh: Fresh,
+        first: Option<FirstStep<S>>,
+        target: S,
+    ) -> Result<Begun<S>, Self::Error> {
+        let run = &mut *self.run;
+        run.arm()?;
+        let (t, (q, qdot)) = (run.t, run.state());
+        let qddot = run.rec.rhs(self.model, t, &q, &qdot)?;
+        let h = first.map(|first| {
+            let start = (t, &q, &qdot, &qddot);
+            let h_max = run.rec.bound_step(target - t);
+            initial_step(&mut run.rec, self.model, start, h_max, &first)
+        });
+        let restart = fresh == Fresh::Segment || self.growth.is_none();
+        if restart {
+            *self.growth = Some(GrowthGuard::new(&q, &qdot));
+        }
+        self.pairing.start(&qdot, &qddot);
+        run.fresh = Fresh::No;
+        Ok(Begun { h, restart })
+    }
+
+    #[inline(always)]
+    fn bound_step(&self, h: S) -> S {
+        self.run.rec.bound_step(h)
+    }
+
+    #[inline(always)]
+    fn attempts_this_call(&self) -> usize {
+        self.run.steps_this_call().1
+    }
+
+    fn too_many_steps(&self, max_steps: usize) -> Self::Error {
+        let (t, (q, qdot)) = (self.run.t, self.run.state());
+        IntegrationError::TooManySteps {
+            t,
+            max_steps,
+            q,
+            qdot,
+        }
+    }
+
+    fn underflow(&self, h: S) -> Self::Error {
+        let (t, (q, qdot)) = (self.run.t, self.run.state());
+        IntegrationError::StepSizeUnderflow { t, h, q, qdot }
+    }
+
+    #[inline(always)]
+    fn attempt(&mut self, times: (S, S, S)) -> Result<Outcome<S, ()>, Self::Error> {
+        self.at = self.run.state();
+        let (q, qdot) = &self.at;
+        match self.pairing.attempt(&mut self.run.rec, times, (q, qdot)) {
+            Some(outcome) => Ok(outcome),
+            None => Err(self.pairing.failure()),
+        }
+    }
+
+    #[inline(always)]
+    fn count(&mut self, accepted: bool) {
+        let stats = &mut self.run.rec.stats;
+        if accepted {
+            stats.steps_accepted += 1;
+        } else {
+            stats.steps_rejected += 1;
+        }
+    }
+
+    #[inline(always)]
+    fn end(&mut self, (_, t_new, h): (S, S, S)) -> Result<(), Self::Error> {
+        // A constrained model's end state is projected; the pair keeps
+        // its last slope, evaluated before that (see `constraints`).
+        let (q_end, qdot_end) = self.pairing.end();
+        let (q_new, qdot_new) = self
+            .run
+            .rec
+            .control_drift(self.model, t_new, q_end, qdot_end)?;
+        let Some(growth) = self.growth else {
+            unreachable!("built at the start");
+        };
+        if let Some(steps) = growth.unstable(self.at, (&q_new, &qdot_new), h) {
+            return Err(IntegrationError::Unstable {
+                t: t_new,
+                h,
+                steps,
+                q: q_new,
+                qdot: qdot_new,
+            });
+        }
+        self.end = (q_new, qdot_new);
+        Ok(())
+    }
+
+    #[inline(always)]
+    fn take(&mut self, (t, t_new, h): (S, S, S), target: S) -> Result<Flow, Self::Error> {
+        let (run, model, pairing) = (&mut *self.run, self.model, &mut *self.pairing);
+        let ((q, qdot), (q_new, qdot_new)) = (self.at, self.end);
+        // The dense output is built from the step's slopes before the
+        // pair moves on (its last slope becomes the next step's first),
+        // only when a sample or an event needs it.
+        let crossed = if run.rec.watching() {
+            let mut interpolant = |ts: S| pairing.dense_at(h, (&q, &qdot), (ts - t) / h);
+            let end = (q_new, qdot_new);
+            run.rec
+                .watch_dense(model, (t, t_new), &end, &mut interpolant)?
+        } else {
+            None
+        };
+        if crossed.is_none() {
+            while let Some(ts) = run.rec.pending().filter(|&ts| ts <= t_new) {
+                if ts < t_new {
+                    let (qs, qdots) = pairing.dense_at(h, (&q, &qdot), (ts - t) / h);
+                    run.rec.record_dense(model, ts, qs, qdots)?;
+                } else {
+                    run.rec.record(ts, q_new, qdot_new);
+                }
+            }
+        }
+        pairing.advance();
+        let flow = run.take((t_new, q_new, qdot_new), crossed, target);
+        if let Flow::Restarted(true) = flow {
+            run.t = target;
+        }
+        Ok(flow)
     }
 }

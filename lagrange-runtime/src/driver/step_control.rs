@@ -21,15 +21,12 @@ pub(crate) fn initial_step<S, E, const N: usize>(
     model: &E,
     (t, q, qdot, qddot): (S, &SVector<S, N>, &SVector<S, N>, &SVector<S, N>),
     h_max: S,
-    rtol: S,
-    atol: S,
-    order: u8,
+    scale: &FirstStep<S>,
 ) -> S
 where
     S: RealField + Copy,
     E: Evaluate<S, N> + ?Sized,
 {
-    let scale = FirstStep { rtol, atol, order };
     let h0 = scale.probe((q, qdot, qddot)).min(h_max);
     // One explicit Euler step estimates the second derivative.
     let (q1, qdot1) = (q + qdot * h0, qdot + qddot * h0);

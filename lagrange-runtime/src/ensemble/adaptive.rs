@@ -15,29 +15,29 @@
 //! The error is each lane's own, Hairer's root mean square of the
 //! estimate over `atol + rtol·max(|y|, |y_new|)`; the step is accepted when
 //! the largest over the lanes is at most 1. Everything else is the scalar
-//! runs' own code, not a copy of it: the stage loop and the error norm of
+//! runs' own code, not a copy of it: the loop of the embedded pairs
+//! (`driver::pair::Course::walk`, which steps a run and these lanes alike:
+//! the attempt, its rejection, its retry shorter where a stage fails, its
+//! acceptance, the step budget per call, the underflow rule, the step-size
+//! rules of [`Dopri5`]'s loop with a step that would stop within 1 % of the
+//! target stretched to land on it and the state moved by exactly the step
+//! the clock takes, `fl(t + h) − t`), the stage loop and the error norm of
 //! the scalar pairs (`integrators::stages::fsal_step` and `Step::error`,
-//! written once for scalars and lanes, over Dopri5's tableau), the
-//! step-size rules of
-//! [`Dopri5`]'s loop (`driver::pair::StepControl`: its gains and
-//! stabilization, no growth right after a rejection, a step that would
-//! stop within 1 % of the target stretched to land on it and one beyond
-//! it cut, the state moved by exactly the step the clock takes,
-//! `fl(t + h) − t`), its underflow rule (`driver::advances`), its growth
-//! guard (each lane's, as for the fixed-step ensemble), and Hairer's
-//! first step (`driver::FirstStep`, each lane's as its scalar run guesses
-//! it, the smallest taken), so that every frame is reached exactly and a
-//! fix to those rules reaches the lanes too. The loop around them (attempt,
-//! accept or reject, the step budget, the lane blamed for a failure) is
-//! still the ensemble's own: `driver/pair.rs`'s loop runs on scalars.
+//! written once for scalars and lanes, over Dopri5's tableau), the growth
+//! guard (each lane's, as for the fixed-step ensemble), and Hairer's first
+//! step (`driver::FirstStep`, each lane's as its scalar run guesses it, the
+//! smallest taken), so that every frame is reached exactly and a fix to
+//! any of them reaches the lanes too. What is the lanes' own
+//! (`driver::pair::Track` for them): the state, the largest of the
+//! errors, the lane blamed for a failure.
 
 use nalgebra::{ComplexField, RealField, SVector, SimdRealField, SimdValue};
 
 use super::solve::{Element, accelerations, gather, lane_of};
 use super::{EnsembleError, Guards, LaneModel, avx2_at_run_time, check_starts};
 use crate::driver::FirstStep;
-use crate::driver::advances;
-use crate::driver::pair::{Embedded, StepControl};
+use crate::driver::pair::{Begun, Course, Embedded, Outcome, Track};
+use crate::driver::run::{Flow, Fresh};
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::integrators::Dopri5;
 use crate::integrators::dopri5::tableau::{A, C, E};
@@ -88,13 +88,18 @@ use crate::trajectory::Stats;
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub struct AdaptiveEnsemble<L: LaneModel<N>, const N: usize> {
+    /// The scalar pairs' loop: its step-size rules and the step they
+    /// chose, Dopri5's tolerances and step budget.
+    course: Course<Element<L, N>>,
+    lanes: Lanes<L, N>,
+}
+
+/// The lanes as the pair loop walks them ([`Track`]): the model, the
+/// state of every lane, the slopes, the growth guards.
+struct Lanes<L: LaneModel<N>, const N: usize> {
     model: L,
     rtol: Element<L, N>,
     atol: Element<L, N>,
-    max_steps: usize,
-    /// The step-size rules of the scalar pairs' loop, and the step they
-    /// chose (`None` before the first).
-    control: StepControl<Element<L, N>>,
     t: Element<L, N>,
     q: SVector<L::Lanes, N>,
     qdot: SVector<L::Lanes, N>,
@@ -109,6 +114,14 @@ pub struct AdaptiveEnsemble<L: LaneModel<N>, const N: usize> {
     guards: Guards<Element<L, N>>,
     /// The lane that last set the step, blamed if it underflows.
     worst: usize,
+    /// [`Fresh::Segment`] at the start and after
+    /// [`set_lane`](AdaptiveEnsemble::set_lane): the first step is
+    /// guessed again.
+    fresh: Fresh,
+    /// The steps attempted when the current call began.
+    call_start: usize,
+    /// The attempted step's end.
+    end: (SVector<L::Lanes, N>, SVector<L::Lanes, N>),
     /// Whether to step in the copy of the loop compiled for AVX2, as
     /// [`Ensemble`](super::Ensemble) does.
     avx2: bool,
@@ -135,22 +148,26 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
             .map_err(|(lane, error)| EnsembleError::Lane { lane, error })?;
         let control = <Dopri5<Element<L, N>> as Embedded<Element<L, N>, N>>::CONTROL;
         Ok(Self {
-            avx2: avx2_at_run_time(),
-            model,
-            rtol: tolerances.rtol,
-            atol: tolerances.atol,
-            max_steps: tolerances.max_steps,
-            control: StepControl::new(&control),
-            t: t0,
-            guards: Guards::new(q0, qdot0),
-            k: Stages::new(&qdot, &qddot),
-            c: C.map(nalgebra::convert),
-            q,
-            qdot,
-            worst: 0,
-            stats: Stats {
-                rhs_evals: 1,
-                ..Stats::default()
+            course: Course::new(&control, tolerances),
+            lanes: Lanes {
+                avx2: avx2_at_run_time(),
+                model,
+                rtol: tolerances.rtol,
+                atol: tolerances.atol,
+                t: t0,
+                guards: Guards::new(q0, qdot0),
+                k: Stages::new(&qdot, &qddot),
+                c: C.map(nalgebra::convert),
+                q,
+                qdot,
+                worst: 0,
+                fresh: Fresh::Segment,
+                call_start: 0,
+                end: (q, qdot),
+                stats: Stats {
+                    rhs_evals: 1,
+                    ..Stats::default()
+                },
             },
         })
     }
@@ -168,7 +185,7 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
         target: Element<L, N>,
     ) -> Result<(), EnsembleError<Element<L, N>, N>> {
         #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
-        if self.avx2 {
+        if self.lanes.avx2 {
             // SAFETY: `avx2` is set only where the CPU has it.
             return unsafe { self.advance_to_avx2(target) };
         }
@@ -185,137 +202,94 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
         self.steps_to(target)
     }
 
-    /// The loop of [`advance_to`](Self::advance_to): the scalar pairs'
-    /// rules ([`StepControl`]: the attempt landing on the target, the clock
-    /// and the state moved by the same representable step, the next step
-    /// after an acceptance or a rejection, a step whose stage fails retried
-    /// shorter; [`advances`] for an underflow), on the largest of the
-    /// lanes' errors.
+    /// The loop of [`advance_to`](Self::advance_to): the scalar pairs' own
+    /// ([`Course::walk`]) on the lanes, with the largest of the lanes'
+    /// errors as the step's.
     #[inline(always)]
     fn steps_to(&mut self, target: Element<L, N>) -> Result<(), EnsembleError<Element<L, N>, N>> {
-        let t0 = self.t;
-        if !(target.is_finite() && target > t0) {
-            return Err(InvalidInput::TargetNotAhead { t: t0, target }.into());
+        let t = self.lanes.t;
+        if !(target.is_finite() && target > t) {
+            return Err(InvalidInput::TargetNotAhead { t, target }.into());
         }
-        if self.control.h.is_none() {
-            self.control.h = Some(self.initial_step(target - t0)?);
-            self.control.restart();
-        }
-        let mut attempts = 0;
-        // The failure that made the step shorter, reported if the step
-        // underflows before getting past it (as the scalar pairs' loop).
-        let mut stage_failure = None;
-        while self.t < target {
-            let t = self.t;
-            let Some(h) = self.control.h else {
-                unreachable!("chosen above");
-            };
-            if attempts == self.max_steps {
-                let (t, max_steps) = (self.t, self.max_steps);
-                let (q, qdot) = (self.q(0), self.qdot(0));
-                return Err(EnsembleError::Lane {
-                    lane: 0,
-                    error: IntegrationError::TooManySteps {
-                        t,
-                        max_steps,
-                        q,
-                        qdot,
-                    },
-                });
-            }
-            if !advances(t, h) {
-                let (lane, q, qdot) = (self.worst, self.q(self.worst), self.qdot(self.worst));
-                let underflow = EnsembleError::Lane {
-                    lane,
-                    error: IntegrationError::StepSizeUnderflow { t, h, q, qdot },
-                };
-                return Err(stage_failure.take().unwrap_or(underflow));
-            }
-            attempts += 1;
-            let step = self.control.attempt(t, h, target);
-            // A lane that cannot be evaluated at a stage, or whose error is
-            // not finite, rejects the step, which is retried shorter, as
-            // the scalar pairs' loop retries it.
-            let attempted = self
-                .attempt((t, step.t_new, step.h))
-                .and_then(|(q, qdot, errors)| {
-                    let (err, worst) = largest(errors);
-                    if err.is_finite() {
-                        return Ok((q, qdot, err, worst));
-                    }
-                    let (q, qdot) = (lane_of(&q, worst), lane_of(&qdot, worst));
-                    let value = NonFiniteValue::State;
-                    Err(EnsembleError::Lane {
-                        lane: worst,
-                        error: IntegrationError::NonFiniteState {
-                            t: step.t_new,
-                            q,
-                            qdot,
-                            value,
-                        },
-                    })
-                });
-            let (q, qdot, err, worst) = match attempted {
-                Ok(attempted) => attempted,
-                Err(failure @ EnsembleError::Lane { .. }) => {
-                    stage_failure = Some(failure);
-                    self.stats.steps_rejected += 1;
-                    self.control.fail(&step);
-                    continue;
-                }
-                Err(error) => return Err(error),
-            };
-            self.worst = worst;
-            if err <= nalgebra::one::<Element<L, N>>() {
-                stage_failure = None;
-                // As the scalar pairs' loop: the step accepted, then each
-                // lane's growth judged before the step size is kept.
-                let h_new = self.control.accept(&step, err);
-                let (before, after) = ((&self.q, &self.qdot), (&q, &qdot));
-                let lengths = (step.h, step.h);
-                self.guards.judge(before, after, step.t_new, lengths)?;
-                self.control.h = Some(h_new);
-                (self.t, self.q, self.qdot) = (step.t_new, q, qdot);
-                self.k.first_same_as_last(6);
-                self.stats.steps_accepted += 1;
-            } else {
-                self.stats.steps_rejected += 1;
-                self.control.reject(&step, err);
-            }
-        }
-        Ok(())
+        let stats = &self.lanes.stats;
+        self.lanes.call_start = stats.steps_accepted + stats.steps_rejected;
+        self.course.walk(&mut self.lanes, target).map(|_| ())
     }
 
     /// Advances every lane by `dt`.
     pub fn advance(&mut self, dt: Element<L, N>) -> Result<(), EnsembleError<Element<L, N>, N>> {
-        self.advance_to(self.t + dt)
+        self.advance_to(self.lanes.t + dt)
     }
 
-    /// One Dormand–Prince step of `h` from `t` to `t_new`, by the scalar
-    /// pairs' own stage loop ([`fsal_step`], over Dopri5's tableau): the
-    /// new state (its `q̈`, the last stage, left in the stages as the next
-    /// step's first) and each lane's error over its tolerance (the scalar
-    /// pairs' norm, `Step::error`).
-    #[allow(clippy::type_complexity)]
-    #[inline(always)]
-    fn attempt(
+    /// The time of every lane's state.
+    pub fn t(&self) -> Element<L, N> {
+        self.lanes.t
+    }
+
+    /// Lane `lane`'s coordinates. Panics for a lane past the model's.
+    pub fn q(&self, lane: usize) -> SVector<Element<L, N>, N> {
+        lane_of(&self.lanes.q, lane)
+    }
+
+    /// Lane `lane`'s velocities. Panics for a lane past the model's.
+    pub fn qdot(&self, lane: usize) -> SVector<Element<L, N>, N> {
+        lane_of(&self.lanes.qdot, lane)
+    }
+
+    /// Every lane's coordinates and velocities, as the SIMD values they
+    /// are stepped in.
+    pub fn lanes(&self) -> (&SVector<L::Lanes, N>, &SVector<L::Lanes, N>) {
+        (&self.lanes.q, &self.lanes.qdot)
+    }
+
+    /// Replaces lane `lane`'s state (checked as a start is), for example
+    /// the lane that failed, before going on: `q̈` of every lane is
+    /// evaluated again, and the next step is chosen afresh. Panics for a
+    /// lane past the model's.
+    pub fn set_lane(
         &mut self,
-        times: (Element<L, N>, Element<L, N>, Element<L, N>),
-    ) -> Result<
-        (SVector<L::Lanes, N>, SVector<L::Lanes, N>, L::Lanes),
-        EnsembleError<Element<L, N>, N>,
-    > {
-        let (model, avx2, stats) = (&self.model, self.avx2, &mut self.stats);
-        let mut slope = |t, q: &SVector<L::Lanes, N>, qdot: &SVector<L::Lanes, N>| {
-            stats.rhs_evals += 1;
-            lanes_slope(model, avx2, t, q, qdot)
-        };
-        let state = (&self.q, &self.qdot);
-        let step = fsal_step(&mut slope, times, state, &mut self.k, &A, &self.c, &E)?;
-        let errors = step.error((self.rtol, self.atol), &self.q, &self.qdot);
-        Ok((step.q, step.qdot, errors))
+        lane: usize,
+        q: SVector<Element<L, N>, N>,
+        qdot: SVector<Element<L, N>, N>,
+    ) -> Result<(), EnsembleError<Element<L, N>, N>> {
+        assert!(lane < L::Lanes::LANES, "lane {lane} of {}", L::Lanes::LANES);
+        crate::driver::finite_start(L::COORDINATES, &q, &qdot)?;
+        let lanes = &mut self.lanes;
+        let (mut lanes_q, mut lanes_qdot) = (lanes.q, lanes.qdot);
+        for i in 0..N {
+            lanes_q[i].replace(lane, q[i]);
+            lanes_qdot[i].replace(lane, qdot[i]);
+        }
+        lanes.k.qdot[0] = lanes.slope(lanes.t, &lanes_q, &lanes_qdot)?;
+        lanes.stats.rhs_evals += 1;
+        (lanes.q, lanes.qdot) = (lanes_q, lanes_qdot);
+        lanes.guards.restart(lane, &q, &qdot);
+        lanes.fresh = Fresh::Segment;
+        Ok(())
     }
 
+    /// The step the next attempt will try (zero before the first, and
+    /// after [`set_lane`](Self::set_lane)).
+    pub fn step_size(&self) -> Element<L, N> {
+        match self.lanes.fresh {
+            Fresh::Segment => nalgebra::zero(),
+            _ => self.course.control.h.unwrap_or_else(nalgebra::zero),
+        }
+    }
+
+    /// The work so far: steps accepted and rejected (shared by every lane)
+    /// and right-hand sides (each of every lane at once).
+    pub fn stats(&self) -> &Stats {
+        &self.lanes.stats
+    }
+
+    /// The model, its parameters one lane each.
+    pub fn model(&self) -> &L {
+        &self.lanes.model
+    }
+}
+
+impl<L: LaneModel<N>, const N: usize> Lanes<L, N> {
     /// `q̈` of every lane, in the AVX2 copy where the loop runs in it.
     #[inline(always)]
     fn slope(
@@ -327,19 +301,49 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
         lanes_slope(&self.model, self.avx2, t, q, qdot)
     }
 
+    /// An error every lane meets at once, reported for `lane`.
+    fn everyone(
+        &self,
+        lane: usize,
+        error: IntegrationError<Element<L, N>, N>,
+    ) -> EnsembleError<Element<L, N>, N> {
+        EnsembleError::Lane { lane, error }
+    }
+}
+
+impl<L: LaneModel<N>, const N: usize> Track<Element<L, N>> for Lanes<L, N> {
+    type Error = EnsembleError<Element<L, N>, N>;
+
+    #[inline(always)]
+    fn t(&self) -> Element<L, N> {
+        self.t
+    }
+
+    #[inline(always)]
+    fn fresh(&self) -> Fresh {
+        self.fresh
+    }
+
     /// Hairer's first step, the smallest over the lanes, each lane's as a
     /// scalar run guesses it ([`FirstStep`]): the probe's step `h0`, then
     /// one explicit Euler probe of all lanes at the smallest `h0`, no
-    /// longer than `span`.
-    fn initial_step(
+    /// longer than the span to `target`. The slopes are the start's
+    /// already (`new`, `set_lane`).
+    #[inline(always)]
+    fn begin(
         &mut self,
-        span: Element<L, N>,
-    ) -> Result<Element<L, N>, EnsembleError<Element<L, N>, N>> {
-        let guess = FirstStep {
-            rtol: self.rtol,
-            atol: self.atol,
-            order: <Dopri5<Element<L, N>> as Embedded<Element<L, N>, N>>::CONTROL.order,
+        _: Fresh,
+        first: Option<FirstStep<Element<L, N>>>,
+        target: Element<L, N>,
+    ) -> Result<Begun<Element<L, N>>, Self::Error> {
+        self.fresh = Fresh::No;
+        let Some(guess) = first else {
+            return Ok(Begun {
+                h: None,
+                restart: true,
+            });
         };
+        let span = target - self.t;
         let (q, qdot, qddot) = (self.q, self.qdot, self.k.qdot[0]);
         let lane = |x: &SVector<L::Lanes, N>, i| lane_of(x, i);
         let mut h0 = span;
@@ -355,69 +359,106 @@ impl<L: LaneModel<N>, const N: usize> AdaptiveEnsemble<L, N> {
             let at = (&lane(&q, i), &lane(&qdot, i), &lane(&qddot, i));
             h = h.min(guess.step(h0, at, (&lane(&qdot1, i), &lane(&qddot1, i))));
         }
-        Ok(guess.finish(h0, span, h))
+        Ok(Begun {
+            h: Some(guess.finish(h0, span, h)),
+            restart: true,
+        })
     }
 
-    /// The time of every lane's state.
-    pub fn t(&self) -> Element<L, N> {
-        self.t
+    #[inline(always)]
+    fn bound_step(&self, h: Element<L, N>) -> Element<L, N> {
+        h
     }
 
-    /// Lane `lane`'s coordinates. Panics for a lane past the model's.
-    pub fn q(&self, lane: usize) -> SVector<Element<L, N>, N> {
-        lane_of(&self.q, lane)
+    #[inline(always)]
+    fn attempts_this_call(&self) -> usize {
+        self.stats.steps_accepted + self.stats.steps_rejected - self.call_start
     }
 
-    /// Lane `lane`'s velocities. Panics for a lane past the model's.
-    pub fn qdot(&self, lane: usize) -> SVector<Element<L, N>, N> {
-        lane_of(&self.qdot, lane)
+    fn too_many_steps(&self, max_steps: usize) -> Self::Error {
+        let (t, q, qdot) = (self.t, lane_of(&self.q, 0), lane_of(&self.qdot, 0));
+        self.everyone(
+            0,
+            IntegrationError::TooManySteps {
+                t,
+                max_steps,
+                q,
+                qdot,
+            },
+        )
     }
 
-    /// Every lane's coordinates and velocities, as the SIMD values they
-    /// are stepped in.
-    pub fn lanes(&self) -> (&SVector<L::Lanes, N>, &SVector<L::Lanes, N>) {
-        (&self.q, &self.qdot)
+    fn underflow(&self, h: Element<L, N>) -> Self::Error {
+        let lane = self.worst;
+        let (t, q, qdot) = (self.t, lane_of(&self.q, lane), lane_of(&self.qdot, lane));
+        self.everyone(lane, IntegrationError::StepSizeUnderflow { t, h, q, qdot })
     }
 
-    /// Replaces lane `lane`'s state (checked as a start is), for example
-    /// the lane that failed, before going on: `q̈` of every lane is
-    /// evaluated again, and the next step is chosen afresh. Panics for a
-    /// lane past the model's.
-    pub fn set_lane(
+    /// One Dormand–Prince step of `h` from `t` to `t_new`, by the scalar
+    /// pairs' own stage loop ([`fsal_step`], over Dopri5's tableau): the
+    /// new state (its `q̈`, the last stage, left in the stages as the next
+    /// step's first) and each lane's error over its tolerance (the scalar
+    /// pairs' norm, `Step::error`), the largest the step's. A lane that
+    /// cannot be evaluated at a stage, or whose error is not finite, fails
+    /// the attempt, which the loop retries shorter.
+    #[inline(always)]
+    fn attempt(
         &mut self,
-        lane: usize,
-        q: SVector<Element<L, N>, N>,
-        qdot: SVector<Element<L, N>, N>,
-    ) -> Result<(), EnsembleError<Element<L, N>, N>> {
-        assert!(lane < L::Lanes::LANES, "lane {lane} of {}", L::Lanes::LANES);
-        crate::driver::finite_start(L::COORDINATES, &q, &qdot)?;
-        let (mut lanes_q, mut lanes_qdot) = (self.q, self.qdot);
-        for i in 0..N {
-            lanes_q[i].replace(lane, q[i]);
-            lanes_qdot[i].replace(lane, qdot[i]);
+        times: (Element<L, N>, Element<L, N>, Element<L, N>),
+    ) -> Result<Outcome<Element<L, N>, ()>, Self::Error> {
+        let (model, avx2, stats) = (&self.model, self.avx2, &mut self.stats);
+        let mut slope = |t, q: &SVector<L::Lanes, N>, qdot: &SVector<L::Lanes, N>| {
+            stats.rhs_evals += 1;
+            lanes_slope(model, avx2, t, q, qdot)
+        };
+        let state = (&self.q, &self.qdot);
+        let step = fsal_step(&mut slope, times, state, &mut self.k, &A, &self.c, &E)?;
+        let errors = step.error((self.rtol, self.atol), &self.q, &self.qdot);
+        let (err, worst) = largest(errors);
+        if !err.is_finite() {
+            let (q, qdot) = (lane_of(&step.q, worst), lane_of(&step.qdot, worst));
+            let value = NonFiniteValue::State;
+            let t = times.1;
+            let error = IntegrationError::NonFiniteState { t, q, qdot, value };
+            return Err(EnsembleError::Lane { lane: worst, error });
         }
-        self.k.qdot[0] = self.slope(self.t, &lanes_q, &lanes_qdot)?;
-        self.stats.rhs_evals += 1;
-        (self.q, self.qdot) = (lanes_q, lanes_qdot);
-        self.guards.restart(lane, &q, &qdot);
-        self.control.h = None;
-        Ok(())
+        self.worst = worst;
+        self.end = (step.q, step.qdot);
+        Ok(if err <= nalgebra::one() {
+            Outcome::Accepted { step: (), err }
+        } else {
+            Outcome::Rejected { err }
+        })
     }
 
-    /// The step the next attempt will try (zero before the first).
-    pub fn step_size(&self) -> Element<L, N> {
-        self.control.h.unwrap_or_else(nalgebra::zero)
+    #[inline(always)]
+    fn count(&mut self, accepted: bool) {
+        if accepted {
+            self.stats.steps_accepted += 1;
+        } else {
+            self.stats.steps_rejected += 1;
+        }
     }
 
-    /// The work so far: steps accepted and rejected (shared by every lane)
-    /// and right-hand sides (each of every lane at once).
-    pub fn stats(&self) -> &Stats {
-        &self.stats
+    /// Each lane's growth judged, as the scalar pairs' loop judges a run's.
+    #[inline(always)]
+    fn end(
+        &mut self,
+        (_, t_new, h): (Element<L, N>, Element<L, N>, Element<L, N>),
+    ) -> Result<(), Self::Error> {
+        let (before, after) = ((&self.q, &self.qdot), (&self.end.0, &self.end.1));
+        self.guards.judge(before, after, t_new, (h, h))
     }
 
-    /// The model, its parameters one lane each.
-    pub fn model(&self) -> &L {
-        &self.model
+    #[inline(always)]
+    fn take(
+        &mut self,
+        (_, t_new, _): (Element<L, N>, Element<L, N>, Element<L, N>),
+        _: Element<L, N>,
+    ) -> Result<Flow, Self::Error> {
+        (self.t, self.q, self.qdot) = (t_new, self.end.0, self.end.1);
+        self.k.first_same_as_last(6);
+        Ok(Flow::Go)
     }
 }
 

@@ -16,10 +16,12 @@
 //! arithmetic in the same order on every lane (the sines and cosines from
 //! the same kernel, `M` factored by the same row form, or the same
 //! recursion over a tree of links for a model that has one, the same
-//! step), so that a lane of an ensemble is a `Stepper` of the same model,
-//! method and start, under the same target features
-//! (`tests/trajectories/ensemble.rs` compares them). A lane whose mass matrix the fast path cannot take as the scalar
-//! solve would (not positive definite, ill-conditioned, not finite) is
+//! step, taken by the same loop: the fixed-step loop of the runs,
+//! `driver::fixed::Course::walk`, walks the lanes as it walks a run), so
+//! that a lane of an ensemble is a `Stepper` of the same model, method and
+//! start, under the same target features (`tests/trajectories/ensemble.rs`
+//! compares them). A lane whose mass matrix the fast path cannot take as
+//! the scalar solve would (not positive definite, ill-conditioned, not finite) is
 //! solved again alone by the scalar solve: its answer (LU where Cholesky
 //! refused `M`) or its error.
 //!
@@ -101,7 +103,9 @@ mod solve;
 
 use nalgebra::{ComplexField, RealField, SMatrix, SVector, SimdBool, SimdRealField, SimdValue};
 
-use crate::driver::{GrowthGuard, Interval, finite_start, measure};
+use crate::driver::fixed::{Course, Track};
+use crate::driver::run::{Flow, Fresh};
+use crate::driver::{GrowthGuard, finite_start, measure};
 use crate::error::{IntegrationError, InvalidInput, NonFiniteValue};
 use crate::integrators::LaneStep;
 use crate::linalg::finite_lanes;
@@ -325,16 +329,26 @@ pub enum EnsembleError<S: RealField + Copy, const N: usize> {
 /// by a fixed-step method: the lane-wise [`Stepper`](crate::stepper::Stepper)
 /// (module docs).
 pub struct Ensemble<L: LaneModel<N>, M, const N: usize> {
+    /// The fixed-step loop of the runs: the step, the budget.
+    course: Course<Element<L, N>>,
+    lanes: Lanes<L, M, N>,
+}
+
+/// The lanes as the fixed-step loop walks them ([`Track`]).
+struct Lanes<L: LaneModel<N>, M, const N: usize> {
     model: L,
     method: M,
-    h: Element<L, N>,
-    max_steps: usize,
     t: Element<L, N>,
     q: SVector<L::Lanes, N>,
     qdot: SVector<L::Lanes, N>,
     guards: Guards<Element<L, N>>,
+    /// The steps taken when the current call began.
+    call_start: usize,
+    /// The step's end.
+    end: (SVector<L::Lanes, N>, SVector<L::Lanes, N>),
     /// Whether to step in the copy of the loop compiled for AVX2: the CPU
-    /// has it and the build does not (see [`advance_to`](Self::advance_to)).
+    /// has it and the build does not (see
+    /// [`advance_to`](Ensemble::advance_to)).
     avx2: bool,
     stats: Stats,
 }
@@ -357,24 +371,28 @@ where
         let (h, max_steps) = method.lane_course()?;
         check_starts::<L, N>(&model, t0, q0, qdot0)?;
         let guards = Guards::new(q0, qdot0);
+        let (q, qdot) = (gather(q0), gather(qdot0));
         Ok(Self {
-            avx2: avx2_at_run_time(),
-            guards,
-            model,
-            method,
-            h,
-            max_steps,
-            t: t0,
-            q: gather(q0),
-            qdot: gather(qdot0),
-            stats: Stats::default(),
+            course: Course::new(h, max_steps),
+            lanes: Lanes {
+                avx2: avx2_at_run_time(),
+                guards,
+                model,
+                method,
+                t: t0,
+                q,
+                qdot,
+                call_start: 0,
+                end: (q, qdot),
+                stats: Stats::default(),
+            },
         })
     }
 
     /// Advances every lane by `dt`: to `t + dt`, which must be later than
     /// `t`.
     pub fn advance(&mut self, dt: Element<L, N>) -> Result<(), EnsembleError<Element<L, N>, N>> {
-        self.advance_to(self.t + dt)
+        self.advance_to(self.lanes.t + dt)
     }
 
     /// Advances every lane to time `target` (finite, later than
@@ -394,7 +412,7 @@ where
         target: Element<L, N>,
     ) -> Result<(), EnsembleError<Element<L, N>, N>> {
         #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
-        if self.avx2 {
+        if self.lanes.avx2 {
             // SAFETY: `avx2` is set only where the CPU has it.
             return unsafe { self.advance_to_avx2(target) };
         }
@@ -412,83 +430,36 @@ where
         self.steps_to(target)
     }
 
-    /// The loop of [`advance_to`](Self::advance_to).
+    /// The loop of [`advance_to`](Self::advance_to): the runs' own
+    /// ([`Course::walk`]) on the lanes.
     #[inline(always)]
     fn steps_to(&mut self, target: Element<L, N>) -> Result<(), EnsembleError<Element<L, N>, N>> {
-        let t = self.t;
+        let t = self.lanes.t;
         if !(target.is_finite() && target > t) {
             return Err(InvalidInput::TargetNotAhead { t, target }.into());
         }
-        let everyone = |error| EnsembleError::Lane { lane: 0, error };
-        let interval = Interval::new(t, target, self.h);
-        if interval.underflows() {
-            let h = interval.step;
-            let (q, qdot) = (self.q(0), self.qdot(0));
-            return Err(everyone(IntegrationError::StepSizeUnderflow {
-                t,
-                h,
-                q,
-                qdot,
-            }));
-        }
-        let max_steps = self.max_steps;
-        let Some(steps) = interval.steps(max_steps) else {
-            let (q, qdot) = (self.q(0), self.qdot(0));
-            return Err(everyone(IntegrationError::TooManySteps {
-                t,
-                max_steps,
-                q,
-                qdot,
-            }));
-        };
-        for k in 1..=steps {
-            let t = self.t;
-            let t_next = interval.time(k, steps);
-            let dt = t_next - t;
-            let (model, stats, avx2) = (&self.model, &mut self.stats, self.avx2);
-            let (q, qdot) = self
-                .method
-                .lane_step(t, (&self.q, &self.qdot), dt, |t, q, qdot| {
-                    stats.rhs_evals += 1;
-                    #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
-                    if avx2 {
-                        // SAFETY: `avx2` is set only where the CPU has it.
-                        return unsafe { solve::accelerations_avx2(model, t, q, qdot) };
-                    }
-                    let _ = avx2;
-                    accelerations(model, t, q, qdot)
-                })
-                .map_err(|(lane, error)| EnsembleError::Lane { lane, error })?;
-            // As the fixed-step loop does for each run: the step's end
-            // checked before it becomes the state, then its growth, lane
-            // by lane.
-            let step = (interval.step, dt);
-            self.guards
-                .judge((&self.q, &self.qdot), (&q, &qdot), t_next, step)?;
-            self.stats.steps_accepted += 1;
-            (self.t, self.q, self.qdot) = (t_next, q, qdot);
-        }
-        Ok(())
+        self.lanes.call_start = self.lanes.stats.steps_accepted;
+        self.course.walk(&mut self.lanes, target).map(|_| ())
     }
 
     /// The time of every lane's state.
     pub fn t(&self) -> Element<L, N> {
-        self.t
+        self.lanes.t
     }
 
     /// Lane `lane`'s coordinates. Panics for a lane past the model's.
     pub fn q(&self, lane: usize) -> SVector<Element<L, N>, N> {
-        lane_of(&self.q, self.lane(lane))
+        lane_of(&self.lanes.q, self.lane(lane))
     }
 
     /// Lane `lane`'s velocities. Panics for a lane past the model's.
     pub fn qdot(&self, lane: usize) -> SVector<Element<L, N>, N> {
-        lane_of(&self.qdot, self.lane(lane))
+        lane_of(&self.lanes.qdot, self.lane(lane))
     }
 
     /// Every lane's coordinates, as the SIMD values they are stepped in.
     pub fn lanes(&self) -> (&SVector<L::Lanes, N>, &SVector<L::Lanes, N>) {
-        (&self.q, &self.qdot)
+        (&self.lanes.q, &self.lanes.qdot)
     }
 
     /// Replaces lane `lane`'s state (checked as a start is), for example
@@ -503,27 +474,27 @@ where
         let lane = self.lane(lane);
         finite_start(L::COORDINATES, &q, &qdot)?;
         for i in 0..N {
-            self.q[i].replace(lane, q[i]);
-            self.qdot[i].replace(lane, qdot[i]);
+            self.lanes.q[i].replace(lane, q[i]);
+            self.lanes.qdot[i].replace(lane, qdot[i]);
         }
-        self.guards.restart(lane, &q, &qdot);
+        self.lanes.guards.restart(lane, &q, &qdot);
         Ok(())
     }
 
     /// The model.
     pub fn model(&self) -> &L {
-        &self.model
+        &self.lanes.model
     }
 
     /// The model, to change a lane's parameters between calls.
     pub fn model_mut(&mut self) -> &mut L {
-        &mut self.model
+        &mut self.lanes.model
     }
 
     /// The work done: steps of the whole ensemble, and right-hand sides
     /// (each one evaluation of every lane).
     pub fn stats(&self) -> Stats {
-        self.stats
+        self.lanes.stats
     }
 
     fn lane(&self, lane: usize) -> usize {
@@ -531,4 +502,110 @@ where
         assert!(lane < lanes, "lane {lane} of an ensemble of {lanes} lanes");
         lane
     }
+}
+
+impl<L, M, const N: usize> Track<Element<L, N>> for Lanes<L, M, N>
+where
+    L: LaneModel<N>,
+    M: LaneStep<Element<L, N>>,
+{
+    type Error = EnsembleError<Element<L, N>, N>;
+
+    #[inline(always)]
+    fn t(&self) -> Element<L, N> {
+        self.t
+    }
+
+    /// Lanes have no events, and the methods carry nothing between steps.
+    #[inline(always)]
+    fn fresh(&self) -> Fresh {
+        Fresh::No
+    }
+
+    fn begin(&mut self, _: Fresh, _: Element<L, N>) -> Result<Option<Element<L, N>>, Self::Error> {
+        Ok(None)
+    }
+
+    #[inline(always)]
+    fn next_stop(&self, target: Element<L, N>) -> Element<L, N> {
+        target
+    }
+
+    /// Every lane meets it at once: reported for lane 0.
+    fn underflow(&self, h: Element<L, N>) -> Self::Error {
+        let (t, q, qdot) = (self.t, lane_of(&self.q, 0), lane_of(&self.qdot, 0));
+        let error = IntegrationError::StepSizeUnderflow { t, h, q, qdot };
+        EnsembleError::Lane { lane: 0, error }
+    }
+
+    /// Every lane meets it at once: reported for lane 0.
+    fn too_many_steps(&self, max_steps: usize) -> Self::Error {
+        let (t, q, qdot) = (self.t, lane_of(&self.q, 0), lane_of(&self.qdot, 0));
+        let error = IntegrationError::TooManySteps {
+            t,
+            max_steps,
+            q,
+            qdot,
+        };
+        EnsembleError::Lane { lane: 0, error }
+    }
+
+    #[inline(always)]
+    fn steps_this_call(&self) -> usize {
+        self.stats.steps_accepted - self.call_start
+    }
+
+    #[inline(always)]
+    fn step(
+        &mut self,
+        t: Element<L, N>,
+        dt: Element<L, N>,
+        _: Element<L, N>,
+    ) -> Result<(), Self::Error> {
+        let (model, stats, avx2) = (&self.model, &mut self.stats, self.avx2);
+        self.end = self
+            .method
+            .lane_step(t, (&self.q, &self.qdot), dt, |t, q, qdot| {
+                stats.rhs_evals += 1;
+                #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+                if avx2 {
+                    // SAFETY: `avx2` is set only where the CPU has it.
+                    return unsafe { solve::accelerations_avx2(model, t, q, qdot) };
+                }
+                let _ = avx2;
+                accelerations(model, t, q, qdot)
+            })
+            .map_err(|(lane, error)| EnsembleError::Lane { lane, error })?;
+        Ok(())
+    }
+
+    #[inline(always)]
+    fn count(&mut self) {
+        self.stats.steps_accepted += 1;
+    }
+
+    /// As the fixed-step loop judges each run's step: the step's end
+    /// checked finite, then its growth, lane by lane.
+    #[inline(always)]
+    fn judge(
+        &mut self,
+        t_next: Element<L, N>,
+        h_dt: (Element<L, N>, Element<L, N>),
+    ) -> Result<(), Self::Error> {
+        let (before, after) = ((&self.q, &self.qdot), (&self.end.0, &self.end.1));
+        self.guards.judge(before, after, t_next, h_dt)
+    }
+
+    #[inline(always)]
+    fn take(
+        &mut self,
+        (_, t_next): (Element<L, N>, Element<L, N>),
+        _: Element<L, N>,
+    ) -> Result<Flow, Self::Error> {
+        (self.t, self.q, self.qdot) = (t_next, self.end.0, self.end.1);
+        Ok(Flow::Go)
+    }
+
+    #[inline(always)]
+    fn landed(&mut self) {}
 }
