@@ -21,9 +21,9 @@
 //! that a lane of an ensemble is a `Stepper` of the same model, method and
 //! start, under the same target features (`tests/trajectories/ensemble.rs`
 //! compares them). A lane whose mass matrix the fast path cannot take as
-//! the scalar solve would (not positive definite, ill-conditioned, not finite) is
-//! solved again alone by the scalar solve: its answer (LU where Cholesky
-//! refused `M`) or its error.
+//! the scalar solve would (not positive definite, ill-conditioned, not
+//! finite) is solved again alone by the scalar solve: its answer (LU where
+//! Cholesky refused `M`) or its error.
 //!
 //! What it takes: a model in minimal coordinates without inputs or
 //! contacts ([`LaneModel`], which `lagrangian!` implements for exactly
