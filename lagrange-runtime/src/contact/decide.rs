@@ -215,13 +215,13 @@ where
 }
 
 /// The modes after a decision at `(t, q, q̇)`: every touching contact at
-/// rest along its normal decided together, `forced` (a contact and its
-/// mode, from its own event) taken as given.
+/// rest along its normal decided together, the `forced` ones (each its
+/// mode, from an event) taken as given.
 pub(crate) fn modes<L, const N: usize, const K: usize>(
     model: &L,
     settings: &ContactSettings<L::Scalar>,
     (t, q, qdot): (L::Scalar, &SVector<L::Scalar, N>, &SVector<L::Scalar, N>),
-    (current, forced): (&[Mode; K], Option<(usize, Mode)>),
+    (current, forced): (&[Mode; K], &[Option<Mode>; K]),
 ) -> Result<[Mode; K], ContactError<L::Scalar, N>>
 where
     L: Contacts<N, K>,
@@ -242,8 +242,8 @@ where
         if laws[i].normal.is_none() {
             continue;
         }
-        given[i] = match forced {
-            Some((j, mode)) if j == i && mode.touching() => mode,
+        given[i] = match forced[i] {
+            Some(mode) if mode.touching() => mode,
             _ if !laws[i].has_friction() => Mode::Closed,
             _ if current[i] == Mode::Stuck || slip[i].abs() <= settings.velocity_tolerance => {
                 Mode::Stuck
@@ -275,13 +275,13 @@ where
             }
             continue;
         }
-        match forced {
-            Some((j, Mode::Open)) if j == i => continue,
-            Some((j, mode)) if j == i => {
+        match forced[i] {
+            Some(Mode::Open) => continue,
+            Some(mode) => {
                 entries.push(Entry::Normal { contact: i, mode });
                 continue;
             }
-            _ => {}
+            None => {}
         }
         // A contact held until now (not struck by an impact in this
         // switch) is at rest along its normal, and a stuck one along its

@@ -104,6 +104,29 @@
 //! most `flight / (1 − e)` for a constant acceleration, which bounds the
 //! error this makes in the time of rest.
 //!
+//! # Forces that are not determined: friction shared by the cones
+//!
+//! Touching contacts whose rows are dependent leave some of their forces
+//! undetermined: a crate standing on two rough corners needs only the sum
+//! of their friction forces. Any share of it that lies inside both cones
+//! is a valid answer of rigid-body mechanics, and the crate must hold as
+//! long as one exists (Coulomb: while the push is below the sum of the
+//! limits, `μ (N₁ + N₂)`) and break away exactly when none does. The
+//! smallest forces (the minimum norm) share it evenly, which leaves the
+//! less loaded corner outside its cone first. Here stuck friction is
+//! shared in proportion to each contact's cone, `μ_s N` (the least
+//! `Σ N² + Σ F² N_ref / (μ_s N)`, `N_ref` the largest normal force): where
+//! its only constraint is its sum, as for contacts of one body against one
+//! flat surface, every share is the same fraction of its cone, so all lie
+//! inside exactly while one admissible share exists, and all reach their
+//! limits together. A stick limit slides every stuck contact that is at
+//! its limit then (within `1e-9` of it, relative), not one of them. The
+//! normal forces stay the smallest that hold the body. Where friction must
+//! also move normal load between contacts to stay admissible (a ladder
+//! stuck at both ends), this sharing is not guaranteed admissible; the
+//! general answer, one complementarity problem over normal forces and
+//! friction cones, is not built yet.
+//!
 //! # Guards
 //!
 //! - Switches that undo each other (a decision that opens a contact whose

@@ -182,7 +182,12 @@ where
         }
         b[r] = -(w.dot(&free.transpose()) + bias);
     }
-    let lambda = min_norm_solve(a, &b)?;
+    let (lambda, rank) = least_solve(a.clone(), &b)?;
+    let lambda = if rank < m && unknowns.iter().any(|u| u.tangential) {
+        share_friction(a, &b, lambda, &unknowns, &laws)?
+    } else {
+        lambda
+    };
     let mut qddot = free;
     let mut force = known;
     for c in 0..m {
@@ -214,16 +219,76 @@ pub(crate) fn min_norm_solve<S: RealField + Copy>(
     a: DMatrix<S>,
     b: &DVector<S>,
 ) -> Option<DVector<S>> {
+    least_solve(a, b).map(|(x, _)| x)
+}
+
+/// [`min_norm_solve`], with the rank of `A` it found.
+fn least_solve<S: RealField + Copy>(a: DMatrix<S>, b: &DVector<S>) -> Option<(DVector<S>, usize)> {
     if !a.iter().chain(b.iter()).all(|x| x.is_finite()) {
         return None;
     }
     let scale = a.iter().fold(S::zero(), |m, x| m.max(x.abs()));
     let c = nalgebra::convert::<f64, S>;
     let svd = a.clone().svd(true, true);
-    let x = svd.solve(b, c(1e-12) * scale).ok()?;
+    let eps = c(1e-12) * scale;
+    let rank = svd.singular_values.iter().filter(|&&v| v > eps).count();
+    let x = svd.solve(b, eps).ok()?;
     let residual = (&a * &x - b).norm();
     let size = b.norm().max(scale * x.norm());
-    (crate::linalg::all_finite(x.as_slice()) && residual <= c(1e-8) * size).then_some(x)
+    (crate::linalg::all_finite(x.as_slice()) && residual <= c(1e-8) * size).then_some((x, rank))
+}
+
+/// The forces of touching contacts whose rows are dependent, with stuck
+/// friction among them: only some combinations of them are determined
+/// (the friction two corners of a crate flat on a floor carry together),
+/// and the minimum-norm forces share that friction evenly, which can leave
+/// a less loaded contact outside its cone while an admissible share
+/// exists. Here the friction is shared in proportion to each contact's
+/// cone, `μ_s N`: the forces of least `Σ N² + Σ F² N_ref / (μ_s N)`
+/// (`N_ref` the largest normal force, so that the sum is one of forces
+/// squared in any units), the minimum-norm solution in those scaled
+/// unknowns, with the normal forces of the minimum-norm solution `first`.
+/// Where the shared friction's only constraint is its sum (stuck contacts
+/// on one body against one flat surface: a crate, a box's corners), each
+/// share is then the same fraction of its cone: every share lies inside
+/// its cone exactly while the sum lies within the sum of the cones, and
+/// all reach their limits together, where the body breaks away.
+fn share_friction<S: RealField + Copy>(
+    a: DMatrix<S>,
+    b: &DVector<S>,
+    first: DVector<S>,
+    unknowns: &[Unknown],
+    laws: &[super::ContactLaw<S>],
+) -> Option<DVector<S>> {
+    let normal_of = |contact: usize| {
+        unknowns
+            .iter()
+            .position(|u| u.contact == contact && !u.tangential)
+            .map(|k| first[k])
+    };
+    let reference = unknowns
+        .iter()
+        .enumerate()
+        .filter(|(_, u)| !u.tangential)
+        .fold(S::zero(), |m, (k, _)| m.max(first[k]));
+    if reference <= S::zero() {
+        return Some(first);
+    }
+    let scales = DVector::from_iterator(
+        unknowns.len(),
+        unknowns.iter().map(|u| {
+            if u.tangential {
+                let capacity = laws[u.contact].static_friction
+                    * normal_of(u.contact).unwrap_or(S::zero()).max(S::zero());
+                (capacity / reference).sqrt()
+            } else {
+                S::one()
+            }
+        }),
+    );
+    let scaled = a * DMatrix::from_diagonal(&scales);
+    let (u, _) = least_solve(scaled, b)?;
+    Some(u.component_mul(&scales))
 }
 
 /// The model a run integrates between switches: the contact model with the

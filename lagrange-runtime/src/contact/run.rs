@@ -294,7 +294,7 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
             t0,
             (q0, qdot0),
             &[Mode::Open; K],
-            None,
+            &[None; K],
             Cause::Start,
             &mut start_switches,
         )?;
@@ -527,6 +527,14 @@ fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
     events
 }
 
+/// How close to its cone's limit, relative to it, a stuck contact slides
+/// with one whose stick limit was reached: friction shared in proportion
+/// to the cones reaches every limit at one time, located to rounding
+/// (`1e-9`, the velocity tolerance's share, well above the rounding of
+/// the forces' solve and well below any margin a contact that keeps its
+/// hold has at that time).
+const AT_THE_LIMIT: f64 = 1e-9;
+
 /// The most switches in a row at one time before the run is stopped as
 /// chattering: a scene's simultaneous switches are a few per contact.
 const MAX_SWITCHES_AT_ONCE: usize = 64;
@@ -603,7 +611,7 @@ fn decide_switch<S: RealField + Copy, const N: usize, const K: usize>(
     t: S,
     (q, mut qdot): (SVector<S, N>, SVector<S, N>),
     from: &[Mode; K],
-    forced: Option<(usize, Mode)>,
+    forced: &[Option<Mode>; K],
     cause: Cause,
     switches: &mut Vec<Switch<S, N>>,
 ) -> Result<(State<S, N>, [Mode; K]), ContactError<S, N>> {
@@ -646,7 +654,7 @@ fn decide_switch<S: RealField + Copy, const N: usize, const K: usize>(
                 _ if struck && settled_at(i) => Cause::Settled,
                 _ if struck => Cause::Impact,
                 Cause::Start => Cause::Start,
-                _ if forced.is_some_and(|(j, _)| j == i) => cause,
+                _ if forced[i].is_some() => cause,
                 Cause::SlideStopped if touch[i] && from[i] != to[i] => cause,
                 _ => Cause::Coupled,
             }
@@ -679,26 +687,45 @@ fn switch<S: RealField + Copy, const N: usize, const K: usize>(
             switches: run.streak.1,
         });
     }
-    let forced = match cause {
-        Cause::Release => Some((i, Mode::Open)),
+    let mut forced = [None; K];
+    match cause {
+        Cause::Release => forced[i] = Some(Mode::Open),
         Cause::StickLimit => {
-            // It slides the way its friction force was holding it from.
+            // It slides the way its friction force was holding it from, and
+            // so does every stuck contact at its cone's limit with it: the
+            // contacts that share a friction reach their limits together
+            // (see `phase::share_friction`), and the one that slides first
+            // leaves the others more to carry, not less. Decided one by
+            // one, the others would be held at a limit they cannot keep.
             let phase = Phase { model, modes: from };
-            let friction = phase
-                .solve(t, &state.0, &state.1)
-                .map(|(_, f)| f.friction[i]);
-            let forward = friction.is_some_and(|f| f < nalgebra::zero::<S>());
-            Some((i, Mode::Sliding { forward }))
+            let forces = phase.solve(t, &state.0, &state.1).map(|(_, f)| f);
+            let slides = |j: usize| {
+                let forward = forces
+                    .as_ref()
+                    .is_some_and(|f| f.friction[j] < nalgebra::zero::<S>());
+                Some(Mode::Sliding { forward })
+            };
+            forced[i] = slides(i);
+            if let Some(f) = &forces {
+                let laws = model.contact_laws();
+                let tolerance = nalgebra::convert::<f64, S>(AT_THE_LIMIT);
+                for j in (0..K).filter(|&j| j != i && from[j] == Mode::Stuck) {
+                    let capacity = laws[j].static_friction * f.normal[j];
+                    if capacity - f.friction[j].abs() <= tolerance * capacity {
+                        forced[j] = slides(j);
+                    }
+                }
+            }
         }
-        _ => None,
-    };
+        _ => {}
+    }
     let (state, to) = decide_switch(
         &model,
         settings,
         t,
         state,
         &from,
-        forced,
+        &forced,
         cause,
         &mut run.switches,
     )

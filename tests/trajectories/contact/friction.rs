@@ -1,7 +1,8 @@
 //! Coulomb friction: a ball that slides until it rolls, a block that
 //! stays put below its friction angle and slides above it, a block on a
-//! belt that sticks and slips, Painlevé's rod; and friction against a
-//! given normal force: a torsion pendulum in a loaded bearing, and a
+//! belt that sticks and slips, Painlevé's rod, a crate on two rough
+//! supports whose friction is statically indeterminate; and friction
+//! against a given normal force: a torsion pendulum in a loaded bearing, and a
 //! braked cart set sliding by an impact elsewhere.
 
 use lagrange::contact::{Cause, ContactError, Mode};
@@ -343,4 +344,107 @@ fn an_impact_elsewhere_sets_a_braked_cart_sliding_with_the_momentum_the_impact_g
         "ẋ⁺ = {}, closed form {cart_after}",
         impact.qdot[0]
     );
+}
+
+lagrange::lagrangian! {
+    /// A uniform crate of mass `m`, width `w` and height `h` (moment of
+    /// inertia `m (w² + h²)/12`) standing on its two bottom corners on a
+    /// rough floor (`mu`, static and kinetic alike), pushed along the floor
+    /// at its centre by `P = p0 + rate t`.
+    struct PushedCrate {
+        coordinates: x, y, theta;
+        parameters: m, w, h, g, mu, p0, rate;
+        let b = vector(x, y, 0) + rotate_z(theta, vector(-w/2, -h/2, 0));
+        let f = vector(x, y, 0) + rotate_z(theta, vector(w/2, -h/2, 0));
+        kinetic: m/2*(dot(x)^2 + dot(y)^2) + m*(w^2 + h^2)/24*dot(theta)^2;
+        potential: m*g*y;
+        forces: x = p0 + rate*t;
+        contacts:
+            back: b[1] >= 0 { friction: mu, slip: dot(b[0]) },
+            front: f[1] >= 0 { friction: mu, slip: dot(f[0]) };
+    }
+}
+
+/// The crate on two rough supports: while both corners stick, the
+/// friction they share is statically indeterminate (only its sum is
+/// fixed), and every share must lie inside its corner's cone. The push
+/// loads the front corner more (`N_front − N_back = P h / w`), so an even
+/// share leaves the back corner's cone first, at `P = μ m g / (1 + μ h /
+/// w)`; an admissible share exists until `P = μ m g`, where the crate
+/// breaks away, both corners sliding, and then `m ẍ = P − μ m g` (the
+/// normal forces still sum to `m g`: it neither lifts nor tips while `P <
+/// m g w / h`), so `x = rate (t − t_b)³ / (6 m)` from the breakaway time
+/// `t_b = (μ m g − p0) / rate`. The same from a push that starts at zero.
+#[test]
+fn a_crate_on_two_rough_supports_breaks_away_at_mu_m_g_with_every_share_inside_its_cone() {
+    let (m, w, h, g, mu, rate) = (1.0, 1.0, 0.5, 9.81, 0.5, 0.5);
+    let limit = mu * m * g;
+    for p0 in [0.9 * limit, 0.0] {
+        let model = PushedCrate::new(m, w, h, g, mu, p0, rate);
+        let t_b = (limit - p0) / rate;
+        let end = t_b + 2.0;
+        let run = run(&model, ([0.0, h / 2.0, 0.0], [0.0; 3]), &times(end, 200)).unwrap();
+        let breakaway = run
+            .switches()
+            .iter()
+            .find(|s| s.cause == Cause::StickLimit)
+            .unwrap_or_else(|| panic!("no breakaway: {:#?}", run.switches()));
+        // The margins are linear in t while it sticks, so the event is
+        // located to rounding; Dop853 at 1e-12 bounds the rest.
+        assert!(
+            (breakaway.t - t_b).abs() < 1e-9,
+            "p0 = {p0}: broke away at {}, closed form {t_b}",
+            breakaway.t
+        );
+        let after: Vec<_> = run
+            .switches()
+            .iter()
+            .filter(|s| s.t > breakaway.t)
+            .collect();
+        assert!(
+            after.is_empty(),
+            "p0 = {p0}: switches after the breakaway: {after:?}"
+        );
+        for ((sample, forces), modes) in run.trajectory().iter().zip(run.forces()).zip(run.modes())
+        {
+            let (n, f) = (forces.normal, forces.friction);
+            // Forces of 10 N to rounding: 1e-12.
+            assert!(
+                ((n[0] + n[1]) - m * g).abs() < 1e-12,
+                "{n:?} at {}",
+                sample.t
+            );
+            if sample.t < t_b - 1e-9 {
+                assert_eq!(*modes, [Mode::Stuck; 2], "p0 = {p0} at {}", sample.t);
+                for i in 0..2 {
+                    assert!(
+                        f[i].abs() <= mu * n[i] + 1e-12,
+                        "p0 = {p0}, t = {}: corner {i} carries {} of its cone's {}",
+                        sample.t,
+                        f[i].abs(),
+                        mu * n[i]
+                    );
+                }
+                assert!(
+                    sample.q[0].abs() < 1e-12,
+                    "crept {} by {}",
+                    sample.q[0],
+                    sample.t
+                );
+            } else if sample.t > t_b + 1e-9 {
+                assert_eq!(*modes, [Mode::Sliding { forward: true }; 2]);
+                let s = sample.t - t_b;
+                let x = rate * s.powi(3) / (6.0 * m);
+                // Dop853's global error at 1e-12 over 2 s of a cubic
+                // (its error estimate exact for it to rounding), with the
+                // breakaway time's error times the speed (at most 1 m/s).
+                assert!(
+                    (sample.q[0] - x).abs() < 1e-9,
+                    "p0 = {p0}: x = {} at {}, closed form {x}",
+                    sample.q[0],
+                    sample.t
+                );
+            }
+        }
+    }
 }
