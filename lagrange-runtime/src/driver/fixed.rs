@@ -391,12 +391,14 @@ impl<S: RealField + Copy, const N: usize> Track<S> for OneRun<'_, '_, S, N> {
 
     #[inline(always)]
     fn judge(&mut self, t_next: S, (h, dt): (S, S)) -> Result<(), Self::Error> {
-        let before = self.before;
-        let growth = self
-            .growth
-            .get_or_insert_with(|| GrowthGuard::new(&before.0, &before.1));
+        if self.growth.is_none() {
+            *self.growth = Some(GrowthGuard::new(&self.before.0, &self.before.1));
+        }
+        let Some(growth) = self.growth.as_mut() else {
+            unreachable!("set above");
+        };
         let (q, qdot) = &self.end;
-        match growth.unstable(before, (q, qdot), dt) {
+        match growth.unstable(self.before, (q, qdot), dt) {
             Some(steps) => Err(IntegrationError::Unstable {
                 t: t_next,
                 h,

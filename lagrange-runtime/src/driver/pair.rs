@@ -782,30 +782,29 @@ impl<S: RealField + Copy, const N: usize> Track<S> for OneRun<'_, '_, S, N> {
     #[inline(always)]
     fn take(&mut self, (t, t_new, h): (S, S, S), target: S) -> Result<Flow, Self::Error> {
         let (run, model, pairing) = (&mut *self.run, self.model, &mut *self.pairing);
-        let ((q, qdot), (q_new, qdot_new)) = (self.at, self.end);
+        let ((q, qdot), end) = (&self.at, &self.end);
         // The dense output is built from the step's slopes before the
         // pair moves on (its last slope becomes the next step's first),
         // only when a sample or an event needs it.
         let crossed = if run.rec.watching() {
-            let mut interpolant = |ts: S| pairing.dense_at(h, (&q, &qdot), (ts - t) / h);
-            let end = (q_new, qdot_new);
+            let mut interpolant = |ts: S| pairing.dense_at(h, (q, qdot), (ts - t) / h);
             run.rec
-                .watch_dense(model, (t, t_new), &end, &mut interpolant)?
+                .watch_dense(model, (t, t_new), end, &mut interpolant)?
         } else {
             None
         };
         if crossed.is_none() {
             while let Some(ts) = run.rec.pending().filter(|&ts| ts <= t_new) {
                 if ts < t_new {
-                    let (qs, qdots) = pairing.dense_at(h, (&q, &qdot), (ts - t) / h);
+                    let (qs, qdots) = pairing.dense_at(h, (q, qdot), (ts - t) / h);
                     run.rec.record_dense(model, ts, qs, qdots)?;
                 } else {
-                    run.rec.record(ts, q_new, qdot_new);
+                    run.rec.record(ts, end.0, end.1);
                 }
             }
         }
         pairing.advance();
-        let flow = run.take((t_new, q_new, qdot_new), crossed, target);
+        let flow = run.take((t_new, end.0, end.1), crossed, target);
         if let Flow::Restarted(true) = flow {
             run.t = target;
         }
