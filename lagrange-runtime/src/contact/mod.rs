@@ -115,9 +115,9 @@
 //! smallest forces (the minimum norm) share it evenly, which leaves the
 //! less loaded corner outside its cone first. Here stuck friction is
 //! shared in proportion to each contact's cone, `μ_s N` (the least
-//! `Σ N² + Σ F² N_ref / (μ_s N)`, `N_ref` the largest normal force): where
-//! its only constraint is its sum, as for contacts of one body against one
-//! flat surface, every share is the same fraction of its cone, so all lie
+//! `Σ N² + Σ F² N_ref / (μ_s N)`, `N_ref` the largest normal force of a
+//! stuck contact): where its only constraint is its sum, as for contacts
+//! of one body against one flat surface, every share is the same fraction of its cone, so all lie
 //! inside exactly while one admissible share exists, and all reach their
 //! limits together. A stick limit slides every stuck contact that is at
 //! its limit then (within `1e-9` of it, relative), not one of them. The

@@ -245,8 +245,8 @@ fn least_solve<S: RealField + Copy>(a: DMatrix<S>, b: &DVector<S>) -> Option<(DV
 /// a less loaded contact outside its cone while an admissible share
 /// exists. Here the friction is shared in proportion to each contact's
 /// cone, `μ_s N`: the forces of least `Σ N² + Σ F² N_ref / (μ_s N)`
-/// (`N_ref` the largest normal force, so that the sum is one of forces
-/// squared in any units), the minimum-norm solution in those scaled
+/// (`N_ref` the largest normal force of a stuck contact, so that the sum
+/// is one of forces squared in any units; a brake's is its given force), the minimum-norm solution in those scaled
 /// unknowns, with the normal forces of the minimum-norm solution `first`.
 /// Where the shared friction's only constraint is its sum (stuck contacts
 /// on one body against one flat surface: a crate, a box's corners), each
@@ -260,17 +260,21 @@ fn share_friction<S: RealField + Copy>(
     unknowns: &[Unknown],
     laws: &[super::ContactLaw<S>],
 ) -> Option<DVector<S>> {
+    // A stuck contact's normal force: given by its law (a brake), or an
+    // unknown of the first solution.
     let normal_of = |contact: usize| {
-        unknowns
-            .iter()
-            .position(|u| u.contact == contact && !u.tangential)
-            .map(|k| first[k])
+        let unknown = || {
+            unknowns
+                .iter()
+                .position(|u| u.contact == contact && !u.tangential)
+                .map_or(S::zero(), |k| first[k])
+        };
+        laws[contact].normal.unwrap_or_else(unknown).max(S::zero())
     };
     let reference = unknowns
         .iter()
-        .enumerate()
-        .filter(|(_, u)| !u.tangential)
-        .fold(S::zero(), |m, (k, _)| m.max(first[k]));
+        .filter(|u| u.tangential)
+        .fold(S::zero(), |m, u| m.max(normal_of(u.contact)));
     if reference <= S::zero() {
         return Some(first);
     }
@@ -278,8 +282,7 @@ fn share_friction<S: RealField + Copy>(
         unknowns.len(),
         unknowns.iter().map(|u| {
             if u.tangential {
-                let capacity = laws[u.contact].static_friction
-                    * normal_of(u.contact).unwrap_or(S::zero()).max(S::zero());
+                let capacity = laws[u.contact].static_friction * normal_of(u.contact);
                 (capacity / reference).sqrt()
             } else {
                 S::one()
