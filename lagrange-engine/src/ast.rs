@@ -53,6 +53,7 @@ impl ToTokens for SpanRange {
 }
 
 /// `lagrangian! { #[attrs] vis struct Name { items } }`.
+#[derive(Clone)]
 pub struct ModelDef {
     /// The user's attributes (docs, derives), passed through to the struct.
     pub attrs: Vec<Attribute>,
@@ -104,6 +105,7 @@ pub struct Options {
 pub const MAX_BUDGET: u64 = 4_000_000_000;
 
 /// A declared name, scalar or indexed: `x` or `theta[N]`.
+#[derive(Clone)]
 pub struct Decl {
     /// The declared name.
     pub name: Ident,
@@ -127,6 +129,7 @@ pub struct IndexRange {
 }
 
 /// One section of a model's body, as written.
+#[derive(Clone)]
 pub enum Item {
     /// `const N = 6;`: a compile-time integer, for sizes and indices.
     Const {
@@ -221,6 +224,7 @@ pub enum Item {
 /// One entry of `contacts:`: `name: lhs >= rhs` (the gap `lhs − rhs`) or
 /// `name: lhs <= rhs` (the gap `rhs − lhs`), then optionally its law in
 /// braces, `{ restitution: e, friction: mu, slip: dot(x) }`.
+#[derive(Clone)]
 pub struct ContactDef {
     /// The contact's name.
     pub name: Ident,
@@ -248,6 +252,7 @@ impl ContactDef {
 /// One entry of `constraints:`: `name: lhs` (meaning `lhs = 0`) or
 /// `name: lhs = rhs`, or an indexed family `name[i in a..b]: ...`, one
 /// constraint per index.
+#[derive(Clone)]
 pub struct ConstraintDef {
     /// The constraint's name (the family's name, for an indexed entry).
     pub name: Ident,

@@ -205,26 +205,9 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         .iter()
         .map(|&q| pool.diff(lagrangian, q))
         .collect();
-    let mut nonconservative = Vec::with_capacity(n);
-    for i in 0..n {
-        if pool.exhausted() {
-            return Equations::exhausted();
-        }
-        let mut terms = Vec::new();
-        if let Some(r) = dissipation {
-            let dr = pool.diff(r, s.velocities[i]);
-            terms.push(pool.neg(dr));
-        }
-        // Virtual work: a force F along the position p does F·∂p/∂q_i.
-        pool.charge(forces.len() as u64);
-        for &(position, force) in &forces {
-            if pool.depends_on(position, s.coordinates[i]) {
-                let dp = pool.diff(position, s.coordinates[i]);
-                terms.push(pool.mul2(force, dp));
-            }
-        }
-        nonconservative.push(pool.add(&terms));
-    }
+    let Some(nonconservative) = nonconservative(pool, &s, dissipation, &forces) else {
+        return Equations::exhausted();
+    };
     // The momenta and T, to be taken at rest together (one traversal).
     let mut with_t = momenta.clone();
     with_t.push(t_kin);
@@ -338,6 +321,72 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         parameter_derivatives,
         regressor: None,
         articulated: None,
+    }
+}
+
+/// `Q − ∂R/∂q̇`, coordinate by coordinate; `None` if the budget ran out.
+fn nonconservative(
+    pool: &mut Pool,
+    s: &Symbols,
+    dissipation: Option<ExprId>,
+    forces: &[(ExprId, ExprId)],
+) -> Option<Vec<ExprId>> {
+    let n = s.coordinates.len();
+    let mut nonconservative = Vec::with_capacity(n);
+    for i in 0..n {
+        if pool.exhausted() {
+            return None;
+        }
+        let mut terms = Vec::new();
+        if let Some(r) = dissipation {
+            let dr = pool.diff(r, s.velocities[i]);
+            terms.push(pool.neg(dr));
+        }
+        // Virtual work: a force F along the position p does F·∂p/∂q_i.
+        pool.charge(forces.len() as u64);
+        for &(position, force) in forces {
+            if pool.depends_on(position, s.coordinates[i]) {
+                let dp = pool.diff(position, s.coordinates[i]);
+                terms.push(pool.mul2(force, dp));
+            }
+        }
+        nonconservative.push(pool.add(&terms));
+    }
+    Some(nonconservative)
+}
+
+/// The equations of a model whose `M q̈ = f` the runtime's recursion
+/// solves from the parts of `T` on a tree of links
+/// ([`articulated::first`]), without `M` and `f`: `T + V`, the momenta,
+/// `∂L/∂q` and `Q − ∂R/∂q̇`, derived as [`euler_lagrange`] derives them,
+/// `mass` and `forcing` left empty (their generated functions are formed
+/// from the parts at run time). Within the model's budget, else garbage
+/// that the caller reports as the budget error.
+pub fn without_mass_matrix(model: &mut Model) -> Equations {
+    let s = model.symbols.clone();
+    let t_kin = model.kinetic.value;
+    let v_pot = model.potential.value;
+    let dissipation = model.dissipation.as_ref().map(|d| d.value);
+    let forces: Vec<(ExprId, ExprId)> =
+        model.forces.iter().map(|f| (f.position, f.value)).collect();
+    let pool = &mut model.pool;
+    let lagrangian = pool.sub(t_kin, v_pot);
+    let momenta: Vec<ExprId> = s.velocities.iter().map(|&v| pool.diff(t_kin, v)).collect();
+    let lagrangian_gradient: Vec<ExprId> = s
+        .coordinates
+        .iter()
+        .map(|&q| pool.diff(lagrangian, q))
+        .collect();
+    let Some(nonconservative) = nonconservative(pool, &s, dissipation, &forces) else {
+        return Equations::exhausted();
+    };
+    let energy = pool.add2(t_kin, v_pot);
+    Equations {
+        energy,
+        momenta,
+        lagrangian_gradient,
+        nonconservative,
+        ..Equations::exhausted()
     }
 }
 

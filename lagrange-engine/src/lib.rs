@@ -12,7 +12,10 @@
 //!    coordinates and independent), each failure a spanned error;
 //! 4. [`derive`](mod@derive): `M = ∂²T/∂q̇²` and
 //!    `f = ∂L/∂q − (∂²L/∂q̇∂q) q̇ − ∂²L/∂q̇∂t − ∂R/∂q̇ + Q`, and for
-//!    constraints `φ = 0` their Jacobian `G` and bias `γ`;
+//!    constraints `φ = 0` their Jacobian `G` and bias `γ`; for a model
+//!    whose `M` and `f` would be formed from the parts of `T` on a tree of
+//!    links ([`derive::articulated::looks_first`]), the tree is looked for
+//!    first, and where it is found `M` and `f` are never derived;
 //! 5. [`emit`]: straight-line, allocation-free Rust for each const and
 //!    method listed in [`emit::api`]; [`render`] the same equations as text.
 //!    On any error, [`fallback`] emits the error and a stub of the same API,
@@ -159,7 +162,8 @@ impl Derived {
             .collect()
     }
 
-    /// Evaluates `M` numerically (row-major), for tests.
+    /// Evaluates `M` numerically (row-major), for tests; empty for a model
+    /// solved by the recursion without `M` derived.
     pub fn eval_mass_matrix(&self, t: f64, q: &[f64], params: &[f64]) -> Vec<Vec<f64>> {
         let zeros = vec![0.0; q.len()];
         let v = self.values(t, q, &zeros, params);
@@ -175,7 +179,8 @@ impl Derived {
             .collect()
     }
 
-    /// Evaluates `f` numerically, for tests.
+    /// Evaluates `f` numerically, for tests; empty for a model solved by
+    /// the recursion without `f` derived.
     pub fn eval_forcing(&self, t: f64, q: &[f64], qdot: &[f64], params: &[f64]) -> Vec<f64> {
         let v = self.values(t, q, qdot, params);
         let mut memo = Default::default();
@@ -222,11 +227,17 @@ impl Derived {
     }
 
     /// Operation counts of `M` and `f` as emitted (with sharing) and as a
-    /// tree without sharing would need.
+    /// tree without sharing would need; of the recursion's parts for a
+    /// model solved without `M` and `f` derived (their `mass` empty).
     pub fn op_counts(&self) -> (expr::cse::OpCount, expr::cse::OpCount) {
         let n = self.model.dof();
         let mut roots = Vec::new();
-        for i in 0..n {
+        if self.equations.mass.len() != n {
+            if let Some(a) = &self.equations.articulated {
+                roots.extend(&a.roots);
+            }
+        }
+        for i in 0..self.equations.mass.len() {
             for j in i..n {
                 roots.push(self.equations.mass[i][j]);
             }
@@ -282,17 +293,26 @@ pub fn derive_with_budget(input: TokenStream, budget: u64) -> syn::Result<Derive
 
 fn derive_model(def: ast::ModelDef, budget: u64) -> syn::Result<Derived> {
     let budget = def.options.budget.unwrap_or(budget);
-    let mut model = model::lower_with_pool(def, expr::Pool::with_budget(budget))?;
-    let r = check::constants_are_finite(&mut model);
-    within_budget(&model, r)?;
-    let r = check::potential_has_no_velocity(&mut model);
-    within_budget(&model, r)?;
-    let r = check::constraints::constraints_are_admissible(&mut model);
-    within_budget(&model, r)?;
-    let r = check::contacts::contacts_are_admissible(&mut model);
-    within_budget(&model, r)?;
-    let r = check::inputs::constraints_hold_no_input(&mut model);
-    within_budget(&model, r)?;
+    // Kept for a second lowering where the tree, looked for first, is not
+    // found: the model is then derived from a fresh pool, exactly as before.
+    let spare = derive::articulated::may_look_first(&def.options).then(|| def.clone());
+    let mut model = lowered_and_checked(def, budget)?;
+    if let Some(spare) = spare {
+        if derive::articulated::looks_first(&model) {
+            let mut equations = derive::without_mass_matrix(&mut model);
+            within_budget(&model, Ok(()))?;
+            let r = derive::articulated::first(&mut model, &mut equations);
+            if within_budget(&model, r)? {
+                // Emitting is linear in what it writes: charged now, so that
+                // a model within its budget is one whose code is written
+                // within it too.
+                emit::charge(&model, &equations);
+                within_budget(&model, Ok(()))?;
+                return Ok(Derived { model, equations });
+            }
+            model = lowered_and_checked(spare, budget)?;
+        }
+    }
     let mut equations = derive::euler_lagrange(&mut model);
     within_budget(&model, Ok(()))?;
     let r = check::inputs::momenta_hold_no_input(&mut model, &equations);
@@ -313,6 +333,23 @@ fn derive_model(def: ast::ModelDef, budget: u64) -> syn::Result<Derived> {
     let r = derive::articulated::articulated(&mut model, &mut equations);
     within_budget(&model, r)?;
     Ok(Derived { model, equations })
+}
+
+/// A model lowered into a pool of `budget` steps, and checked before any
+/// derivative of `T` is taken.
+fn lowered_and_checked(def: ast::ModelDef, budget: u64) -> syn::Result<model::Model> {
+    let mut model = model::lower_with_pool(def, expr::Pool::with_budget(budget))?;
+    let r = check::constants_are_finite(&mut model);
+    within_budget(&model, r)?;
+    let r = check::potential_has_no_velocity(&mut model);
+    within_budget(&model, r)?;
+    let r = check::constraints::constraints_are_admissible(&mut model);
+    within_budget(&model, r)?;
+    let r = check::contacts::contacts_are_admissible(&mut model);
+    within_budget(&model, r)?;
+    let r = check::inputs::constraints_hold_no_input(&mut model);
+    within_budget(&model, r)?;
+    Ok(model)
 }
 
 /// A stage's result, or the budget error if the budget ran out during it

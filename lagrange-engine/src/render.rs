@@ -8,6 +8,7 @@
 //! number as a subscript, `\frac` for divisions, `\sin`.
 
 use crate::derive::Equations;
+use crate::derive::articulated::Articulated;
 use crate::expr::cse::dag_uses;
 use crate::expr::{ExprId, Node, Pool};
 use crate::model::{Model, SymKind};
@@ -320,7 +321,18 @@ pub fn render_latex(model: &Model, eq: &Equations) -> String {
     render_with(model, eq, true)
 }
 
-fn render_with(model: &Model, eq: &Equations, latex: bool) -> String {
+/// Every root the text shows, in its order: `M`'s upper triangle and `f`,
+/// then the constraints', contacts' and inputs' terms; for a model solved
+/// by the recursion without `M` and `f` ([`Equations::mass`] empty), its
+/// parts instead: its joints' nonzero axes, bends, masses and inertias,
+/// and every coordinate's other forces.
+pub fn text_roots(model: &Model, eq: &Equations) -> Vec<ExprId> {
+    if let Some(parts) = parts_only(model, eq) {
+        return part_roots(model, parts)
+            .into_iter()
+            .map(|(_, id)| id)
+            .collect();
+    }
     let n = model.dof();
     let mut roots = Vec::new();
     for i in 0..n {
@@ -332,6 +344,60 @@ fn render_with(model: &Model, eq: &Equations, latex: bool) -> String {
     roots.extend(constraint_roots(eq));
     roots.extend(contact_roots(model, eq));
     roots.extend(input_roots(eq));
+    roots
+}
+
+/// The parts of a model solved by the recursion whose `M` and `f` were
+/// never derived; `None` for every other model.
+fn parts_only<'a>(model: &Model, eq: &'a Equations) -> Option<&'a Articulated> {
+    (eq.mass.len() != model.dof()).then_some(eq.articulated.as_ref())?
+}
+
+/// Which part an entry of the text is.
+#[derive(Clone, Copy)]
+enum Part {
+    /// A joint's axis `u` along an axis.
+    Axis(usize, usize),
+    /// Its bend `∂u/∂φ`.
+    Bend(usize, usize),
+    /// The mass on its end along an axis.
+    Mass(usize, usize),
+    /// Its own inertia.
+    Inertia(usize),
+    /// A coordinate's generalized force other than `T`'s.
+    Force(usize),
+}
+
+/// The parts' nonzero axes, bends, masses and inertias joint by joint,
+/// then every coordinate's force: the entries of the text of a model
+/// solved by the recursion (its size `O(N)` entries, against `M`'s
+/// `N(N+1)/2`).
+fn part_roots(model: &Model, a: &Articulated) -> Vec<(Part, ExprId)> {
+    let (n, d) = (model.dof(), a.axes);
+    let at = |block: usize, j: usize, k: usize| a.roots[block * n * d + j * d + k];
+    let mut out = Vec::new();
+    for j in 0..n {
+        for k in 0..d {
+            out.push((Part::Axis(j, k), at(0, j, k)));
+        }
+        for k in 0..d {
+            out.push((Part::Bend(j, k), at(1, j, k)));
+        }
+        for k in 0..d {
+            out.push((Part::Mass(j, k), at(2, j, k)));
+        }
+        out.push((Part::Inertia(j), a.roots[3 * n * d + j]));
+    }
+    for i in 0..n {
+        out.push((Part::Force(i), a.roots[3 * n * d + n + i]));
+    }
+    out.retain(|&(part, id)| matches!(part, Part::Force(_)) || id != Pool::ZERO);
+    out
+}
+
+fn render_with(model: &Model, eq: &Equations, latex: bool) -> String {
+    let n = model.dof();
+    let roots = text_roots(model, eq);
     let (order, uses) = dag_uses(&model.pool, &roots);
     let mut r = Renderer {
         model,
@@ -374,6 +440,8 @@ fn render_with(model: &Model, eq: &Equations, latex: bool) -> String {
                 "γ" => "\\gamma",
                 "v_t" => "v_{t}",
                 "∂f/∂u" => "\\frac{\\partial f}{\\partial u}",
+                "∂u/∂φ" => "\\frac{\\partial u}{\\partial \\phi}",
+                "parent" => "\\mathrm{parent}",
                 other => other,
             };
             let indices: Vec<String> = indices.iter().map(|i| latex_name(i)).collect();
@@ -383,6 +451,50 @@ fn render_with(model: &Model, eq: &Equations, latex: bool) -> String {
         }
     };
     let c: Vec<String> = model.coordinates.iter().map(|c| c.to_string()).collect();
+    if let Some(a) = parts_only(model, eq) {
+        // The tree: each joint's angle, and the joint it hangs from.
+        let joint = |j: usize| c[a.coordinate[j]].clone();
+        let coordinate = |j: usize| {
+            let name = if latex {
+                latex_name(&joint(j))
+            } else {
+                joint(j)
+            };
+            match a.scale[j] {
+                1.0 => name,
+                k if latex => format!("{k} \\, {name}"),
+                k => format!("{k}*{name}"),
+            }
+        };
+        for j in 0..n {
+            let angle = match a.base[j] {
+                Some(b) => format!("{} + {}", entry("φ", &[joint(b)]), coordinate(j)),
+                None => coordinate(j),
+            };
+            line(&mut out, entry("φ", &[joint(j)]), angle);
+            let parent = match a.parent[j] {
+                Some(p) if latex => latex_name(&joint(p)),
+                Some(p) => joint(p),
+                None if latex => "\\varnothing".to_string(),
+                None => "none".to_string(),
+            };
+            line(&mut out, entry("parent", &[joint(j)]), parent);
+        }
+        for (part, id) in part_roots(model, a) {
+            let lhs = match part {
+                Part::Axis(j, k) => entry("u", &[joint(j), k.to_string()]),
+                Part::Bend(j, k) => entry("∂u/∂φ", &[joint(j), k.to_string()]),
+                Part::Mass(j, k) => entry("m", &[joint(j), k.to_string()]),
+                Part::Inertia(j) => entry("J", &[joint(j)]),
+                Part::Force(i) => entry("Q", std::slice::from_ref(&c[i])),
+            };
+            line(&mut out, lhs, r.text(id, 0));
+        }
+        if latex {
+            out.push_str("\\end{aligned}\n");
+        }
+        return out;
+    }
     for i in 0..n {
         for (j, cj) in c.iter().enumerate().skip(i) {
             let lhs = entry("M", &[c[i].clone(), cj.clone()]);

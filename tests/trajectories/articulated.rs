@@ -278,3 +278,133 @@ fn a_massless_tip_gets_the_dense_solves_error() {
     );
     assert_eq!(ours.error.to_string(), dense.error.to_string());
 }
+
+lagrangian! {
+    /// The comb: a chain of 20 point masses on rods in relative angles,
+    /// with a branch of two links hanging from the end of every fourth link
+    /// (5 branches, 30 coordinates). Unasked, the engine finds its tree
+    /// before deriving `M` and `f` and never derives them; its dense
+    /// derivation is beyond the default budget, and its dense code beyond
+    /// the limit on generated code (`lagrange-engine/tests/engine/articulated.rs`).
+    pub struct Comb {
+        const N = 20;
+        const B = 5;
+        coordinates: theta[N], psi[2*B];
+        parameters: m[N], n[2*B], l;
+        constants: g = 9.81;
+        let a[i in 0..N] = sum(j in 0..=i, theta[j]);
+        let x[i in 0..N] = l*sum(j in 0..=i, sin(a[j]));
+        let y[i in 0..N] = -l*sum(j in 0..=i, cos(a[j]));
+        let b1[k in 0..B] = a[4*k+3] + psi[2*k];
+        let b2[k in 0..B] = b1[k] + psi[2*k+1];
+        let u1[k in 0..B] = x[4*k+3] + l*sin(b1[k]);
+        let v1[k in 0..B] = y[4*k+3] - l*cos(b1[k]);
+        let u2[k in 0..B] = u1[k] + l*sin(b2[k]);
+        let v2[k in 0..B] = v1[k] - l*cos(b2[k]);
+        kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2))
+            + sum(k in 0..B, n[2*k]/2*(dot(u1[k])^2 + dot(v1[k])^2) + n[2*k+1]/2*(dot(u2[k])^2 + dot(v2[k])^2));
+        potential: g*(sum(i in 0..N, m[i]*y[i]) + sum(k in 0..B, n[2*k]*v1[k] + n[2*k+1]*v2[k]));
+    }
+}
+
+/// The comb's masses and length, uneven so that no two branches are alike.
+fn comb() -> Comb<f64> {
+    Comb::new(
+        std::array::from_fn(|i| 1.0 + 0.05 * i as f64),
+        std::array::from_fn(|k| 0.5 + 0.1 * k as f64),
+        0.7,
+    )
+}
+
+/// The comb's `M` and `f` written by hand, independently of the engine:
+/// each point mass `p` sits at the end of a path of links, each link at
+/// the absolute angle `α = w · q` (`w` its coordinates, each 1), so that
+/// `x_p = l Σ sin α`, `y_p = −l Σ cos α`; with `J` the rows `∂x_p/∂q` and
+/// `∂y_p/∂q` and `b` their accelerations at `q̈ = 0`,
+/// `M = Σ m_p Jᵀ J` and `f = −Σ m_p Jᵀ (b + (0, g))`.
+fn comb_by_hand(
+    model: &Comb<f64>,
+    q: &SVector<f64, 30>,
+    v: &SVector<f64, 30>,
+) -> (lagrange::nalgebra::SMatrix<f64, 30, 30>, SVector<f64, 30>) {
+    let chain = |i: usize| -> Vec<usize> { (0..=i).collect() };
+    // Each link's coordinates, and each point's links and mass.
+    let mut links: Vec<Vec<usize>> = (0..20).map(chain).collect();
+    let mut points: Vec<(Vec<usize>, f64)> =
+        (0..20).map(|i| ((0..=i).collect(), model.m[i])).collect();
+    for k in 0..5 {
+        let at = 4 * k + 3;
+        let first = [chain(at), vec![20 + 2 * k]].concat();
+        let second = [first.clone(), vec![20 + 2 * k + 1]].concat();
+        links.push(first);
+        links.push(second);
+        let path = [chain(at), vec![20 + 2 * k]].concat();
+        points.push((path.clone(), model.n[2 * k]));
+        points.push(([path, vec![20 + 2 * k + 1]].concat(), model.n[2 * k + 1]));
+    }
+    let (mut mass, mut forcing) = (
+        lagrange::nalgebra::SMatrix::<f64, 30, 30>::zeros(),
+        SVector::<f64, 30>::zeros(),
+    );
+    for (path, m) in &points {
+        let (mut jx, mut jy) = (SVector::<f64, 30>::zeros(), SVector::<f64, 30>::zeros());
+        let (mut bx, mut by) = (0.0, 0.0);
+        for &link in path {
+            let w = &links[link];
+            let alpha: f64 = w.iter().map(|&c| q[c]).sum();
+            let rate: f64 = w.iter().map(|&c| v[c]).sum();
+            let (s, c) = alpha.sin_cos();
+            for &i in w {
+                jx[i] += model.l * c;
+                jy[i] += model.l * s;
+            }
+            bx -= model.l * s * rate * rate;
+            by += model.l * c * rate * rate;
+        }
+        mass += *m * (jx * jx.transpose() + jy * jy.transpose());
+        forcing -= *m * (jx * bx + jy * (by + 9.81));
+    }
+    (mass, forcing)
+}
+
+#[test]
+fn the_comb_is_solved_by_the_recursion_as_by_its_m_and_f_written_by_hand() {
+    let model = comb();
+    // The tree found: the recursion answers for `accelerations`.
+    const { assert!(<Comb<f64> as Lagrangian<30>>::SOLVES_ACCELERATIONS) };
+    for k in 0..50 {
+        let (q, v) = state::<30>(k);
+        let (m, f) = comb_by_hand(&model, &q, &v);
+        // The formed `M` and `f` are the hand-written ones up to rounding:
+        // sums of the same products in other orders, bounded as in
+        // `formed_as_derived` by 16 N ε of the largest entry.
+        let (fm, ff) = model.mass_matrix_and_forcing(0.0, &q, &v);
+        let bound = |x: f64| 16.0 * 30.0 * f64::EPSILON * x;
+        assert!((fm - m).amax() <= bound(m.amax()), "state {k}: M");
+        assert!((ff - f).amax() <= bound(f.amax()), "state {k}: f");
+        let a = model
+            .accelerations(0.0, &q, &v)
+            .expect("the recursion answers")
+            .expect("a regular M");
+        // Its backward error, as `solves_m_qddot_equals_f`'s: 64 N ε of
+        // the sizes in play.
+        let scale = m.abs().row_sum().max() * a.amax() + f.amax();
+        let residual = (m * a - f).amax();
+        assert!(
+            residual <= 64.0 * 30.0 * f64::EPSILON * scale,
+            "state {k}: |M q̈ − f| = {residual:e} of {scale:e}"
+        );
+        // And the forward error against the dense solve of the same `M`
+        // and `f`: the backward error times M's condition number (2-norm,
+        // from its eigenvalues: M is symmetric positive definite), the
+        // bound a backward-stable solve meets.
+        let dense = m.cholesky().expect("M positive definite").solve(&f);
+        let eigen = m.symmetric_eigenvalues();
+        let condition = eigen.max() / eigen.min();
+        let gap = (a - dense).amax();
+        assert!(
+            gap <= 64.0 * 30.0 * f64::EPSILON * condition * dense.amax(),
+            "state {k}: q̈ {gap:e} from the dense solve's, cond(M) = {condition:e}"
+        );
+    }
+}

@@ -38,6 +38,25 @@
 //! Unasked, a search (with its function's emission) that does not fit in
 //! what is left of the budget is forgotten (`Pool::rewind`): a model that
 //! expanded before still does, with the dense solve.
+//!
+//! Except first ([`first`]), where the model, found to have the form,
+//! would have its `M` and `f` [`formed`] from the parts at run time (from
+//! [`FORMED_FROM`] coordinates, or asked for) and nothing asked is derived
+//! from them (the residual's Jacobians, the parameter derivatives, the
+//! regressor: [`looks_first`]): then the search runs on `T`, `V` and the
+//! other forces before `M` and `f` would be derived, and where the form
+//! holds they never are, which is what lets a 30-link comb expand within
+//! the default budget (4.7 million steps, where deriving `M` and `f` took
+//! 60 million). The parts are the same functions as found last (the
+//! search reads `T`, `V` and the forces only), and compute the same bits
+//! (the repository's trees' `q̈`, `M`, `f`, energies and runs, compared
+//! before and after the change). The mass matrix's checks are then the form's: each coordinate is
+//! a joint with terms in `T`, quadratic in the velocities by the form; a
+//! joint whose articulated inertia is not positive at run time (a massless
+//! tip) is declined by the recursion, and the dense solve of the formed
+//! `M` reports it as before. Where the form does not hold, unasked, the
+//! model is lowered again from its definition and derived as before the
+//! search came first, to the same bytes.
 
 use super::Equations;
 use crate::expr::{ExprId, Node, Pool};
@@ -108,15 +127,7 @@ type Angle = Vec<(usize, u64)>;
 /// not hold), never under `#[lagrange(articulated = false)]`.
 pub fn articulated(model: &mut Model, eq: &mut Equations) -> syn::Result<()> {
     let wanted = model.options.articulated;
-    let own_path = if !model.constraints.is_empty() {
-        Some("constraints")
-    } else if !model.contacts.is_empty() {
-        Some("contacts")
-    } else if !model.inputs.is_empty() {
-        Some("control inputs")
-    } else {
-        None
-    };
+    let own_path = own_path(model);
     let looked = match wanted {
         Some(false) => false,
         Some(true) => own_path.is_none(),
@@ -142,8 +153,67 @@ pub fn articulated(model: &mut Model, eq: &mut Equations) -> syn::Result<()> {
     if wanted != Some(true) || eq.articulated.is_some() || model.pool.exhausted() {
         return Ok(());
     }
+    Err(refusal(model, own_path))
+}
+
+/// What solves a model with `constraints:`, `contacts:` or `inputs:`
+/// instead of the recursion, named; `None` for a model in minimal
+/// coordinates without contacts or inputs.
+fn own_path(model: &Model) -> Option<&'static str> {
+    if !model.constraints.is_empty() {
+        Some("constraints")
+    } else if !model.contacts.is_empty() {
+        Some("contacts")
+    } else if !model.inputs.is_empty() {
+        Some("control inputs")
+    } else {
+        None
+    }
+}
+
+/// Whether the options let a model be solved by the recursion without
+/// its `M` and `f` derived ([`first`]): not refused (`articulated =
+/// false`), and nothing asked that is derived from `M` and `f` (the
+/// residual's Jacobians, the parameter derivatives, the regressor).
+/// Read before lowering, to keep the definition for a second lowering.
+pub fn may_look_first(options: &crate::ast::Options) -> bool {
+    options.articulated != Some(false)
+        && !options.jacobians
+        && !options.parameter_derivatives
+        && options.regressor.is_none()
+}
+
+/// Whether the tree is looked for before `M` and `f` are derived: where
+/// the options allow it ([`may_look_first`]) and the model, found to have
+/// the form, would have its `M` and `f` [`formed`] from the parts (asked
+/// for, or from [`FORMED_FROM`] coordinates), in minimal coordinates
+/// without contacts or inputs.
+pub fn looks_first(model: &Model) -> bool {
+    may_look_first(&model.options) && own_path(model).is_none() && formed(model)
+}
+
+/// The tree looked for first, in a model that [`looks_first`], on the
+/// equations of [`without_mass_matrix`](super::without_mass_matrix): `Ok(true)`
+/// with `eq.articulated` set where `T` has the form, so that `M` and `f`
+/// need never be derived; `Ok(false)` where it has not, unasked (the
+/// caller then derives the model as before, from a fresh lowering);
+/// under `#[lagrange(articulated)]`, the error that says what the form is.
+pub fn first(model: &mut Model, eq: &mut Equations) -> syn::Result<bool> {
+    eq.articulated = find(model, eq);
+    if eq.articulated.is_some() || model.pool.exhausted() {
+        return Ok(eq.articulated.is_some());
+    }
+    if model.options.articulated == Some(true) {
+        return Err(refusal(model, None));
+    }
+    Ok(false)
+}
+
+/// The error of `#[lagrange(articulated)]` on a model the recursion does
+/// not solve, on `kinetic:`.
+fn refusal(model: &Model, own_path: Option<&str>) -> syn::Error {
     let range = model.kinetic.keyword_and_value();
-    Err(range.error(match own_path {
+    range.error(match own_path {
         Some(what) => format!(
             "`#[lagrange(articulated)]`: a model with {what} is solved by its own path (the saddle-point system, \
              the contact phases, the controller's forcing), not by the recursion over a tree of links: \
@@ -156,7 +226,7 @@ pub fn articulated(model: &mut Model, eq: &mut Equations) -> syn::Result<()> {
                  another link's angle), one link per coordinate, and the links nested as a tree; remove the \
                  attribute for the dense solve"
             .to_string(),
-    }))
+    })
 }
 
 /// The form, if `T` has it (garbage, quickly, once the pool is exhausted).

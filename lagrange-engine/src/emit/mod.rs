@@ -215,15 +215,7 @@ const STEPS_PER_EMITTED_OPERAND: u64 = 24;
 /// emitting itself charges nothing and checks nothing.
 pub fn charge(model: &Model, eq: &Equations) {
     let pool = &model.pool;
-    let n = model.dof();
-    let text_roots: Vec<ExprId> = (0..n)
-        .flat_map(|i| (i..n).map(move |j| (i, j)))
-        .map(|(i, j)| eq.mass[i][j])
-        .chain(eq.forcing.iter().copied())
-        .chain(crate::render::constraint_roots(eq))
-        .chain(crate::render::contact_roots(model, eq))
-        .chain(crate::render::input_roots(eq))
-        .collect();
+    let text_roots = crate::render::text_roots(model, eq);
     // The text is written twice: `EQUATIONS` and `LATEX`.
     let functions = METHODS
         .iter()

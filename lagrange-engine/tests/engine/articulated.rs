@@ -5,7 +5,7 @@
 //! That the recursion then solves `M q̈ = f` is the runtime's test
 //! (`tests/trajectories/articulated.rs`).
 
-use crate::problems::{derive, error, indexed_chain};
+use crate::problems::{binary_tree_64, comb, comb_of, derive, error, indexed_chain};
 use lagrange_engine::derive::articulated::{Articulated, FORMED_FROM, FROM_COORDINATES};
 
 fn found(src: &str) -> Option<Articulated> {
@@ -291,5 +291,106 @@ fn a_model_with_the_form_forms_m_and_f_from_its_parts() {
         calls(&asked),
         3,
         "M and f are not formed where the form is asked for"
+    );
+}
+
+#[test]
+fn large_trees_expand_at_the_default_budget_without_m_and_f() {
+    // The comb (30 coordinates) and the binary tree of 64 links, unasked,
+    // and the 100-link chain: the tree is found before `M` and `f` would be
+    // derived, and they never are (their dense derivation: 60 million
+    // steps for the comb, beyond the default budget). The text is the
+    // parts': O(N) entries, where `M` alone has N(N+1)/2 (the comb's dense
+    // EQUATIONS and LATEX: 12.8 MB; these: 81 KB, 56 KB and 169 KB,
+    // `cargo run --release -p lagrange-studies --example large_trees`).
+    for (source, joints) in [
+        (comb(""), 30),
+        (binary_tree_64(""), 64),
+        (indexed_chain(100), 100),
+    ] {
+        let d = derive(&source);
+        let a = d.equations.articulated.as_ref().expect("the tree");
+        assert_eq!(a.parent.len(), joints);
+        assert!(d.equations.mass.is_empty() && d.equations.forcing.is_empty());
+        let text = d.equations_text();
+        assert!(text.contains("parent[") && !text.contains("M["), "{text}");
+        // Each entry at most a sum along one path: measured 0.9 (the
+        // binary tree) to 2.7 KB (the comb, whose angles are long sums)
+        // per joint, both texts together.
+        let size = text.len() + d.equations_latex().len();
+        assert!(size < 4_000 * joints, "{size} bytes of text");
+        let code = d.tokens().to_string();
+        assert!(code.contains("ARTICULATED_TREE"));
+        assert!(!code.contains("compile_error"));
+    }
+    // The comb's branches hang from the ends of the chain's 4th, 8th, ...
+    // links: the joints whose parents hold two children.
+    let a = found(&comb("")).expect("the comb's tree");
+    let mut forks: Vec<usize> = (0..30)
+        .filter(|&j| a.parent.iter().filter(|p| **p == Some(j)).count() == 2)
+        .map(|j| a.coordinate[j])
+        .collect();
+    forks.sort_unstable();
+    assert_eq!(forks, [3, 7, 11, 15]);
+    // (The 20th link's branch is its only child.)
+    assert_eq!(a.parent.iter().filter(|p| p.is_none()).count(), 1);
+}
+
+#[test]
+fn the_parts_found_first_are_the_parts_found_last() {
+    // `#[lagrange(articulated)]` alone finds the tree first, with `M` and
+    // `f` never derived; with `jacobians`, which are derived from `M` and
+    // `f`, the model is derived whole and the tree found last. The parts
+    // are the same functions: equal at every state, to the last bit
+    // (each evaluated by the same arithmetic on the same tree, the nodes
+    // hash-consed alike).
+    let tree = comb_of(8, "#[lagrange(articulated)]");
+    let first = derive(&tree);
+    let last = derive(&tree.replace("articulated)]", "articulated, jacobians)]"));
+    assert!(first.equations.mass.is_empty());
+    assert_eq!(last.equations.mass.len(), 12);
+    let (a, b) = (
+        first.equations.articulated.as_ref().expect("found first"),
+        last.equations.articulated.as_ref().expect("found last"),
+    );
+    assert_eq!(
+        (&a.parent, &a.base, &a.coordinate),
+        (&b.parent, &b.base, &b.coordinate)
+    );
+    let params: Vec<f64> = (0..13).map(|k| 0.5 + 0.1 * k as f64).collect();
+    for k in 0..20 {
+        let q: Vec<f64> = (0..12)
+            .map(|i| (0.37 * (7 * i + 13 * k) as f64).sin())
+            .collect();
+        let v: Vec<f64> = (0..12)
+            .map(|i| (0.61 * (5 * i + 11 * k) as f64).cos())
+            .collect();
+        assert_eq!(
+            first.eval(&a.roots, 0.0, &q, &v, &params),
+            last.eval(&b.roots, 0.0, &q, &v, &params)
+        );
+    }
+}
+
+#[test]
+fn a_large_model_without_the_form_expands_as_before() {
+    // From 18 coordinates the tree is looked for first; where it is not
+    // found, the model is lowered again and derived as before the search
+    // came first: the same code as with the search refused.
+    let elastic = "pub struct Elastic {
+        const N = 9;
+        coordinates: theta[N], r[N];
+        constants: g = 9.81, k = 50.0;
+        let x[i in 0..N] = sum(j in 0..=i, r[j]*sin(theta[j]));
+        let y[i in 0..N] = -sum(j in 0..=i, r[j]*cos(theta[j]));
+        kinetic: sum(i in 0..N, (dot(x[i])^2 + dot(y[i])^2)/2);
+        potential: sum(i in 0..N, g*y[i] + k/2*(r[i] - 1)^2);
+    }";
+    let code = |source: &str| lagrange_engine::expand(source.parse().unwrap()).to_string();
+    let unasked = code(elastic);
+    assert!(!unasked.contains("compile_error") && !unasked.contains("ARTICULATED_TREE"));
+    assert_eq!(
+        unasked,
+        code(&format!("#[lagrange(articulated = false)] {elastic}"))
     );
 }

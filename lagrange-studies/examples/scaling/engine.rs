@@ -54,7 +54,11 @@ pub fn measure(source: &str) -> Result<EngineStats, EngineFailure> {
     })?;
     let (shared, tree) = derived.op_counts();
     let n = derived.model.dof();
-    let mass: Vec<_> = (0..n)
+    // Empty where the recursion solves the model without `M` and `f`
+    // derived (`--articulated`): their counts are then zero, and
+    // `op_counts` counts the parts.
+    let rows = derived.equations.mass.len();
+    let mass: Vec<_> = (0..rows)
         .flat_map(|i| (i..n).map(move |j| (i, j)))
         .map(|(i, j)| derived.equations.mass[i][j])
         .collect();
