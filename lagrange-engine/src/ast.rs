@@ -97,6 +97,10 @@ pub struct Options {
     /// [`FROM_COORDINATES`](crate::derive::articulated::FROM_COORDINATES)
     /// coordinates on.
     pub articulated: Option<bool>,
+    /// `#[lagrange(max_code = N)]`: the most bytes of generated code this
+    /// model may expand to, instead of
+    /// [`DEFAULT_MAX_CODE`](crate::emit::DEFAULT_MAX_CODE).
+    pub max_code: Option<u64>,
 }
 
 /// The largest budget `#[lagrange(budget = N)]` may ask for: the time and

@@ -84,6 +84,13 @@
 //!   model `N` steps instead (at most [`MAX_BUDGET`](ast::MAX_BUDGET)); time
 //!   and memory grow in proportion.
 //!
+//! - **Generated code.** Before writing the functions, the engine
+//!   estimates their size ([`emit::charge`]), and a model over
+//!   [`DEFAULT_MAX_CODE`](emit::DEFAULT_MAX_CODE) = 4 000 000 bytes (or
+//!   its own `#[lagrange(max_code = N)]`) stops with an error saying what
+//!   to write instead: rustc's memory grows faster than the code (3.7 MB
+//!   of it took 4.7 GB to build, 8.4 MB 17.9 GB).
+//!
 //! The budget counts steps, not time, so an expansion is the same on every
 //! machine: a model expands everywhere or nowhere.
 
@@ -214,6 +221,14 @@ impl Derived {
             .collect()
     }
 
+    /// The size of the generated functions in bytes as the engine
+    /// estimates it before writing them, what `#[lagrange(max_code = N)]`
+    /// is checked against ([`emit::charge`]).
+    pub fn estimated_code_bytes(&self) -> u64 {
+        let pool = &self.model.pool;
+        pool.uncharged(|| emit::charge(&self.model, &self.equations))
+    }
+
     /// Operation counts of `G` and `γ` together, as emitted (with sharing)
     /// and as a tree; `None` for a model without constraints.
     pub fn constraint_op_counts(&self) -> Option<(expr::cse::OpCount, expr::cse::OpCount)> {
@@ -306,8 +321,9 @@ fn derive_model(def: ast::ModelDef, budget: u64) -> syn::Result<Derived> {
                 // Emitting is linear in what it writes: charged now, so that
                 // a model within its budget is one whose code is written
                 // within it too.
-                emit::charge(&model, &equations);
+                let size = emit::charge(&model, &equations);
                 within_budget(&model, Ok(()))?;
+                within_code_limit(&model, size)?;
                 return Ok(Derived { model, equations });
             }
             model = lowered_and_checked(spare, budget)?;
@@ -325,13 +341,14 @@ fn derive_model(def: ast::ModelDef, budget: u64) -> syn::Result<Derived> {
     within_budget(&model, r)?;
     // Emitting is linear in what it writes: charged now, so that a model
     // within its budget is one whose code is written within it too.
-    emit::charge(&model, &equations);
+    let size = emit::charge(&model, &equations);
     within_budget(&model, Ok(()))?;
     // Last, within what is left: unasked, the search gives up rather than
     // spend the budget a model expanded within before it existed; its
     // function's emission is charged there.
     let r = derive::articulated::articulated(&mut model, &mut equations);
     within_budget(&model, r)?;
+    within_code_limit(&model, size)?;
     Ok(Derived { model, equations })
 }
 
@@ -350,6 +367,15 @@ fn lowered_and_checked(def: ast::ModelDef, budget: u64) -> syn::Result<model::Mo
     let r = check::inputs::constraints_hold_no_input(&mut model);
     within_budget(&model, r)?;
     Ok(model)
+}
+
+/// The error of a model whose generated code, estimated at `bytes`, is
+/// over its limit ([`emit::code_limit_error`]).
+fn within_code_limit(model: &model::Model, bytes: u64) -> syn::Result<()> {
+    match emit::code_limit_error(model, bytes) {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
 }
 
 /// A stage's result, or the budget error if the budget ran out during it

@@ -212,33 +212,119 @@ const STEPS_PER_EMITTED_OPERAND: u64 = 24;
 /// Charges the pool's budget for emitting the model: the nodes and roots of
 /// every generated function and of the equations' text. Emitting is linear
 /// in these, so a model whose charge fits the budget is emitted within it;
-/// emitting itself charges nothing and checks nothing.
-pub fn charge(model: &Model, eq: &Equations) {
+/// emitting itself charges nothing and checks nothing. Returns the
+/// estimated size of the generated functions in bytes
+/// ([`BYTES_PER_OPERAND`] per operand written), what
+/// [`code_limit_error`] is checked against; the `EQUATIONS` and `LATEX`
+/// text is not counted there (string constants cost rustc little).
+pub fn charge(model: &Model, eq: &Equations) -> u64 {
     let pool = &model.pool;
-    let text_roots = crate::render::text_roots(model, eq);
-    // The text is written twice: `EQUATIONS` and `LATEX`.
-    let functions = METHODS
-        .iter()
-        .filter_map(|m| (m.roots)(model, eq))
-        .chain([text_roots.clone(), text_roots]);
-    for roots in functions {
+    let mut operands = 0u64;
+    for roots in METHODS.iter().filter_map(|m| (m.roots)(model, eq)) {
         if pool.exhausted() {
-            return;
+            return 0;
         }
-        pool.charge(emission_cost(model, &roots));
+        let (cost, written) = emission(model, &roots);
+        operands = operands.saturating_add(written);
+        pool.charge(cost);
     }
+    // The text is written twice: `EQUATIONS` and `LATEX`.
+    let text_roots = crate::render::text_roots(model, eq);
+    for _ in 0..2 {
+        if pool.exhausted() {
+            return 0;
+        }
+        pool.charge(emission_cost(model, &text_roots));
+    }
+    operands.saturating_mul(BYTES_PER_OPERAND)
+}
+
+/// The bytes of generated code (the functions, as the token stream's
+/// text) per operand [`charge`] counts: measured from 7 (the chain of
+/// `N` links in absolute angles, `N` = 20 to 60) to 10 (the comb in
+/// relative angles, 30 coordinates) on the dense expansions of the
+/// large models (`lagrange-engine/tests/engine/articulated.rs`,
+/// `the_code_size_estimate_follows_the_code`); the larger, so that the
+/// estimate errs on the side of the limit.
+pub const BYTES_PER_OPERAND: u64 = 10;
+
+/// The most bytes of generated code a model may expand to unless it says
+/// otherwise (`#[lagrange(max_code = N)]`): about 4 MB, which rustc builds
+/// within about 10 GB of memory; see `docs/language.md`, Limits.
+pub const DEFAULT_MAX_CODE: u64 = 4_000_000;
+
+/// The largest `#[lagrange(max_code = N)]`.
+pub const MAX_CODE: u64 = 1_000_000_000;
+
+/// The error of a model whose generated code, estimated at `bytes`
+/// ([`charge`]), would be over its limit: what to write instead, on the
+/// model's name.
+pub fn code_limit_error(model: &Model, bytes: u64) -> Option<syn::Error> {
+    let limit = model.options.max_code.unwrap_or(DEFAULT_MAX_CODE);
+    if bytes <= limit {
+        return None;
+    }
+    let name = &model.name;
+    // The limit suggested: the estimate rounded up, to a megabyte from one.
+    let step = if bytes >= 1_000_000 { 1_000_000 } else { 1_000 };
+    let tree = "if its masses hang on a tree of links (a chain or tree of point masses and rigid links, in \
+                absolute or relative angles), the recursion over the tree solves it without generating `M` and `f`";
+    let recursion = if !crate::derive::articulated::may_look_first(&model.options)
+        && model.options.articulated != Some(false)
+    {
+        format!(
+            "{tree}: ask for `#[lagrange(articulated)]` without `jacobians`, `parameter_derivatives` and \
+             `regressor(..)`, which are derived from them"
+        )
+    } else if model.options.articulated == Some(false) {
+        format!("{tree}: write `#[lagrange(articulated)]` instead of `articulated = false`")
+    } else {
+        format!("{tree}: write it so, and ask for `#[lagrange(articulated)]`")
+    };
+    Some(syn::Error::new(
+        name.span(),
+        format!(
+            "the code generated for `{name}` would be about {}, over the limit of {}: rustc's time and memory \
+             grow faster than the code (about 5 GB to build 4 MB of it); {recursion}; or make the model smaller \
+             (fewer coordinates, or split it); or, if the machine building it has the memory, raise the limit \
+             with `#[lagrange(max_code = {})]` on the struct",
+            in_words(bytes),
+            in_words(limit),
+            bytes.div_ceil(step).saturating_mul(step).min(MAX_CODE),
+        ),
+    ))
 }
 
 /// What writing one function of `roots` costs the budget ([`charge`]),
 /// after the walk over its nodes that measures it (charged as it goes).
 pub(crate) fn emission_cost(model: &Model, roots: &[ExprId]) -> u64 {
+    emission(model, roots).0
+}
+
+/// [`emission_cost`], and the operands the function writes: its nodes'
+/// operands and its roots, what its size grows with.
+fn emission(model: &Model, roots: &[ExprId]) -> (u64, u64) {
     let pool = &model.pool;
     // A function's prelude may name every symbol (`let [x, _, z] = ...`).
     let symbols = model.symbols.count() as u64;
     let before = pool.spent();
+    // The walk's own charge, beside its nodes': see `Pool::post_order`.
+    let overhead = 1 + pool.len() as u64 / 64;
     pool.post_order(roots);
     let walked = pool.spent() - before + roots.len() as u64 + symbols;
-    STEPS_PER_EMITTED_OPERAND * walked
+    let operands = walked.saturating_sub(overhead + symbols);
+    (STEPS_PER_EMITTED_OPERAND * walked, operands)
+}
+
+/// A size in bytes as a reader takes it in: `8.4 MB`, `23 KB`, `700 bytes`.
+fn in_words(bytes: u64) -> String {
+    if bytes >= 1_000_000 {
+        format!("{:.1} MB", bytes as f64 / 1e6)
+    } else if bytes >= 1_000 {
+        format!("{} KB", bytes.div_ceil(1_000))
+    } else {
+        format!("{bytes} bytes")
+    }
 }
 
 /// `impl Name<S>`: the consts, `new`, and every method the model has.

@@ -134,6 +134,15 @@ impl Pool {
         self.too_deep = mark.too_deep;
     }
 
+    /// `f`'s result, the steps it charges forgotten: a measurement taken
+    /// after the expansion, which must not find the budget spent.
+    pub fn uncharged<R>(&self, f: impl FnOnce() -> R) -> R {
+        let before = self.spent.replace(0);
+        let result = f();
+        self.spent.set(before);
+        result
+    }
+
     /// Whether the budget is spent or a node grew too deep: from then on
     /// every new node is zero and every loop stops, so the result is
     /// garbage, but reached quickly, and [`Pool::check_budget`] says why.

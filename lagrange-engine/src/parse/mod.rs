@@ -20,6 +20,7 @@ use crate::ast::{
     ConstraintDef, ContactDef, Decl, Expr, IndexRange, Item, MAX_BUDGET, ModelDef, Options,
     SpanRange,
 };
+use crate::emit::{DEFAULT_MAX_CODE, MAX_CODE};
 use crate::expr::DEFAULT_BUDGET;
 use expression::{drain_on_error, parse_bracket, parse_index_range};
 use proc_macro2::{TokenStream, TokenTree};
@@ -175,6 +176,20 @@ fn take_options(attrs: &mut Vec<Attribute>) -> (Options, Option<syn::Error>) {
                         format!("the budget is a number of steps from 1 to {MAX_BUDGET} (the default is {DEFAULT_BUDGET})"),
                     )),
                 }
+            } else if meta.path.is_ident("max_code") {
+                let lit: LitInt = meta.value()?.parse()?;
+                match lit.base10_parse::<u64>() {
+                    Ok(n) if (1..=MAX_CODE).contains(&n) => {
+                        options.max_code = Some(n);
+                        Ok(())
+                    }
+                    _ => Err(syn::Error::new(
+                        lit.span(),
+                        format!(
+                            "the code limit is a number of bytes from 1 to {MAX_CODE} (the default is {DEFAULT_MAX_CODE})"
+                        ),
+                    )),
+                }
             } else {
                 Err(meta.error(
                     "unknown option: `#[lagrange(...)]` takes `jacobians` (exact residual Jacobians for implicit integrators), \
@@ -182,7 +197,8 @@ fn take_options(attrs: &mut Vec<Attribute>) -> (Options, Option<syn::Error>) {
                      `regressor(p1, p2, ..)` (M q̈ − f written linearly in the products of those parameters), \
                      `serde` (the struct serializable, with lagrange's `serde` feature), \
                      `articulated` or `articulated = false` (M q̈ = f solved by the recursion over a tree of \
-                     links, required or refused) and `budget = N` (the engine's work budget, in steps)",
+                     links, required or refused), `budget = N` (the engine's work budget, in steps) and `max_code = N` \
+                     (the most bytes of generated code)",
                 ))
             }
         });

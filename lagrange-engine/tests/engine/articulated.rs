@@ -394,3 +394,46 @@ fn a_large_model_without_the_form_expands_as_before() {
         code(&format!("#[lagrange(articulated = false)] {elastic}"))
     );
 }
+
+#[test]
+fn the_dense_comb_is_refused_by_the_code_limit() {
+    // Derived whole within a raised budget, the comb's `M` and `f` would be
+    // 8.4 MB of code (rustc: 2 min 42 s and 17.9 GB of memory, issue 50):
+    // the limit on the generated code stops it with an error that says
+    // what to write instead, before any of it is written.
+    let dense = comb("#[lagrange(articulated = false, budget = 100000000)]");
+    let e = error(&dense);
+    assert!(
+        e.contains("the code generated for `Comb` would be about"),
+        "{e}"
+    );
+    assert!(
+        e.contains("write `#[lagrange(articulated)]` instead"),
+        "{e}"
+    );
+    assert!(e.contains("`#[lagrange(max_code = "), "{e}");
+}
+
+#[test]
+fn the_code_size_estimate_follows_the_code() {
+    // The estimate the limit is checked against, against the functions
+    // actually written (the expansion's text less `EQUATIONS` and
+    // `LATEX`), on dense expansions from 0.3 to 1.4 MB: never under by
+    // more than a tenth (a model under the limit by the estimate is under
+    // it by the code, give or take), at most 1.6 times over (measured 1.14
+    // to 1.42: `BYTES_PER_OPERAND` is the largest ratio measured).
+    for source in [
+        format!("#[lagrange(articulated = false)] {}", indexed_chain(20)),
+        format!("#[lagrange(articulated = false)] {}", indexed_chain(30)),
+        comb_of(12, "#[lagrange(articulated = false, budget = 100000000)]"),
+    ] {
+        let d = derive(&source);
+        let text = d.equations_text().len() + d.equations_latex().len();
+        let code = d.tokens().to_string().len() - text;
+        let estimate = d.estimated_code_bytes() as usize;
+        assert!(
+            estimate * 10 >= code * 9 && estimate * 10 <= code * 16,
+            "estimated {estimate} bytes for {code}"
+        );
+    }
+}
