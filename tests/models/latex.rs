@@ -10,7 +10,9 @@ fn page() -> String {
         "# The derived equations, typeset\n\n\
          Every model has `LATEX` beside `EQUATIONS`: the same entries (shared \
          subexpressions `e_k` first, then `M`, `f`, and where the model has \
-         them `φ`, `G`, `γ` or `∂f/∂u`) as one LaTeX `aligned` block. Below, \
+         them `φ`, `G`, `γ` or `∂f/∂u`; for a model solved by the recursion \
+         over a tree of links without `M` and `f`, its tree and parts) as one \
+         LaTeX `aligned` block. Below, \
          the two textbook models of `lagrange::models`, written by \
          `tests/models/latex.rs` from the constants themselves.\n\n\
          ## `DoublePendulum` (`src/models/double_pendulum.rs`)\n\n$$\n{}$$\n\n\
