@@ -314,10 +314,22 @@ fn derive_model(def: ast::ModelDef, budget: u64) -> syn::Result<Derived> {
     let mut model = lowered_and_checked(def, budget)?;
     if let Some(spare) = spare {
         if derive::articulated::looks_first(&model) {
+            let asked = model.options.articulated == Some(true);
             let mut equations = derive::without_mass_matrix(&mut model);
-            within_budget(&model, Ok(()))?;
-            let r = derive::articulated::first(&mut model, &mut equations);
-            if within_budget(&model, r)? {
+            let r = if model.pool.exhausted() {
+                Ok(false)
+            } else {
+                derive::articulated::first(&mut model, &mut equations)
+            };
+            // Unasked, a search that ran out of budget is given up like one
+            // that did not find the tree: the model is derived as before
+            // the search came first, from a fresh pool.
+            let found = if asked {
+                within_budget(&model, r)?
+            } else {
+                r? && !model.pool.exhausted()
+            };
+            if found {
                 // Emitting is linear in what it writes: charged now, so that
                 // a model within its budget is one whose code is written
                 // within it too.
