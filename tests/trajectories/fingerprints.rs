@@ -18,7 +18,7 @@ use lagrange::Method;
 use lagrange::constraints::Drift;
 use lagrange::models::{
     BlockOnBelt, BouncingBall, CartPole, CartesianPendulum, Chain, DoublePendulum, FourBar, Kepler,
-    Oscillator, Pendulum, PendulumWall, SliderCrank, StiffChain, TumblingBox,
+    Oscillator, Pendulum, PendulumWall, SliderCrank, StiffChain, Tree, TumblingBox,
 };
 use lagrange::nalgebra::{SVector, Vector1, Vector2};
 use lagrange::prelude::*;
@@ -249,6 +249,19 @@ fn cases(dump: &mut String) -> Vec<(String, u64)> {
         let method = m.integrator(5e-3, tol);
         case(format!("chain5 {} {tol:e}", m.id()), dump, &mut |d| {
             fingerprint(&method.integrate(&chain, 0.0, q5, SVector::zeros(), &ts), d)
+        });
+    }
+
+    // Two branches of five links, solved by the recursion over the parts
+    // of `T` the engine found (its `M` and `f` formed from them): what a
+    // change to how the engine finds a tree must keep.
+    let tree = Tree::unit();
+    let q10 = SVector::<f64, 10>::from_fn(|i, _| 0.2 + 0.05 * i as f64);
+    let ts = times(0.25, 4);
+    for (m, tol) in every(false) {
+        let method = m.integrator(5e-3, tol);
+        case(format!("tree2x5 {} {tol:e}", m.id()), dump, &mut |d| {
+            fingerprint(&method.integrate(&tree, 0.0, q10, SVector::zeros(), &ts), d)
         });
     }
 
