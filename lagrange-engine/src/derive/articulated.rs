@@ -49,12 +49,12 @@
 //! the default budget (4.7 million steps, where deriving `M` and `f` took
 //! 60 million). The parts are the same functions as found last (the
 //! search reads `T`, `V` and the forces only), and compute the same bits
-//! (the repository's trees' `q̈`, `M`, `f`, energies and runs, compared
-//! before and after the change). The mass matrix's checks are then the form's: each coordinate is
-//! a joint with terms in `T`, quadratic in the velocities by the form; a
-//! joint whose articulated inertia is not positive at run time (a massless
-//! tip) is declined by the recursion, and the dense solve of the formed
-//! `M` reports it as before. Where the form does not hold, unasked, the
+//! (the 2 × 5 tree's runs by every method are among the fingerprints,
+//! `tests/trajectories/fingerprints.rs`). The mass matrix's checks are
+//! then the form's: each coordinate is a joint with terms in `T`,
+//! quadratic in the velocities by the form; a joint whose articulated
+//! inertia is not positive at run time (a massless tip) is declined by the
+//! recursion, and the dense solve of the formed `M` reports it as before. Where the form does not hold, unasked, the
 //! model is lowered again from its definition and derived as before the
 //! search came first, to the same bytes.
 
