@@ -300,15 +300,6 @@ impl<L: LaneModel<N>, const N: usize> Lanes<L, N> {
     ) -> Result<SVector<L::Lanes, N>, EnsembleError<Element<L, N>, N>> {
         lanes_slope(&self.model, self.avx2, t, q, qdot)
     }
-
-    /// An error every lane meets at once, reported for `lane`.
-    fn everyone(
-        &self,
-        lane: usize,
-        error: IntegrationError<Element<L, N>, N>,
-    ) -> EnsembleError<Element<L, N>, N> {
-        EnsembleError::Lane { lane, error }
-    }
 }
 
 impl<L: LaneModel<N>, const N: usize> Track<Element<L, N>> for Lanes<L, N> {
@@ -375,23 +366,24 @@ impl<L: LaneModel<N>, const N: usize> Track<Element<L, N>> for Lanes<L, N> {
         self.stats.steps_accepted + self.stats.steps_rejected - self.call_start
     }
 
+    /// Every lane meets it at once: reported for lane 0.
     fn too_many_steps(&self, max_steps: usize) -> Self::Error {
         let (t, q, qdot) = (self.t, lane_of(&self.q, 0), lane_of(&self.qdot, 0));
-        self.everyone(
-            0,
-            IntegrationError::TooManySteps {
-                t,
-                max_steps,
-                q,
-                qdot,
-            },
-        )
+        let error = IntegrationError::TooManySteps {
+            t,
+            max_steps,
+            q,
+            qdot,
+        };
+        EnsembleError::Lane { lane: 0, error }
     }
 
+    /// Reported for the lane that last set the step.
     fn underflow(&self, h: Element<L, N>) -> Self::Error {
         let lane = self.worst;
         let (t, q, qdot) = (self.t, lane_of(&self.q, lane), lane_of(&self.qdot, lane));
-        self.everyone(lane, IntegrationError::StepSizeUnderflow { t, h, q, qdot })
+        let error = IntegrationError::StepSizeUnderflow { t, h, q, qdot };
+        EnsembleError::Lane { lane, error }
     }
 
     /// One Dormand–Prince step of `h` from `t` to `t_new`, by the scalar
