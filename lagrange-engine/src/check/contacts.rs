@@ -2,9 +2,9 @@
 //! names some coordinate; each slip velocity linear in the velocities and
 //! naming one; each coefficient (and a given normal force) a constant of
 //! the parameters; friction only along a slip velocity, and a slip
-//! velocity only with friction; friction for a given normal force; no
-//! `constraints:` beside them (the runtime's contact runs take models
-//! without constraints of their own).
+//! velocity only with friction; friction for a given normal force.
+//! `constraints:` may stand beside them: a contact run holds the model's
+//! own constraints with the touching contacts.
 
 use crate::ast::{Expr, SpanRange};
 use crate::expr::{ExprId, Pool};
@@ -42,15 +42,6 @@ fn law_entry(model: &Model, k: usize, key: &str) -> Option<(proc_macro2::Span, E
 pub fn contacts_are_admissible(model: &mut Model) -> syn::Result<()> {
     if model.contacts.is_empty() {
         return Ok(());
-    }
-    if !model.constraints.is_empty() {
-        let def = &model.contact_defs[0];
-        return Err(def.range().error(format!(
-            "contacts on a model with `constraints:` are not supported yet: write `{}`'s model in \
-             coordinates that need no constraints (the contact runs take the touching contacts as the \
-             model's only constraints)",
-            def.name
-        )));
     }
     let velocities = model.symbols.velocities.clone();
     let coordinates = model.symbols.coordinates.clone();

@@ -2,10 +2,12 @@
 //! of them push, stick or slide afterwards (one complementarity problem
 //! each), and the state projected back onto them.
 
-use nalgebra::{ComplexField, DMatrix, DVector, RealField, SMatrix, SVector};
+use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
+use super::erased::Erased;
 use super::lcp::lemke;
 use super::phase::{Terms, min_norm_solve, normal_direction};
+use crate::model::Lagrangian;
 use crate::trajectory::State;
 
 use super::{Cause, ContactError, ContactLaw, ContactSettings, Contacts, Mode, Switch};
@@ -198,15 +200,12 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
 /// was touching until now (its gap drifted by the integration's error, at
 /// most, which the projection after the decision takes back), or one with
 /// a given normal force (always).
-pub(crate) fn touching<L, const N: usize, const K: usize>(
-    model: &L,
-    settings: &ContactSettings<L::Scalar>,
-    (t, q): (L::Scalar, &SVector<L::Scalar, N>),
+pub(crate) fn touching<S: RealField + Copy, const N: usize, const K: usize>(
+    model: &Erased<'_, S, N, K>,
+    settings: &ContactSettings<S>,
+    (t, q): (S, &SVector<S, N>),
     current: &[Mode; K],
-) -> [bool; K]
-where
-    L: Contacts<N, K>,
-{
+) -> [bool; K] {
     let gaps = model.gaps(t, q);
     let laws = model.contact_laws();
     core::array::from_fn(|i| {
@@ -217,15 +216,12 @@ where
 /// The modes after a decision at `(t, q, q̇)`: every touching contact at
 /// rest along its normal decided together, the `forced` ones (each its
 /// mode, from an event) taken as given.
-pub(crate) fn modes<L, const N: usize, const K: usize>(
-    model: &L,
-    settings: &ContactSettings<L::Scalar>,
-    (t, q, qdot): (L::Scalar, &SVector<L::Scalar, N>, &SVector<L::Scalar, N>),
+pub(crate) fn modes<S: RealField + Copy, const N: usize, const K: usize>(
+    model: &Erased<'_, S, N, K>,
+    settings: &ContactSettings<S>,
+    (t, q, qdot): (S, &SVector<S, N>, &SVector<S, N>),
     (current, forced): (&[Mode; K], &[Option<Mode>; K]),
-) -> Result<[Mode; K], ContactError<L::Scalar, N>>
-where
-    L: Contacts<N, K>,
-{
+) -> Result<[Mode; K], ContactError<S, N>> {
     let laws = model.contact_laws();
     let touch = touching(model, settings, (t, q), current);
     let rate = model.gap_velocities(t, q, qdot);
@@ -249,13 +245,13 @@ where
                 Mode::Stuck
             }
             _ => Mode::Sliding {
-                forward: slip[i] > nalgebra::zero::<L::Scalar>(),
+                forward: slip[i] > nalgebra::zero::<S>(),
             },
         };
     }
     let (_, known) = super::phase::given_friction(&terms, &laws, &given);
     let free = terms
-        .solve(&(terms.forcing + known))
+        .free(&(terms.forcing + known))
         .ok_or(ContactError::DependentContacts {
             t,
             q: *q,
@@ -305,7 +301,7 @@ where
             Entry::Normal {
                 contact: i,
                 mode: Mode::Sliding {
-                    forward: slip[i] > nalgebra::zero::<L::Scalar>(),
+                    forward: slip[i] > nalgebra::zero::<S>(),
                 },
             }
         };
@@ -340,7 +336,7 @@ where
                     },
                 ),
             };
-            if solution.normal[i] > nalgebra::zero::<L::Scalar>() {
+            if solution.normal[i] > nalgebra::zero::<S>() {
                 modes[i] = mode;
             }
         }
@@ -353,18 +349,12 @@ where
 /// whether its rebound was too short to resolve (made plastic). `None`
 /// where nothing approaches.
 #[allow(clippy::type_complexity)]
-pub(crate) fn impact<L, const N: usize, const K: usize>(
-    model: &L,
-    settings: &ContactSettings<L::Scalar>,
-    (t, q, qdot): (L::Scalar, &SVector<L::Scalar, N>, &SVector<L::Scalar, N>),
+pub(crate) fn impact<S: RealField + Copy, const N: usize, const K: usize>(
+    model: &Erased<'_, S, N, K>,
+    settings: &ContactSettings<S>,
+    (t, q, qdot): (S, &SVector<S, N>, &SVector<S, N>),
     current: &[Mode; K],
-) -> Result<
-    Option<(SVector<L::Scalar, N>, [(L::Scalar, L::Scalar); K], bool)>,
-    ContactError<L::Scalar, N>,
->
-where
-    L: Contacts<N, K>,
-{
+) -> Result<Option<(SVector<S, N>, [(S, S); K], bool)>, ContactError<S, N>> {
     let laws = model.contact_laws();
     let touch = touching(model, settings, (t, q), current);
     let rate = model.gap_velocities(t, q, qdot);
@@ -384,7 +374,7 @@ where
     let terms = Terms::new(model, t, q, qdot).ok_or(dependent.clone())?;
     let slip = model.slip_velocities(t, q, qdot);
     // A given normal force is finite: no impulse, no part in an impact.
-    let entries: Vec<Entry<L::Scalar>> = (0..K)
+    let entries: Vec<Entry<S>> = (0..K)
         .filter(|&i| touch[i] && laws[i].normal.is_none())
         .map(|i| {
             if laws[i].has_friction() {
@@ -409,26 +399,26 @@ where
     let plastic = complementarity(&terms, &laws, &entries, &rate, &slip)
         .map_err(|()| no_mode)?
         .ok_or(dependent.clone())?;
-    let one = nalgebra::one::<L::Scalar>();
+    let one = nalgebra::one::<S>();
     let e = (0..K)
-        .filter(|&i| plastic.normal[i] > nalgebra::zero::<L::Scalar>())
+        .filter(|&i| plastic.normal[i] > nalgebra::zero::<S>())
         .map(|i| laws[i].restitution)
         .fold(one, |a, b| a.min(b));
-    let after = |e: L::Scalar| qdot + plastic.change * (one + e);
+    let after = |e: S| qdot + plastic.change * (one + e);
     let mut e = e;
     let mut velocity = after(e);
     let mut settled = false;
-    if e > nalgebra::zero::<L::Scalar>() {
+    if e > nalgebra::zero::<S>() {
         // A rebound too short to resolve: its flight 2 ġ⁺ / |g̈|, with the
         // contacts open, below the shortest flight.
         let rebound = model.gap_velocities(t, q, &velocity);
         let (m, f) = model.mass_matrix_and_forcing(t, q, &velocity);
         let terms_after = Terms::with(model, (t, q, &velocity), &m, f).ok_or(dependent.clone())?;
-        let free = terms_after.solve(&terms_after.forcing).ok_or(dependent)?;
+        let free = terms_after.free(&terms_after.forcing).ok_or(dependent)?;
         let fall = terms_after.g * free + terms_after.gamma;
         let two = one + one;
-        let zero = nalgebra::zero::<L::Scalar>();
-        let rounding = nalgebra::convert::<f64, L::Scalar>(64.0 * f64::EPSILON);
+        let zero = nalgebra::zero::<S>();
+        let rounding = nalgebra::convert::<f64, S>(64.0 * f64::EPSILON);
         settled = (0..K).any(|i| {
             let (v, a) = (rebound[i], -fall[i]);
             // The rounding of the gap's value, from its terms' sizes.
@@ -440,7 +430,7 @@ where
                 && (two * v < settings.shortest_flight * a || v * v < two * a * resolution)
         });
         if settled {
-            e = nalgebra::zero::<L::Scalar>();
+            e = nalgebra::zero::<S>();
             velocity = after(e);
         }
     }
@@ -453,18 +443,17 @@ where
     Ok(Some((velocity, impulses, settled)))
 }
 
-/// The state projected onto the touching contacts of `modes`: a few Newton
-/// steps on `g = 0` and one on `ġ = 0` (and `v_t = 0` for stuck ones), each
-/// the least change in the metric of `M`.
-pub(crate) fn project<L, const N: usize, const K: usize>(
-    model: &L,
+/// The state projected onto the touching contacts of `modes` and the
+/// model's own constraints: a few Newton steps on `g = 0` (and `φ = 0`)
+/// and one on `ġ = 0` (and `v_t = 0` for stuck ones, `φ̇ = 0`), each the
+/// least change in the metric of `M` (`M + k BᵀB` where `M` is regular
+/// only on the constraints).
+pub(crate) fn project<S: RealField + Copy, const N: usize, const K: usize>(
+    model: &Erased<'_, S, N, K>,
     modes: &[Mode; K],
-    t: L::Scalar,
-    (mut q, mut qdot): (SVector<L::Scalar, N>, SVector<L::Scalar, N>),
-) -> Option<State<L::Scalar, N>>
-where
-    L: Contacts<N, K>,
-{
+    t: S,
+    (mut q, mut qdot): (SVector<S, N>, SVector<S, N>),
+) -> Option<State<S, N>> {
     // The gaps of the touching contacts (a given normal force has none),
     // and the slip of every stuck one.
     let laws = model.contact_laws();
@@ -472,15 +461,16 @@ where
         .filter(|&i| modes[i].touching() && laws[i].normal.is_none())
         .collect();
     let stuck: Vec<usize> = (0..K).filter(|&i| modes[i] == Mode::Stuck).collect();
-    if touching.is_empty() && stuck.is_empty() {
+    let constrained = model.constrained();
+    if touching.is_empty() && stuck.is_empty() && !constrained {
         return Some((q, qdot));
     }
-    let correct = |rows: &[SVector<L::Scalar, N>],
-                   residual: &DVector<L::Scalar>,
-                   m: &SMatrix<L::Scalar, N, N>|
-     -> Option<SVector<L::Scalar, N>> {
+    let correct = |rows: &[SVector<S, N>],
+                   residual: &DVector<S>,
+                   m: &SMatrix<S, N, N>|
+     -> Option<SVector<S, N>> {
         let factor = crate::linalg::mass::factor_mass_matrix(m).ok()?;
-        let responses: Vec<SVector<L::Scalar, N>> = rows
+        let responses: Vec<SVector<S, N>> = rows
             .iter()
             .map(|r| factor.solve(r).ok())
             .collect::<Option<_>>()?;
@@ -493,19 +483,35 @@ where
         }
         Some(dx)
     };
+    // The metric at `q`, and the model's constraints there.
+    let metric = |q: &SVector<S, N>, qdot: &SVector<S, N>| {
+        let m = model.mass_matrix(t, q);
+        match model.held(t, q, qdot) {
+            None => (m, None),
+            Some(held) => (held.metric(&m).0, Some(held)),
+        }
+    };
     for _ in 0..3 {
-        if touching.is_empty() {
+        if touching.is_empty() && !constrained {
             break;
         }
+        let (m, held) = metric(&q, &qdot);
         let gaps = model.gaps(t, &q);
-        let residual = DVector::from_iterator(touching.len(), touching.iter().map(|&i| gaps[i]));
-        if residual.iter().all(|g| *g == nalgebra::zero::<L::Scalar>()) {
+        let g = model.gap_jacobian(t, &q);
+        let mut rows: Vec<_> = touching.iter().map(|&i| g.row(i).transpose()).collect();
+        let mut residual: Vec<S> = touching.iter().map(|&i| gaps[i]).collect();
+        if let Some(held) = &held {
+            for i in (0..held.values.len()).filter(|&i| !held.velocity_rows[i]) {
+                rows.push(held.row(i));
+                residual.push(held.values[i]);
+            }
+        }
+        if residual.iter().all(|g| *g == nalgebra::zero::<S>()) {
             break;
         }
-        let g = model.gap_jacobian(t, &q);
-        let rows: Vec<_> = touching.iter().map(|&i| g.row(i).transpose()).collect();
-        q += correct(&rows, &residual, &model.mass_matrix(t, &q))?;
+        q += correct(&rows, &DVector::from_vec(residual), &m)?;
     }
+    let (m, held) = metric(&q, &qdot);
     let g = model.gap_jacobian(t, &q);
     let tt = model.slip_jacobian(t, &q);
     let rate = model.gap_velocities(t, &q, &qdot);
@@ -526,8 +532,14 @@ where
             residual.push(slip[i]);
         }
     }
+    if let Some(held) = &held {
+        for i in 0..held.velocities.len() {
+            rows.push(held.row(i));
+            residual.push(held.velocities[i]);
+        }
+    }
     let residual = DVector::from_vec(residual);
-    qdot += correct(&rows, &residual, &model.mass_matrix(t, &q))?;
+    qdot += correct(&rows, &residual, &m)?;
     Some((q, qdot))
 }
 

@@ -6,6 +6,7 @@
 
 use nalgebra::{RealField, SMatrix, SVector};
 
+use super::held::{Held, Read};
 use super::{ContactLaw, Contacts};
 use crate::error::{IntegrationError, NonFiniteValue};
 use crate::model::Lagrangian;
@@ -33,6 +34,9 @@ pub(crate) trait DynContacts<S: RealField + Copy, const N: usize, const K: usize
     fn slip_velocities(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> SVector<S, K>;
     fn slip_bias(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> SVector<S, K>;
     fn contact_laws(&self) -> [ContactLaw<S>; K];
+    /// The model's own constraints at `(t, q, q̇)`; `None` for a model
+    /// without.
+    fn held(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> Option<Held<S>>;
     /// [`blame`](crate::dynamics::blame::blame) on the model itself: its
     /// inputs, which the erased model cannot hand a visitor.
     fn blame(
@@ -125,6 +129,14 @@ where
     fn contact_laws(&self) -> [ContactLaw<L::Scalar>; K] {
         Contacts::contact_laws(self)
     }
+    fn held(
+        &self,
+        t: L::Scalar,
+        q: &SVector<L::Scalar, N>,
+        qdot: &SVector<L::Scalar, N>,
+    ) -> Option<Held<L::Scalar>> {
+        self.visit_constraints(Read { t, q, qdot })
+    }
     fn blame(
         &self,
         value: NonFiniteValue,
@@ -143,6 +155,8 @@ where
 pub struct Erased<'a, S: RealField + Copy, const N: usize, const K: usize> {
     model: &'a dyn DynContacts<S, N, K>,
     pub(crate) names: [&'static str; K],
+    /// Whether the model has constraints of its own.
+    constrained: bool,
 }
 
 impl<S: RealField + Copy, const N: usize, const K: usize> Clone for Erased<'_, S, N, K> {
@@ -161,7 +175,23 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Erased<'a, S, N, K
         Self {
             model,
             names: L::CONTACTS,
+            constrained: crate::model::constraints::is_constrained(model),
         }
+    }
+
+    /// The model's own constraints at `(t, q, q̇)`, held throughout the
+    /// run; `None` for a model without.
+    pub(crate) fn held(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> Option<Held<S>> {
+        if self.constrained {
+            self.model.held(t, q, qdot)
+        } else {
+            None
+        }
+    }
+
+    /// Whether the model has constraints of its own.
+    pub(crate) fn constrained(&self) -> bool {
+        self.constrained
     }
 
     /// The contacts' names, in the order of the gaps.
@@ -262,8 +292,9 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Eras
     ) -> Option<SVector<S, N>> {
         None
     }
-    /// None: a model with constraints of its own is refused by
-    /// [`Scene::new`](super::Scene::new).
+    /// None: a contact run holds the model's own constraints itself,
+    /// with the contacts ([`held`](super::held)): the run loop sees the
+    /// phase's accelerations, which keep them.
     fn visit_constraints<V>(&self, _: V) -> Option<V::Output>
     where
         V: crate::model::constraints::Visitor<S, N>,

@@ -146,9 +146,16 @@
 //!
 //! # What the contacts need, and what they do not support yet
 //!
-//! - The model's own constraints: a model with `constraints:` is refused
-//!   ([`ContactError::Unsupported`]); contacts on models in minimal or
-//!   redundant coordinates without other constraints only.
+//! - The model's own constraints (`constraints:`: a body in a unit
+//!   quaternion, a closed loop, rolling) are held with the contacts: every
+//!   solve of the run is the constrained one (its responses to a force
+//!   keep the constraints, and so does every impulse), the start is put
+//!   on them as in any constrained run (projected, or refused, as the
+//!   model's `InitialConditions` say), and each switch projects the state
+//!   back onto them with the touching contacts. Between switches they
+//!   drift by the method's error, as a closed contact's gap does: there
+//!   is no projection after each step (the model's drift setting is not
+//!   read). See `held.rs`.
 //! - Friction is planar: one slip direction per contact. A contact in 3D
 //!   needs a friction cone, a disc of tangential forces; its standard
 //!   treatment is a polygonal cone (a few directions, each a column of the
@@ -176,6 +183,7 @@ use crate::model::Lagrangian;
 
 mod decide;
 mod erased;
+mod held;
 mod lcp;
 mod phase;
 mod run;
@@ -477,7 +485,8 @@ pub enum ContactError<S: RealField + Copy, const N: usize> {
     },
     /// The touching contacts' forces are not determined: their rows of `G`
     /// (and of `T` for stuck ones) are dependent in the metric of `M`, or
-    /// `M` itself is singular.
+    /// `M` itself is singular, or the model's own constraints are
+    /// dependent.
     DependentContacts {
         /// Time.
         t: S,
@@ -514,11 +523,6 @@ pub enum ContactError<S: RealField + Copy, const N: usize> {
         /// What it must be.
         requirement: &'static str,
     },
-    /// What contacts do not support yet.
-    Unsupported {
-        /// What.
-        what: &'static str,
-    },
 }
 
 impl<S: RealField + Copy, const N: usize> fmt::Display for ContactError<S, N> {
@@ -549,7 +553,8 @@ impl<S: RealField + Copy, const N: usize> fmt::Display for ContactError<S, N> {
             Self::DependentContacts { t, q, qdot } => write!(
                 f,
                 "the touching contacts' forces are not determined at t = {t:?} (q = {}, q̇ = {}): \
-                 their directions are dependent, or M is singular",
+                 their directions are dependent, or M is singular, or the model's own constraints \
+                 are dependent",
                 Row(q),
                 Row(qdot)
             ),
@@ -578,7 +583,6 @@ impl<S: RealField + Copy, const N: usize> fmt::Display for ContactError<S, N> {
                 f,
                 "contact setting `{setting}` is {value:?}; it must be {requirement}"
             ),
-            Self::Unsupported { what } => write!(f, "contacts do not support {what} yet"),
         }
     }
 }

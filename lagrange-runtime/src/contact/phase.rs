@@ -5,6 +5,7 @@
 use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::erased::Erased;
+use super::held::HeldSolve;
 use super::{ContactForces, ContactLaw, Contacts, Mode};
 use crate::dynamics::mass_error;
 use crate::error::{IntegrationError, NonFiniteValue};
@@ -31,13 +32,15 @@ pub(crate) struct Terms<S: RealField + Copy, const N: usize, const K: usize> {
     pub(crate) gamma: SVector<S, K>,
     pub(crate) t: SMatrix<S, K, N>,
     pub(crate) gamma_t: SVector<S, K>,
+    /// The model's own constraints, held ([`held`](super::held)).
+    held: Option<HeldSolve<S, N>>,
 }
 
 impl<S: RealField + Copy, const N: usize, const K: usize> Terms<S, N, K> {
     /// `M` factored, `f`, `G`, `γ`, `T`, `γ_t` at `(t, q, q̇)`; `None` where
     /// `M` cannot be factored.
-    pub(crate) fn new<L: Contacts<N, K, Scalar = S>>(
-        model: &L,
+    pub(crate) fn new(
+        model: &Erased<'_, S, N, K>,
         t: S,
         q: &SVector<S, N>,
         qdot: &SVector<S, N>,
@@ -47,13 +50,21 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Terms<S, N, K> {
     }
 
     /// The same, with `M` and `f` already evaluated.
-    pub(crate) fn with<L: Contacts<N, K, Scalar = S>>(
-        model: &L,
+    pub(crate) fn with(
+        model: &Erased<'_, S, N, K>,
         (t, q, qdot): (S, &SVector<S, N>, &SVector<S, N>),
         m: &SMatrix<S, N, N>,
         forcing: SVector<S, N>,
     ) -> Option<Self> {
-        let factor = factor_mass_matrix(m).ok()?;
+        let (factor, held) = match model.held(t, q, qdot) {
+            None => (factor_mass_matrix(m).ok()?, None),
+            Some(held) => {
+                let (metric, k) = held.metric(m);
+                let factor = factor_mass_matrix(&metric).ok()?;
+                let solve = HeldSolve::new(&factor, &held, k)?;
+                (factor, Some(solve))
+            }
+        };
         Some(Self {
             factor,
             forcing,
@@ -61,12 +72,27 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Terms<S, N, K> {
             gamma: model.gap_bias(t, q, qdot),
             t: model.slip_jacobian(t, q),
             gamma_t: model.slip_bias(t, q, qdot),
+            held,
         })
     }
 
-    /// `M⁻¹ b`.
+    /// The accelerations a force `b` gives: `M⁻¹ b`, or with the model's
+    /// own constraints held, `P b` (no bias: a response).
     pub(crate) fn solve(&self, b: &SVector<S, N>) -> Option<SVector<S, N>> {
-        self.factor.solve(b).ok()
+        match &self.held {
+            None => self.factor.solve(b).ok(),
+            Some(held) => held.respond(&self.factor, b),
+        }
+    }
+
+    /// The accelerations under the forcing `f` alone: `M⁻¹ f`, or with
+    /// the model's own constraints held, the constrained accelerations
+    /// (with their bias).
+    pub(crate) fn free(&self, f: &SVector<S, N>) -> Option<SVector<S, N>> {
+        match &self.held {
+            None => self.factor.solve(f).ok(),
+            Some(held) => held.accelerate(&self.factor, f),
+        }
     }
 }
 
@@ -112,17 +138,14 @@ pub(crate) fn given_friction<S: RealField + Copy, const N: usize, const K: usize
 /// The accelerations and contact forces in `modes`: `M q̈ = f + Dᵀ λ` with
 /// `g̈ᵢ = 0` for every touching contact and `v̇_t = 0` for every stuck one.
 /// `None` where the system is singular.
-pub(crate) fn accelerations<L, const N: usize, const K: usize>(
-    model: &L,
+pub(crate) fn accelerations<S: RealField + Copy, const N: usize, const K: usize>(
+    model: &Erased<'_, S, N, K>,
     modes: &[Mode; K],
-    terms: &Terms<L::Scalar, N, K>,
-) -> Option<Solved<L::Scalar, N, K>>
-where
-    L: Contacts<N, K>,
-{
+    terms: &Terms<S, N, K>,
+) -> Option<Solved<S, N, K>> {
     let laws = model.contact_laws();
     let (known_friction, known) = given_friction(terms, &laws, modes);
-    let free = terms.solve(&(terms.forcing + known))?;
+    let free = terms.free(&(terms.forcing + known))?;
     let mut forces = ContactForces::zero();
     for (i, law) in laws.iter().enumerate() {
         if let Some(normal) = law.normal {
@@ -365,6 +388,9 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Phas
     ) -> (SMatrix<S, N, N>, SVector<S, N>) {
         let (m, f) = self.model.mass_matrix_and_forcing(t, q, qdot);
         let f = match self.solve_with(t, q, qdot, &m, f) {
+            // With the model's own constraints held, their forces too:
+            // `M q̈` itself.
+            Some((qddot, _)) if self.model.constrained() => m * qddot,
             Some((_, forces)) => f + forces.generalized,
             None => SVector::repeat(S::zero() / S::zero()),
         };
@@ -395,13 +421,22 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Phas
         if !all_finite(f.as_slice()) {
             return Some(Err(non_finite(NonFiniteValue::Forcing)));
         }
-        let Some((_, forces)) = self.solve_with(t, q, qdot, &m, f) else {
+        let Some((qddot, forces)) = self.solve_with(t, q, qdot, &m, f) else {
             return Some(Err(IntegrationError::UndeterminedContactForces {
                 t,
                 q: *q,
                 qdot: *qdot,
             }));
         };
+        if self.model.constrained() {
+            // The constrained solve's own `q̈` (its multipliers are not
+            // in `forces`); `M` may be singular by itself (a quaternion).
+            return Some(if all_finite(qddot.as_slice()) {
+                Ok(qddot)
+            } else {
+                Err(non_finite(NonFiniteValue::Constraints))
+            });
+        }
         Some(
             solve_mass_matrix(&m, &(f + forces.generalized)).map_err(|error| match error {
                 SolveError::NonFiniteForcing => non_finite(NonFiniteValue::Forcing),

@@ -9,12 +9,13 @@ use super::phase::{Phase, Terms, accelerations};
 use super::{Cause, ContactError, ContactForces, ContactSettings, Contacts, Mode, Switch};
 use crate::driver::invalid;
 use crate::driver::run::integrate_segments;
+use crate::dynamics::start::StartOnManifold;
 use crate::error::{IntegrationError, ResetFailure};
 use crate::events::{Event, Events, RunData};
 use crate::integrators::StepMethod;
 use crate::model::Lagrangian;
 use crate::stepper::Stepper;
-use crate::trajectory::{State, Trajectory};
+use crate::trajectory::{State, Stats, Trajectory};
 
 /// A contact run's result: its trajectory, every switch, and the contact
 /// forces and modes at every sample.
@@ -274,6 +275,19 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
                 invalid,
             )));
         }
+        // A model with constraints of its own starts on them, as every
+        // constrained run does: `(q0, q̇0)` projected, or refused, as the
+        // model's settings say (the constraints' `InitialConditions`).
+        let (q0, qdot0) = match model.visit_constraints(StartOnManifold {
+            t0,
+            q0,
+            qdot0,
+            stats: &mut Stats::default(),
+        }) {
+            None => (q0, qdot0),
+            Some(Ok(start)) => start,
+            Some(Err(error)) => return Err(ContactError::Integration(error)),
+        };
         let gaps = model.gaps(t0, &q0);
         let laws = model.contact_laws();
         for i in 0..K {
@@ -543,8 +557,7 @@ fn nan<S: RealField + Copy>() -> S {
     S::zero() / S::zero()
 }
 
-/// The settings and laws out of range, before any work; a model with
-/// constraints of its own.
+/// The settings and laws out of range, before any work.
 fn validate<L, const N: usize, const K: usize>(
     model: &L,
     settings: &ContactSettings<L::Scalar>,
@@ -552,11 +565,6 @@ fn validate<L, const N: usize, const K: usize>(
 where
     L: Contacts<N, K>,
 {
-    if crate::model::constraints::is_constrained(model) {
-        return Err(ContactError::Unsupported {
-            what: "a model with constraints of its own (`constraints:`)",
-        });
-    }
     let bad = |setting, value, requirement| {
         Err(ContactError::InvalidSetting {
             setting,

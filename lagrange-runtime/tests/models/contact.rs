@@ -129,16 +129,16 @@ impl Contacts<3, 2> for Ladder {
     }
 }
 
-/// A floor two rod lengths below the Cartesian pendulum's pivot: a
-/// contact on a model with a constraint of its own, which contact runs
-/// refuse.
+/// A stop at `x = −l sin β` (β = 0.2) that the Cartesian pendulum's bob
+/// strikes, restitution 0.5: a contact on a model with a constraint of
+/// its own (the rod), held together with it.
 impl Contacts<2, 1> for CartesianPendulum<f64> {
-    const CONTACTS: [&'static str; 1] = ["floor"];
+    const CONTACTS: [&'static str; 1] = ["stop"];
     fn gaps(&self, _t: f64, q: &SVector<f64, 2>) -> SVector<f64, 1> {
-        SVector::<f64, 1>::new(q[1] + 2.0 * self.l)
+        SVector::<f64, 1>::new(q[0] + self.l * STOP.sin())
     }
     fn gap_jacobian(&self, _t: f64, _q: &SVector<f64, 2>) -> SMatrix<f64, 1, 2> {
-        SMatrix::<f64, 1, 2>::new(0.0, 1.0)
+        SMatrix::<f64, 1, 2>::new(1.0, 0.0)
     }
     fn gap_velocities(
         &self,
@@ -146,7 +146,7 @@ impl Contacts<2, 1> for CartesianPendulum<f64> {
         _q: &SVector<f64, 2>,
         qd: &SVector<f64, 2>,
     ) -> SVector<f64, 1> {
-        SVector::<f64, 1>::new(qd[1])
+        SVector::<f64, 1>::new(qd[0])
     }
     fn gap_bias(&self, _t: f64, _q: &SVector<f64, 2>, _qd: &SVector<f64, 2>) -> SVector<f64, 1> {
         SVector::<f64, 1>::zeros()
@@ -155,3 +155,6 @@ impl Contacts<2, 1> for CartesianPendulum<f64> {
         [ContactLaw::frictionless(0.5)]
     }
 }
+
+/// The stop's angle β: the Cartesian pendulum's stop is at `θ = −β`.
+pub const STOP: f64 = 0.2;

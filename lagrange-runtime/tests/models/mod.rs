@@ -18,7 +18,7 @@ mod without;
 pub use breaking::{BlowUp, ExponentialWell, ForcingBreaksDown, InertiaVanishes};
 pub use cart_pole::CartPole;
 pub use constrained::{CartesianPendulum, ParallelAtOne, VanishingGradient};
-pub use contact::{Ladder, OnSphere};
+pub use contact::{Ladder, OnSphere, STOP};
 pub use elastic_pendulum::ElasticPendulum;
 pub use light_joint::LightJoint;
 pub use oscillators::{CoupledOscillator, DrivenOscillator};

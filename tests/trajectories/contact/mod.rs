@@ -7,6 +7,7 @@
 mod closed_forms;
 mod frames;
 mod friction;
+mod held;
 mod methods;
 mod tumbling;
 
