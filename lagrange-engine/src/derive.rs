@@ -107,8 +107,11 @@ pub struct ParameterDerivatives {
 pub struct ContactEquations {
     /// The gaps' terms.
     pub gaps: ConstraintEquations,
-    /// The slip velocities' terms.
+    /// The slip velocities' terms (a slip vector's first components).
     pub slips: ConstraintEquations,
+    /// The second components' of the slip vectors (zero rows for a slip
+    /// along one direction), where some contact's slip is a vector.
+    pub second_slips: Option<ConstraintEquations>,
     /// `[e, μ_s, μ_k, N]` per contact, `N` its given normal force (zero
     /// where it has none).
     pub laws: Vec<[ExprId; 4]>,
@@ -160,6 +163,11 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
         .contacts
         .iter()
         .map(|c| c.slip.unwrap_or(Pool::ZERO))
+        .collect();
+    let second_slips: Vec<ExprId> = model
+        .contacts
+        .iter()
+        .map(|c| c.second_slip.unwrap_or(Pool::ZERO))
         .collect();
     let laws: Vec<[ExprId; 4]> = model
         .contacts
@@ -294,8 +302,24 @@ pub fn euler_lagrange(model: &mut Model) -> Equations {
     let contacts = if gaps.is_empty() {
         None
     } else {
-        match (holonomic(pool, &s, gaps), holonomic(pool, &s, slips)) {
-            (Some(gaps), Some(slips)) => Some(ContactEquations { gaps, slips, laws }),
+        let vectors = model.contacts.iter().any(|c| c.second_slip.is_some());
+        match (
+            holonomic(pool, &s, gaps),
+            holonomic(pool, &s, slips),
+            vectors.then(|| holonomic(pool, &s, second_slips)),
+        ) {
+            (Some(gaps), Some(slips), None) => Some(ContactEquations {
+                gaps,
+                slips,
+                second_slips: None,
+                laws,
+            }),
+            (Some(gaps), Some(slips), Some(Some(second_slips))) => Some(ContactEquations {
+                gaps,
+                slips,
+                second_slips: Some(second_slips),
+                laws,
+            }),
             _ => return Equations::exhausted(),
         }
     };

@@ -293,6 +293,9 @@ pub fn contact_roots(model: &Model, eq: &Equations) -> Vec<ExprId> {
         if contact.slip.is_some() {
             roots.push(ce.slips.velocities[i]);
         }
+        if let (Some(_), Some(second)) = (contact.second_slip, &ce.second_slips) {
+            roots.push(second.velocities[i]);
+        }
     }
     roots
 }
@@ -439,6 +442,7 @@ fn render_with(model: &Model, eq: &Equations, latex: bool) -> String {
                 "φ" => "\\varphi",
                 "γ" => "\\gamma",
                 "v_t" => "v_{t}",
+                "v_t2" => "v_{t2}",
                 "∂f/∂u" => "\\frac{\\partial f}{\\partial u}",
                 "∂u/∂φ" => "\\frac{\\partial u}{\\partial \\phi}",
                 "parent" => "\\mathrm{parent}",
@@ -541,6 +545,10 @@ fn render_with(model: &Model, eq: &Equations, latex: bool) -> String {
             if contact.slip.is_some() {
                 let lhs = entry("v_t", name);
                 line(&mut out, lhs, r.text(ce.slips.velocities[i], 0));
+            }
+            if let (Some(_), Some(second)) = (contact.second_slip, &ce.second_slips) {
+                let lhs = entry("v_t2", name);
+                line(&mut out, lhs, r.text(second.velocities[i], 0));
             }
         }
     }

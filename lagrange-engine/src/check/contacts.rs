@@ -47,9 +47,9 @@ pub fn contacts_are_admissible(model: &mut Model) -> syn::Result<()> {
     let coordinates = model.symbols.coordinates.clone();
     let time = model.symbols.time;
     for k in 0..model.contacts.len() {
-        let (label, gap, slip) = {
+        let (label, gap, slip, second_slip) = {
             let c = &model.contacts[k];
-            (c.label.clone(), c.gap, c.slip)
+            (c.label.clone(), c.gap, c.slip, c.second_slip)
         };
         // Finite constants, as in every section.
         if model.pool.has_non_finite(gap) {
@@ -152,8 +152,28 @@ pub fn contacts_are_admissible(model: &mut Model) -> syn::Result<()> {
             }
             _ => {}
         }
-        // The slip velocity: linear in the velocities, and naming one.
-        if let Some(slip) = slip {
+        // Friction against a given load along one direction only: a brake
+        // or a bearing slips along its joint.
+        if second_slip.is_some() && !has_gap {
+            let (_, e, _) = law_entry(model, k, "slip").expect("written");
+            return Err(e.range().error(format!(
+                "contact `{label}` has a given normal force and a slip vector: friction against a \
+                 given load acts along one slip velocity (a joint's), write `slip:` as a number"
+            )));
+        }
+        // A slip vector's second component: finite constants.
+        if let Some(second) = second_slip {
+            if model.pool.has_non_finite(second) {
+                let (_, e, _) = law_entry(model, k, "slip").expect("written");
+                let range = model.locate(&e, &|pool: &mut Pool, id| pool.has_non_finite(id));
+                return Err(range.error(
+                    "this evaluates to an infinite or undefined constant (a division by zero, or a function outside its domain)",
+                ));
+            }
+        }
+        // The slip velocity (each component of a slip vector): linear in
+        // the velocities, and naming one.
+        for slip in [slip, second_slip].into_iter().flatten() {
             let (_, e, _) = law_entry(model, k, "slip").expect("written");
             let names_velocity = velocities.iter().any(|&v| model.pool.depends_on(slip, v));
             let linear = velocities.iter().all(|&v| {

@@ -207,12 +207,14 @@ impl Returns {
                     } else {
                         quote!(::core::option::Option::None)
                     };
+                    let in_plane = ty.slip_planes.get(i).copied().unwrap_or(false);
                     quote! {
                         ::lagrange::contact::ContactLaw {
                             restitution: #e,
                             static_friction: #s,
                             kinetic_friction: #k,
                             normal: #normal,
+                            in_plane: #in_plane,
                         }
                     }
                 });
@@ -598,6 +600,47 @@ pub const METHODS: &[Method] = &[
         args: &[Arg::T, Arg::Q, Arg::Qdot],
         returns: Returns::ContactVector,
         roots: |_, eq| Some(eq.contacts.as_ref()?.slips.bias.clone()),
+        in_trait: InTrait::Contacts,
+    },
+    Method {
+        name: "second_slip_jacobian",
+        doc: &[
+            "`T₂(t, q)` of the slip vectors' second components `v₂ = T₂ q̇ + b₂`",
+            "(zero rows for a slip along one direction).",
+        ],
+        args: &[Arg::T, Arg::Q],
+        returns: Returns::ContactMatrix,
+        roots: |model, eq| {
+            Some(column_major_of(
+                &eq.contacts.as_ref()?.second_slips.as_ref()?.jacobian,
+                model.dof(),
+            ))
+        },
+        in_trait: InTrait::Contacts,
+    },
+    Method {
+        name: "second_slip_velocities",
+        doc: &["The slip vectors' second components `v₂` (zero for a slip along one direction)."],
+        args: &[Arg::T, Arg::Q, Arg::Qdot],
+        returns: Returns::ContactVector,
+        roots: |_, eq| {
+            Some(
+                eq.contacts
+                    .as_ref()?
+                    .second_slips
+                    .as_ref()?
+                    .velocities
+                    .clone(),
+            )
+        },
+        in_trait: InTrait::Contacts,
+    },
+    Method {
+        name: "second_slip_bias",
+        doc: &["The bias `γ₂` of the second components' accelerations, `v̇₂ = T₂ q̈ + γ₂`."],
+        args: &[Arg::T, Arg::Q, Arg::Qdot],
+        returns: Returns::ContactVector,
+        roots: |_, eq| Some(eq.contacts.as_ref()?.second_slips.as_ref()?.bias.clone()),
         in_trait: InTrait::Contacts,
     },
     Method {

@@ -68,6 +68,13 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
                 .map(|c| c.normal.is_some())
                 .collect::<Vec<_>>(),
         )
+        .with_slip_planes(
+            &model
+                .contacts
+                .iter()
+                .map(|c| c.second_slip.is_some())
+                .collect::<Vec<_>>(),
+        )
         .with_parameters(model.parameters.len())
         .with_regressor(eq.regressor.as_ref().map_or(0, |r| r.names.len()))
         .with_articulated(eq.articulated.as_ref().map_or(0, |a| a.axes)),

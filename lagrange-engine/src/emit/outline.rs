@@ -50,6 +50,8 @@ pub struct Types {
     pub kc: Literal,
     /// Per contact, whether its law gives its normal force (`normal:`).
     pub given_normals: Vec<bool>,
+    /// Whether each contact's slip is a vector in the surface's plane.
+    pub slip_planes: Vec<bool>,
     /// `SVector<S, K>`, `K` the number of contacts.
     pub contact_vector: TokenStream,
     /// `SMatrix<S, K, N>`.
@@ -112,6 +114,7 @@ impl Types {
             contacts: 0,
             kc: Literal::usize_unsuffixed(0),
             given_normals: Vec::new(),
+            slip_planes: Vec::new(),
             contact_vector: quote!(#na::SVector<S, 0>),
             contact_matrix: quote!(#na::SMatrix<S, 0, #n>),
             new_contact_vector: quote!(#na::SVector::<S, 0>::from_column_slice),
@@ -164,6 +167,12 @@ impl Types {
         self.constraint_parameter_matrix = quote!(#na::SMatrix<S, #c, #p>);
         self.new_constraint_parameter_matrix = quote!(#na::SMatrix::<S, #c, #p>::from_column_slice);
         self.parameters = parameters;
+        self
+    }
+
+    /// Whether each contact's slip is a vector in the surface's plane.
+    pub fn with_slip_planes(mut self, slip_planes: &[bool]) -> Self {
+        self.slip_planes = slip_planes.to_vec();
         self
     }
 

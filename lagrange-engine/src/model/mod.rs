@@ -137,8 +137,13 @@ pub struct Contact {
     pub fields: Vec<ExprId>,
     /// The gap, `lhs − rhs` for `>=`, `rhs − lhs` for `<=`.
     pub gap: ExprId,
-    /// The slip velocity, if written (`slip:`).
+    /// The slip velocity, if written (`slip:`); its first component where
+    /// it is a vector.
     pub slip: Option<ExprId>,
+    /// The second component of a slip vector (`slip: vector(u, v)`): the
+    /// contact point's velocity along a second tangent of the surface,
+    /// friction isotropic in the plane of the two.
+    pub second_slip: Option<ExprId>,
     /// The coefficient of restitution (`restitution:`, zero by default).
     pub restitution: ExprId,
     /// The static friction coefficient (zero without friction).

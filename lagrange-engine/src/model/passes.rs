@@ -369,6 +369,7 @@ fn contact(cx: &mut Lowering, def: &ContactDef, entry: usize) -> syn::Result<Con
     };
     let mut law: HashMap<String, ExprId> = HashMap::new();
     let mut fields = Vec::with_capacity(def.fields.len());
+    let mut second_slip = None;
     for (key, value) in &def.fields {
         let name = key.to_string();
         if !matches!(
@@ -418,6 +419,32 @@ fn contact(cx: &mut Lowering, def: &ContactDef, entry: usize) -> syn::Result<Con
                 ),
             ));
         }
+        if name == "slip" {
+            // A number, or a vector of two components: the slip in the
+            // plane of the surface, with friction isotropic in it.
+            match cx.lower_value(value)? {
+                Value::Scalar(id) => {
+                    fields.push(id);
+                    law.insert(name, id);
+                }
+                Value::Vector(components) if components.len() == 2 => {
+                    fields.push(components[0]);
+                    law.insert(name, components[0]);
+                    second_slip = Some(components[1]);
+                }
+                Value::Vector(components) => {
+                    return Err(value.range().error(format!(
+                        "contact `{}`'s slip is a vector of {} components: a slip is a number (the \
+                         contact point's velocity along one direction of the surface) or a vector of \
+                         two (its velocity along two orthogonal unit tangents, friction isotropic in \
+                         their plane), as in `slip: vector(dot(p[0]), dot(p[2]))`",
+                        def.name,
+                        components.len()
+                    )));
+                }
+            }
+            continue;
+        }
         let lowered = cx.lower(value)?;
         fields.push(lowered);
         law.insert(name, lowered);
@@ -464,6 +491,7 @@ fn contact(cx: &mut Lowering, def: &ContactDef, entry: usize) -> syn::Result<Con
         fields,
         gap,
         slip: law.get("slip").copied(),
+        second_slip,
         restitution: law.get("restitution").copied().unwrap_or(Pool::ZERO),
         static_friction,
         kinetic_friction,

@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::erased::Erased;
 use super::lcp::lemke;
-use super::phase::{Terms, min_norm_solve, normal_direction};
+use super::phase::{Slips, Terms, min_norm_solve, normal_direction};
 use crate::model::Lagrangian;
 use crate::trajectory::State;
 
@@ -18,12 +18,26 @@ use super::{Cause, ContactError, ContactLaw, ContactSettings, Contacts, Mode, Sw
 /// coefficient `mu` (four unknowns: `N`, `β⁺`, `β⁻`, `σ`), or a contact
 /// with a given normal force `normal` sticking or not (the cone with `N`
 /// known: three unknowns, `β⁺`, `β⁻`, `σ`).
+/// Or a normal force with the friction cone of a slip vector, a disc
+/// (`Disc`: `N`, one `β` per direction of [`FACETS`], `σ`).
 #[derive(Clone, Copy)]
 enum Entry<S> {
     Normal { contact: usize, mode: Mode },
     Cone { contact: usize, mu: S },
     Given { contact: usize, mu: S, normal: S },
+    Disc { contact: usize, mu: S },
 }
+
+/// The directions of the polygon that stands for a disc of friction in
+/// the complementarity problems (the regular polygon of 32 sides
+/// inscribed in the circle): the decisions at switches and the impulses
+/// of impacts. A force inside it is inside the disc, so every decided
+/// force is admissible; along a side's middle it reaches `cos(π/32)`
+/// (99.5 %) of the disc's radius. Between switches friction is the
+/// disc's own (`|F| ≤ μ_s N` watched exactly, slip friction `μ_k N`
+/// against the slip's direction), so only a decision within 0.5 % of the
+/// limit, or an impact's friction impulse, sees the polygon.
+pub(crate) const FACETS: usize = 32;
 
 /// The solution of a contact complementarity problem: per contact, its
 /// normal force (or impulse), its friction force, and for a cone whether
@@ -31,6 +45,7 @@ enum Entry<S> {
 struct Solution<S: RealField + Copy, const N: usize, const K: usize> {
     normal: SVector<S, K>,
     friction: SVector<S, K>,
+    second_friction: SVector<S, K>,
     /// For a cone entry: `Some(forward)` where it slips, `None` where it
     /// sticks.
     slips: [Option<bool>; K],
@@ -42,10 +57,10 @@ struct Solution<S: RealField + Copy, const N: usize, const K: usize> {
 /// no contact force) and the tangential ones' `base_t`.
 fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
     terms: &Terms<S, N, K>,
-    laws: &[ContactLaw<S>; K],
+    (laws, slips): (&[ContactLaw<S>; K], &Slips<S, K>),
     entries: &[Entry<S>],
     base_n: &SVector<S, K>,
-    base_t: &SVector<S, K>,
+    (base_t, base_t2): (&SVector<S, K>, &SVector<S, K>),
 ) -> Result<Option<Solution<S, N, K>>, ()> {
     // Columns: (force direction, row vector whose product with the
     // change is this column's row's own term, sign of that product).
@@ -59,6 +74,11 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
     // for a given normal force's at c, c and c+1 (β±) and c+2 (σ).
     let mut cones = Vec::new();
     let mut given = Vec::new();
+    let mut discs = Vec::new();
+    let facet = |j: usize| {
+        let angle = nalgebra::convert::<f64, S>(core::f64::consts::TAU * j as f64 / FACETS as f64);
+        (angle.cos(), angle.sin())
+    };
     // A friction force as β⁺ and β⁻ along the slip row, and the slip rate
     // σ, whose row's known part is `sigma` (μ N where N is given).
     let friction = |columns: &mut Vec<Column<S, N>>, contact: usize, sigma: S| {
@@ -87,6 +107,7 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
                     contact,
                     mode,
                     laws[contact].kinetic_friction,
+                    slips,
                 )),
                 row: Some((terms.g.row(contact).transpose(), S::one())),
                 base: base_n[contact],
@@ -109,6 +130,33 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
                 given.push(columns.len());
                 // σ row: μ N − β⁺ − β⁻, with μ N known.
                 friction(&mut columns, contact, mu * normal);
+            }
+            Entry::Disc { contact, mu } => {
+                let g = terms.g.row(contact).transpose();
+                discs.push((columns.len(), mu));
+                columns.push(Column {
+                    direction: Some(g),
+                    row: Some((g, S::one())),
+                    base: base_n[contact],
+                });
+                let (t1, t2) = (
+                    terms.t.row(contact).transpose(),
+                    terms.t2.row(contact).transpose(),
+                );
+                for j in 0..FACETS {
+                    let (c, s) = facet(j);
+                    let d = t1 * c + t2 * s;
+                    columns.push(Column {
+                        direction: Some(d),
+                        row: Some((d, S::one())),
+                        base: base_t[contact] * c + base_t2[contact] * s,
+                    });
+                }
+                columns.push(Column {
+                    direction: None,
+                    row: None,
+                    base: S::zero(),
+                });
             }
         }
     }
@@ -143,6 +191,15 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
         a[(c + 3, c + 1)] = -S::one();
         a[(c + 3, c + 2)] = -S::one();
     }
+    for &(c, mu) in &discs {
+        // β_j rows: σ + d_j · a_t; σ row: μ N − Σ β_j.
+        let sigma = c + FACETS + 1;
+        for j in 1..=FACETS {
+            a[(c + j, sigma)] = S::one();
+            a[(sigma, c + j)] = -S::one();
+        }
+        a[(sigma, c)] = mu;
+    }
     for &c in &given {
         a[(c, c + 2)] = S::one();
         a[(c + 1, c + 2)] = S::one();
@@ -153,6 +210,7 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
     let mut solution = Solution {
         normal: SVector::zeros(),
         friction: SVector::zeros(),
+        second_friction: SVector::zeros(),
         slips: [None; K],
         change: SVector::zeros(),
     };
@@ -191,6 +249,20 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
                 }
                 c += 3;
             }
+            Entry::Disc { contact, .. } => {
+                solution.normal[contact] = z[c];
+                for j in 0..FACETS {
+                    let (cos, sin) = facet(j);
+                    solution.friction[contact] += z[c + 1 + j] * cos;
+                    solution.second_friction[contact] += z[c + 1 + j] * sin;
+                }
+                if z[c + FACETS + 1] > S::zero() {
+                    // Slipping, against its friction (which way is the
+                    // friction's own, not this flag).
+                    solution.slips[contact] = Some(true);
+                }
+                c += FACETS + 2;
+            }
         }
     }
     Ok(Some(solution))
@@ -215,17 +287,30 @@ pub(crate) fn touching<S: RealField + Copy, const N: usize, const K: usize>(
 
 /// The modes after a decision at `(t, q, q̇)`: every touching contact at
 /// rest along its normal decided together, the `forced` ones (each its
-/// mode, from an event) taken as given.
+/// mode, from an event) taken as given; `slips` says where the friction of
+/// a contact forced to slip in a plane points. With them, for each contact
+/// decided to slip in a plane from rest, the direction its friction
+/// takes (against the slip it sets off in), zero for the others.
+#[allow(clippy::type_complexity)]
 pub(crate) fn modes<S: RealField + Copy, const N: usize, const K: usize>(
     model: &Erased<'_, S, N, K>,
     settings: &ContactSettings<S>,
     (t, q, qdot): (S, &SVector<S, N>, &SVector<S, N>),
-    (current, forced): (&[Mode; K], &[Option<Mode>; K]),
-) -> Result<[Mode; K], ContactError<S, N>> {
+    (current, forced, slips): (&[Mode; K], &[Option<Mode>; K], &Slips<S, K>),
+) -> Result<([Mode; K], [(S, S); K]), ContactError<S, N>> {
     let laws = model.contact_laws();
     let touch = touching(model, settings, (t, q), current);
     let rate = model.gap_velocities(t, q, qdot);
     let slip = model.slip_velocities(t, q, qdot);
+    let slip2 = model.second_slip_velocities(t, q, qdot);
+    // A slip's size: its one component, or a slip vector's length.
+    let speed = |i: usize| {
+        if laws[i].in_plane {
+            (slip[i] * slip[i] + slip2[i] * slip2[i]).sqrt()
+        } else {
+            slip[i].abs()
+        }
+    };
     let terms = Terms::new(model, t, q, qdot).ok_or(ContactError::DependentContacts {
         t,
         q: *q,
@@ -259,6 +344,7 @@ pub(crate) fn modes<S: RealField + Copy, const N: usize, const K: usize>(
         })?;
     let base_n = terms.g * free + terms.gamma;
     let base_t = terms.t * free + terms.gamma_t;
+    let base_t2 = terms.t2 * free + terms.gamma_t2;
     let mut entries = Vec::new();
     for i in 0..K {
         if let Some(normal) = laws[i].normal {
@@ -287,15 +373,26 @@ pub(crate) fn modes<S: RealField + Copy, const N: usize, const K: usize>(
         if !touch[i] || (!held && rate[i].abs() > settings.velocity_tolerance) {
             continue;
         }
+        let at_rest = current[i] == Mode::Stuck || speed(i) <= settings.velocity_tolerance;
         let entry = if !laws[i].has_friction() {
             Entry::Normal {
                 contact: i,
                 mode: Mode::Closed,
             }
-        } else if current[i] == Mode::Stuck || slip[i].abs() <= settings.velocity_tolerance {
+        } else if at_rest && laws[i].in_plane {
+            Entry::Disc {
+                contact: i,
+                mu: laws[i].static_friction,
+            }
+        } else if at_rest {
             Entry::Cone {
                 contact: i,
                 mu: laws[i].static_friction,
+            }
+        } else if laws[i].in_plane {
+            Entry::Normal {
+                contact: i,
+                mode: Mode::Slipping,
             }
         } else {
             Entry::Normal {
@@ -313,10 +410,17 @@ pub(crate) fn modes<S: RealField + Copy, const N: usize, const K: usize>(
         qdot: *qdot,
         at_impact: false,
     };
-    let solution =
-        complementarity(&terms, &laws, &entries, &base_n, &base_t).map_err(|()| no_mode)?;
+    let solution = complementarity(
+        &terms,
+        (&laws, slips),
+        &entries,
+        &base_n,
+        (&base_t, &base_t2),
+    )
+    .map_err(|()| no_mode)?;
     // The contacts with a given normal force touch whatever the solution.
     let mut modes = given;
+    let mut directions = [(S::zero(), S::zero()); K];
     if let Some(solution) = solution {
         for entry in &entries {
             let (i, mode) = match *entry {
@@ -335,14 +439,34 @@ pub(crate) fn modes<S: RealField + Copy, const N: usize, const K: usize>(
                         None => Mode::Stuck,
                     },
                 ),
+                Entry::Disc { contact, .. } => {
+                    if solution.slips[contact].is_some() {
+                        // It sets off against its friction.
+                        let f = (
+                            solution.friction[contact],
+                            solution.second_friction[contact],
+                        );
+                        let length = (f.0 * f.0 + f.1 * f.1).sqrt();
+                        if length > S::zero() {
+                            directions[contact] = (-f.0 / length, -f.1 / length);
+                        }
+                        (contact, Mode::Slipping)
+                    } else {
+                        (contact, Mode::Stuck)
+                    }
+                }
             };
             if solution.normal[i] > nalgebra::zero::<S>() {
                 modes[i] = mode;
             }
         }
     }
-    Ok(modes)
+    Ok((modes, directions))
 }
+
+/// One contact's impulse at an impact: normal, tangential along the
+/// slip's first row, along a slip vector's second.
+pub(crate) type Impulse<S> = (S, S, S);
 
 /// An impact of the touching contacts at `(t, q, q̇⁻)`: the velocities
 /// after it, and per contact the impulses `(normal, tangential)` and
@@ -354,7 +478,7 @@ pub(crate) fn impact<S: RealField + Copy, const N: usize, const K: usize>(
     settings: &ContactSettings<S>,
     (t, q, qdot): (S, &SVector<S, N>, &SVector<S, N>),
     current: &[Mode; K],
-) -> Result<Option<(SVector<S, N>, [(S, S); K], bool)>, ContactError<S, N>> {
+) -> Result<Option<(SVector<S, N>, [Impulse<S>; K], bool)>, ContactError<S, N>> {
     let laws = model.contact_laws();
     let touch = touching(model, settings, (t, q), current);
     let rate = model.gap_velocities(t, q, qdot);
@@ -373,11 +497,17 @@ pub(crate) fn impact<S: RealField + Copy, const N: usize, const K: usize>(
     };
     let terms = Terms::new(model, t, q, qdot).ok_or(dependent.clone())?;
     let slip = model.slip_velocities(t, q, qdot);
+    let slip2 = model.second_slip_velocities(t, q, qdot);
     // A given normal force is finite: no impulse, no part in an impact.
     let entries: Vec<Entry<S>> = (0..K)
         .filter(|&i| touch[i] && laws[i].normal.is_none())
         .map(|i| {
-            if laws[i].has_friction() {
+            if laws[i].has_friction() && laws[i].in_plane {
+                Entry::Disc {
+                    contact: i,
+                    mu: laws[i].kinetic_friction,
+                }
+            } else if laws[i].has_friction() {
                 Entry::Cone {
                     contact: i,
                     mu: laws[i].kinetic_friction,
@@ -396,7 +526,8 @@ pub(crate) fn impact<S: RealField + Copy, const N: usize, const K: usize>(
         qdot: *qdot,
         at_impact: true,
     };
-    let plastic = complementarity(&terms, &laws, &entries, &rate, &slip)
+    let none = Slips::none(nalgebra::zero());
+    let plastic = complementarity(&terms, (&laws, &none), &entries, &rate, (&slip, &slip2))
         .map_err(|()| no_mode)?
         .ok_or(dependent.clone())?;
     let one = nalgebra::one::<S>();
@@ -438,6 +569,7 @@ pub(crate) fn impact<S: RealField + Copy, const N: usize, const K: usize>(
         (
             plastic.normal[i] * (one + e),
             plastic.friction[i] * (one + e),
+            plastic.second_friction[i] * (one + e),
         )
     });
     Ok(Some((velocity, impulses, settled)))
@@ -524,6 +656,10 @@ pub(crate) fn project<S: RealField + Copy, const N: usize, const K: usize>(
         if modes[i] == Mode::Stuck {
             rows.push(tt.row(i).transpose());
             residual.push(slip[i]);
+            if laws[i].in_plane {
+                rows.push(model.second_slip_jacobian(t, &q).row(i).transpose());
+                residual.push(model.second_slip_velocities(t, &q, &qdot)[i]);
+            }
         }
     }
     for &i in &stuck {
@@ -550,13 +686,15 @@ pub(crate) fn record<S: RealField + Copy, const N: usize, const K: usize>(
     switches: &mut Vec<Switch<S, N>>,
     names: &[&'static str; K],
     (t, q, qdot): (S, SVector<S, N>, SVector<S, N>),
-    (from, to): (&[Mode; K], &[Mode; K]),
+    (from, to, directions): (&[Mode; K], &[Mode; K], &[(S, S); K]),
     causes: impl Fn(usize) -> Cause,
-    impulses: Option<&[(S, S); K]>,
+    impulses: Option<&[Impulse<S>; K]>,
     energy_lost: S,
 ) {
     for i in 0..K {
-        let impulse = impulses.map_or((S::zero(), S::zero()), |p| p[i]);
+        let (normal, tangential, second) =
+            impulses.map_or((S::zero(), S::zero(), S::zero()), |p| p[i]);
+        let impulse = (normal, tangential);
         let struck = impulse.0 != S::zero();
         if from[i] != to[i] || struck {
             switches.push(Switch {
@@ -567,6 +705,12 @@ pub(crate) fn record<S: RealField + Copy, const N: usize, const K: usize>(
                 to: to[i],
                 cause: causes(i),
                 impulse,
+                second_impulse: second,
+                slip_direction: if to[i] == Mode::Slipping {
+                    directions[i]
+                } else {
+                    (S::zero(), S::zero())
+                },
                 energy_lost: if struck { energy_lost } else { S::zero() },
                 q,
                 qdot,

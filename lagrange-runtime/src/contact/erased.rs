@@ -33,6 +33,14 @@ pub(crate) trait DynContacts<S: RealField + Copy, const N: usize, const K: usize
     fn slip_jacobian(&self, t: S, q: &SVector<S, N>) -> SMatrix<S, K, N>;
     fn slip_velocities(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> SVector<S, K>;
     fn slip_bias(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> SVector<S, K>;
+    fn second_slip_jacobian(&self, t: S, q: &SVector<S, N>) -> SMatrix<S, K, N>;
+    fn second_slip_velocities(
+        &self,
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) -> SVector<S, K>;
+    fn second_slip_bias(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> SVector<S, K>;
     fn contact_laws(&self) -> [ContactLaw<S>; K];
     /// The model's own constraints at `(t, q, q̇)`; `None` for a model
     /// without.
@@ -125,6 +133,29 @@ where
         qdot: &SVector<L::Scalar, N>,
     ) -> SVector<L::Scalar, K> {
         Contacts::slip_bias(self, t, q, qdot)
+    }
+    fn second_slip_jacobian(
+        &self,
+        t: L::Scalar,
+        q: &SVector<L::Scalar, N>,
+    ) -> SMatrix<L::Scalar, K, N> {
+        Contacts::second_slip_jacobian(self, t, q)
+    }
+    fn second_slip_velocities(
+        &self,
+        t: L::Scalar,
+        q: &SVector<L::Scalar, N>,
+        qdot: &SVector<L::Scalar, N>,
+    ) -> SVector<L::Scalar, K> {
+        Contacts::second_slip_velocities(self, t, q, qdot)
+    }
+    fn second_slip_bias(
+        &self,
+        t: L::Scalar,
+        q: &SVector<L::Scalar, N>,
+        qdot: &SVector<L::Scalar, N>,
+    ) -> SVector<L::Scalar, K> {
+        Contacts::second_slip_bias(self, t, q, qdot)
     }
     fn contact_laws(&self) -> [ContactLaw<L::Scalar>; K] {
         Contacts::contact_laws(self)
@@ -293,7 +324,7 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Lagrangian<N> for Eras
         None
     }
     /// None: a contact run holds the model's own constraints itself,
-    /// with the contacts ([`held`](super::held)): the run loop sees the
+    /// with the contacts (`contact/held.rs`): the run loop sees the
     /// phase's accelerations, which keep them.
     fn visit_constraints<V>(&self, _: V) -> Option<V::Output>
     where
@@ -343,6 +374,20 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Contacts<N, K> for Era
     }
     fn slip_bias(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> SVector<S, K> {
         self.model.slip_bias(t, q, qdot)
+    }
+    fn second_slip_jacobian(&self, t: S, q: &SVector<S, N>) -> SMatrix<S, K, N> {
+        self.model.second_slip_jacobian(t, q)
+    }
+    fn second_slip_velocities(
+        &self,
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+    ) -> SVector<S, K> {
+        self.model.second_slip_velocities(t, q, qdot)
+    }
+    fn second_slip_bias(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> SVector<S, K> {
+        self.model.second_slip_bias(t, q, qdot)
     }
     fn contact_laws(&self) -> [ContactLaw<S>; K] {
         self.model.contact_laws()

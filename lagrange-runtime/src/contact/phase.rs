@@ -17,11 +17,53 @@ use crate::model::Lagrangian;
 pub(crate) type Solved<S, const N: usize, const K: usize> = (SVector<S, N>, ContactForces<S, N, K>);
 
 /// One unknown force of a mode: the contact, and whether normal or
-/// tangential (a stuck contact's friction).
+/// tangential (a stuck contact's friction, along the slip's first row, or
+/// along a slip vector's second).
 #[derive(Clone, Copy)]
 struct Unknown {
     contact: usize,
     tangential: bool,
+    second: bool,
+}
+
+/// Where the friction of the contacts that slip in a plane
+/// ([`Mode::Slipping`]) points: each one's direction `d` when it started
+/// to slip (a unit vector of its slip plane; the slip's own direction
+/// where it was slipping then, else the direction it sets off in), and
+/// `lead`, the settings' `direction_speed`. The friction acts against
+/// `v + (max(v·d, 0) + lead − v·d) d`: `d` from rest (where `v/|v|` has
+/// none), the slip's own direction where it moves along `d`, turned
+/// towards `d` by at most `lead/|v|` where it has turned from it, and
+/// continuous through a slip that stops along `d` (whose event is `v·d`
+/// falling through zero).
+#[derive(Clone, Copy)]
+pub(crate) struct Slips<S, const K: usize> {
+    pub(crate) directions: [(S, S); K],
+    pub(crate) lead: S,
+}
+
+impl<S: RealField + Copy, const K: usize> Slips<S, K> {
+    /// No contact slipping in a plane.
+    pub(crate) fn none(lead: S) -> Self {
+        Self {
+            directions: [(S::zero(), S::zero()); K],
+            lead,
+        }
+    }
+
+    /// The unit direction of contact `i`'s slip `v` (see the type).
+    pub(crate) fn direction(&self, i: usize, v: (S, S)) -> (S, S) {
+        let d = self.directions[i];
+        let along = v.0 * d.0 + v.1 * d.1;
+        let ahead = along.max(S::zero()) + self.lead - along;
+        let w = (v.0 + ahead * d.0, v.1 + ahead * d.1);
+        let length = (w.0 * w.0 + w.1 * w.1).sqrt();
+        if length > S::zero() {
+            (w.0 / length, w.1 / length)
+        } else {
+            d
+        }
+    }
 }
 
 /// The contact terms at a state, evaluated once.
@@ -32,6 +74,13 @@ pub(crate) struct Terms<S: RealField + Copy, const N: usize, const K: usize> {
     pub(crate) gamma: SVector<S, K>,
     pub(crate) t: SMatrix<S, K, N>,
     pub(crate) gamma_t: SVector<S, K>,
+    /// The slip vectors' second rows, `T₂` and `γ₂`, and both components
+    /// of the slips, `v_t` and `v₂`: zero where no contact's friction acts
+    /// in a plane.
+    pub(crate) t2: SMatrix<S, K, N>,
+    pub(crate) gamma_t2: SVector<S, K>,
+    pub(crate) slip: SVector<S, K>,
+    pub(crate) slip2: SVector<S, K>,
     /// The model's own constraints, held ([`held`](super::held)).
     held: Option<HeldSolve<S, N>>,
 }
@@ -65,6 +114,22 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Terms<S, N, K> {
                 (factor, Some(solve))
             }
         };
+        let planes = model.contact_laws().iter().any(|law| law.in_plane);
+        let (t2, gamma_t2, slip, slip2) = if planes {
+            (
+                model.second_slip_jacobian(t, q),
+                model.second_slip_bias(t, q, qdot),
+                model.slip_velocities(t, q, qdot),
+                model.second_slip_velocities(t, q, qdot),
+            )
+        } else {
+            (
+                SMatrix::zeros(),
+                SVector::zeros(),
+                SVector::zeros(),
+                SVector::zeros(),
+            )
+        };
         Some(Self {
             factor,
             forcing,
@@ -72,6 +137,10 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Terms<S, N, K> {
             gamma: model.gap_bias(t, q, qdot),
             t: model.slip_jacobian(t, q),
             gamma_t: model.slip_bias(t, q, qdot),
+            t2,
+            gamma_t2,
+            slip,
+            slip2,
             held,
         })
     }
@@ -97,18 +166,25 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Terms<S, N, K> {
 }
 
 /// The generalized force direction of a normal force on contact `i` in
-/// mode `mode`: `Gᵢ`, or `Gᵢ ∓ μ_k Tᵢ` while it slides.
+/// mode `mode`: `Gᵢ`, or `Gᵢ ∓ μ_k Tᵢ` while it slides, or
+/// `Gᵢ − μ_k (u₁ Tᵢ + u₂ T₂ᵢ)` while it slips in a plane along `u`.
 pub(crate) fn normal_direction<S: RealField + Copy, const N: usize, const K: usize>(
     terms: &Terms<S, N, K>,
     i: usize,
     mode: Mode,
     kinetic_friction: S,
+    slips: &Slips<S, K>,
 ) -> SVector<S, N> {
     let g = terms.g.row(i).transpose();
     match mode {
         Mode::Sliding { forward } => {
             let sign = if forward { S::one() } else { -S::one() };
             g - terms.t.row(i).transpose() * (sign * kinetic_friction)
+        }
+        Mode::Slipping => {
+            let u = slips.direction(i, (terms.slip[i], terms.slip2[i]));
+            g - (terms.t.row(i).transpose() * u.0 + terms.t2.row(i).transpose() * u.1)
+                * kinetic_friction
         }
         _ => g,
     }
@@ -142,6 +218,7 @@ pub(crate) fn accelerations<S: RealField + Copy, const N: usize, const K: usize>
     model: &Erased<'_, S, N, K>,
     modes: &[Mode; K],
     terms: &Terms<S, N, K>,
+    slips: &Slips<S, K>,
 ) -> Option<Solved<S, N, K>> {
     let laws = model.contact_laws();
     let (known_friction, known) = given_friction(terms, &laws, modes);
@@ -160,13 +237,22 @@ pub(crate) fn accelerations<S: RealField + Copy, const N: usize, const K: usize>
             unknowns.push(Unknown {
                 contact: i,
                 tangential: false,
+                second: false,
             });
         }
         if *mode == Mode::Stuck {
             unknowns.push(Unknown {
                 contact: i,
                 tangential: true,
+                second: false,
             });
+            if laws[i].in_plane {
+                unknowns.push(Unknown {
+                    contact: i,
+                    tangential: true,
+                    second: true,
+                });
+            }
         }
     }
     if unknowns.is_empty() {
@@ -176,7 +262,9 @@ pub(crate) fn accelerations<S: RealField + Copy, const N: usize, const K: usize>
     let mut directions = Vec::with_capacity(m);
     let mut responses = Vec::with_capacity(m);
     for u in &unknowns {
-        let d = if u.tangential {
+        let d = if u.second {
+            terms.t2.row(u.contact).transpose()
+        } else if u.tangential {
             terms.t.row(u.contact).transpose()
         } else {
             normal_direction(
@@ -184,13 +272,16 @@ pub(crate) fn accelerations<S: RealField + Copy, const N: usize, const K: usize>
                 u.contact,
                 modes[u.contact],
                 laws[u.contact].kinetic_friction,
+                slips,
             )
         };
         responses.push(terms.solve(&d)?);
         directions.push(d);
     }
     let row = |u: &Unknown| {
-        if u.tangential {
+        if u.second {
+            (terms.t2.row(u.contact), terms.gamma_t2[u.contact])
+        } else if u.tangential {
             (terms.t.row(u.contact), terms.gamma_t[u.contact])
         } else {
             (terms.g.row(u.contact), terms.gamma[u.contact])
@@ -218,13 +309,24 @@ pub(crate) fn accelerations<S: RealField + Copy, const N: usize, const K: usize>
         force += directions[c] * lambda[c];
     }
     for (c, u) in unknowns.iter().enumerate() {
-        if u.tangential {
+        if u.second {
+            forces.second_friction[u.contact] = lambda[c];
+        } else if u.tangential {
             forces.friction[u.contact] = lambda[c];
         } else {
             forces.normal[u.contact] = lambda[c];
-            if let Mode::Sliding { forward } = modes[u.contact] {
-                let friction = laws[u.contact].kinetic_friction * lambda[c];
-                forces.friction[u.contact] = if forward { -friction } else { friction };
+            let friction = laws[u.contact].kinetic_friction * lambda[c];
+            match modes[u.contact] {
+                Mode::Sliding { forward } => {
+                    forces.friction[u.contact] = if forward { -friction } else { friction };
+                }
+                Mode::Slipping => {
+                    let i = u.contact;
+                    let u = slips.direction(i, (terms.slip[i], terms.slip2[i]));
+                    forces.friction[i] = -friction * u.0;
+                    forces.second_friction[i] = -friction * u.1;
+                }
+                _ => {}
             }
         }
     }
@@ -332,6 +434,7 @@ fn share_friction<S: RealField + Copy>(
 pub struct Phase<'a, S: RealField + Copy, const N: usize, const K: usize> {
     pub(crate) model: Erased<'a, S, N, K>,
     pub(crate) modes: [Mode; K],
+    pub(crate) slips: Slips<S, K>,
 }
 
 impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
@@ -357,7 +460,7 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Phase<'_, S, N, K> {
         f: SVector<S, N>,
     ) -> Option<Solved<S, N, K>> {
         Terms::with(&self.model, (t, q, qdot), m, f)
-            .and_then(|terms| accelerations(&self.model, &self.modes, &terms))
+            .and_then(|terms| accelerations(&self.model, &self.modes, &terms, &self.slips))
     }
 }
 

@@ -3,9 +3,9 @@
 
 use nalgebra::{ComplexField, RealField, SVector};
 
-use super::decide::{impact, modes, project, record, touching};
+use super::decide::{Impulse, impact, modes, project, record, touching};
 use super::erased::Erased;
-use super::phase::{Phase, Terms, accelerations};
+use super::phase::{Phase, Slips, Terms, accelerations};
 use super::{Cause, ContactError, ContactForces, ContactSettings, Contacts, Mode, Switch};
 use crate::driver::invalid;
 use crate::driver::run::integrate_segments;
@@ -230,6 +230,7 @@ pub struct Scene<'a, S: RealField + Copy, const N: usize, const K: usize> {
     /// The state after the start's decision.
     start: (SVector<S, N>, SVector<S, N>),
     start_modes: [Mode; K],
+    start_directions: [(S, S); K],
     start_switches: Vec<Switch<S, N>>,
 }
 
@@ -302,18 +303,18 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
         // modes decided.
         let erased = Erased::new(model);
         let mut start_switches = Vec::new();
-        let (start, start_modes) = decide_switch(
+        let (start, start_modes, start_directions) = decide_switch(
             &erased,
             &settings,
             t0,
             (q0, qdot0),
-            &[Mode::Open; K],
-            &[None; K],
+            (&[Mode::Open; K], &[None; K], &[(S::zero(), S::zero()); K]),
             Cause::Start,
             &mut start_switches,
         )?;
         let first = ContactRun {
             modes: start_modes,
+            directions: start_directions,
             switches: start_switches.clone(),
             streak: (t0, 0),
         };
@@ -325,6 +326,7 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
             t0,
             start,
             start_modes,
+            start_directions,
             start_switches,
         })
     }
@@ -353,10 +355,10 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
         };
         let model = &self.model;
         match run {
-            Ok(trajectory) => Ok(results(model, trajectory, switches, self.start_modes)),
+            Ok(trajectory) => Ok(results(model, trajectory, switches, self.first_phase())),
             Err(failure) => Err(Box::new(ContactFailure {
                 error: contact_error(failure.error),
-                trajectory: results(model, failure.trajectory, switches, self.start_modes),
+                trajectory: results(model, failure.trajectory, switches, self.first_phase()),
             })),
         }
     }
@@ -390,6 +392,10 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
         Phase {
             model: self.model,
             modes: self.start_modes,
+            slips: Slips {
+                directions: self.start_directions,
+                lead: self.settings.direction_speed,
+            },
         }
     }
 
@@ -419,11 +425,24 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
 pub(crate) struct ContactRun<S: RealField + Copy, const N: usize, const K: usize> {
     /// The contacts' modes now.
     modes: [Mode; K],
+    /// Where the friction of each contact slipping in a plane points
+    /// (`Slips::directions`).
+    directions: [(S, S); K],
     /// Every switch so far, the start's first.
     switches: Vec<Switch<S, N>>,
     /// The time of the last switch and how many switches in a row fell on
     /// it: the guard against modes that undo each other.
     streak: (S, usize),
+}
+
+impl<S: RealField + Copy, const N: usize, const K: usize> ContactRun<S, N, K> {
+    /// The slip directions now, with the velocity tolerance `lead`.
+    fn slips(&self, lead: S) -> Slips<S, K> {
+        Slips {
+            directions: self.directions,
+            lead,
+        }
+    }
 }
 
 /// The phase a run goes on with after a switch: the model in the run's
@@ -436,6 +455,10 @@ fn next_phase<'a, S: RealField + Copy, const N: usize, const K: usize>(
     Some(Phase {
         model: phase.model,
         modes: run.modes,
+        slips: Slips {
+            directions: run.directions,
+            lead: phase.slips.lead,
+        },
     })
 }
 
@@ -454,6 +477,7 @@ fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
         .min_separation(nalgebra::zero())
         .keeping(first);
     let one = nalgebra::one::<S>;
+    let lead = settings.direction_speed;
     for i in 0..K {
         let name = model.names[i];
         let switch = |cause: Cause| {
@@ -484,6 +508,7 @@ fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
                     let phase = Phase {
                         model,
                         modes: run.modes,
+                        slips: run.slips(lead),
                     };
                     phase.solve(t, q, qdot).map_or(nan(), |(_, f)| f.normal[i])
                 } else {
@@ -498,9 +523,19 @@ fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
                 let v = model.slip_velocities(t, q, qdot)[i];
                 if forward { v } else { -v }
             }
+            // Along the direction it set off in: through zero where it
+            // stops, and where it has turned by a right angle (a switch
+            // that finds it slipping still, and goes on along its new
+            // direction).
+            Mode::Slipping => {
+                let d = run.directions[i];
+                model.slip_velocities(t, q, qdot)[i] * d.0
+                    + model.second_slip_velocities(t, q, qdot)[i] * d.1
+            }
             _ => one(),
         };
         let mu_s = model.contact_laws()[i].static_friction;
+        let in_plane = model.contact_laws()[i].in_plane;
         let stick_limit = move |run: &ContactRun<S, N, K>,
                                 t,
                                 q: &SVector<S, N>,
@@ -509,10 +544,11 @@ fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
                 let phase = Phase {
                     model,
                     modes: run.modes,
+                    slips: run.slips(lead),
                 };
-                phase
-                    .solve(t, q, qdot)
-                    .map_or(nan(), |(_, f)| mu_s * f.normal[i] - f.friction[i].abs())
+                phase.solve(t, q, qdot).map_or(nan(), |(_, f)| {
+                    mu_s * f.normal[i] - friction_size(&f, i, in_plane)
+                })
             }
             _ => one(),
         };
@@ -553,6 +589,20 @@ const AT_THE_LIMIT: f64 = 1e-9;
 /// chattering: a scene's simultaneous switches are a few per contact.
 const MAX_SWITCHES_AT_ONCE: usize = 64;
 
+/// The size of contact `i`'s friction force: its one component, or the
+/// length of the two of a slip vector's.
+fn friction_size<S: RealField + Copy, const N: usize, const K: usize>(
+    f: &ContactForces<S, N, K>,
+    i: usize,
+    in_plane: bool,
+) -> S {
+    if in_plane {
+        (f.friction[i] * f.friction[i] + f.second_friction[i] * f.second_friction[i]).sqrt()
+    } else {
+        f.friction[i].abs()
+    }
+}
+
 fn nan<S: RealField + Copy>() -> S {
     S::zero() / S::zero()
 }
@@ -577,6 +627,7 @@ where
         ("gap_tolerance", settings.gap_tolerance),
         ("velocity_tolerance", settings.velocity_tolerance),
         ("shortest_flight", settings.shortest_flight),
+        ("direction_speed", settings.direction_speed),
     ] {
         if !(value.is_finite() && value >= zero) {
             return bad(setting, value, "non-negative and finite");
@@ -604,6 +655,14 @@ where
             if !(normal.is_finite() && normal >= zero) {
                 return bad("normal", normal, "non-negative and finite");
             }
+            if law.in_plane {
+                return bad(
+                    "in_plane",
+                    normal,
+                    "false for a contact with a given normal force (its friction acts along one \
+                     slip velocity, a joint's)",
+                );
+            }
         }
     }
     Ok(())
@@ -618,11 +677,10 @@ fn decide_switch<S: RealField + Copy, const N: usize, const K: usize>(
     settings: &ContactSettings<S>,
     t: S,
     (q, mut qdot): (SVector<S, N>, SVector<S, N>),
-    from: &[Mode; K],
-    forced: &[Option<Mode>; K],
+    (from, forced, hints): (&[Mode; K], &[Option<Mode>; K], &[(S, S); K]),
     cause: Cause,
     switches: &mut Vec<Switch<S, N>>,
-) -> Result<(State<S, N>, [Mode; K]), ContactError<S, N>> {
+) -> Result<(State<S, N>, [Mode; K], [(S, S); K]), ContactError<S, N>> {
     let mut impulses = None;
     let mut energy_lost = nalgebra::zero::<S>();
     let mut settled = false;
@@ -643,7 +701,35 @@ fn decide_switch<S: RealField + Copy, const N: usize, const K: usize>(
         Some(p) if p[i].0 != nalgebra::zero::<S>() || laws[i].normal.is_some() => Mode::Open,
         _ => from[i],
     });
-    let to = modes(model, settings, (t, &q, &qdot), (&held, forced))?;
+    // Where the friction of a contact slipping in a plane points: its
+    // slip's direction where it slips, else the direction it is forced to
+    // set off in (`hints`: against its friction at its stick limit).
+    let slip = model.slip_velocities(t, &q, &qdot);
+    let slip2 = model.second_slip_velocities(t, &q, &qdot);
+    let unit = |i: usize| {
+        let length = (slip[i] * slip[i] + slip2[i] * slip2[i]).sqrt();
+        (length > nalgebra::zero::<S>()).then(|| (slip[i] / length, slip2[i] / length))
+    };
+    let mut directions: [(S, S); K] = core::array::from_fn(|i| {
+        if laws[i].in_plane {
+            unit(i).unwrap_or(hints[i])
+        } else {
+            (S::zero(), S::zero())
+        }
+    });
+    let slips = Slips {
+        directions,
+        lead: settings.direction_speed,
+    };
+    let (to, from_rest) = modes(model, settings, (t, &q, &qdot), (&held, forced, &slips))?;
+    // A contact that sets off from rest: the direction the decision gave
+    // it (against its friction there), or the one it was forced in.
+    for i in (0..K).filter(|&i| to[i] == Mode::Slipping) {
+        let speed = (slip[i] * slip[i] + slip2[i] * slip2[i]).sqrt();
+        if speed <= settings.velocity_tolerance && from_rest[i] != (S::zero(), S::zero()) {
+            directions[i] = from_rest[i];
+        }
+    }
     // A rebound below the velocity tolerance closes the contact too: the
     // impact settled it.
     let settled_at =
@@ -655,9 +741,9 @@ fn decide_switch<S: RealField + Copy, const N: usize, const K: usize>(
         switches,
         &model.names,
         (t, state.0, state.1),
-        (from, &to),
+        (from, &to, &directions),
         |i| {
-            let struck = impulses.is_some_and(|p: [(S, S); K]| p[i].0 != nalgebra::zero::<S>());
+            let struck = impulses.is_some_and(|p: [Impulse<S>; K]| p[i].0 != nalgebra::zero::<S>());
             match cause {
                 _ if struck && settled_at(i) => Cause::Settled,
                 _ if struck => Cause::Impact,
@@ -670,7 +756,7 @@ fn decide_switch<S: RealField + Copy, const N: usize, const K: usize>(
         impulses.as_ref(),
         energy_lost,
     );
-    Ok((state, to))
+    Ok((state, to, directions))
 }
 
 /// An event's reset: the switch of contact `i` for `cause` decided, the
@@ -696,6 +782,7 @@ fn switch<S: RealField + Copy, const N: usize, const K: usize>(
         });
     }
     let mut forced = [None; K];
+    let mut hints = [(S::zero(), S::zero()); K];
     match cause {
         Cause::Release => forced[i] = Some(Mode::Open),
         Cause::StickLimit => {
@@ -705,21 +792,36 @@ fn switch<S: RealField + Copy, const N: usize, const K: usize>(
             // (see `phase::share_friction`), and the one that slides first
             // leaves the others more to carry, not less. Decided one by
             // one, the others would be held at a limit they cannot keep.
-            let phase = Phase { model, modes: from };
+            // A contact whose friction acts in a plane sets off against
+            // its friction force there.
+            let phase = Phase {
+                model,
+                modes: from,
+                slips: run.slips(settings.direction_speed),
+            };
             let forces = phase.solve(t, &state.0, &state.1).map(|(_, f)| f);
-            let slides = |j: usize| {
+            let laws = model.contact_laws();
+            let mut slides = |j: usize| {
+                if laws[j].in_plane {
+                    if let Some(f) = &forces {
+                        let size = friction_size(f, j, true);
+                        if size > S::zero() {
+                            hints[j] = (-f.friction[j] / size, -f.second_friction[j] / size);
+                        }
+                    }
+                    return Some(Mode::Slipping);
+                }
                 let forward = forces
                     .as_ref()
                     .is_some_and(|f| f.friction[j] < nalgebra::zero::<S>());
                 Some(Mode::Sliding { forward })
             };
             forced[i] = slides(i);
-            if let Some(f) = &forces {
-                let laws = model.contact_laws();
+            if let Some(f) = &forces.clone() {
                 let tolerance = nalgebra::convert::<f64, S>(AT_THE_LIMIT);
                 for j in (0..K).filter(|&j| j != i && from[j] == Mode::Stuck) {
                     let capacity = laws[j].static_friction * f.normal[j];
-                    if capacity - f.friction[j].abs() <= tolerance * capacity {
+                    if capacity - friction_size(f, j, laws[j].in_plane) <= tolerance * capacity {
                         forced[j] = slides(j);
                     }
                 }
@@ -727,13 +829,12 @@ fn switch<S: RealField + Copy, const N: usize, const K: usize>(
         }
         _ => {}
     }
-    let (state, to) = decide_switch(
+    let (state, to, directions) = decide_switch(
         &model,
         settings,
         t,
         state,
-        &from,
-        &forced,
+        (&from, &forced, &hints),
         cause,
         &mut run.switches,
     )
@@ -745,6 +846,7 @@ fn switch<S: RealField + Copy, const N: usize, const K: usize>(
         error => ResetFailure::refused(error.to_string()),
     })?;
     run.modes = to;
+    run.directions = directions;
     Ok(state)
 }
 
@@ -818,30 +920,35 @@ fn contact_error<S: RealField + Copy, const N: usize>(
     }
 }
 
-/// The modes and forces at every sample, the modes replayed from the
-/// switches.
+/// The modes and forces at every sample, the modes (and the slip
+/// directions) replayed from the switches, from the `start` phase's.
 fn results<S: RealField + Copy, const N: usize, const K: usize>(
     model: &Erased<'_, S, N, K>,
     trajectory: Trajectory<S, N>,
     switches: Vec<Switch<S, N>>,
-    start: [Mode; K],
+    start: Phase<'_, S, N, K>,
 ) -> ContactTrajectory<S, N, K> {
-    let mut current = start;
+    let (mut current, mut slips) = (start.modes, start.slips);
     let mut next = 0;
     let mut modes = Vec::with_capacity(trajectory.len());
     let mut forces = Vec::with_capacity(trajectory.len());
     for sample in trajectory.iter() {
         while next < switches.len() && switches[next].t < sample.t {
-            current[switches[next].contact] = switches[next].to;
+            let switch = &switches[next];
+            current[switch.contact] = switch.to;
+            if switch.to == Mode::Slipping {
+                slips.directions[switch.contact] = switch.slip_direction;
+            }
             next += 1;
         }
         modes.push(current);
         let solved = Terms::new(model, sample.t, &sample.q, &sample.qdot)
-            .and_then(|terms| accelerations(model, &current, &terms));
+            .and_then(|terms| accelerations(model, &current, &terms, &slips));
         forces.push(solved.map_or_else(
             || ContactForces {
                 normal: SVector::repeat(nan()),
                 friction: SVector::repeat(nan()),
+                second_friction: SVector::repeat(nan()),
                 generalized: SVector::repeat(nan()),
             },
             |(_, f)| f,

@@ -9,6 +9,7 @@ mod frames;
 mod friction;
 mod held;
 mod methods;
+mod plane;
 mod tumbling;
 
 use lagrange::contact::{self, ContactResult, ContactSettings, Contacts};

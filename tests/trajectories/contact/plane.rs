@@ -1,0 +1,262 @@
+//! Friction in a plane: a slip vector of two components, isotropic
+//! Coulomb friction (a disc of friction forces), on a puck pushed across
+//! a table and a ball in a unit quaternion thrown with spin.
+
+use lagrange::contact::{Cause, Mode};
+use lagrange::models::quaternion;
+use lagrange::nalgebra::{UnitQuaternion, Vector3};
+
+use super::{run, times};
+
+lagrange::lagrangian! {
+    /// A puck of mass `m` on a rough table (`mu`), its slip the vector of
+    /// its velocity along the table, pushed along the direction at angle
+    /// `a` by `P = p0 + rate t`.
+    struct PushedPuck {
+        coordinates: x, y, z;
+        parameters: m, g, mu, a, p0, rate;
+        kinetic: m/2*(dot(x)^2 + dot(y)^2 + dot(z)^2);
+        potential: m*g*z;
+        forces: x = (p0 + rate*t)*cos(a), y = (p0 + rate*t)*sin(a);
+        contacts: table: z >= 0 { friction: mu, slip: vector(dot(x), dot(y)) };
+    }
+}
+
+/// The puck holds while the push is inside the disc of friction, `P <
+/// μ m g`, whatever its direction, and breaks away where it reaches it,
+/// at `t_b = (μ m g − p0)/rate`: then it slides along the push, `s =
+/// rate (t − t_b)³/(6 m)`. The direction is 5.6° from the x axis, the
+/// middle of a side of the 32-gon that stands for the disc in the
+/// decisions: the breakaway is the disc's (its limit watched exactly
+/// between switches), not the polygon's, which would come at `cos(π/32)
+/// μ m g`, 0.55 s earlier here.
+#[test]
+fn a_puck_pushed_across_a_rough_table_breaks_away_at_the_disc_of_friction_in_any_direction() {
+    let (m, g, mu, rate) = (1.0, 9.81, 0.5, 0.5);
+    let limit = mu * m * g;
+    for a in [core::f64::consts::PI / 32.0, 2.0] {
+        let p0 = 0.9 * limit;
+        let puck = PushedPuck::new(m, g, mu, a, p0, rate);
+        let t_b = (limit - p0) / rate;
+        let end = t_b + 2.0;
+        let run = run(&puck, ([0.0; 3], [0.0; 3]), &times(end, 100)).unwrap();
+        let switches: Vec<_> = run.switches().iter().map(|s| (s.cause, s.to)).collect();
+        assert_eq!(
+            switches,
+            [
+                (Cause::Start, Mode::Stuck),
+                (Cause::StickLimit, Mode::Slipping)
+            ]
+        );
+        let breakaway = &run.switches()[1];
+        let last = run.trajectory().last().unwrap();
+        let along = rate * (end - t_b).powi(3) / (6.0 * m);
+        println!(
+            "a = {a}: breaks away {:.1e} s from the closed form, {:.1e} m from it at the end, in {} \
+             steps",
+            breakaway.t - t_b,
+            (last.q[0] - along * a.cos()).hypot(last.q[1] - along * a.sin()),
+            run.trajectory().stats().steps_accepted
+        );
+        // The margin is linear in t while it holds: located to rounding.
+        assert!(
+            (breakaway.t - t_b).abs() < 1e-9,
+            "a = {a}: broke away at {}, closed form {t_b}",
+            breakaway.t
+        );
+        // It sets off along the push, against its friction there.
+        let (d0, d1) = breakaway.slip_direction;
+        assert!((d0 - a.cos()).abs() < 1e-12 && (d1 - a.sin()).abs() < 1e-12);
+        for ((sample, forces), modes) in run.trajectory().iter().zip(run.forces()).zip(run.modes())
+        {
+            let f = (forces.friction[0], forces.second_friction[0]);
+            let size = (f.0 * f.0 + f.1 * f.1).sqrt();
+            // Forces of 5 N to rounding: 1e-12.
+            assert!((forces.normal[0] - m * g).abs() < 1e-12);
+            assert!(size <= mu * forces.normal[0] + 1e-12);
+            let s = (sample.t - t_b).max(0.0);
+            let along = rate * s.powi(3) / (6.0 * m);
+            if sample.t < t_b - 1e-9 {
+                assert_eq!(modes[0], Mode::Stuck);
+            } else if sample.t > t_b + 1e-9 {
+                assert_eq!(modes[0], Mode::Slipping);
+                // Sliding friction, μ m g against the slip.
+                assert!((size - limit).abs() < 1e-12);
+            }
+            // Dop853 at 1e-12 over 2 s of a cubic, with the breakaway
+            // time's error times the speed (at most 1 m/s): 3.7e-14 m at
+            // the end when this was written.
+            assert!(
+                (sample.q[0] - along * a.cos()).abs() < 1e-9
+                    && (sample.q[1] - along * a.sin()).abs() < 1e-9,
+                "a = {a}: ({:e}, {:e}) off at {}, closed form {along} along the push",
+                sample.q[0] - along * a.cos(),
+                sample.q[1] - along * a.sin(),
+                sample.t
+            );
+        }
+    }
+}
+
+lagrange::lagrangian! {
+    /// A uniform ball of mass `m` and radius `r` (moment `2 m r²/5`) on a
+    /// rough table `z = 0` (`mu`), its orientation the unit quaternion
+    /// `q`: its slip is the velocity of its lowest point along the table,
+    /// `v + ω × (0, 0, −r)`.
+    struct BallOnTable {
+        coordinates: x, y, z, q[4];
+        parameters: m, r, g, mu;
+        let omega = space_rates(q);
+        let low = vector(dot(x), dot(y), dot(z)) + cross(omega, vector(0, 0, -r));
+        kinetic: m/2*(dot(x)^2 + dot(y)^2 + dot(z)^2) + m*r^2/5*inner(omega, omega);
+        potential: m*g*z;
+        constraints: unit: inner(q, q) = 1;
+        contacts: table: z >= r { friction: mu, slip: vector(low[0], low[1]) };
+    }
+}
+
+/// A uniform ball thrown along a table, spinning about a horizontal axis,
+/// released touching it: its lowest point slips at `s₀ = v₀ + ω₀ × (0,
+/// 0, −r)`, friction `μ m g` against it slows the slip at `(7/2) μ g`
+/// along its own direction (which therefore never turns), so it rolls
+/// from `t* = 2 |s₀| / (7 μ g)` on, at `v₀ − μ g t* ŝ₀`: along the throw,
+/// with backspin ω₀ about −y, `(5 v₀ − 2 r ω₀)/7`, coming back when
+/// `2 r ω₀ > 5 v₀`. Thrown askew (the spin's axis not across the throw),
+/// the slip has both components.
+#[test]
+fn a_ball_thrown_with_spin_rolls_from_the_closed_form_time_at_the_closed_form_velocity() {
+    let (m, r, g, mu) = (0.2, 0.1, 9.81, 0.3);
+    let ball = BallOnTable::new(m, r, g, mu);
+    let throws = [
+        // Backspin: it rolls on forwards, then comes back.
+        (Vector3::new(3.0, 0.0, 0.0), Vector3::new(0.0, -20.0, 0.0)),
+        (Vector3::new(3.0, 0.0, 0.0), Vector3::new(0.0, -100.0, 0.0)),
+        // Askew, with some spin about the vertical (which friction at a
+        // point does not touch).
+        (Vector3::new(2.0, 1.0, 0.0), Vector3::new(15.0, -10.0, 4.0)),
+    ];
+    for (v0, w0) in throws {
+        let (q, qdot) = quaternion::state(&UnitQuaternion::identity(), &w0);
+        let start = (
+            [0.0, 0.0, r, q[0], q[1], q[2], q[3]],
+            [v0[0], v0[1], 0.0, qdot[0], qdot[1], qdot[2], qdot[3]],
+        );
+        let s0 = v0 + w0.cross(&Vector3::new(0.0, 0.0, -r));
+        let t_roll = 2.0 * s0.norm() / (7.0 * mu * g);
+        let v_roll = v0 - s0.normalize() * (mu * g * t_roll);
+        let run = run(&ball, start, &times(2.0 * t_roll, 50)).unwrap();
+        let causes: Vec<_> = run.switches().iter().map(|s| (s.cause, s.to)).collect();
+        assert_eq!(
+            causes,
+            [
+                (Cause::Start, Mode::Slipping),
+                (Cause::SlideStopped, Mode::Stuck)
+            ],
+            "{v0:?}, {w0:?}"
+        );
+        let rolls = &run.switches()[1];
+        // Located where the slip, linear in t, passes zero: to rounding,
+        // on the trajectory's error (Dop853 at 1e-12).
+        assert!(
+            (rolls.t - t_roll).abs() < 1e-9,
+            "rolls at {}, closed form {t_roll}",
+            rolls.t
+        );
+        let end = run.trajectory().last().unwrap();
+        let v = Vector3::new(end.qdot[0], end.qdot[1], end.qdot[2]);
+        assert!(
+            (v - v_roll).norm() < 1e-9,
+            "{v:?} against the closed form {v_roll:?}"
+        );
+        // Rolling: its lowest point at rest, its spin the rolling one.
+        let w = quaternion::rotation(&end.q.fixed_rows::<4>(3).into_owned())
+            * quaternion::body_rates(
+                &end.q.fixed_rows::<4>(3).into_owned(),
+                &end.qdot.fixed_rows::<4>(3).into_owned(),
+            );
+        let low = v + w.cross(&Vector3::new(0.0, 0.0, -r));
+        assert!(low.norm() < 1e-9, "the lowest point slips at {low:?}");
+        println!(
+            "v0 = {v0:?}, ω0 = {w0:?}: rolls at {:.12} s ({:.1e} from the closed form), at {:?}",
+            rolls.t,
+            rolls.t - t_roll,
+            v
+        );
+    }
+}
+
+lagrange::lagrangian! {
+    /// `BallOnTable` with restitution `e`: dropped on the table.
+    struct BouncingBall {
+        coordinates: x, y, z, q[4];
+        parameters: m, r, g, mu, e;
+        let omega = space_rates(q);
+        let low = vector(dot(x), dot(y), dot(z)) + cross(omega, vector(0, 0, -r));
+        kinetic: m/2*(dot(x)^2 + dot(y)^2 + dot(z)^2) + m*r^2/5*inner(omega, omega);
+        potential: m*g*z;
+        constraints: unit: inner(q, q) = 1;
+        contacts: table: z >= r { restitution: e, friction: mu, slip: vector(low[0], low[1]) };
+    }
+}
+
+/// A ball striking the table at `u` with its lowest point slipping at
+/// `s`: the plastic impulse stops both where friction can, `|P_t| =
+/// (2/7) m |s| ≤ μ m u` (the ball's lowest point has an effective mass of
+/// `2 m / 7` along the table), and Poisson's law scales it by `1 + e`:
+/// it leaves at `e u`, slipping at `−e s`. Where friction cannot, the
+/// plastic friction impulse is at the limit of the 32-gon that stands for
+/// the disc in impacts, between `cos(π/32) μ m u` and `μ m u`, against
+/// the slip. No impact gains energy.
+#[test]
+fn a_spinning_ball_striking_the_table_rebounds_as_poissons_law_says_and_never_gains_energy() {
+    let (m, r, g, mu, e) = (0.2, 0.1, 9.81, 0.3, 0.6);
+    let ball = BouncingBall::new(m, r, g, mu, e);
+    let u = 2.0;
+    // Slips at 0.7 m/s (sticks: 0.2 < 0.6) and at 4 m/s (slips: 1.14 >
+    // 0.6), each in a direction off the polygon's vertices and sides.
+    for (s, sticks) in [(0.7, true), (4.0, false)] {
+        for angle in [0.3f64, core::f64::consts::PI / 32.0] {
+            let slip = Vector3::new(angle.cos(), angle.sin(), 0.0) * s;
+            // No spin, moving at the slip: its lowest point slips at it.
+            let (q, qdot) = quaternion::state(&UnitQuaternion::identity(), &Vector3::zeros());
+            let start = (
+                [0.0, 0.0, r, q[0], q[1], q[2], q[3]],
+                [slip[0], slip[1], -u, qdot[0], qdot[1], qdot[2], qdot[3]],
+            );
+            let run = run(&ball, start, &[1e-3]).unwrap();
+            let impact = &run.switches()[0];
+            assert_eq!(impact.cause, Cause::Impact);
+            let (p_n, p_t) = (
+                impact.impulse.0,
+                (impact.impulse.1 * impact.impulse.1
+                    + impact.second_impulse * impact.second_impulse)
+                    .sqrt(),
+            );
+            // The impulses of one solve, of size 1: rounding.
+            assert!((p_n - (1.0 + e) * m * u).abs() < 1e-12);
+            let w = quaternion::rotation(&impact.q.fixed_rows::<4>(3).into_owned())
+                * quaternion::body_rates(
+                    &impact.q.fixed_rows::<4>(3).into_owned(),
+                    &impact.qdot.fixed_rows::<4>(3).into_owned(),
+                );
+            let v = Vector3::new(impact.qdot[0], impact.qdot[1], impact.qdot[2]);
+            // The lowest point's velocity along the table.
+            let mut after = v + w.cross(&Vector3::new(0.0, 0.0, -r));
+            after[2] = 0.0;
+            assert!((v[2] - e * u).abs() < 1e-12);
+            if sticks {
+                assert!((p_t - (1.0 + e) * 2.0 / 7.0 * m * s).abs() < 1e-12);
+                assert!((after + slip * e).norm() < 1e-12, "{after:?}");
+            } else {
+                let limit = (1.0 + e) * mu * m * u;
+                let polygon = (core::f64::consts::PI / 32.0).cos();
+                assert!(p_t <= limit * (1.0 + 1e-12) && p_t >= polygon * limit * (1.0 - 1e-12));
+                println!(
+                    "slipping impact at {angle:.3} rad: friction impulse {:.6} of the disc's",
+                    p_t / limit
+                );
+            }
+            assert!(impact.energy_lost >= 0.0);
+        }
+    }
+}
