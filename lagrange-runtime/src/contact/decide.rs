@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::erased::Erased;
 use super::lcp::lemke;
-use super::phase::{Slips, Terms, min_norm_solve, normal_direction};
+use super::phase::{Slips, Terms, least_squares, normal_direction};
 use crate::model::Lagrangian;
 use crate::trajectory::State;
 
@@ -420,6 +420,9 @@ pub(crate) fn modes<S: RealField + Copy, const N: usize, const K: usize>(
     .map_err(|()| no_mode)?;
     // The contacts with a given normal force touch whatever the solution.
     let mut modes = given;
+    // A normal acceleration this small is nil: the solve's rounding of
+    // the largest one.
+    let rest = nalgebra::convert::<f64, S>(1e-9) * base_n.amax();
     let mut directions = [(S::zero(), S::zero()); K];
     if let Some(solution) = solution {
         for entry in &entries {
@@ -456,7 +459,14 @@ pub(crate) fn modes<S: RealField + Copy, const N: usize, const K: usize>(
                     }
                 }
             };
-            if solution.normal[i] > nalgebra::zero::<S>() {
+            // A contact the solution leaves without force but on the
+            // surface (its normal acceleration nil: four corners of a face,
+            // whose loads are not determined, of which the pivoting loads
+            // two) touches still: left open, it would sit at a zero gap
+            // unwatched (its arrival cannot arm), and the body could turn
+            // through it about the loaded ones.
+            let acceleration = (terms.g.row(i) * (free + solution.change))[0] + terms.gamma[i];
+            if solution.normal[i] > nalgebra::zero::<S>() || acceleration <= rest {
                 modes[i] = mode;
             }
         }
@@ -608,7 +618,7 @@ pub(crate) fn project<S: RealField + Copy, const N: usize, const K: usize>(
             .collect::<Option<_>>()?;
         let k = rows.len();
         let a = DMatrix::from_fn(k, k, |i, j| rows[i].dot(&responses[j]));
-        let y = min_norm_solve(a, residual)?;
+        let y = least_squares(a, residual)?;
         let mut dx = SVector::zeros();
         for j in 0..k {
             dx -= responses[j] * y[j];

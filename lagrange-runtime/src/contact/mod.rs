@@ -54,7 +54,13 @@
 //! (friction makes the problem inconsistent: Painlevé's paradox), the run
 //! ends with [`ContactError::NoConsistentMode`], at that time and state.
 //! A contact forced by its own event (a release, a stick limit) takes the
-//! mode the event says, and the others are decided around it.
+//! mode the event says, and the others are decided around it. A touching
+//! contact that the solution leaves without force but on the surface (its
+//! normal acceleration nil, to `1e-9` of the largest) touches still:
+//! where loads are not determined (four corners of a face), the pivoting
+//! loads some of them, and the others, left open at a zero gap, could not
+//! be watched (their arrival cannot arm) while the body turned through
+//! them.
 //!
 //! # Friction against a given normal force: brakes and joints
 //!

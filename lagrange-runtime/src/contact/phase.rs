@@ -334,20 +334,32 @@ pub(crate) fn accelerations<S: RealField + Copy, const N: usize, const K: usize>
     Some((qddot, forces))
 }
 
-/// The minimum-norm solution of `A x = b`, by singular values: touching
-/// contacts whose rows are dependent (two corners of a box flat on the
-/// floor, both stuck) leave their forces undetermined but the
-/// accelerations not, and this takes the smallest forces that give them.
-/// `None` where no `x` satisfies the equations to rounding (a system that
-/// is inconsistent, not merely redundant) or a value is not finite.
-pub(crate) fn min_norm_solve<S: RealField + Copy>(
+/// The minimum-norm least-squares solution of `A x = b`, by singular
+/// values, consistent or not: a projection's correction, where rows that
+/// are dependent (two corners of a cube's edge, both stuck, slip alike
+/// along it) carry residuals that differ by the integration's drift, and
+/// the best correction in the least-squares sense is the one to take.
+/// `None` where a value is not finite.
+pub(crate) fn least_squares<S: RealField + Copy>(
     a: DMatrix<S>,
     b: &DVector<S>,
 ) -> Option<DVector<S>> {
-    least_solve(a, b).map(|(x, _)| x)
+    if !a.iter().chain(b.iter()).all(|x| x.is_finite()) {
+        return None;
+    }
+    let scale = a.iter().fold(S::zero(), |m, x| m.max(x.abs()));
+    let eps = nalgebra::convert::<f64, S>(1e-12) * scale;
+    let x = a.svd(true, true).solve(b, eps).ok()?;
+    crate::linalg::all_finite(x.as_slice()).then_some(x)
 }
 
-/// [`min_norm_solve`], with the rank of `A` it found.
+/// The minimum-norm solution of `A x = b`, by singular values, and the
+/// rank of `A` it found: touching contacts whose rows are dependent (two
+/// corners of a box flat on the floor, both stuck) leave their forces
+/// undetermined but the accelerations not, and this takes the smallest
+/// forces that give them. `None` where no `x` satisfies the equations to
+/// rounding (a system that is inconsistent, not merely redundant) or a
+/// value is not finite.
 fn least_solve<S: RealField + Copy>(a: DMatrix<S>, b: &DVector<S>) -> Option<(DVector<S>, usize)> {
     if !a.iter().chain(b.iter()).all(|x| x.is_finite()) {
         return None;
