@@ -17,9 +17,9 @@ use super::{Cause, ContactError, ContactLaw, ContactSettings, Contacts, Mode, Sw
 /// friction), or a normal force with the planar friction cone of
 /// coefficient `mu` (four unknowns: `N`, `β⁺`, `β⁻`, `σ`), or a contact
 /// with a given normal force `normal` sticking or not (the cone with `N`
-/// known: three unknowns, `β⁺`, `β⁻`, `σ`).
-/// Or a normal force with the friction cone of a slip vector, a disc
-/// (`Disc`: `N`, one `β` per direction of [`FACETS`], `σ`).
+/// known: three unknowns, `β⁺`, `β⁻`, `σ`), or a normal force with the
+/// friction cone of a slip vector, a disc (`N`, one `β` per side of the
+/// polygon of [`FACETS`] sides that stands for it, `σ`).
 #[derive(Clone, Copy)]
 enum Entry<S> {
     Normal { contact: usize, mode: Mode },

@@ -85,12 +85,7 @@ impl<S: RealField + Copy> Held<S> {
             let r = self.row::<N>(i);
             btb += r * r.transpose();
         }
-        let (ms, bs) = (m.amax(), btb.amax());
-        let k = if ms > S::zero() && bs > S::zero() {
-            ms / bs
-        } else {
-            S::one()
-        };
+        let k = crate::linalg::schur::regularization_weight(m, &btb);
         (m + btb * k, k)
     }
 }

@@ -436,7 +436,8 @@ pub(crate) struct ContactRun<S: RealField + Copy, const N: usize, const K: usize
 }
 
 impl<S: RealField + Copy, const N: usize, const K: usize> ContactRun<S, N, K> {
-    /// The slip directions now, with the velocity tolerance `lead`.
+    /// The slip directions now, leaned on below `lead` (the settings'
+    /// `direction_speed`).
     fn slips(&self, lead: S) -> Slips<S, K> {
         Slips {
             directions: self.directions,
@@ -706,9 +707,11 @@ fn decide_switch<S: RealField + Copy, const N: usize, const K: usize>(
     // set off in (`hints`: against its friction at its stick limit).
     let slip = model.slip_velocities(t, &q, &qdot);
     let slip2 = model.second_slip_velocities(t, &q, &qdot);
+    // A slip at rest (within the velocity tolerance) has no direction of
+    // its own: its rounding would give one at random.
     let unit = |i: usize| {
         let length = (slip[i] * slip[i] + slip2[i] * slip2[i]).sqrt();
-        (length > nalgebra::zero::<S>()).then(|| (slip[i] / length, slip2[i] / length))
+        (length > settings.velocity_tolerance).then(|| (slip[i] / length, slip2[i] / length))
     };
     let mut directions: [(S, S); K] = core::array::from_fn(|i| {
         if laws[i].in_plane {

@@ -164,13 +164,22 @@ pub(crate) fn regularized<S: RealField + Copy, const N: usize, const C: usize>(
     g: &SMatrix<S, C, N>,
 ) -> (SMatrix<S, N, N>, S) {
     let gtg = g.transpose() * g;
+    let k = regularization_weight(m, &gtg);
+    (m + gtg * k, k)
+}
+
+/// `k` of `M + k GᵀG`: the ratio of the largest entries of `M` and `GᵀG`,
+/// one where either is zero.
+pub(crate) fn regularization_weight<S: RealField + Copy, const N: usize>(
+    m: &SMatrix<S, N, N>,
+    gtg: &SMatrix<S, N, N>,
+) -> S {
     let (ms, gs) = (m.amax(), gtg.amax());
-    let k = if ms > S::zero() && gs > S::zero() {
+    if ms > S::zero() && gs > S::zero() {
         ms / gs
     } else {
         S::one()
-    };
-    (m + gtg * k, k)
+    }
 }
 
 /// `(q̈, λ)` of the saddle-point system with bias `gamma`.

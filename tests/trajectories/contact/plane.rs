@@ -29,7 +29,7 @@ lagrange::lagrangian! {
 /// middle of a side of the 32-gon that stands for the disc in the
 /// decisions: the breakaway is the disc's (its limit watched exactly
 /// between switches), not the polygon's, which would come at `cos(π/32)
-/// μ m g`, 0.55 s earlier here.
+/// μ m g`, 0.047 s earlier here.
 #[test]
 fn a_puck_pushed_across_a_rough_table_breaks_away_at_the_disc_of_friction_in_any_direction() {
     let (m, g, mu, rate) = (1.0, 9.81, 0.5, 0.5);
