@@ -1,6 +1,7 @@
 //! Friction in a plane: a slip vector of two components, isotropic
 //! Coulomb friction (a disc of friction forces), on a puck pushed across
-//! a table and a ball in a unit quaternion thrown with spin.
+//! a table, a ball in a unit quaternion thrown with spin and striking the
+//! table, and a die thrown onto it that comes to rest.
 
 use lagrange::contact::{Cause, Mode};
 use lagrange::models::quaternion;
