@@ -101,18 +101,18 @@ fn a_puck_pushed_across_a_rough_table_breaks_away_at_the_disc_of_friction_in_any
 
 lagrange::lagrangian! {
     /// A uniform ball of mass `m` and radius `r` (moment `2 m r²/5`) on a
-    /// rough table `z = 0` (`mu`), its orientation the unit quaternion
-    /// `q`: its slip is the velocity of its lowest point along the table,
-    /// `v + ω × (0, 0, −r)`.
+    /// rough table `z = 0` (`mu`, restitution `e`), its orientation the
+    /// unit quaternion `q`: its slip is the velocity of its lowest point
+    /// along the table, `v + ω × (0, 0, −r)`.
     struct BallOnTable {
         coordinates: x, y, z, q[4];
-        parameters: m, r, g, mu;
+        parameters: m, r, g, mu, e;
         let omega = space_rates(q);
         let low = vector(dot(x), dot(y), dot(z)) + cross(omega, vector(0, 0, -r));
         kinetic: m/2*(dot(x)^2 + dot(y)^2 + dot(z)^2) + m*r^2/5*inner(omega, omega);
         potential: m*g*z;
         constraints: unit: inner(q, q) = 1;
-        contacts: table: z >= r { friction: mu, slip: vector(low[0], low[1]) };
+        contacts: table: z >= r { restitution: e, friction: mu, slip: vector(low[0], low[1]) };
     }
 }
 
@@ -127,7 +127,7 @@ lagrange::lagrangian! {
 #[test]
 fn a_ball_thrown_with_spin_rolls_from_the_closed_form_time_at_the_closed_form_velocity() {
     let (m, r, g, mu) = (0.2, 0.1, 9.81, 0.3);
-    let ball = BallOnTable::new(m, r, g, mu);
+    let ball = BallOnTable::new(m, r, g, mu, 0.0);
     let throws = [
         // Backspin: it rolls on forwards, then comes back.
         (Vector3::new(3.0, 0.0, 0.0), Vector3::new(0.0, -20.0, 0.0)),
@@ -186,20 +186,6 @@ fn a_ball_thrown_with_spin_rolls_from_the_closed_form_time_at_the_closed_form_ve
     }
 }
 
-lagrange::lagrangian! {
-    /// `BallOnTable` with restitution `e`: dropped on the table.
-    struct BouncingBall {
-        coordinates: x, y, z, q[4];
-        parameters: m, r, g, mu, e;
-        let omega = space_rates(q);
-        let low = vector(dot(x), dot(y), dot(z)) + cross(omega, vector(0, 0, -r));
-        kinetic: m/2*(dot(x)^2 + dot(y)^2 + dot(z)^2) + m*r^2/5*inner(omega, omega);
-        potential: m*g*z;
-        constraints: unit: inner(q, q) = 1;
-        contacts: table: z >= r { restitution: e, friction: mu, slip: vector(low[0], low[1]) };
-    }
-}
-
 /// A ball striking the table at `u` with its lowest point slipping at
 /// `s`: the plastic impulse stops both where friction can, `|P_t| =
 /// (2/7) m |s| ≤ μ m u` (the ball's lowest point has an effective mass of
@@ -211,7 +197,7 @@ lagrange::lagrangian! {
 #[test]
 fn a_spinning_ball_striking_the_table_rebounds_as_poissons_law_says_and_never_gains_energy() {
     let (m, r, g, mu, e) = (0.2, 0.1, 9.81, 0.3, 0.6);
-    let ball = BouncingBall::new(m, r, g, mu, e);
+    let ball = BallOnTable::new(m, r, g, mu, e);
     let u = 2.0;
     // Slips at 0.7 m/s (sticks: 0.2 < 0.6) and at 4 m/s (slips: 1.14 >
     // 0.6), each in a direction off the polygon's vertices and sides.
