@@ -253,7 +253,7 @@ lagrange::lagrangian! {
     /// about any axis through its centre), its orientation the unit
     /// quaternion `q`, each of its eight corners a contact with the table
     /// `z = 0` (restitution `e`, friction `mu` in the table's plane).
-    struct Die {
+    pub(super) struct Die {
         coordinates: x, y, z, q[4];
         parameters: m, s, g, e, mu;
         let omega = body_rates(q);
