@@ -5,6 +5,7 @@
 use nalgebra::{DMatrix, DVector, RealField, SMatrix, SVector};
 
 use super::erased::Erased;
+use super::held::Held;
 use super::lcp::lemke;
 use super::phase::{Slips, Terms, least_squares, normal_direction};
 use crate::model::Lagrangian;
@@ -625,39 +626,55 @@ pub(crate) fn project<S: RealField + Copy, const N: usize, const K: usize>(
         }
         Some(dx)
     };
-    // The metric at `q`, and the model's constraints there.
-    let metric = |q: &SVector<S, N>, qdot: &SVector<S, N>| {
+    // The metric at `q`: `M`, or `M + k BᵀB` with the model's constraints.
+    let metric = |q: &SVector<S, N>, held: Option<&Held<S>>| {
         let m = model.mass_matrix(t, q);
-        match model.held(t, q, qdot) {
-            None => (m, None),
-            Some(held) => (held.metric(&m).0, Some(held)),
-        }
+        held.map_or(m, |held| held.metric(&m).0)
     };
     for _ in 0..3 {
         if touching.is_empty() && !constrained {
             break;
         }
-        let (m, held) = metric(&q, &qdot);
+        // The residuals first: the terms of a correction only where one
+        // is needed.
+        let held = model.held(t, &q, &qdot, true);
         let gaps = model.gaps(t, &q);
-        let g = model.gap_jacobian(t, &q);
-        let mut rows: Vec<_> = touching.iter().map(|&i| g.row(i).transpose()).collect();
         let mut residual: Vec<S> = touching.iter().map(|&i| gaps[i]).collect();
+        let positions: Vec<usize> = held.as_ref().map_or(Vec::new(), |held| {
+            (0..held.values.len())
+                .filter(|&i| !held.velocity_rows[i])
+                .collect()
+        });
         if let Some(held) = &held {
-            for i in (0..held.values.len()).filter(|&i| !held.velocity_rows[i]) {
-                rows.push(held.row(i));
-                residual.push(held.values[i]);
-            }
+            residual.extend(positions.iter().map(|&i| held.values[i]));
         }
         if residual.iter().all(|g| *g == nalgebra::zero::<S>()) {
             break;
         }
-        q += correct(&rows, &DVector::from_vec(residual), &m)?;
+        let g = model.gap_jacobian(t, &q);
+        let mut rows: Vec<_> = touching.iter().map(|&i| g.row(i).transpose()).collect();
+        if let Some(held) = &held {
+            rows.extend(positions.iter().map(|&i| held.row(i)));
+        }
+        q += correct(
+            &rows,
+            &DVector::from_vec(residual),
+            &metric(&q, held.as_ref()),
+        )?;
     }
-    let (m, held) = metric(&q, &qdot);
+    let held = model.held(t, &q, &qdot, true);
+    let m = metric(&q, held.as_ref());
     let g = model.gap_jacobian(t, &q);
     let tt = model.slip_jacobian(t, &q);
     let rate = model.gap_velocities(t, &q, &qdot);
     let slip = model.slip_velocities(t, &q, &qdot);
+    // A slip vector's second rows, where some contact has one.
+    let second = model.planes().then(|| {
+        (
+            model.second_slip_jacobian(t, &q),
+            model.second_slip_velocities(t, &q, &qdot),
+        )
+    });
     let mut rows = Vec::new();
     let mut residual = Vec::new();
     for &i in &touching {
@@ -666,9 +683,9 @@ pub(crate) fn project<S: RealField + Copy, const N: usize, const K: usize>(
         if modes[i] == Mode::Stuck {
             rows.push(tt.row(i).transpose());
             residual.push(slip[i]);
-            if laws[i].in_plane {
-                rows.push(model.second_slip_jacobian(t, &q).row(i).transpose());
-                residual.push(model.second_slip_velocities(t, &q, &qdot)[i]);
+            if let (true, Some((t2, slip2))) = (laws[i].in_plane, &second) {
+                rows.push(t2.row(i).transpose());
+                residual.push(slip2[i]);
             }
         }
     }

@@ -42,9 +42,15 @@ pub(crate) trait DynContacts<S: RealField + Copy, const N: usize, const K: usize
     ) -> SVector<S, K>;
     fn second_slip_bias(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> SVector<S, K>;
     fn contact_laws(&self) -> [ContactLaw<S>; K];
-    /// The model's own constraints at `(t, q, q̇)`; `None` for a model
-    /// without.
-    fn held(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> Option<Held<S>>;
+    /// The model's own constraints at `(t, q, q̇)`, with their residuals
+    /// where asked; `None` for a model without.
+    fn held(
+        &self,
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+        residuals: bool,
+    ) -> Option<Held<S>>;
     /// [`blame`](crate::dynamics::blame::blame) on the model itself: its
     /// inputs, which the erased model cannot hand a visitor.
     fn blame(
@@ -165,8 +171,14 @@ where
         t: L::Scalar,
         q: &SVector<L::Scalar, N>,
         qdot: &SVector<L::Scalar, N>,
+        residuals: bool,
     ) -> Option<Held<L::Scalar>> {
-        self.visit_constraints(Read { t, q, qdot })
+        self.visit_constraints(Read {
+            t,
+            q,
+            qdot,
+            residuals,
+        })
     }
     fn blame(
         &self,
@@ -188,6 +200,9 @@ pub struct Erased<'a, S: RealField + Copy, const N: usize, const K: usize> {
     pub(crate) names: [&'static str; K],
     /// Whether the model has constraints of its own.
     constrained: bool,
+    /// Whether some contact's friction acts in a plane (its laws are the
+    /// model's parameters', fixed while it is borrowed).
+    planes: bool,
 }
 
 impl<S: RealField + Copy, const N: usize, const K: usize> Clone for Erased<'_, S, N, K> {
@@ -207,14 +222,22 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Erased<'a, S, N, K
             model,
             names: L::CONTACTS,
             constrained: crate::model::constraints::is_constrained(model),
+            planes: Contacts::contact_laws(model).iter().any(|law| law.in_plane),
         }
     }
 
     /// The model's own constraints at `(t, q, q̇)`, held throughout the
-    /// run; `None` for a model without.
-    pub(crate) fn held(&self, t: S, q: &SVector<S, N>, qdot: &SVector<S, N>) -> Option<Held<S>> {
+    /// run, with their residuals `φ` and `φ̇` where `residuals` asks; `None`
+    /// for a model without.
+    pub(crate) fn held(
+        &self,
+        t: S,
+        q: &SVector<S, N>,
+        qdot: &SVector<S, N>,
+        residuals: bool,
+    ) -> Option<Held<S>> {
         if self.constrained {
-            self.model.held(t, q, qdot)
+            self.model.held(t, q, qdot, residuals)
         } else {
             None
         }
@@ -223,6 +246,11 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Erased<'a, S, N, K
     /// Whether the model has constraints of its own.
     pub(crate) fn constrained(&self) -> bool {
         self.constrained
+    }
+
+    /// Whether some contact's friction acts in a plane.
+    pub(crate) fn planes(&self) -> bool {
+        self.planes
     }
 
     /// The contacts' names, in the order of the gaps.

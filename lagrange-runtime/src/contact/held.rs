@@ -25,11 +25,12 @@ use crate::model::settings::ConstraintSettings;
 /// The model's constraints at a state, their number the model's (`C`,
 /// which the erased model does not know).
 pub(crate) struct Held<S: RealField + Copy> {
-    /// `φ(t, q)` (zero on the rows of velocity constraints).
+    /// `φ(t, q)` (zero on the rows of velocity constraints); empty where
+    /// the residuals were not asked for.
     pub(crate) values: DVector<S>,
     /// `B = ∂φ/∂q`, `C × N`.
     pub(crate) jacobian: DMatrix<S>,
-    /// `φ̇ = B q̇ + ∂φ/∂t`.
+    /// `φ̇ = B q̇ + ∂φ/∂t`; empty where the residuals were not asked for.
     pub(crate) velocities: DVector<S>,
     /// `γ_B` with `φ̈ = B q̈ + γ_B`.
     pub(crate) bias: DVector<S>,
@@ -39,11 +40,14 @@ pub(crate) struct Held<S: RealField + Copy> {
     pub(crate) regular_only: bool,
 }
 
-/// The visit that reads [`Held`] off a model at `(t, q, q̇)`.
+/// The visit that reads [`Held`] off a model at `(t, q, q̇)`: `φ` and `φ̇`
+/// only where `residuals` asks (a projection), not in the solves of every
+/// right-hand side.
 pub(crate) struct Read<'a, S: RealField + Copy, const N: usize> {
     pub(crate) t: S,
     pub(crate) q: &'a SVector<S, N>,
     pub(crate) qdot: &'a SVector<S, N>,
+    pub(crate) residuals: bool,
 }
 
 impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Read<'_, S, N> {
@@ -53,13 +57,26 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Read<'_, S, N> {
     where
         H: Holonomic<N, C, Scalar = S> + ?Sized,
     {
-        let Self { t, q, qdot } = self;
+        let Self {
+            t,
+            q,
+            qdot,
+            residuals,
+        } = self;
         let dynamic = |v: SVector<S, C>| DVector::from_column_slice(v.as_slice());
         let jacobian = model.constraint_jacobian(t, q);
+        let (values, velocities) = if residuals {
+            (
+                dynamic(model.constraints(t, q)),
+                dynamic(model.constraint_velocities(t, q, qdot)),
+            )
+        } else {
+            (DVector::zeros(0), DVector::zeros(0))
+        };
         Held {
-            values: dynamic(model.constraints(t, q)),
+            values,
             jacobian: DMatrix::from_fn(C, N, |i, j| jacobian[(i, j)]),
-            velocities: dynamic(model.constraint_velocities(t, q, qdot)),
+            velocities,
             bias: dynamic(model.constraint_bias(t, q, qdot)),
             velocity_rows: model.velocity_constraint_rows().to_vec(),
             regular_only: model.mass_regular_on_constraints_only(),

@@ -105,7 +105,7 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Terms<S, N, K> {
         m: &SMatrix<S, N, N>,
         forcing: SVector<S, N>,
     ) -> Option<Self> {
-        let (factor, held) = match model.held(t, q, qdot) {
+        let (factor, held) = match model.held(t, q, qdot, false) {
             None => (factor_mass_matrix(m).ok()?, None),
             Some(held) => {
                 let (metric, k) = held.metric(m);
@@ -114,8 +114,7 @@ impl<S: RealField + Copy, const N: usize, const K: usize> Terms<S, N, K> {
                 (factor, Some(solve))
             }
         };
-        let planes = model.contact_laws().iter().any(|law| law.in_plane);
-        let (t2, gamma_t2, slip, slip2) = if planes {
+        let (t2, gamma_t2, slip, slip2) = if model.planes() {
             (
                 model.second_slip_jacobian(t, q),
                 model.second_slip_bias(t, q, qdot),
