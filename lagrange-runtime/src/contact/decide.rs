@@ -479,17 +479,63 @@ pub(crate) fn modes<S: RealField + Copy, const N: usize, const K: usize>(
 /// slip's first row, along a slip vector's second.
 pub(crate) type Impulse<S> = (S, S, S);
 
-/// An impact of the touching contacts at `(t, q, q̇⁻)`: the velocities
-/// after it, and per contact the impulses `(normal, tangential)` and
-/// whether its rebound was too short to resolve (made plastic). `None`
-/// where nothing approaches.
-#[allow(clippy::type_complexity)]
+/// A contact whose rebound was too short to resolve, flying it out
+/// unwatched by its gap: it settles where the rebounds cut off would have
+/// accumulated, `2 ġ⁺ / (|g̈| (1 − e))` after the impact (their flights
+/// `2 ġ⁺ eᵏ / |g̈|` summed at a constant acceleration), a time that the
+/// coordinates' origin and scale do not move.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Accumulation<S> {
+    /// Where its rebounds accumulate: it settles there.
+    pub(crate) at: S,
+    /// How deep its flight takes it by then, past its landing.
+    depth: S,
+}
+
+impl<S: RealField + Copy> Accumulation<S> {
+    /// Rebounding at `rate` (`ġ⁺`) from an impact at `t` of restitution
+    /// `e`, falling back at `fall` (`|g̈|`).
+    fn new(t: S, rate: S, fall: S, e: S) -> Self {
+        let one = S::one();
+        let two = one + one;
+        let flight = two * rate / (fall * (one - e));
+        Self {
+            at: t + flight,
+            depth: (fall * flight * flight / two - rate * flight).max(S::zero()),
+        }
+    }
+
+    /// The contact's arrival watched while it flies out: its gap and rate
+    /// (`g + max(ġ, 0)`, as an open contact's) plus the depth its flight
+    /// reaches and `tolerance`, so that it passes zero only where the
+    /// contact goes in deeper than that (a method's error on the flight,
+    /// or a force that drives it in), and no penetration goes unseen.
+    pub(crate) fn ahead(&self, gap: S, rate: S, tolerance: S) -> S {
+        gap + rate.max(S::zero()) + self.depth + tolerance
+    }
+}
+
+/// What an impact leaves: the velocities after it, per contact the
+/// impulses `(normal, tangential, second tangential)`, whether it was made
+/// plastic as a rebound too short to resolve (settled), and the contacts
+/// whose short rebounds fly out to their accumulation instead.
+pub(crate) type Impact<S, const N: usize, const K: usize> = (
+    SVector<S, N>,
+    [Impulse<S>; K],
+    bool,
+    [Option<Accumulation<S>>; K],
+);
+
+/// An impact of the touching contacts at `(t, q, q̇⁻)` (see [`Impact`]);
+/// made plastic where `settle` (its contact's rebounds accumulated).
+/// `None` where nothing approaches.
 pub(crate) fn impact<S: RealField + Copy, const N: usize, const K: usize>(
     model: &Erased<'_, S, N, K>,
     settings: &ContactSettings<S>,
     (t, q, qdot): (S, &SVector<S, N>, &SVector<S, N>),
     current: &[Mode; K],
-) -> Result<Option<(SVector<S, N>, [Impulse<S>; K], bool)>, ContactError<S, N>> {
+    settle: bool,
+) -> Result<Option<Impact<S, N, K>>, ContactError<S, N>> {
     let laws = model.contact_laws();
     let touch = touching(model, settings, (t, q), current);
     let rate = model.gap_velocities(t, q, qdot);
@@ -547,9 +593,10 @@ pub(crate) fn impact<S: RealField + Copy, const N: usize, const K: usize>(
         .map(|i| laws[i].restitution)
         .fold(one, |a, b| a.min(b));
     let after = |e: S| qdot + plastic.change * (one + e);
-    let mut e = e;
+    let mut e = if settle { nalgebra::zero() } else { e };
     let mut velocity = after(e);
-    let mut settled = false;
+    let mut settled = settle;
+    let mut accumulating = [None; K];
     if e > nalgebra::zero::<S>() {
         // A rebound too short to resolve: its flight 2 ġ⁺ / |g̈|, with the
         // contacts open, below the shortest flight.
@@ -561,17 +608,24 @@ pub(crate) fn impact<S: RealField + Copy, const N: usize, const K: usize>(
         let two = one + one;
         let zero = nalgebra::zero::<S>();
         let rounding = nalgebra::convert::<f64, S>(64.0 * f64::EPSILON);
-        settled = (0..K).any(|i| {
+        for i in 0..K {
             let (v, a) = (rebound[i], -fall[i]);
             // The rounding of the gap's value, from its terms' sizes.
             let resolution =
                 rounding * (0..N).fold(zero, |sum, j| sum + (terms_after.g[(i, j)] * q[j]).abs());
-            plastic.normal[i] > zero
+            let short = plastic.normal[i] > zero
                 && v > zero
                 && a > zero
-                && (two * v < settings.shortest_flight * a || v * v < two * a * resolution)
-        });
+                && (two * v < settings.shortest_flight * a || v * v < two * a * resolution);
+            if short {
+                accumulating[i] = Some(Accumulation::new(t, v, a, e));
+            }
+        }
+        // Elastic rebounds never accumulate: a short one is made plastic
+        // where it stands.
+        settled = e >= one && accumulating.iter().any(Option::is_some);
         if settled {
+            accumulating = [None; K];
             e = nalgebra::zero::<S>();
             velocity = after(e);
         }
@@ -583,7 +637,7 @@ pub(crate) fn impact<S: RealField + Copy, const N: usize, const K: usize>(
             plastic.second_friction[i] * (one + e),
         )
     });
-    Ok(Some((velocity, impulses, settled)))
+    Ok(Some((velocity, impulses, settled, accumulating)))
 }
 
 /// The state projected onto the touching contacts of `modes` and the

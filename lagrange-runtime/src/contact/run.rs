@@ -3,7 +3,7 @@
 
 use nalgebra::{ComplexField, RealField, SVector};
 
-use super::decide::{Impulse, impact, modes, project, record, touching};
+use super::decide::{Accumulation, Impulse, impact, modes, project, record, touching};
 use super::erased::Erased;
 use super::phase::{Phase, Slips, Terms, accelerations};
 use super::{Cause, ContactError, ContactForces, ContactSettings, Contacts, Mode, Switch};
@@ -303,20 +303,22 @@ impl<'a, S: RealField + Copy, const N: usize, const K: usize> Scene<'a, S, N, K>
         // modes decided.
         let erased = Erased::new(model);
         let mut start_switches = Vec::new();
+        let mut accumulating = [None; K];
         let (start, start_modes, start_directions) = decide_switch(
             &erased,
             &settings,
             t0,
             (q0, qdot0),
             (&[Mode::Open; K], &[None; K], &[(S::zero(), S::zero()); K]),
-            Cause::Start,
-            &mut start_switches,
+            (Cause::Start, false),
+            (&mut start_switches, &mut accumulating),
         )?;
         let first = ContactRun {
             modes: start_modes,
             directions: start_directions,
             switches: start_switches.clone(),
             streak: (t0, 0),
+            accumulating,
         };
         let events = events(erased, settings, first);
         Ok(Self {
@@ -433,6 +435,9 @@ pub(crate) struct ContactRun<S: RealField + Copy, const N: usize, const K: usize
     /// The time of the last switch and how many switches in a row fell on
     /// it: the guard against modes that undo each other.
     streak: (S, usize),
+    /// The open contacts flying out a rebound too short to resolve, to
+    /// settle where their rebounds accumulate.
+    accumulating: [Option<Accumulation<S>>; K],
 }
 
 impl<S: RealField + Copy, const N: usize, const K: usize> ContactRun<S, N, K> {
@@ -496,8 +501,19 @@ fn events<'a, S: RealField + Copy, const N: usize, const K: usize>(
                             q: &SVector<S, N>,
                             qdot: &SVector<S, N>| match run.modes[i] {
             Mode::Open => {
+                let gap = model.gaps(t, q)[i];
                 let rate = model.gap_velocities(t, q, qdot)[i];
-                model.gaps(t, q)[i] + rate.max(nalgebra::zero())
+                match run.accumulating[i] {
+                    // Its rebounds accumulate: through zero where they do,
+                    // or where it goes in deeper than their flight by the
+                    // gap tolerance.
+                    Some(accumulation) => (accumulation.at - t).min(accumulation.ahead(
+                        gap,
+                        rate,
+                        settings.gap_tolerance,
+                    )),
+                    None => gap + rate.max(nalgebra::zero()),
+                }
             }
             _ => one(),
         };
@@ -679,19 +695,24 @@ fn decide_switch<S: RealField + Copy, const N: usize, const K: usize>(
     t: S,
     (q, mut qdot): (SVector<S, N>, SVector<S, N>),
     (from, forced, hints): (&[Mode; K], &[Option<Mode>; K], &[(S, S); K]),
-    cause: Cause,
-    switches: &mut Vec<Switch<S, N>>,
+    (cause, settle): (Cause, bool),
+    (switches, accumulating): (&mut Vec<Switch<S, N>>, &mut [Option<Accumulation<S>>; K]),
 ) -> Result<(State<S, N>, [Mode; K], [(S, S); K]), ContactError<S, N>> {
     let mut impulses = None;
     let mut energy_lost = nalgebra::zero::<S>();
     let mut settled = false;
+    let mut short = [None; K];
     // An impact wherever a touching contact approaches: at an arrival,
-    // at the start, and after any other switch that leaves one doing so.
-    if let Some((after, impulse, short)) = impact(model, settings, (t, &q, &qdot), from)? {
+    // at the start, and after any other switch that leaves one doing so;
+    // plastic where `settle` (a contact's rebounds accumulated).
+    if let Some((after, impulse, plastic, cut)) =
+        impact(model, settings, (t, &q, &qdot), from, settle)?
+    {
         energy_lost = model.kinetic_energy(t, &q, &qdot) - model.kinetic_energy(t, &q, &after);
         qdot = after;
         impulses = Some(impulse);
-        settled = short;
+        settled = plastic;
+        short = cut;
     }
     // The contacts an impact struck are decided by their rates after it,
     // not held; so are those with a given normal force, whose slip the
@@ -739,6 +760,14 @@ fn decide_switch<S: RealField + Copy, const N: usize, const K: usize>(
         |i: usize| settled || (to[i].touching() && laws[i].restitution > nalgebra::zero::<S>());
     let state =
         project(model, &to, t, (q, qdot)).ok_or(ContactError::DependentContacts { t, q, qdot })?;
+    // A struck contact flies out its short rebound if it leaves; every
+    // other keeps flying its own out while it is open.
+    for i in 0..K {
+        let struck = impulses.is_some_and(|p: [Impulse<S>; K]| p[i].0 != nalgebra::zero::<S>());
+        if struck || to[i] != Mode::Open {
+            accumulating[i] = short[i].filter(|_| to[i] == Mode::Open);
+        }
+    }
     let touch = touching(model, settings, (t, &q), from);
     record(
         switches,
@@ -832,14 +861,19 @@ fn switch<S: RealField + Copy, const N: usize, const K: usize>(
         }
         _ => {}
     }
+    // An arrival of a contact whose rebounds accumulate settles it: where
+    // they do, or earlier where it went in deeper than their flight by the
+    // gap tolerance (a method whose error on the flight is larger; an
+    // impact elsewhere that drives it in is decided at that impact).
+    let settle = cause == Cause::Impact && run.accumulating[i].is_some();
     let (state, to, directions) = decide_switch(
         &model,
         settings,
         t,
         state,
         (&from, &forced, &hints),
-        cause,
-        &mut run.switches,
+        (cause, settle),
+        (&mut run.switches, &mut run.accumulating),
     )
     .map_err(|error| match error {
         ContactError::NoConsistentMode { at_impact, .. } => {
