@@ -242,11 +242,13 @@
 //!   default, Baumgarte, none), consistent initial conditions, the
 //!   multipliers; [`Actuated`] models and the
 //!   [`Controlled`](inputs::Controlled) model a controller drives.
-//! - `driver/` (private): the run loop, one per kind of method (a walker;
-//!   [`integrate`] and the [`Stepper`] both drive it, `run.rs`)
-//!   (`fixed.rs`, `pair.rs` for the embedded pairs), sample recording,
-//!   event location and actions (`events.rs`), input validation, the
-//!   growth guard, step-size control, Newton's noise floor.
+//! - `driver/` (private): the run loops, one per kind of method (a walker;
+//!   [`integrate`] and the [`Stepper`] both drive it, `run.rs`): fixed
+//!   steps (`fixed.rs`) and the embedded pairs (`pair.rs`), Radau5's and
+//!   the variational step's in their methods' folders
+//!   (`integrators/radau5/walk.rs`, `integrators/variational/walk.rs`);
+//!   sample recording, event location and actions (`events.rs`), input
+//!   validation, the growth guard, step-size control, Newton's noise floor.
 //! - [`integrators`]: the [`Integrator`] trait and one file or folder per
 //!   method, each one entry of the registry (`integrators/mod.rs`) that
 //!   generates [`Method`], [`AnyIntegrator`] and the lists: [`ExplicitEuler`],

@@ -1,4 +1,5 @@
 //! The compile errors of `lagrangian!` through rustc: `tests/ui/` holds
 //! one case per mistake and the `.stderr` rustc prints for it, and
-//! `tests/ui.rs` compiles them with trybuild (ignored by `cargo test`;
-//! CI runs it: `cargo test --test ui -- --ignored`). Nothing is exported.
+//! `tests/ui.rs` compiles them with trybuild (this crate is not a default
+//! member, so `cargo test` leaves it out; CI runs it: `cargo test
+//! --workspace --exclude lagrange-studies --test ui`). Nothing is exported.

@@ -146,8 +146,9 @@ macro_rules! registry {
         }
 
         /// Any of the runtime's integrators with its settings: an
-        /// [`Integrator`] itself, so that one loop runs them all, and a
-        /// method a [`Stepper`](crate::stepper::Stepper) steps.
+        /// [`Integrator`] itself, so that code written once runs any of
+        /// them (each through the run loop of its kind), and a method a
+        /// [`Stepper`](crate::stepper::Stepper) steps.
         #[derive(Clone, Copy, Debug, PartialEq)]
         #[allow(missing_docs)]
         #[non_exhaustive]
