@@ -13,11 +13,13 @@
 //! their states). Three roll, under constraints on their velocities:
 //! [`ChaplyginSleigh`], [`RollingDisk`] and [`RollingBall`], the last in
 //! quaternions too. Nine have unilateral contacts or friction
-//! (`contacts:`), run by
+//! (`contacts:`) in a plane, run by
 //! [`contact::integrate`](lagrange_runtime::contact::integrate):
 //! [`BallOnFloor`], [`ParticleOnSphere`], [`Ladder`], [`BobOnString`],
 //! [`SlidingBall`], [`BlockOnIncline`], [`BlockOnBelt`], [`TumblingBox`]
-//! and [`TorsionBearing`] (friction in a joint, against a given load).
+//! and [`TorsionBearing`] (friction in a joint, against a given load);
+//! three touch a table in 3D, with friction in its plane: [`PushedPuck`],
+//! [`BallOnTable`] and [`Die`], the last two in unit quaternions.
 //! One is a branched [`Tree`] of ten links in relative angles, whose
 //! accelerations the runtime solves in `O(N)` without forming `M`.
 
@@ -52,8 +54,8 @@ pub use cartesian_pendulum::CartesianPendulum;
 pub use chain::Chain;
 pub use chaplygin_sleigh::ChaplyginSleigh;
 pub use contact::{
-    BallOnFloor, BlockOnBelt, BlockOnIncline, BobOnString, Ladder, ParticleOnSphere, SlidingBall,
-    StickSlip, Swing, TorsionBearing, TumblingBox,
+    BallOnFloor, BallOnTable, BlockOnBelt, BlockOnIncline, BobOnString, Die, Ladder,
+    ParticleOnSphere, PushedPuck, SlidingBall, StickSlip, Swing, TorsionBearing, TumblingBox,
 };
 pub use damped_double_pendulum::DampedDoublePendulum;
 pub use double_pendulum::DoublePendulum;

@@ -4,24 +4,11 @@
 //! table, and a die thrown onto it that comes to rest.
 
 use lagrange::contact::{Cause, Mode};
-use lagrange::models::quaternion;
+use lagrange::models::{BallOnTable, Die, PushedPuck, quaternion};
 use lagrange::nalgebra::{UnitQuaternion, Vector3};
 
 use super::{run, times};
 
-lagrange::lagrangian! {
-    /// A puck of mass `m` on a rough table (`mu`), its slip the vector of
-    /// its velocity along the table, pushed along the direction at angle
-    /// `a` by `P = p0 + rate t`.
-    struct PushedPuck {
-        coordinates: x, y, z;
-        parameters: m, g, mu, a, p0, rate;
-        kinetic: m/2*(dot(x)^2 + dot(y)^2 + dot(z)^2);
-        potential: m*g*z;
-        forces: x = (p0 + rate*t)*cos(a), y = (p0 + rate*t)*sin(a);
-        contacts: table: z >= 0 { friction: mu, slip: vector(dot(x), dot(y)) };
-    }
-}
 
 /// The puck holds while the push is inside the disc of friction, `P <
 /// μ m g`, whatever its direction, and breaks away where it reaches it,
@@ -99,22 +86,6 @@ fn a_puck_pushed_across_a_rough_table_breaks_away_at_the_disc_of_friction_in_any
     }
 }
 
-lagrange::lagrangian! {
-    /// A uniform ball of mass `m` and radius `r` (moment `2 m r²/5`) on a
-    /// rough table `z = 0` (`mu`, restitution `e`), its orientation the
-    /// unit quaternion `q`: its slip is the velocity of its lowest point
-    /// along the table, `v + ω × (0, 0, −r)`.
-    struct BallOnTable {
-        coordinates: x, y, z, q[4];
-        parameters: m, r, g, mu, e;
-        let omega = space_rates(q);
-        let low = vector(dot(x), dot(y), dot(z)) + cross(omega, vector(0, 0, -r));
-        kinetic: m/2*(dot(x)^2 + dot(y)^2 + dot(z)^2) + m*r^2/5*inner(omega, omega);
-        potential: m*g*z;
-        constraints: unit: inner(q, q) = 1;
-        contacts: table: z >= r { restitution: e, friction: mu, slip: vector(low[0], low[1]) };
-    }
-}
 
 /// A uniform ball thrown along a table, spinning about a horizontal axis,
 /// released touching it: its lowest point slips at `s₀ = v₀ + ω₀ × (0,
@@ -248,38 +219,6 @@ fn a_spinning_ball_striking_the_table_rebounds_as_poissons_law_says_and_never_ga
     }
 }
 
-lagrange::lagrangian! {
-    /// A die: a uniform cube of mass `m` and side `s` (moment `m s²/6`
-    /// about any axis through its centre), its orientation the unit
-    /// quaternion `q`, each of its eight corners a contact with the table
-    /// `z = 0` (restitution `e`, friction `mu` in the table's plane).
-    pub(super) struct Die {
-        coordinates: x, y, z, q[4];
-        parameters: m, s, g, e, mu;
-        let omega = body_rates(q);
-        let centre = vector(x, y, z);
-        let c0 = centre + rotate(q, vector(s/2, s/2, s/2));
-        let c1 = centre + rotate(q, vector(-s/2, s/2, s/2));
-        let c2 = centre + rotate(q, vector(-s/2, -s/2, s/2));
-        let c3 = centre + rotate(q, vector(s/2, -s/2, s/2));
-        let c4 = centre + rotate(q, vector(s/2, s/2, -s/2));
-        let c5 = centre + rotate(q, vector(-s/2, s/2, -s/2));
-        let c6 = centre + rotate(q, vector(-s/2, -s/2, -s/2));
-        let c7 = centre + rotate(q, vector(s/2, -s/2, -s/2));
-        kinetic: m/2*(dot(x)^2 + dot(y)^2 + dot(z)^2) + m*s^2/12*inner(omega, omega);
-        potential: m*g*z;
-        constraints: unit: inner(q, q) = 1;
-        contacts:
-            k0: c0[2] >= 0 { restitution: e, friction: mu, slip: vector(dot(c0[0]), dot(c0[1])) },
-            k1: c1[2] >= 0 { restitution: e, friction: mu, slip: vector(dot(c1[0]), dot(c1[1])) },
-            k2: c2[2] >= 0 { restitution: e, friction: mu, slip: vector(dot(c2[0]), dot(c2[1])) },
-            k3: c3[2] >= 0 { restitution: e, friction: mu, slip: vector(dot(c3[0]), dot(c3[1])) },
-            k4: c4[2] >= 0 { restitution: e, friction: mu, slip: vector(dot(c4[0]), dot(c4[1])) },
-            k5: c5[2] >= 0 { restitution: e, friction: mu, slip: vector(dot(c5[0]), dot(c5[1])) },
-            k6: c6[2] >= 0 { restitution: e, friction: mu, slip: vector(dot(c6[0]), dot(c6[1])) },
-            k7: c7[2] >= 0 { restitution: e, friction: mu, slip: vector(dot(c7[0]), dot(c7[1])) };
-    }
-}
 
 /// A die thrown spinning onto the table bounces, tumbles and comes to
 /// rest: no corner below the table beyond the location tolerance, no
@@ -312,30 +251,6 @@ fn a_die_thrown_spinning_onto_the_table_comes_to_rest_without_creeping() {
     let e0 = die.energy(0.0, &start.0.into(), &start.1.into());
     let mut previous = e0;
     let mut deepest = 0.0f64;
-    for s in run.switches().iter().filter(|s| s.t > 1.4 && s.t < 1.6) {
-        println!(
-            "switch {:.9} {} {:?}->{:?} {:?} T={:e} V={:e} z={:e} |q|={}",
-            s.t,
-            s.contact,
-            s.from,
-            s.to,
-            s.cause,
-            die.kinetic_energy(s.t, &s.q, &s.qdot),
-            die.potential_energy(s.t, &s.q),
-            s.q[2],
-            s.q.fixed_rows::<4>(3).norm()
-        );
-    }
-    for s in run.trajectory().iter().filter(|s| s.t > 1.5 && s.t < 1.55) {
-        println!(
-            "sample {:.3} T={:e} V={:e} z={:e} |q|={}",
-            s.t,
-            die.kinetic_energy(s.t, &s.q, &s.qdot),
-            die.potential_energy(s.t, &s.q),
-            s.q[2],
-            s.q.fixed_rows::<4>(3).norm()
-        );
-    }
     for sample in run.trajectory().iter() {
         deepest = deepest.min(die.gaps(sample.t, &sample.q).min());
         // Dop853's 1e-12 of the energy (0.011 J at the start).

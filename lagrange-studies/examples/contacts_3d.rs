@@ -1,0 +1,295 @@
+//! Contact in 3D: bodies touching a table with isotropic Coulomb friction
+//! in its plane (`slip: vector(..)`), each scene of `lagrange::models`
+//! against its closed form, printed as tables; the die beside MuJoCo where
+//! the Python peer is installed.
+//!
+//! `cargo run --release -p lagrange-studies --example contacts_3d`
+//!
+//! MuJoCo runs through `LAGRANGE_PEERS_PYTHON` (else `python3`), which must
+//! import `mujoco` (`pip install mujoco`); without it that row says so and
+//! the rest runs.
+//!
+//! Writes `docs/contacts/contacts_3d.svg`: the ball thrown with backspin
+//! (its velocity along the throw, which turns back once it rolls) and the
+//! die coming to rest (its height and its energy).
+
+use lagrange::contact::{self, Cause, ContactResult, ContactSettings, ContactTrajectory, Contacts};
+use lagrange::models::{BallOnTable, Die, PushedPuck, quaternion};
+use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3};
+use lagrange::prelude::*;
+use plotters::prelude::*;
+use std::error::Error;
+use std::process::Command;
+
+#[path = "support/peers_python.rs"]
+mod peers_python;
+
+/// Dop853 at 1e-12 and the default contact settings, sampled `samples`
+/// times evenly up to `end`.
+fn run<L, const N: usize, const K: usize>(
+    model: &L,
+    (q0, v0): ([f64; N], [f64; N]),
+    end: f64,
+    samples: usize,
+) -> ContactResult<f64, N, K>
+where
+    L: Contacts<N, K, Scalar = f64> + Sync,
+{
+    let times: Vec<f64> = (1..=samples)
+        .map(|k| end * k as f64 / samples as f64)
+        .collect();
+    contact::integrate(
+        &Dop853::new().rtol(1e-12).atol(1e-12),
+        model,
+        0.0,
+        SVector::from(q0),
+        SVector::from(v0),
+        &times,
+        ContactSettings::default(),
+    )
+}
+
+fn main() -> Result<(), Box<dyn Error>> {
+    println!(
+        "scene                                        closed form              lagrange                 error"
+    );
+    let row = |scene: &str, exact: f64, ours: f64| {
+        println!(
+            "{scene:<44} {exact:<24.16} {ours:<24.16} {:.1e}",
+            (ours - exact).abs()
+        );
+    };
+
+    // A puck pushed at 5.6° (the middle of a side of the 32-gon that
+    // stands for the disc in the decisions): it holds while the push is
+    // inside the disc of friction and breaks away where it leaves it.
+    let (m, g, mu) = (1.0, 9.81, 0.5);
+    let puck = PushedPuck::new(m, g, mu, core::f64::consts::PI / 32.0, 0.9 * mu * m * g, 0.5);
+    let end = puck.breakaway() + 2.0;
+    let pushed = run(&puck, ([0.0; 3], [0.0; 3]), end, 100)?;
+    let breakaway = pushed
+        .switches()
+        .iter()
+        .find(|s| s.cause == Cause::StickLimit)
+        .ok_or("the puck never broke away")?;
+    row("puck pushed at 5.6°: breaks away at", puck.breakaway(), breakaway.t);
+    let last = pushed.trajectory().last().unwrap();
+    row(
+        "                     slid by the end",
+        puck.slid(end),
+        last.q[0].hypot(last.q[1]),
+    );
+
+    // A uniform ball thrown along x with backspin about −y: it slides,
+    // then rolls at (5 v₀ − 2 r ω₀)/7, back towards the thrower where
+    // 2 r ω₀ > 5 v₀.
+    let ball = BallOnTable::new(0.2, 0.1, 9.81, 0.3, 0.0);
+    let mut backspun = None;
+    for spin in [20.0, 100.0] {
+        let (v0, w0) = (Vector3::new(3.0, 0.0, 0.0), Vector3::new(0.0, -spin, 0.0));
+        let t_roll = ball.rolling_time(&v0, &w0);
+        let thrown = run(&ball, ball.thrown(&v0, &w0), 2.0 * t_roll, 200)?;
+        let rolls = thrown
+            .switches()
+            .iter()
+            .find(|s| s.cause == Cause::SlideStopped)
+            .ok_or("the ball never rolled")?;
+        row(
+            &format!("ball, v₀ = 3, backspin {spin}: rolls at"),
+            t_roll,
+            rolls.t,
+        );
+        row(
+            "                               at the speed",
+            ball.rolling_velocity(&v0, &w0)[0],
+            thrown.trajectory().last().unwrap().qdot[0],
+        );
+        if spin == 100.0 {
+            backspun = Some((thrown, t_roll));
+        }
+    }
+    let (backspun, t_roll) = backspun.unwrap();
+
+    // A die thrown spinning from 10 cm: it bounces, tumbles and rests.
+    let die = Die::new(0.01, 0.016, 9.81, 0.3, 0.4);
+    let turned = UnitQuaternion::from_euler_angles(0.5, 0.3, 0.2);
+    let (q, qdot) = quaternion::state(&turned, &Vector3::new(8.0, -5.0, 12.0));
+    let start = (
+        [0.0, 0.0, 0.1, q[0], q[1], q[2], q[3]],
+        [0.5, 0.2, 0.0, qdot[0], qdot[1], qdot[2], qdot[3]],
+    );
+    let thrown = run(&die, start, 10.0, 1000)?;
+    let die_row = die_measures(&die, &thrown, &start);
+    let impacts = thrown
+        .switches()
+        .iter()
+        .filter(|s| s.cause == Cause::Impact)
+        .count();
+    println!(
+        "\ndie thrown spinning (side 16 mm, 10 g, e = 0.3, μ = 0.4), 10 s: {impacts} impacts, {} \
+         switches, {} steps; at rest its normal forces hold m g to {:.1e}",
+        thrown.switches().len(),
+        thrown.trajectory().stats().steps_accepted,
+        (thrown.forces().last().unwrap().normal.sum() - 0.01 * 9.81).abs() / (0.01 * 9.81)
+    );
+    println!(
+        "{:<48} {:<13} {:<13} {:<13} {:<13}",
+        "", "creep [m]", "deepest [m]", "sunk at rest", "energy rise"
+    );
+    println!(
+        "{:<48} {:<13.1e} {:<13.1e} {:<13.1e} {:.1e}",
+        "lagrange (Dop853 at 1e-12)", die_row.0, die_row.1, die_row.2, die_row.3
+    );
+    mujoco_die(&q)?;
+
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/contacts/contacts_3d.svg");
+    std::fs::create_dir_all(path.parent().unwrap())?;
+    draw(&path, (&backspun, t_roll), (&die, &thrown))?;
+    println!("\nwrote {}", path.display());
+    Ok(())
+}
+
+/// The die's creep from 2 s on (its centre's displacement plus its
+/// rotation times its corners' distance from the centre), its deepest
+/// corner below the table, how deep it sits at the end, and the largest
+/// rise of its energy between samples relative to the start's.
+fn die_measures(
+    die: &Die<f64>,
+    run: &ContactTrajectory<f64, 7, 8>,
+    start: &([f64; 7], [f64; 7]),
+) -> (f64, f64, f64, f64) {
+    let e0 = die.energy(0.0, &start.0.into(), &start.1.into());
+    let (mut deepest, mut rise, mut previous) = (0.0f64, 0.0f64, e0);
+    let mut creep = 0.0f64;
+    let mut first = None;
+    for sample in run.trajectory().iter() {
+        deepest = deepest.min(die.gaps(sample.t, &sample.q).min());
+        let energy = die.energy(sample.t, &sample.q, &sample.qdot);
+        rise = rise.max(energy - previous);
+        previous = energy;
+        if sample.t >= 2.0 {
+            let q = sample.q.fixed_rows::<4>(3).into_owned();
+            let (centre, rotation) = *first.get_or_insert((
+                sample.q.fixed_rows::<3>(0).into_owned(),
+                quaternion::rotation(&q),
+            ));
+            let turn = quaternion::rotation(&q).angle_to(&rotation);
+            let moved = (sample.q.fixed_rows::<3>(0) - centre).norm();
+            creep = creep.max(moved + turn * die.s * 3f64.sqrt() / 2.0);
+        }
+    }
+    let last = run.trajectory().last().unwrap();
+    let sunk = -die.gaps(last.t, &last.q).min();
+    (creep, -deepest, sunk.max(0.0), rise / e0)
+}
+
+/// The same throw in MuJoCo, at its defaults and with its anti-slip
+/// settings, its rows printed beside the project's.
+fn mujoco_die(q: &lagrange::nalgebra::Vector4<f64>) -> Result<(), Box<dyn Error>> {
+    let script =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/contacts/die_mujoco.py");
+    let python = match peers_python::importing("mujoco, numpy") {
+        Ok(python) => python,
+        Err(why) => {
+            println!("MuJoCo: skipped: {why}");
+            return Ok(());
+        }
+    };
+    let out = Command::new(&python)
+        .arg(&script)
+        .args([q[0], q[1], q[2], q[3]].map(|x| format!("{x:.17e}")))
+        .output()?;
+    if !out.status.success() {
+        println!(
+            "MuJoCo: failed: {}",
+            String::from_utf8_lossy(&out.stderr).trim()
+        );
+        return Ok(());
+    }
+    for line in String::from_utf8_lossy(&out.stdout).lines() {
+        if let [label, creep, deepest, sunk, rise, _energy] =
+            line.split(';').collect::<Vec<_>>()[..]
+        {
+            println!("{label:<48} {creep:<13} {deepest:<13} {sunk:<13} {rise}");
+        }
+    }
+    Ok(())
+}
+
+fn draw(
+    path: &std::path::Path,
+    (ball, t_roll): (&ContactTrajectory<f64, 7, 1>, f64),
+    (die, thrown): (&Die<f64>, &ContactTrajectory<f64, 7, 8>),
+) -> Result<(), Box<dyn Error>> {
+    let root = SVGBackend::new(path, (1200, 480)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let (left, right) = root.split_horizontally(600);
+    let mut chart = ChartBuilder::on(&left)
+        .caption(
+            "ball thrown at 3 m/s with backspin 100 rad/s",
+            ("sans-serif", 18),
+        )
+        .margin(10)
+        .x_label_area_size(35)
+        .y_label_area_size(50)
+        .build_cartesian_2d(0.0..2.0 * t_roll, -2.0..3.5)?;
+    chart.configure_mesh().x_desc("t [s]").draw()?;
+    let times = ball.trajectory().times();
+    chart
+        .draw_series(LineSeries::new(
+            times
+                .iter()
+                .zip(ball.trajectory().velocities())
+                .map(|(t, v)| (*t, v[0])),
+            BLUE.stroke_width(2),
+        ))?
+        .label("velocity along the throw [m/s]")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
+    chart
+        .draw_series(LineSeries::new(
+            [(t_roll, -2.0), (t_roll, 3.5)],
+            BLACK.mix(0.4).stroke_width(1),
+        ))?
+        .label("rolls from 2|s₀|/(7 μ g)")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.4)));
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .draw()?;
+
+    let mut chart = ChartBuilder::on(&right)
+        .caption("die thrown spinning from 10 cm", ("sans-serif", 18))
+        .margin(10)
+        .x_label_area_size(35)
+        .y_label_area_size(50)
+        .build_cartesian_2d(0.0..2.0, 0.0..12.0)?;
+    chart.configure_mesh().x_desc("t [s]").draw()?;
+    let samples: Vec<_> = thrown.trajectory().iter().filter(|s| s.t <= 2.0).collect();
+    chart
+        .draw_series(LineSeries::new(
+            samples.iter().map(|s| (s.t, 100.0 * s.q[2])),
+            BLUE.stroke_width(2),
+        ))?
+        .label("centre's height [cm]")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
+    chart
+        .draw_series(LineSeries::new(
+            samples
+                .iter()
+                .map(|s| (s.t, 1e3 * die.energy(s.t, &s.q, &s.qdot))),
+            RED.stroke_width(2),
+        ))?
+        .label("energy [mJ]")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(2)));
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
