@@ -18,8 +18,9 @@
 //! [`BallOnFloor`], [`ParticleOnSphere`], [`Ladder`], [`BobOnString`],
 //! [`SlidingBall`], [`BlockOnIncline`], [`BlockOnBelt`], [`TumblingBox`]
 //! and [`TorsionBearing`] (friction in a joint, against a given load);
-//! three touch a table in 3D, with friction in its plane: [`PushedPuck`],
-//! [`BallOnTable`] and [`Die`], the last two in unit quaternions.
+//! four touch a table in 3D, with friction in its plane: [`PushedPuck`],
+//! [`BallOnTable`], [`Die`] and [`TippeTop`], the last three in unit
+//! quaternions.
 //! One is a branched [`Tree`] of ten links in relative angles, whose
 //! accelerations the runtime solves in `O(N)` without forming `M`.
 
@@ -55,7 +56,8 @@ pub use chain::Chain;
 pub use chaplygin_sleigh::ChaplyginSleigh;
 pub use contact::{
     BallOnFloor, BallOnTable, BlockOnBelt, BlockOnIncline, BobOnString, Die, Ladder,
-    ParticleOnSphere, PushedPuck, SlidingBall, StickSlip, Swing, TorsionBearing, TumblingBox,
+    ParticleOnSphere, PushedPuck, SlidingBall, StickSlip, Swing, TippeTop, TorsionBearing,
+    TumblingBox,
 };
 pub use damped_double_pendulum::DampedDoublePendulum;
 pub use double_pendulum::DoublePendulum;

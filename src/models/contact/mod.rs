@@ -13,6 +13,7 @@ mod puck;
 mod sliding_ball;
 mod sphere;
 mod string;
+mod tippe_top;
 mod tumbling_box;
 
 pub use ball_on_floor::BallOnFloor;
@@ -26,4 +27,5 @@ pub use puck::PushedPuck;
 pub use sliding_ball::SlidingBall;
 pub use sphere::ParticleOnSphere;
 pub use string::BobOnString;
+pub use tippe_top::TippeTop;
 pub use tumbling_box::TumblingBox;

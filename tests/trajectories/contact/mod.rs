@@ -1,8 +1,8 @@
 //! Contacts and friction (`contacts:`) against closed forms: a contact
 //! that opens where its force vanishes, a string that goes slack and snaps
 //! taut, friction that sticks and slips, bounces that accumulate into a
-//! resting contact, a box whose corners switch in any order, and every
-//! method on them.
+//! resting contact, a box whose corners switch in any order, a tippe top
+//! that turns over, and every method on them.
 
 mod closed_forms;
 mod frames;
@@ -10,6 +10,7 @@ mod friction;
 mod held;
 mod methods;
 mod plane;
+mod tippe_top;
 mod tumbling;
 
 use lagrange::contact::{self, ContactResult, ContactSettings, Contacts};
