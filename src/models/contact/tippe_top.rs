@@ -29,7 +29,13 @@ lagrangian! {
     /// 22, 193 (2003), the tippe top of its §6: 6 g, 15 mm, `a` = 3 mm,
     /// moments 8e-7 and 7e-7 kg m²), spun about the vertical at 180 rad/s,
     /// tilted 0.1 rad, on a table with `μ = 0.1`: its contact slips from the
-    /// start and its axis rises, Jellett's integral unchanged.
+    /// start and its axis rises through the horizontal (2.22 s) to 2.71
+    /// rad, where the slip stops (3.466 s) and it rolls, Jellett's integral
+    /// unchanged (`tests/trajectories/contact/tippe_top.rs`). The slip comes
+    /// to rest turning with the precession, where Coulomb's law is stiff:
+    /// that test runs it with a
+    /// [`direction_speed`](crate::contact::ContactSettings::direction_speed)
+    /// of 1e-4 m/s.
     ///
     /// ```
     /// use lagrange::contact::{self, ContactSettings, Mode};
