@@ -9,7 +9,6 @@ use lagrange::nalgebra::{UnitQuaternion, Vector3};
 
 use super::{run, times};
 
-
 /// The puck holds while the push is inside the disc of friction, `P <
 /// μ m g`, whatever its direction, and breaks away where it reaches it,
 /// at `t_b = (μ m g − p0)/rate`: then it slides along the push, `s =
@@ -85,7 +84,6 @@ fn a_puck_pushed_across_a_rough_table_breaks_away_at_the_disc_of_friction_in_any
         }
     }
 }
-
 
 /// A uniform ball thrown along a table, spinning about a horizontal axis,
 /// released touching it: its lowest point slips at `s₀ = v₀ + ω₀ × (0,
@@ -218,7 +216,6 @@ fn a_spinning_ball_striking_the_table_rebounds_as_poissons_law_says_and_never_ga
         }
     }
 }
-
 
 /// A die thrown spinning onto the table bounces, tumbles and comes to
 /// rest: no corner below the table beyond the location tolerance, no
