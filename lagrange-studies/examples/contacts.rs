@@ -12,40 +12,20 @@
 //! slipping (its position and friction force), and the ball coming to
 //! rest (its height and the floor's force).
 
-use lagrange::contact::{self, Cause, ContactResult, ContactSettings, Contacts, Mode};
+use lagrange::contact::{self, Cause, Mode};
 use lagrange::models::{
     BallOnFloor, BlockOnBelt, BlockOnIncline, BobOnString, Ladder, ParticleOnSphere, SlidingBall,
     TorsionBearing, TumblingBox,
 };
-use lagrange::nalgebra::SVector;
-use lagrange::prelude::*;
 use plotters::prelude::*;
 use std::error::Error;
 use std::process::Command;
 
-/// Dop853 at 1e-12 and the default contact settings.
-fn run<L, const N: usize, const K: usize>(
-    model: &L,
-    (q0, v0): ([f64; N], [f64; N]),
-    end: f64,
-    samples: usize,
-) -> ContactResult<f64, N, K>
-where
-    L: Contacts<N, K, Scalar = f64> + Sync,
-{
-    let times: Vec<f64> = (1..=samples)
-        .map(|k| end * k as f64 / samples as f64)
-        .collect();
-    contact::integrate(
-        &Dop853::new().rtol(1e-12).atol(1e-12),
-        model,
-        0.0,
-        SVector::from(q0),
-        SVector::from(v0),
-        &times,
-        ContactSettings::default(),
-    )
-}
+#[allow(dead_code)]
+#[path = "support/contact_run.rs"]
+mod contact_run;
+
+use contact_run::run;
 
 fn main() -> Result<(), Box<dyn Error>> {
     println!(

@@ -15,10 +15,9 @@
 //! `docs/contacts/tippe_top.svg`: the tippe top's tilt and Jellett's
 //! integral over time.
 
-use lagrange::contact::{self, Cause, ContactResult, ContactSettings, ContactTrajectory, Contacts};
+use lagrange::contact::{Cause, ContactSettings, ContactTrajectory};
 use lagrange::models::{BallOnTable, Die, PushedPuck, TippeTop, quaternion};
-use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3};
-use lagrange::prelude::*;
+use lagrange::nalgebra::{UnitQuaternion, Vector3};
 use plotters::prelude::*;
 use std::error::Error;
 use std::process::Command;
@@ -26,30 +25,10 @@ use std::process::Command;
 #[path = "support/peers_python.rs"]
 mod peers_python;
 
-/// Dop853 at 1e-12 and the default contact settings, sampled `samples`
-/// times evenly up to `end`.
-fn run<L, const N: usize, const K: usize>(
-    model: &L,
-    (q0, v0): ([f64; N], [f64; N]),
-    end: f64,
-    samples: usize,
-) -> ContactResult<f64, N, K>
-where
-    L: Contacts<N, K, Scalar = f64> + Sync,
-{
-    let times: Vec<f64> = (1..=samples)
-        .map(|k| end * k as f64 / samples as f64)
-        .collect();
-    contact::integrate(
-        &Dop853::new().rtol(1e-12).atol(1e-12),
-        model,
-        0.0,
-        SVector::from(q0),
-        SVector::from(v0),
-        &times,
-        ContactSettings::default(),
-    )
-}
+#[path = "support/contact_run.rs"]
+mod contact_run;
+
+use contact_run::{run, run_with};
 
 fn main() -> Result<(), Box<dyn Error>> {
     println!(
@@ -161,14 +140,11 @@ fn main() -> Result<(), Box<dyn Error>> {
     // run takes its 100,000 steps at the stop).
     let top = TippeTop::leine_glocker(0.1);
     let spun = top.spun(0.1, 180.0);
-    let times: Vec<f64> = (1..=800).map(|k| 4.0 * k as f64 / 800.0).collect();
-    let turning = contact::integrate(
-        &Dop853::new().rtol(1e-12).atol(1e-12),
+    let turning = run_with(
         &top,
-        0.0,
-        SVector::from(spun.0),
-        SVector::from(spun.1),
-        &times,
+        spun,
+        4.0,
+        800,
         ContactSettings {
             direction_speed: 1e-4,
             ..ContactSettings::default()
