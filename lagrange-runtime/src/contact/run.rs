@@ -866,6 +866,12 @@ fn switch<S: RealField + Copy, const N: usize, const K: usize>(
     // gap tolerance (a method whose error on the flight is larger; an
     // impact elsewhere that drives it in is decided at that impact).
     let settle = cause == Cause::Impact && run.accumulating[i].is_some();
+    // Its flight is over either way: from here its gap is watched again
+    // (were nothing to approach after all, its watch would not be left
+    // past its time, where it could never cross zero again).
+    if settle {
+        run.accumulating[i] = None;
+    }
     let (state, to, directions) = decide_switch(
         &model,
         settings,
