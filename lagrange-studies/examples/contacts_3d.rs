@@ -270,7 +270,7 @@ fn die_measures(
         rise = rise.max(energy - previous);
         previous = energy;
         if sample.t >= 2.0 {
-            let corners = corners(die, &sample.q);
+            let corners = die.corners(&sample.q);
             let first = first.get_or_insert(corners);
             for (now, then) in corners.iter().zip(first.iter()) {
                 creep = creep.max((now.xy() - then.xy()).norm());
@@ -280,16 +280,6 @@ fn die_measures(
     let last = run.trajectory().last().unwrap();
     let sunk = -die.gaps(last.t, &last.q).min();
     (creep, -deepest, sunk.max(0.0), rise / e0)
-}
-
-/// The die's eight corners in space.
-fn corners(die: &Die<f64>, q: &lagrange::nalgebra::SVector<f64, 7>) -> [Vector3<f64>; 8] {
-    let turn = quaternion::rotation(&q.fixed_rows::<4>(3).into_owned());
-    let h = die.s / 2.0;
-    core::array::from_fn(|k| {
-        let sign = |bit: usize| if k >> bit & 1 == 0 { h } else { -h };
-        q.fixed_rows::<3>(0).into_owned() + turn * Vector3::new(sign(0), sign(1), sign(2))
-    })
 }
 
 /// The same throw in MuJoCo, at its defaults and with its anti-slip

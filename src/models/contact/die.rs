@@ -37,3 +37,18 @@ lagrangian! {
             k7: c7[2] >= 0 { restitution: e, friction: mu, slip: vector(dot(c7[0]), dot(c7[1])) };
     }
 }
+
+impl Die<f64> {
+    /// Its eight corners in space at `q`: the centre plus the rotated
+    /// `(±s/2, ±s/2, ±s/2)`, the points its contacts watch (in another
+    /// order).
+    pub fn corners(&self, q: &nalgebra::SVector<f64, 7>) -> [nalgebra::Vector3<f64>; 8] {
+        let turn = crate::models::quaternion::rotation(&q.fixed_rows::<4>(3).into_owned());
+        let h = self.s / 2.0;
+        core::array::from_fn(|k| {
+            let sign = |bit: usize| if k >> bit & 1 == 0 { h } else { -h };
+            q.fixed_rows::<3>(0).into_owned()
+                + turn * nalgebra::Vector3::new(sign(0), sign(1), sign(2))
+        })
+    }
+}

@@ -5,7 +5,7 @@
 
 use lagrange::contact::{Cause, ContactSettings, Mode};
 use lagrange::models::{BallOnTable, Die, PushedPuck, quaternion};
-use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3};
+use lagrange::nalgebra::{UnitQuaternion, Vector3};
 use lagrange::prelude::*;
 
 use super::{run, times};
@@ -285,18 +285,11 @@ fn a_die_thrown_spinning_onto_the_table_comes_to_rest_without_creeping() {
         .zip(run.forces())
         .filter(|(s, _)| s.t >= 2.0)
         .collect();
-    let corners = |q: &SVector<f64, 7>| -> [Vector3<f64>; 8] {
-        let turn = quaternion::rotation(&q.fixed_rows::<4>(3).into_owned());
-        core::array::from_fn(|k| {
-            let sign = |bit: usize| if k >> bit & 1 == 0 { s / 2.0 } else { -s / 2.0 };
-            q.fixed_rows::<3>(0).into_owned() + turn * Vector3::new(sign(0), sign(1), sign(2))
-        })
-    };
-    let first = corners(&rest[0].0.q);
+    let first = die.corners(&rest[0].0.q);
     let mut creep = 0.0f64;
     for (sample, forces) in &rest {
         assert!((forces.normal.sum() - m * g).abs() < 1e-12 * m * g);
-        for (now, then) in corners(&sample.q).iter().zip(&first) {
+        for (now, then) in die.corners(&sample.q).iter().zip(&first) {
             creep = creep.max((now.xy() - then.xy()).norm());
         }
     }
