@@ -77,6 +77,7 @@
 //!
 //! | feature | what it adds |
 //! |---|---|
+//! | `models` | `lagrange::models`: the known problems (pendulums, chains, linkages, rigid bodies, rolling, contacts, the bicycle), ready to integrate |
 //! | `serde` | `Serialize`/`Deserialize` for trajectories, statistics, errors and failures; `#[lagrange(serde)]` models through `lagrange::serde` |
 //! | `csv` | `export::write_csv`: a trajectory with the model's names as the header, energy, multipliers, events |
 //! | `ode_solvers` | `interop::ode_solvers::FirstOrder`: a model as that crate's `System`; `lagrange::ode_solvers` is the crate |
@@ -112,6 +113,7 @@ pub use nalgebra;
 #[cfg(feature = "serde")]
 pub use serde;
 
+#[cfg(feature = "models")]
 pub mod models;
 
 #[doc = include_str!("../docs/language.md")]

@@ -1,5 +1,8 @@
 //! Known problems, ready to use: shared by the tests, the examples, the
 //! benchmarks and anyone who wants a known model to try an integrator on.
+//! Behind the `models` feature (`lagrange = { version = "0.1", features =
+//! ["models"] }`), off by default: a crate that writes its own models does
+//! not expand and compile these.
 //! Each is a `lagrangian!` invocation in its own file (read the source),
 //! with its usual starting states and, where one exists, its exact
 //! solution. Three are constrained models, closed loops in
