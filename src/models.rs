@@ -51,29 +51,37 @@ mod stiff_chain;
 mod tree;
 mod two_mass_chain;
 
-pub use bicycle::WhippleBicycle;
-pub use bouncing_ball::BouncingBall;
-pub use cart_pole::CartPole;
-pub use cartesian_pendulum::CartesianPendulum;
-pub use chain::Chain;
-pub use chaplygin_sleigh::ChaplyginSleigh;
+pub use bicycle::{WhippleBicycle, WhippleBicycleParameters};
+pub use bouncing_ball::{BouncingBall, BouncingBallParameters};
+pub use cart_pole::{CartPole, CartPoleParameters};
+pub use cartesian_pendulum::{CartesianPendulum, CartesianPendulumParameters};
+pub use chain::{Chain, ChainParameters};
+pub use chaplygin_sleigh::{ChaplyginSleigh, ChaplyginSleighParameters};
 pub use contact::{
-    BallOnFloor, BallOnTable, BlockOnBelt, BlockOnIncline, BobOnString, Die, Ladder,
-    ParticleOnSphere, PushedPuck, SlidingBall, StickSlip, Swing, TippeTop, TorsionBearing,
-    TumblingBox,
+    BallOnFloor, BallOnFloorParameters, BallOnTable, BallOnTableParameters, BlockOnBelt,
+    BlockOnBeltParameters, BlockOnIncline, BlockOnInclineParameters, BobOnString,
+    BobOnStringParameters, Die, DieParameters, Ladder, LadderParameters, ParticleOnSphere,
+    ParticleOnSphereParameters, PushedPuck, PushedPuckParameters, SlidingBall,
+    SlidingBallParameters, StickSlip, Swing, TippeTop, TippeTopParameters, TorsionBearing,
+    TorsionBearingParameters, TumblingBox, TumblingBoxParameters,
 };
-pub use damped_double_pendulum::DampedDoublePendulum;
-pub use double_pendulum::DoublePendulum;
-pub use four_bar::{FourBar, MinimalFourBar};
-pub use free_body::FreeBody;
-pub use heavy_top::{EulerTop, HeavyTop};
-pub use kepler::{Kepler, PolarKepler};
-pub use oscillator::Oscillator;
-pub use pendulum::Pendulum;
+pub use damped_double_pendulum::{DampedDoublePendulum, DampedDoublePendulumParameters};
+pub use double_pendulum::{DoublePendulum, DoublePendulumParameters};
+pub use four_bar::{FourBar, FourBarParameters, MinimalFourBar, MinimalFourBarParameters};
+pub use free_body::{FreeBody, FreeBodyParameters};
+pub use heavy_top::{EulerTop, EulerTopParameters, HeavyTop, HeavyTopParameters};
+pub use kepler::{Kepler, KeplerParameters, PolarKepler, PolarKeplerParameters};
+pub use oscillator::{Oscillator, OscillatorParameters};
+pub use pendulum::{Pendulum, PendulumParameters};
 pub use pendulum_wall::PendulumWall;
-pub use rolling_ball::RollingBall;
-pub use rolling_disk::RollingDisk;
-pub use slider_crank::{MinimalSliderCrank, SliderCrank, slider_crank_kinematics};
-pub use stiff_chain::StiffChain;
-pub use tree::Tree;
-pub use two_mass_chain::{RayleighTwoMassChain, TwoMassChain};
+pub use rolling_ball::{RollingBall, RollingBallParameters};
+pub use rolling_disk::{RollingDisk, RollingDiskParameters};
+pub use slider_crank::{
+    MinimalSliderCrank, MinimalSliderCrankParameters, SliderCrank, SliderCrankParameters,
+    slider_crank_kinematics,
+};
+pub use stiff_chain::{StiffChain, StiffChainParameters};
+pub use tree::{Tree, TreeParameters};
+pub use two_mass_chain::{
+    RayleighTwoMassChain, RayleighTwoMassChainParameters, TwoMassChain, TwoMassChainParameters,
+};

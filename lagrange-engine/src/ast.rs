@@ -115,6 +115,50 @@ pub struct Decl {
     pub name: Ident,
     /// The length expression of `name[len]`, evaluated against the `const`s.
     pub len: Option<Expr>,
+    /// A parameter's domain (`m > 0`, `e in [0, 1]`), for every element
+    /// of an indexed one.
+    pub domain: Option<Domain>,
+}
+
+/// The values a parameter may take: an interval whose ends are each open
+/// or closed, infinite where there is no bound (then open). Its ends are
+/// number literals, the lower below the upper (checked by the parser).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Domain {
+    /// The lower end, `-∞` where there is none.
+    pub lower: f64,
+    /// Whether the lower end is inside (`>=`, `[`).
+    pub lower_closed: bool,
+    /// The upper end, `+∞` where there is none.
+    pub upper: f64,
+    /// Whether the upper end is inside (`<=`, `]`).
+    pub upper_closed: bool,
+}
+
+impl Domain {
+    /// The domain as the language writes it, after the name: `> 0`,
+    /// `in [0, 1]`.
+    pub fn written(&self) -> String {
+        match (self.lower.is_finite(), self.upper.is_finite()) {
+            (true, false) => format!(
+                "{} {}",
+                if self.lower_closed { ">=" } else { ">" },
+                self.lower
+            ),
+            (false, true) => format!(
+                "{} {}",
+                if self.upper_closed { "<=" } else { "<" },
+                self.upper
+            ),
+            _ => format!(
+                "in {}{}, {}{}",
+                if self.lower_closed { '[' } else { '(' },
+                self.lower,
+                self.upper,
+                if self.upper_closed { ']' } else { ')' }
+            ),
+        }
+    }
 }
 
 /// `var in lo..hi` or `var in lo..=hi`.

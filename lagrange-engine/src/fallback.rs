@@ -187,9 +187,11 @@ impl Stub {
         let parameters = crate::emit::parameters::parameters_impl(&outline, &types, derivatives);
         let parameters = (!parameters.is_empty())
             .then(|| quote!(#[allow(unused_variables, clippy::all)] #parameters));
+        let by_name = outline.by_name();
         quote! {
             #error
             #item
+            #by_name
             #[allow(unused_variables, clippy::all)]
             impl<S: #na::SimdRealField + ::core::marker::Copy> #name<S> where
             S::Element: #na::RealField + ::core::marker::Copy,

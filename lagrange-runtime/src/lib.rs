@@ -321,7 +321,7 @@ pub use inputs::Actuated;
 pub use integrators::StepMethod;
 pub use integrators::all::*;
 pub use integrators::{AnyIntegrator, Integrator, LaneStep, Method, integrate};
-pub use model::{Lagrangian, ParameterDerivatives, WithLayers, lets};
+pub use model::{Domain, Lagrangian, ParameterDerivatives, ParameterError, WithLayers, lets};
 pub use nalgebra;
 /// The ode_solvers crate (feature `ode_solvers`), for its solvers beside
 /// [`interop::ode_solvers`].

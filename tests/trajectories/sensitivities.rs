@@ -102,7 +102,7 @@ fn by_sensitivity<L, I, const N: usize, const P: usize, const D: usize, const NA
     times: &[f64],
 ) -> (Vec<SMatrix<f64, N, D>>, Vec<SVector<f64, N>>)
 where
-    L: ParameterDerivatives<N, P, Scalar = f64>,
+    L: ParameterDerivatives<N, P, Scalar = f64> + lagrange::sensitivity::Augmented<D, NA>,
     I: Integrator<f64>,
 {
     let sensitivity = Sensitivity::<L, N, P, D, NA>::new(model, directions).unwrap();
@@ -199,7 +199,9 @@ fn rk4_equals_dual_numbers<const N: usize, const P: usize, const D: usize, const
     start: (SVector<f64, N>, SVector<f64, N>),
 ) where
     M: Lagrangian<N, Scalar = Dual64> + FromScalars<Dual64>,
-    L: ParameterDerivatives<N, P, Scalar = f64> + FromScalars<f64>,
+    L: ParameterDerivatives<N, P, Scalar = f64>
+        + FromScalars<f64>
+        + lagrange::sensitivity::Augmented<D, NA>,
 {
     let (times, h) = (sample_times(), 1e-3);
     let dual = by_dual_numbers::<M, N, P, D>(parameters, &directions, start, h, &times);

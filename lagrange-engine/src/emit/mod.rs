@@ -83,6 +83,7 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
         articulated: eq.articulated.as_ref(),
     };
     let item = cx.outline.struct_item();
+    let by_name = cx.outline.by_name();
     let inherent = inherent_impl(&cx, texts);
     let lagrangian = lagrangian_impl(&cx);
     let singular_mass = eq
@@ -117,6 +118,7 @@ pub fn emit(model: &Model, eq: &Equations, texts: (&str, &str)) -> TokenStream {
     let parameters = parameters::parameters_impl(&cx.outline, &cx.types, derivatives);
     quote! {
         #item
+        #by_name
         #inherent
         #lagrangian
         #holonomic

@@ -193,6 +193,31 @@ impl Types {
     }
 }
 
+/// A parameter's domain as the runtime's `Domain` (`Domain::REAL` for
+/// none), a constant expression.
+pub fn domain_tokens(domain: Option<crate::ast::Domain>) -> TokenStream {
+    let Some(d) = domain else {
+        return quote!(::lagrange::Domain::REAL);
+    };
+    let bound = |x: f64| {
+        if x == f64::INFINITY {
+            quote!(::core::f64::INFINITY)
+        } else if x == f64::NEG_INFINITY {
+            quote!(::core::f64::NEG_INFINITY)
+        } else {
+            let abs = Literal::f64_unsuffixed(x.abs());
+            if x < 0.0 { quote!(-#abs) } else { quote!(#abs) }
+        }
+    };
+    let (lo, hi, lc, uc) = (
+        bound(d.lower),
+        bound(d.upper),
+        d.lower_closed,
+        d.upper_closed,
+    );
+    quote!(::lagrange::Domain::new(#lo, #lc, #hi, #uc))
+}
+
 /// The path of nalgebra in generated code.
 pub fn nalgebra() -> TokenStream {
     quote!(::lagrange::nalgebra)
@@ -329,6 +354,73 @@ impl Outline<'_> {
         quote!(const fn new(#(#params: #types),*) -> Self { #body })
     }
 
+    /// The parameters by name, for a model with parameters: the struct
+    /// `NameParameters<S>` with a field per parameter, and the checked
+    /// constructors `try_new` (positional) and `from_parameters` (by
+    /// name), which refuse a value outside its declared domain, with
+    /// `check_parameters`, their check. Bounded by `RealField` (a value is
+    /// compared with its domain's ends), where `new` takes any scalar.
+    pub fn by_name(&self) -> TokenStream {
+        if self.fields.is_empty() {
+            return TokenStream::new();
+        }
+        let na = nalgebra();
+        let (vis, name) = (self.vis, self.name);
+        let parameters = quote::format_ident!("{}Parameters", name);
+        let params: Vec<&Ident> = self.fields.iter().map(|f| &f.name).collect();
+        let types: Vec<TokenStream> = self.fields.iter().map(Field::rust_type).collect();
+        let fields = self.fields.iter().zip(&types).map(|(f, ty)| {
+            let field = &f.name;
+            let doc = match f.domain {
+                None => format!(" `{field}`."),
+                Some(d) => format!(" `{field} {}`.", d.written()),
+            };
+            quote!(#[doc = #doc] pub #field: #ty,)
+        });
+        let checks = self.fields.iter().filter_map(|f| {
+            let d = f.domain?;
+            let (field, label) = (&f.name, f.name.to_string());
+            let domain = domain_tokens(Some(d));
+            Some(match f.len {
+                None => quote!(#domain.check(#label, ::core::option::Option::None, self.#field)?;),
+                Some(_) => quote!(#domain.check_all(#label, &self.#field)?;),
+            })
+        });
+        let doc = format!(
+            " The parameters of [`{name}`] by name, for [`{name}::from_parameters`]: each field \
+             the parameter of that name (with its domain, where it declares one)."
+        );
+        let error = quote!(::lagrange::ParameterError);
+        quote! {
+            #[doc = #doc]
+            #[derive(Clone, Copy, Debug, PartialEq)]
+            #[allow(non_snake_case)]
+            #vis struct #parameters<S = f64> { #(#fields)* }
+
+            #[allow(non_snake_case, clippy::all)]
+            impl<S: #na::RealField + ::core::marker::Copy> #name<S> {
+                /// `new`, each parameter checked against its declared domain: the first
+                /// outside it is the error, named with its value.
+                pub fn try_new(#(#params: #types),*) -> ::core::result::Result<Self, #error> {
+                    let model = Self::new(#(#params),*);
+                    model.check_parameters()?;
+                    ::core::result::Result::Ok(model)
+                }
+                /// The model from its parameters by name, each checked against its declared
+                /// domain (as `try_new`).
+                pub fn from_parameters(parameters: #parameters<S>) -> ::core::result::Result<Self, #error> {
+                    Self::try_new(#(parameters.#params),*)
+                }
+                /// Whether every parameter lies inside its declared domain: the first that
+                /// does not is the error (after a field was set, or a model was read back).
+                pub fn check_parameters(&self) -> ::core::result::Result<(), #error> {
+                    #(#checks)*
+                    ::core::result::Result::Ok(())
+                }
+            }
+        }
+    }
+
     /// The constructor's doc: the parameters in order.
     pub fn constructor_doc(&self) -> String {
         let parameters: Vec<String> = self
@@ -352,6 +444,12 @@ impl Outline<'_> {
             doc.push_str(
                 " Its control inputs start unset (NaN): set them with `with_inputs` or drive them \
                  with `with_controller` before integrating.",
+            );
+        }
+        if self.fields.iter().any(|f| f.domain.is_some()) {
+            doc.push_str(
+                " The parameters' domains are not checked here (`new` takes any scalar, SIMD \
+                 lanes and constants included): `try_new` and `from_parameters` check them.",
             );
         }
         doc

@@ -4,7 +4,7 @@
 //! `PARAMETER_SCALARS` (an indexed parameter `m[N]` is `m[0]` … `m[N-1]`),
 //! and the generated derivatives, each a call of the inherent method.
 
-use super::outline::{Outline, Types, nalgebra};
+use super::outline::{Outline, Types, domain_tokens, nalgebra};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
@@ -35,9 +35,27 @@ pub fn parameters_impl(outline: &Outline, ty: &Types, methods: Vec<TokenStream>)
         })
         .collect();
     let indices = (0..places.len()).map(Literal::usize_unsuffixed);
+    // Each parameter scalar's domain, where any is declared.
+    let domains = outline.fields.iter().any(|f| f.domain.is_some()).then(|| {
+        let each = outline.fields.iter().flat_map(|f| {
+            let domain = domain_tokens(f.domain);
+            std::iter::repeat_n(domain, f.len.unwrap_or(1))
+        });
+        quote!(const DOMAINS: [::lagrange::Domain; #p] = [#(#each),*];)
+    });
+    // The sensitivities' size along every number of directions the model
+    // has (each parameter scalar, initial position and velocity), so that
+    // `Sensitivity::new` and `identify::fit` infer it.
+    let augmented = (1..=ty.parameters + 2 * ty.dof).map(|d| {
+        let na = Literal::usize_unsuffixed(ty.dof * (1 + d));
+        let d = Literal::usize_unsuffixed(d);
+        quote!(impl<S> ::lagrange::sensitivity::Augmented<#d, #na> for #name<S> {})
+    });
     quote! {
+        #(#augmented)*
         impl<S: #na::RealField + ::core::marker::Copy> ::lagrange::ParameterDerivatives<#n, #p> for #name<S> {
             const PARAMETERS: [&'static str; #p] = Self::PARAMETER_SCALARS;
+            #domains
             #[inline]
             fn parameter_values(&self) -> #na::SVector<S, #p> {
                 #na::SVector::<S, #p>::from_column_slice(&[#(#places),*])

@@ -76,6 +76,8 @@ pub struct Field {
     pub name: Ident,
     /// The array length of an indexed parameter, `None` for a scalar.
     pub len: Option<usize>,
+    /// A parameter's declared domain, for every element of an indexed one.
+    pub domain: Option<crate::ast::Domain>,
 }
 
 impl Field {

@@ -111,6 +111,7 @@ pub(super) fn declarations(
                     let field = Field {
                         name: d.name.clone(),
                         len,
+                        domain: d.domain,
                     };
                     match role {
                         Role::Parameter => out.fields.push(field),
@@ -762,6 +763,7 @@ pub fn declared_shape(def: &ModelDef) -> Shape {
             let field = Field {
                 name: d.name.clone(),
                 len,
+                domain: d.domain,
             };
             match item {
                 Item::Coordinates { .. } => dof += len.unwrap_or(1),

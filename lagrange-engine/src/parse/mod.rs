@@ -12,6 +12,7 @@
 //! stub with the coordinates and parameters that were declared (one mistake,
 //! one error).
 
+mod domain;
 pub mod expression;
 
 pub use expression::parse_expr;
@@ -296,15 +297,15 @@ fn parse_item(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result
     input.parse::<Token![:]>()?;
     Ok(match section.as_str() {
         "coordinates" => Item::Coordinates {
-            names: parse_names(input, error)?,
+            names: parse_names(input, error, false)?,
             keyword,
         },
         "parameters" => Item::Parameters {
-            names: parse_names(input, error)?,
+            names: parse_names(input, error, true)?,
             keyword,
         },
         "inputs" => Item::Inputs {
-            names: parse_names(input, error)?,
+            names: parse_names(input, error, false)?,
             keyword,
         },
         "forces" => Item::Forces {
@@ -385,7 +386,11 @@ fn expect_semicolon(input: ParseStream, error: &mut Option<syn::Error>) -> syn::
     }
 }
 
-fn parse_names(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Result<Vec<Decl>> {
+fn parse_names(
+    input: ParseStream,
+    error: &mut Option<syn::Error>,
+    parameters: bool,
+) -> syn::Result<Vec<Decl>> {
     let mut names = Vec::new();
     loop {
         if input.peek(Token![;]) && !names.is_empty() {
@@ -394,7 +399,28 @@ fn parse_names(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Resul
         }
         let name = plain_name(input)?;
         let len = parse_bracket(input)?.map(|(len, _)| len);
-        names.push(Decl { name, len });
+        let domain = if starts_domain(input) {
+            if !parameters {
+                return Err(input.error(
+                    "only a parameter has a domain (`parameters: l > 0;`): coordinates and \
+                     inputs take any value",
+                ));
+            }
+            // A malformed domain is recorded and the name kept without
+            // it, so that the stub still has every parameter (one
+            // mistake, one error).
+            match domain::parse_domain(input, &name) {
+                Ok(domain) => Some(domain),
+                Err(e) => {
+                    error.get_or_insert(e);
+                    domain::skip_to_separator(input)?;
+                    None
+                }
+            }
+        } else {
+            None
+        };
+        names.push(Decl { name, len, domain });
         if input.peek(Token![,]) {
             input.parse::<Token![,]>()?;
         } else if input.peek(Token![;]) {
@@ -406,6 +432,11 @@ fn parse_names(input: ParseStream, error: &mut Option<syn::Error>) -> syn::Resul
             return Err(input.error("expected `,` or `;` after a name"));
         }
     }
+}
+
+/// Whether a domain follows a parameter's name: `>`, `>=`, `<`, `<=` or `in`.
+fn starts_domain(input: ParseStream) -> bool {
+    input.peek(Token![>]) || input.peek(Token![<]) || input.peek(Token![in])
 }
 
 /// One entry of `forces:` or `constants:`.

@@ -13,6 +13,8 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use crate::model::parameters::Domain;
+
 /// A residual `r` and its Jacobian `J = ∂r/∂x` at one point.
 pub(crate) struct Evaluation {
     pub(crate) residual: DVector<f64>,
@@ -48,9 +50,14 @@ pub(crate) struct Solution {
 /// returns `None` where `r` cannot be computed (a run that failed): the
 /// step is rejected as if it raised the cost. The first evaluation's
 /// failure is the caller's `Err`.
+///
+/// Each value is kept inside its domain (`x0` inside them all) by a
+/// projected step ([`keep_inside`]); a step that stays inside is taken as
+/// it is, bit for bit.
 pub(crate) fn minimize<E>(
     x0: DVector<f64>,
     stop: Stop,
+    domains: &[Domain],
     mut evaluate: impl FnMut(&DVector<f64>) -> Result<Evaluation, E>,
 ) -> Result<Solution, E> {
     let mut x = x0;
@@ -72,11 +79,18 @@ pub(crate) fn minimize<E>(
             nu *= 2.0;
             continue;
         };
+        let trial = &x + &step;
+        let (trial, step) = match keep_inside(&x, &trial, domains) {
+            Some(inside) => {
+                let step = &inside - &x;
+                (inside, step)
+            }
+            None => (trial, step),
+        };
         let small = step
             .iter()
             .zip(x.iter())
             .all(|(d, x)| d.abs() <= stop.x_tol * (x.abs() + stop.x_tol));
-        let trial = &x + &step;
         evaluations += 1;
         let next = evaluate(&trial).ok().filter(|e| e.cost().is_finite());
         let predicted = -(g.dot(&step) + 0.5 * step.dot(&(&a * &step)));
@@ -120,6 +134,50 @@ pub(crate) fn minimize<E>(
         evaluations,
         converged: false,
     })
+}
+
+/// The trial point `trial` from `x` (inside every domain) moved back inside
+/// them, `None` where it is inside already. A closed end stops a value on
+/// it (the projection onto the box of the domains, so a minimum on a bound,
+/// a damping of zero, is reached exactly); an open end is approached by at
+/// most 99 % of the distance left (the fraction-to-the-boundary rule of
+/// interior-point methods), so a value never reaches it, and a minimum
+/// outside the domain leaves the value converging towards the end
+/// geometrically, each step a shorter one, until the steps are below
+/// `x_tol`. Projection rather than a reparametrization (`l = exp(u)`):
+/// a fit whose steps stay inside is unchanged, and a closed end is
+/// reachable, where a reparametrization reaches neither and changes every
+/// step of every bounded fit.
+pub(crate) fn keep_inside(
+    x: &DVector<f64>,
+    trial: &DVector<f64>,
+    domains: &[Domain],
+) -> Option<DVector<f64>> {
+    if domains
+        .iter()
+        .zip(trial.iter())
+        .all(|(d, v)| d.contains(*v))
+    {
+        return None;
+    }
+    let mut inside = trial.clone();
+    for (k, d) in domains.iter().enumerate() {
+        let v = inside[k];
+        if d.contains(v) {
+            continue;
+        }
+        let (end, closed) = if v < d.lower || (v == d.lower && !d.lower_closed) {
+            (d.lower, d.lower_closed)
+        } else {
+            (d.upper, d.upper_closed)
+        };
+        inside[k] = if closed {
+            end
+        } else {
+            end + 0.01 * (x[k] - end)
+        };
+    }
+    Some(inside)
 }
 
 /// The least-squares statistics of a Jacobian `J` (`m × D`) whose columns

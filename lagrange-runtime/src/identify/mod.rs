@@ -33,6 +33,18 @@
 //! [`FitError::NotIdentifiable`] names that combination instead of fitting
 //! a value the data cannot fix.
 //!
+//! A parameter declared with a domain (`parameters: l > 0, e in [0, 1];`,
+//! [`ParameterDerivatives::DOMAINS`]) stays inside it: a start outside any
+//! parameter's domain is [`FitError::OutsideDomain`] before any run, and
+//! every trial step is projected back inside (a closed end, `c >= 0`,
+//! stops a value on it; an open one, `l > 0`, is approached by at most
+//! 99 % of the distance left per step, never reached). Projection rather
+//! than a reparametrization (`l = exp(u)`): a fit whose steps stay inside
+//! takes them unchanged, bit for bit, and a value whose best fit is a
+//! closed end reaches it. A value that ends on an end of its domain is a
+//! constrained minimum: its standard error, the unconstrained
+//! linearization's, does not describe it.
+//!
 //! The linear route, for a model with a regressor
 //! (`#[lagrange(regressor(..))]`: `M q̈ − f = Y π + r₀`), is ordinary least
 //! squares on `Y π = −r₀` stacked over the samples, with `q̇` and `q̈`
@@ -45,7 +57,6 @@
 //! ```
 //! use lagrange_runtime::identify::{Measurements, fit, FitSettings};
 //! use lagrange_runtime::nalgebra::SVector;
-//! use lagrange_runtime::sensitivity::Direction;
 //! use lagrange_runtime::{Dop853, Integrator, Lagrangian, ParameterDerivatives};
 //! # use lagrange_runtime::nalgebra::SMatrix;
 //! # /// `θ̈ = −(g/l) sin θ`, written by hand with its derivative by `l`.
@@ -67,6 +78,7 @@
 //! #         -9.81 * self.l * q[0].cos()
 //! #     }
 //! # }
+//! # impl lagrange_runtime::sensitivity::Augmented<2, 3> for Pendulum {}
 //! # impl ParameterDerivatives<1, 1> for Pendulum {
 //! #     const PARAMETERS: [&'static str; 1] = ["l"];
 //! #     fn parameter_values(&self) -> SVector<f64, 1> { SVector::<f64, 1>::new(self.l) }
@@ -89,11 +101,10 @@
 //! let truth = Dop853::new().rtol(1e-12).atol(1e-12)
 //!     .integrate(&Pendulum { l: 0.7 }, 0.0, q0, v0, &times)?;
 //! let data = Measurements::positions(times.clone(), truth.positions().to_vec());
-//! let directions = [Direction::Parameter(0), Direction::Position(0)];
 //! let guess = (SVector::from([0.45]), v0);
-//! let fitted = fit::<_, _, 1, 1, 2, 3>(
+//! let fitted = fit(
 //!     Pendulum { l: 1.0 }, &Dop853::new().rtol(1e-10).atol(1e-10),
-//!     directions, 0.0, guess, &data, &FitSettings::default(),
+//!     ["l", "q0 theta"], 0.0, guess, &data, &FitSettings::default(),
 //! )?;
 //! assert!((fitted.values[0] - 0.7).abs() < 1e-7);
 //! assert!((fitted.values[1] - 0.5).abs() < 1e-7);
@@ -108,10 +119,9 @@ pub use differentiate::savitzky_golay;
 
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 
-use crate::error::Failure;
 use crate::integrators::Integrator;
-use crate::model::ParameterDerivatives;
-use crate::sensitivity::{Direction, Sensitivity, SensitivityError};
+use crate::model::parameters::{Domain, ParameterDerivatives, ParameterError};
+use crate::sensitivity::{Augmented, Direction, IntoDirection, Sensitivity, SensitivityError};
 
 /// What was measured at each of `times`: some or all coordinates, and
 /// named `let`s of the model (a bob's `x2`, `y2`), or either alone.
@@ -309,20 +319,26 @@ impl<L, const N: usize, const D: usize> Fit<L, N, D> {
     }
 }
 
-/// Why a fit did not give values.
+/// Why a fit did not give values. No size in its type: a helper that
+/// returns a fit's error names `FitError`.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
-pub enum FitError<const NA: usize> {
+pub enum FitError {
     /// The measurements cannot be fitted as given.
     #[error("the measurements {0}")]
     Data(String),
     /// The sensitivity model cannot be built.
     #[error(transparent)]
     Sensitivity(#[from] SensitivityError),
-    /// The run from the starting values failed: the trajectory so far and
-    /// where it stopped.
+    /// A parameter of the model at the start lies outside its declared
+    /// domain (`parameters: l1 > 0;`): the fit is refused before any run.
+    #[error("the fit cannot start there: {0}")]
+    OutsideDomain(#[from] ParameterError),
+    /// The run from the starting values failed: the sensitivity run's
+    /// [`Failure`](crate::error::Failure) (`Failure<f64, NA>`, `NA = N·(1 + D)`, which
+    /// `downcast_ref` reaches), the trajectory so far and where it stopped.
     #[error("the run from the starting values failed: {0}")]
-    Run(Box<Failure<f64, NA>>),
+    Run(Box<dyn std::error::Error + Send + Sync>),
     /// Some combination of the directions leaves the measured motion
     /// unchanged (to `ratio` of the best-seen combination).
     #[error(
@@ -351,23 +367,41 @@ pub enum FitError<const NA: usize> {
 /// Fits `directions` of `model` (parameters and, optionally, initial
 /// positions and velocities) to `data`, each run from `t0` and `start` by
 /// `method`. The starting values are the model's parameters and `start`.
-/// See the [module's docs](self) for what is computed and the conditions
-/// the statistics hold under.
+/// The directions are a list of names (`["m2", "l1", "q0 theta1"]`, as
+/// [`Direction::named`] reads them) or of [`Direction`]s; every size is
+/// inferred (`D` from the list, the sensitivities' through
+/// [`Augmented`]). See the [module's docs](self) for what is computed,
+/// how the parameters' domains are kept, and the conditions the
+/// statistics hold under.
 #[allow(clippy::too_many_arguments)]
-pub fn fit<L, I, const N: usize, const P: usize, const D: usize, const NA: usize>(
+pub fn fit<L, I, T, const N: usize, const P: usize, const D: usize, const NA: usize>(
     model: L,
     method: &I,
-    directions: [Direction; D],
+    directions: [T; D],
     t0: f64,
     start: (SVector<f64, N>, SVector<f64, N>),
     data: &Measurements<N>,
     settings: &FitSettings,
-) -> Result<Fit<L, N, D>, FitError<NA>>
+) -> Result<Fit<L, N, D>, FitError>
 where
-    L: ParameterDerivatives<N, P, Scalar = f64> + Clone,
+    L: ParameterDerivatives<N, P, Scalar = f64> + Augmented<D, NA> + Clone,
     I: Integrator<f64>,
+    T: IntoDirection,
 {
+    let directions = crate::sensitivity::directions::<L, T, N, P, D>(directions)?;
     check_data(data, t0, D)?;
+    // A start outside a parameter's domain is refused, fitted or not.
+    let p = model.parameter_values();
+    for (k, domain) in L::DOMAINS.iter().enumerate() {
+        domain.check(L::PARAMETERS[k], None, p[k])?;
+    }
+    let domains: Vec<Domain> = directions
+        .iter()
+        .map(|d| match *d {
+            Direction::Parameter(k) => L::DOMAINS[k],
+            _ => Domain::REAL,
+        })
+        .collect();
     let let_indices = if data.lets.is_empty() {
         Vec::new()
     } else {
@@ -378,11 +412,7 @@ where
     };
     // Refuses bad directions and models before any run.
     Sensitivity::<L, N, P, D, NA>::new(model.clone(), directions)?;
-    let names: [String; D] = std::array::from_fn(|j| match directions[j] {
-        Direction::Parameter(k) => L::PARAMETERS[k].to_string(),
-        Direction::Position(i) => format!("q0 {}", L::COORDINATES[i]),
-        Direction::Velocity(i) => format!("v0 {}", L::COORDINATES[i]),
-    });
+    let names: [String; D] = std::array::from_fn(|j| directions[j].name::<L, N, P>());
     let values_of = |model: &L, start: &(SVector<f64, N>, SVector<f64, N>)| {
         let p = model.parameter_values();
         SVector::<f64, D>::from_fn(|j, _| match directions[j] {
@@ -406,13 +436,13 @@ where
     };
     let observed: Vec<usize> = (0..N).filter(|&c| data.observed[c]).collect();
     let mut fitted = Vec::new();
-    let mut evaluate = |x: &DVector<f64>| -> Result<levenberg::Evaluation, FitError<NA>> {
+    let mut evaluate = |x: &DVector<f64>| -> Result<levenberg::Evaluation, FitError> {
         let (model, start) = with_values(x);
         let sensitivity = Sensitivity::<L, N, P, D, NA>::new(model, directions)?;
         let (x0, w0) = sensitivity.initial_state(&start.0, &start.1);
         let run = method
             .integrate(&sensitivity, t0, x0, w0, &data.times)
-            .map_err(FitError::Run)?;
+            .map_err(|failure| FitError::Run(failure))?;
         let m = data.residual_count();
         let mut residual = DVector::<f64>::zeros(m);
         let mut jacobian = DMatrix::<f64>::zeros(m, D);
@@ -473,7 +503,7 @@ where
         f_tol: settings.f_tol,
     };
     let mut first = Some(first);
-    let solution = levenberg::minimize(x0.clone(), stop, |x| match first.take() {
+    let solution = levenberg::minimize(x0.clone(), stop, &domains, |x| match first.take() {
         Some(at) => Ok(at),
         None => evaluate(x),
     })?;
@@ -508,11 +538,11 @@ where
     })
 }
 
-fn check_data<const N: usize, const NA: usize>(
+fn check_data<const N: usize>(
     data: &Measurements<N>,
     t0: f64,
     directions: usize,
-) -> Result<(), FitError<NA>> {
+) -> Result<(), FitError> {
     let bad = |what: String| Err(FitError::Data(what));
     if data.times.len() != data.positions.len() {
         return bad(format!(

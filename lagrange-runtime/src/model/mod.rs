@@ -51,7 +51,7 @@ pub(crate) mod settings;
 mod with;
 
 pub use layer::{At, FiniteDifferences, Layer, Layered, WithoutJacobians};
-pub use parameters::ParameterDerivatives;
+pub use parameters::{Domain, ParameterDerivatives, ParameterError};
 pub use with::WithLayers;
 
 /// A mechanical system written as `M(t, q) q̈ = f(t, q, q̇)`: the contract

@@ -7,7 +7,7 @@ use nalgebra::{RealField, SMatrix, SVector};
 
 use super::inputs::{Actuated, KeepsInputs};
 use super::layer::{At, Layer, Layered};
-use super::parameters::ParameterDerivatives;
+use super::parameters::{Domain, ParameterDerivatives};
 
 /// A layer that keeps the inputs passes the model's on.
 impl<M, A, const N: usize, const K: usize> Actuated<N, K> for Layered<M, A>
@@ -48,6 +48,7 @@ where
     A: Layer<M, N>,
 {
     const PARAMETERS: [&'static str; P] = M::PARAMETERS;
+    const DOMAINS: [Domain; P] = M::DOMAINS;
 
     fn parameter_values(&self) -> SVector<Self::Scalar, P> {
         self.model().parameter_values()

@@ -59,6 +59,7 @@
 //! #         -9.81 * self.l * q[0].cos()
 //! #     }
 //! # }
+//! # impl lagrange_runtime::sensitivity::Augmented<2, 3> for Pendulum {}
 //! # impl ParameterDerivatives<1, 1> for Pendulum {
 //! #     const PARAMETERS: [&'static str; 1] = ["l"];
 //! #     fn parameter_values(&self) -> SVector<f64, 1> { SVector::<f64, 1>::new(self.l) }
@@ -76,12 +77,10 @@
 //! // A pendulum of length `l` (its `ParameterDerivatives` impl, which
 //! // `#[lagrange(parameter_derivatives)]` would generate, is hidden here),
 //! // and how its angle responds to `l` and to the initial angle: two
-//! // directions, so 1·(1 + 2) = 3 coordinates.
+//! // directions, so 1·(1 + 2) = 3 coordinates, inferred.
 //! let pendulum = Pendulum { l: 1.0 };
-//! let sensitivity: Sensitivity<Pendulum, 1, 1, 2, 3> = Sensitivity::new(
-//!     pendulum,
-//!     [Direction::parameter::<Pendulum, 1, 1>("l")?, Direction::Position(0)],
-//! )?;
+//! let sensitivity = Sensitivity::new(pendulum, ["l", "q0 theta"])?;
+//! assert_eq!(sensitivity.directions(), &[Direction::Parameter(0), Direction::Position(0)]);
 //! let (x0, v0) = sensitivity.initial_state(&SVector::from([0.1]), &SVector::from([0.0]));
 //! let run = Dop853::new().rtol(1e-10).atol(1e-12).integrate(&sensitivity, 0.0, x0, v0, &[1.0])?;
 //! let end = run.last().unwrap();
@@ -104,14 +103,42 @@ use crate::error::{IntegrationError, NonFiniteValue};
 use crate::linalg::mass::factor_mass_matrix;
 use crate::model::constraints::is_constrained;
 use crate::model::inputs::{self, Inputs};
+use crate::model::layer::Layered;
 use crate::model::{Lagrangian, ParameterDerivatives};
 use crate::trajectory::Stats;
 
 /// The number of coordinates of a [`Sensitivity`] of a model with `n`
-/// coordinates along `d` directions, `n·(1 + d)`, for its type's last
-/// parameter: `Sensitivity<M, 2, 7, 5, { coordinates(2, 5) }>`.
+/// coordinates along `d` directions, `n·(1 + d)`: its type's last
+/// parameter, `Sensitivity<M, 2, 7, 5, { coordinates(2, 5) }>`, where a
+/// type is written out (it is inferred through [`Augmented`] otherwise).
 pub const fn coordinates(n: usize, d: usize) -> usize {
     n * (1 + d)
+}
+
+/// A model whose sensitivities along `D` directions have `NA = N·(1 + D)`
+/// coordinates: what lets [`Sensitivity::new`] and
+/// [`identify::fit`](crate::identify::fit) infer `NA`, which stable Rust
+/// cannot compute from `N` and `D` in a generic type.
+///
+/// `lagrangian!` implements it for a model written with
+/// `#[lagrange(parameter_derivatives)]`, for every `D` from 1 to its
+/// number of directions (`P + 2N`: each parameter scalar, each initial
+/// position and velocity), and every layer passes it on. A model written
+/// by hand states the sizes it is used at, one line each:
+/// `impl Augmented<2, 3> for Pendulum {}` (one coordinate, two
+/// directions). A wrong `NA` is a compile error where the sensitivity is
+/// built ("`NA` must be `N·(1 + D)`").
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` does not state the size of its sensitivities along `{D}` directions",
+    note = "a model with `#[lagrange(parameter_derivatives)]` states it for every number of \
+            directions it has (its parameter scalars, initial positions and velocities); a \
+            model written by hand states it itself: `impl Augmented<D, {{ N * (1 + D) }}> for Model {{}}`"
+)]
+pub trait Augmented<const D: usize, const NA: usize> {}
+
+impl<M, A, const D: usize, const NA: usize> Augmented<D, NA> for Layered<M, A> where
+    M: Augmented<D, NA>
+{
 }
 
 /// What a sensitivity is taken along.
@@ -136,19 +163,112 @@ impl Direction {
     {
         L::parameter_index(name)
             .map(Direction::Parameter)
-            .ok_or_else(|| SensitivityError::UnknownParameter {
-                name: name.to_string(),
-                known: L::PARAMETERS.iter().map(|p| p.to_string()).collect(),
-            })
+            .ok_or_else(|| unknown::<L, N, P>(name))
     }
+
+    /// The direction named `name` of the model `L`: a parameter scalar as
+    /// `PARAMETER_SCALARS` writes it (`m2`, `l[0]`), or `q0 x` (`v0 x`)
+    /// for the initial position (velocity) of coordinate `x`, the names a
+    /// [`Fit`](crate::identify::Fit) gives its values.
+    pub fn named<L, const N: usize, const P: usize>(name: &str) -> Result<Self, SensitivityError>
+    where
+        L: ParameterDerivatives<N, P>,
+    {
+        let initial = |prefix: &str| {
+            let coordinate = name.strip_prefix(prefix)?.trim_start();
+            L::COORDINATES.iter().position(|c| *c == coordinate)
+        };
+        if let Some(i) = initial("q0 ") {
+            return Ok(Direction::Position(i));
+        }
+        if let Some(i) = initial("v0 ") {
+            return Ok(Direction::Velocity(i));
+        }
+        Self::parameter::<L, N, P>(name)
+    }
+
+    /// The direction's name, as [`named`](Self::named) reads it.
+    pub fn name<L, const N: usize, const P: usize>(&self) -> String
+    where
+        L: ParameterDerivatives<N, P>,
+    {
+        match *self {
+            Direction::Parameter(k) => L::PARAMETERS[k].to_string(),
+            Direction::Position(i) => format!("q0 {}", L::COORDINATES[i]),
+            Direction::Velocity(i) => format!("v0 {}", L::COORDINATES[i]),
+        }
+    }
+}
+
+fn unknown<L, const N: usize, const P: usize>(name: &str) -> SensitivityError
+where
+    L: ParameterDerivatives<N, P>,
+{
+    SensitivityError::UnknownParameter {
+        name: name.to_string(),
+        known: L::PARAMETERS.iter().map(|p| p.to_string()).collect(),
+    }
+}
+
+/// A direction as a caller writes it: a [`Direction`], or its name (`"l2"`,
+/// `"q0 theta1"`, [`Direction::named`]), so that a list of names is a list
+/// of directions.
+pub trait IntoDirection {
+    /// The direction of the model `L` this names.
+    fn into_direction<L, const N: usize, const P: usize>(
+        self,
+    ) -> Result<Direction, SensitivityError>
+    where
+        L: ParameterDerivatives<N, P>;
+}
+
+impl IntoDirection for Direction {
+    fn into_direction<L, const N: usize, const P: usize>(
+        self,
+    ) -> Result<Direction, SensitivityError>
+    where
+        L: ParameterDerivatives<N, P>,
+    {
+        Ok(self)
+    }
+}
+
+impl IntoDirection for &str {
+    fn into_direction<L, const N: usize, const P: usize>(
+        self,
+    ) -> Result<Direction, SensitivityError>
+    where
+        L: ParameterDerivatives<N, P>,
+    {
+        Direction::named::<L, N, P>(self)
+    }
+}
+
+/// The directions `names` of the model `L`, each read by [`IntoDirection`].
+pub(crate) fn directions<L, T, const N: usize, const P: usize, const D: usize>(
+    names: [T; D],
+) -> Result<[Direction; D], SensitivityError>
+where
+    L: ParameterDerivatives<N, P>,
+    T: IntoDirection,
+{
+    let mut out = [Direction::Parameter(0); D];
+    for (slot, name) in out.iter_mut().zip(names) {
+        *slot = name.into_direction::<L, N, P>()?;
+    }
+    Ok(out)
 }
 
 /// Why a [`Sensitivity`] cannot be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum SensitivityError {
-    /// No parameter scalar has this name.
-    #[error("the model has no parameter scalar `{name}` (it has: {})", known.join(", "))]
+    /// No parameter scalar (nor initial condition) has this name.
+    #[error(
+        "the model has no parameter scalar `{name}` (it has: {}; an initial position or velocity \
+         is `q0 x` or `v0 x` of a coordinate `x`)",
+        known.join(", ")
+    )]
     UnknownParameter {
         /// The name asked for.
         name: String,
@@ -200,11 +320,10 @@ pub enum SensitivityError {
 /// `d` in order. `P` is the model's number of parameter scalars. The
 /// [module's docs](self) give the equations and an example.
 ///
-/// `NA` is checked when the type is used: a wrong one is a compile error
-/// ("`NA` must be `N·(1 + D)`"). Stable Rust cannot compute it from `N`
-/// and `D` in a generic type, so it is written out, or as
-/// `{ coordinates(N, D) }` with the numbers:
-/// `Sensitivity<Pendulum, 2, 7, 5, { coordinates(2, 5) }>`.
+/// Every size is inferred where it is built ([`Sensitivity::new`]: `D`
+/// from the list of directions, `NA` through [`Augmented`]); written out,
+/// the type is `Sensitivity<Pendulum, 2, 7, 5, { coordinates(2, 5) }>`,
+/// and a wrong `NA` is a compile error ("`NA` must be `N·(1 + D)`").
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sensitivity<L, const N: usize, const P: usize, const D: usize, const NA: usize> {
     model: L,
@@ -217,11 +336,17 @@ where
 {
     const SIZE: () = assert!(NA == N * (1 + D), "`NA` must be `N·(1 + D)`");
 
-    /// `model` with its sensitivities along `directions`. Refuses a
+    /// `model` with its sensitivities along `directions`, each a
+    /// [`Direction`] or its name (`["l2", "q0 theta1"]`): `D` is the
+    /// list's length and `NA` follows ([`Augmented`]). Refuses a
     /// constrained model, a model that cannot be evaluated, and a direction
-    /// out of range or listed twice.
-    pub fn new(model: L, directions: [Direction; D]) -> Result<Self, SensitivityError> {
+    /// unknown, out of range or listed twice.
+    pub fn new<T: IntoDirection>(model: L, directions: [T; D]) -> Result<Self, SensitivityError>
+    where
+        L: Augmented<D, NA>,
+    {
         let () = Self::SIZE;
+        let directions = self::directions::<L, T, N, P, D>(directions)?;
         if is_constrained(&model) {
             return Err(SensitivityError::Constrained);
         }

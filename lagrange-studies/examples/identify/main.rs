@@ -108,7 +108,7 @@ fn guess() -> [f64; 7] {
 }
 
 fn fit_once(data: &Measurements<2>) -> Result<Fit<DampedDoublePendulum, 2, 5>, Box<dyn Error>> {
-    Ok(fit::<_, _, 2, 7, 5, 12>(
+    Ok(fit(
         model(&guess()),
         &Dop853::new().rtol(1e-10).atol(1e-10),
         directions(),
