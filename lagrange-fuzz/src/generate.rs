@@ -94,7 +94,11 @@ impl Gen<'_> {
         let n_params = self.rng.weighted(&[2, 3, 3, 2, 1]);
         if n_params > 0 {
             let parameters = self.declare(&["m", "k", "l", "c", "a", "b"], n_params, n_params);
-            early.push(format!("parameters: {};", list(&parameters)));
+            let declared: Vec<String> = list(&parameters)
+                .split(", ")
+                .map(|p| format!("{p}{}", self.domain()))
+                .collect();
+            early.push(format!("parameters: {};", declared.join(", ")));
             if self.rng.chance(0.08) {
                 // Some of the parameters' names, now and then one that is not.
                 let mut listed: Vec<String> = parameters
@@ -208,6 +212,29 @@ impl Gen<'_> {
 
     /// `count` distinct names from `pool` (suffixed when it runs out), some
     /// indexed by a `const` or a literal length.
+    /// A parameter's domain after its name, mostly none; now and then a
+    /// malformed one (a missing bound, an empty interval, a name for a
+    /// bound), which must be one spanned error.
+    fn domain(&mut self) -> &'static str {
+        if !self.rng.chance(0.3) {
+            return "";
+        }
+        if self.rng.chance(0.1) {
+            return *self
+                .rng
+                .pick(&[" > ", " in [1, 0]", " > m", " in [2, 2]", " in 0"]);
+        }
+        *self.rng.pick(&[
+            " > 0",
+            " >= 0",
+            " < 1",
+            " <= 2.5",
+            " in [0, 1]",
+            " in (-1, 1)",
+            " > -1e-3",
+        ])
+    }
+
     fn declare(&mut self, pool: &[&str], min: usize, max: usize) -> Vec<Name> {
         let n = self.rng.range(min, max);
         let start = self.rng.below(pool.len());

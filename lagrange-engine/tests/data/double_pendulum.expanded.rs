@@ -12,6 +12,57 @@ pub struct DoublePendulum<S = f64> {
     /// The parameter `g`.
     pub g: S,
 }
+/// The parameters of [`DoublePendulum`] by name, for [`DoublePendulum::from_parameters`]: each field the parameter of that name (with its domain, where it declares one).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[allow(non_snake_case)]
+pub struct DoublePendulumParameters<S = f64> {
+    /// `m1`.
+    pub m1: S,
+    /// `m2`.
+    pub m2: S,
+    /// `l1`.
+    pub l1: S,
+    /// `l2`.
+    pub l2: S,
+    /// `g`.
+    pub g: S,
+}
+#[allow(non_snake_case, clippy::all)]
+impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S> {
+    /// `new`, each parameter checked against its declared domain: the first
+    /// outside it is the error, named with its value.
+    pub fn try_new(
+        m1: S,
+        m2: S,
+        l1: S,
+        l2: S,
+        g: S,
+    ) -> ::core::result::Result<Self, ::lagrange::ParameterError> {
+        let model = Self::new(m1, m2, l1, l2, g);
+        model.check_parameters()?;
+        ::core::result::Result::Ok(model)
+    }
+    /// The model from its parameters by name, each checked against its declared
+    /// domain (as `try_new`).
+    pub fn from_parameters(
+        parameters: DoublePendulumParameters<S>,
+    ) -> ::core::result::Result<Self, ::lagrange::ParameterError> {
+        Self::try_new(
+            parameters.m1,
+            parameters.m2,
+            parameters.l1,
+            parameters.l2,
+            parameters.g,
+        )
+    }
+    /// Whether every parameter lies inside its declared domain: the first that
+    /// does not is the error (after a field was set, or a model was read back).
+    pub fn check_parameters(
+        &self,
+    ) -> ::core::result::Result<(), ::lagrange::ParameterError> {
+        ::core::result::Result::Ok(())
+    }
+}
 #[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]
 impl<S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy> DoublePendulum<S>
 where

@@ -170,3 +170,76 @@ mod regressor {
         assert!(message.contains("(here: m, c)"), "{message}");
     }
 }
+
+/// Domains after the parameters' names: each scalar's in `DOMAINS` (an
+/// indexed parameter's for each element, `REAL` where none is declared),
+/// the checked constructors beside `new`, and the sensitivities' sizes for
+/// every number of directions, `1 ..= P + 2N`.
+#[test]
+fn domains_reach_the_parameter_scalars_and_the_checked_constructors() {
+    let tokens = expand(&PENDULUM.replace(
+        "parameters: m, l[N], g;",
+        "parameters: m > 0, l[N] in [0.5, 2], g;",
+    ));
+    assert!(!tokens.contains("compile_error"), "{tokens}");
+    let real = ":: lagrange :: Domain :: REAL";
+    let positive =
+        ":: lagrange :: Domain :: new (0.0 , false , :: core :: f64 :: INFINITY , false)";
+    let closed = ":: lagrange :: Domain :: new (0.5 , true , 2.0 , true)";
+    assert!(
+        tokens.contains(&format!(
+            "const DOMAINS : [:: lagrange :: Domain ; 4] = [{positive} , {closed} , {closed} , {real}]"
+        )),
+        "{tokens}"
+    );
+    assert!(tokens.contains(&format!("{closed} . check_all (\"l\" , & self . l) ?")));
+    for item in [
+        "pub struct PendulumParameters < S = f64 >",
+        "pub fn try_new (m : S , l : [S ; 2] , g : S)",
+        "pub fn from_parameters (parameters : PendulumParameters < S >)",
+        "pub fn check_parameters (& self)",
+    ] {
+        assert!(tokens.contains(item), "{item}");
+    }
+    // P = 4 scalars and N = 1 coordinate: 1 to 6 directions, N (1 + D).
+    assert!(tokens.contains("Augmented < 6 , 7 > for Pendulum < S >"));
+    assert!(!tokens.contains("Augmented < 7 ,"));
+    syn::parse_file(&tokens).expect("the items parse as Rust");
+    // The same model expands to the same bytes.
+    assert_eq!(
+        tokens,
+        expand(&PENDULUM.replace(
+            "parameters: m, l[N], g;",
+            "parameters: m > 0, l[N] in [0.5, 2], g;"
+        ))
+    );
+}
+
+/// Each malformed domain is one error, on its tokens, and the stub keeps
+/// every parameter (its `new` takes them all).
+#[test]
+fn a_malformed_domain_is_one_error_and_the_stub_keeps_the_parameter() {
+    for (domain, message) in [
+        ("l[N] > ", "the bound after `>` is missing"),
+        ("l[N] in [2, 1]", "the domain of `l` is empty"),
+        ("l[N] in [1, 1]", "holds the one value 1"),
+        ("l[N] >= g", "must be a number literal"),
+        ("l[N] in 3", "expected an interval after `in`"),
+        (
+            "l[N] in [0 1]",
+            "expected `,` between the interval's two ends",
+        ),
+    ] {
+        let tokens = expand(&PENDULUM.replace("l[N]", domain));
+        assert_eq!(
+            tokens.matches("compile_error").count(),
+            1,
+            "{domain}: {tokens}"
+        );
+        assert!(tokens.contains(message), "{domain}: {tokens}");
+        assert!(
+            tokens.contains("fn new (m : S , l : [S ; 2] , g : S)"),
+            "{domain}"
+        );
+    }
+}
