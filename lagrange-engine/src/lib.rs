@@ -105,6 +105,7 @@ pub mod fallback;
 pub mod model;
 pub mod parse;
 pub mod render;
+pub mod robot;
 
 use proc_macro2::TokenStream;
 
@@ -405,6 +406,9 @@ fn within_budget<T>(model: &model::Model, result: syn::Result<T>) -> syn::Result
 /// The macro: tokens in, items out. Never panics on user input; every error
 /// is a `compile_error!` on the offending tokens, plus a stub of the model.
 pub fn expand(input: TokenStream) -> TokenStream {
+    if robot::is_robot(&input) {
+        return robot::expand(input);
+    }
     let parsed = match parse::parse(input) {
         Ok(p) => p,
         Err(e) => return e.to_compile_error(),

@@ -1,0 +1,437 @@
+//! A robot from a URDF file: `#[lagrange(urdf = "robots/arm.urdf")]` on
+//! the struct of a `lagrangian!`.
+//!
+//! A pipeline of its own beside the energy route, one file per stage:
+//! [`urdf`] reads the file (roxmltree) into links and joints, every refusal
+//! naming the element and its line; [`tree`] merges what is fixed or
+//! locked into the moving bodies; [`algorithms`] runs Featherstone's
+//! recursions (RNEA, CRBA, ABA, the energies) on traced scalars
+//! ([`trace`]), which write the robot's own unrolled code with its
+//! constants folded, as RobCoGen does; this module parses the macro's
+//! input and emits the items. The energy route is not taken: its cost
+//! grows far faster than the recursions' (issue 46).
+
+pub mod algorithms;
+pub mod trace;
+pub mod tree;
+pub mod urdf;
+
+use proc_macro2::{Span, TokenStream};
+use quote::{format_ident, quote};
+use syn::parse::{ParseStream, Parser};
+use syn::{Attribute, Ident, LitStr, Token, Visibility, braced};
+use trace::{Trace, Val};
+use tree::{Body, Lock, TreeError};
+
+/// What the macro's input says of a robot.
+struct Input {
+    attrs: Vec<Attribute>,
+    vis: Visibility,
+    name: Ident,
+    path: LitStr,
+    locks: Vec<(Ident, Lock)>,
+}
+
+/// Whether the input is a robot from URDF: the struct carries
+/// `#[lagrange(urdf = "...")]`.
+pub fn is_robot(input: &TokenStream) -> bool {
+    let probe = |stream: ParseStream| -> syn::Result<bool> {
+        let attrs = stream.call(Attribute::parse_outer)?;
+        let _ = stream.parse::<TokenStream>();
+        Ok(attrs.iter().any(|a| {
+            a.path().is_ident("lagrange")
+                && a.parse_nested_meta(|m| {
+                    if m.path.is_ident("urdf") {
+                        return Err(m.error("found"));
+                    }
+                    if m.input.peek(Token![=]) {
+                        let _: syn::Expr = m.value()?.parse()?;
+                    } else if m.input.peek(syn::token::Paren) {
+                        let _ = m.parse_nested_meta(|_| Ok(()));
+                    }
+                    Ok(())
+                })
+                .is_err_and(|e| e.to_string() == "found")
+        }))
+    };
+    probe.parse2(input.clone()).unwrap_or(false)
+}
+
+fn parse(input: TokenStream) -> syn::Result<Input> {
+    let parser = |stream: ParseStream| -> syn::Result<Input> {
+        let mut attrs = stream.call(Attribute::parse_outer)?;
+        let mut path = None;
+        let mut error: Option<syn::Error> = None;
+        attrs.retain(|a| {
+            if !a.path().is_ident("lagrange") {
+                return true;
+            }
+            let r = a.parse_nested_meta(|m| {
+                if m.path.is_ident("urdf") {
+                    path = Some(m.value()?.parse::<LitStr>()?);
+                    Ok(())
+                } else {
+                    Err(m.error(
+                        "a robot from URDF takes `#[lagrange(urdf = \"path\")]` alone: its dynamics are \
+                         Featherstone's recursions, not derived from T and V",
+                    ))
+                }
+            });
+            if let Err(e) = r {
+                error.get_or_insert(e);
+            }
+            false
+        });
+        if let Some(e) = error {
+            return Err(e);
+        }
+        let vis: Visibility = stream.parse()?;
+        stream.parse::<Token![struct]>()?;
+        let name: Ident = stream.parse()?;
+        let body;
+        braced!(body in stream);
+        let mut locks = Vec::new();
+        while !body.is_empty() {
+            let section: Ident = body.parse()?;
+            if section != "locked" {
+                return Err(syn::Error::new(
+                    section.span(),
+                    "a robot from URDF takes one section, `locked: joint = value, ...;` (joints held at a \
+                     value: an angle in radians, or a displacement in metres); the rest is in the file",
+                ));
+            }
+            body.parse::<Token![:]>()?;
+            loop {
+                let joint: Ident = body.call(syn::ext::IdentExt::parse_any)?;
+                body.parse::<Token![=]>()?;
+                let negative = body.parse::<Option<Token![-]>>()?.is_some();
+                let lit: syn::Lit = body.parse()?;
+                let value = match &lit {
+                    syn::Lit::Float(f) => f.base10_parse::<f64>()?,
+                    syn::Lit::Int(i) => i.base10_parse::<f64>()?,
+                    _ => return Err(syn::Error::new(lit.span(), "a lock's value is a number")),
+                };
+                if !value.is_finite() {
+                    return Err(syn::Error::new(lit.span(), "a lock's value is a finite number"));
+                }
+                let value = if negative { -value } else { value };
+                locks.push((
+                    joint.clone(),
+                    Lock {
+                        joint: joint.to_string(),
+                        value,
+                    },
+                ));
+                if body.parse::<Option<Token![,]>>()?.is_none() {
+                    break;
+                }
+                if body.peek(Token![;]) {
+                    break;
+                }
+            }
+            body.parse::<Token![;]>()?;
+        }
+        let Some(path) = path else {
+            return Err(syn::Error::new(name.span(), "`#[lagrange(urdf = \"path\")]` names the file"));
+        };
+        Ok(Input {
+            attrs,
+            vis,
+            name,
+            path,
+            locks,
+        })
+    };
+    parser.parse2(input)
+}
+
+/// The bodies of the robot the input names, or the error on its tokens.
+fn load(input: &Input) -> syn::Result<Vec<Body>> {
+    let rel = input.path.value();
+    let span = input.path.span();
+    let err = |message: String| syn::Error::new(span, message);
+    let Ok(dir) = std::env::var("CARGO_MANIFEST_DIR") else {
+        return Err(err("CARGO_MANIFEST_DIR is not set: the URDF's path is relative to the crate's manifest, which cargo names".into()));
+    };
+    let full = std::path::Path::new(&dir).join(&rel);
+    let text = std::fs::metadata(&full)
+        .map_err(|e| err(format!("cannot read `{rel}` (relative to the crate's manifest): {e}")))
+        .and_then(|meta| {
+            if meta.len() > urdf::MAX_FILE {
+                Err(err(format!(
+                    "`{rel}` has {} bytes, more than a URDF may ({} bytes)",
+                    meta.len(),
+                    urdf::MAX_FILE
+                )))
+            } else {
+                std::fs::read_to_string(&full)
+                    .map_err(|e| err(format!("cannot read `{rel}` as UTF-8 text: {e}")))
+            }
+        })?;
+    let locks: Vec<Lock> = input.locks.iter().map(|(_, l)| l.clone()).collect();
+    let at = |r: urdf::Refusal| match r.line {
+        Some(line) => err(format!("{rel}, line {line}: {}", r.message)),
+        None => err(format!("{rel}: {}", r.message)),
+    };
+    let robot = urdf::read(&text).map_err(at)?;
+    tree::bodies(&robot, &locks).map_err(|e| match e {
+        TreeError::File(r) => at(r),
+        TreeError::Lock(k, message) => {
+            syn::Error::new(input.locks[k].0.span(), format!("{message} (in `{rel}`)"))
+        }
+    })
+}
+
+/// Expands a robot from URDF: the items, or a `compile_error!` and a stub.
+pub fn expand(input: TokenStream) -> TokenStream {
+    let input = match parse(input) {
+        Ok(i) => i,
+        Err(e) => return e.to_compile_error(),
+    };
+    match load(&input).and_then(|bodies| check(&input, &bodies).map(|()| bodies)) {
+        Ok(bodies) => emit(&input, &bodies),
+        Err(e) => {
+            let (vis, name) = (&input.vis, &input.name);
+            let error = e.to_compile_error();
+            quote! {
+                #error
+                #[allow(dead_code)]
+                #vis struct #name<S = f64>(::core::marker::PhantomData<S>);
+            }
+        }
+    }
+}
+
+/// The states at which `M` is checked to be positive definite.
+fn check_states(n: usize) -> [Vec<f64>; 3] {
+    // Fixed, spread values: deterministic, away from special angles.
+    let a: Vec<f64> = (0..n).map(|i| 0.3 + 0.7 * i as f64).collect();
+    let b: Vec<f64> = (0..n).map(|i| ((i * 7 + 3) % 11) as f64 * 0.55 - 2.7).collect();
+    [vec![0.0; n], a, b]
+}
+
+/// `M` positive definite at a few states: every joint moves some mass.
+fn check(input: &Input, bodies: &[Body]) -> syn::Result<()> {
+    let n = bodies.len();
+    let mut t = Trace::default();
+    let q: Vec<Val> = (0..n).map(|i| t.input(quote!(q[#i]))).collect();
+    let m = algorithms::crba(&mut t, bodies, &q);
+    for state in check_states(n) {
+        let values = t.eval(&state);
+        let mut a: Vec<Vec<f64>> = m
+            .iter()
+            .map(|row| row.iter().map(|&x| Trace::value(&values, x)).collect())
+            .collect();
+        // Cholesky, each pivot against the diagonal's scale.
+        for j in 0..n {
+            let scale = a[j][j].abs().max(f64::MIN_POSITIVE);
+            for k in 0..j {
+                a[j][j] -= a[j][k] * a[j][k];
+            }
+            if !(a[j][j] > 1e-12 * scale) {
+                return Err(syn::Error::new(
+                    input.path.span(),
+                    format!(
+                        "{}: the mass matrix is singular: joint `{}` moves no mass or inertia about its axis \
+                         (what it carries is massless, or it turns a body about its own symmetry line alone)",
+                        input.path.value(),
+                        bodies[j].name
+                    ),
+                ));
+            }
+            a[j][j] = a[j][j].sqrt();
+            for i in j + 1..n {
+                for k in 0..j {
+                    a[i][j] -= a[i][k] * a[j][k];
+                }
+                a[i][j] /= a[j][j];
+            }
+        }
+    }
+    Ok(())
+}
+
+/// One generated function's body: inputs read, the trace written, the
+/// outputs returned by `wrap`.
+fn function(
+    bodies: &[Body],
+    reads: &[&str],
+    run: impl FnOnce(&mut Trace, &[Vec<Val>]) -> Vec<Val>,
+) -> (TokenStream, Vec<TokenStream>) {
+    let n = bodies.len();
+    let mut t = Trace::default();
+    let inputs: Vec<Vec<Val>> = reads
+        .iter()
+        .map(|r| {
+            let r = format_ident!("{}", r);
+            (0..n).map(|i| t.input(quote!(#r[#i]))).collect()
+        })
+        .collect();
+    let outs = run(&mut t, &inputs);
+    t.emit(&outs)
+}
+
+fn emit(input: &Input, bodies: &[Body]) -> TokenStream {
+    let n = bodies.len();
+    let (vis, name, attrs) = (&input.vis, &input.name, &input.attrs);
+    let rel = input.path.value();
+    let names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
+    let vector = |outs: Vec<TokenStream>| {
+        quote!(::lagrange::nalgebra::SVector::<S, #n>::from_array_storage(
+            ::lagrange::nalgebra::ArrayStorage([[#(#outs),*]])
+        ))
+    };
+    let (rnea_body, rnea_out) = function(bodies, &["q", "qdot", "qddot"], |t, x| {
+        algorithms::rnea(t, bodies, &x[0], &x[1], &x[2], true)
+    });
+    let rnea_out = vector(rnea_out);
+    let (nle_body, nle_out) = function(bodies, &["q", "qdot"], |t, x| {
+        let zero = vec![trace::ZERO; n];
+        algorithms::rnea(t, bodies, &x[0], &x[1], &zero, true)
+    });
+    let nle_out = vector(nle_out);
+    let (grav_body, grav_out) = function(bodies, &["q"], |t, x| {
+        let zero = vec![trace::ZERO; n];
+        algorithms::rnea(t, bodies, &x[0], &zero, &zero, true)
+    });
+    let grav_out = vector(grav_out);
+    let (aba_body, aba_out) = function(bodies, &["q", "qdot", "tau"], |t, x| {
+        algorithms::aba(t, bodies, &x[0], &x[1], &x[2])
+    });
+    let aba_out = vector(aba_out);
+    let (acc_body, acc_out) = function(bodies, &["q", "qdot"], |t, x| {
+        let zero = vec![trace::ZERO; n];
+        algorithms::aba(t, bodies, &x[0], &x[1], &zero)
+    });
+    let acc_out = vector(acc_out);
+    let (crba_body, crba_out) = function(bodies, &["q"], |t, x| {
+        algorithms::crba(t, bodies, &x[0]).into_iter().flatten().collect()
+    });
+    let columns: Vec<TokenStream> = crba_out
+        .chunks(n)
+        .map(|col| quote!([#(#col),*]))
+        .collect();
+    let (ke_body, ke_out) = function(bodies, &["q", "qdot"], |t, x| {
+        vec![algorithms::kinetic(t, bodies, &x[0], &x[1])]
+    });
+    let (pe_body, pe_out) = function(bodies, &["q"], |t, x| {
+        vec![algorithms::potential(t, bodies, &x[0])]
+    });
+    let (ke, pe) = (&ke_out[0], &pe_out[0]);
+    let doc_n = format!("Number of degrees of freedom: the moving joints of `{rel}`.");
+    let simd = quote! {
+        S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy,
+        S::Element: ::lagrange::nalgebra::RealField + ::core::marker::Copy,
+    };
+    let sv = quote!(::lagrange::nalgebra::SVector<S, #n>);
+    let file = LitStr::new(&rel, Span::call_site());
+    quote! {
+        #(#attrs)*
+        #[derive(Clone, Copy, Debug, Default, PartialEq)]
+        #vis struct #name<S = f64>(::core::marker::PhantomData<S>);
+
+        // The URDF read at compile time: rebuilt when it changes.
+        const _: &[u8] = include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/", #file));
+
+        #[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]
+        impl<S> #name<S> where #simd {
+            #[doc = #doc_n]
+            pub const DOF: usize = #n;
+            /// Names of the coordinates: the moving joints, parents first.
+            pub const COORDINATES: [&'static str; #n] = [#(#names),*];
+            /// The robot (its constants are in the code).
+            #[inline]
+            pub const fn new() -> Self {
+                Self(::core::marker::PhantomData)
+            }
+            /// Inverse dynamics by RNEA: the joint forces `τ(q, q̇, q̈)`
+            /// that give the accelerations `q̈`, gravity included.
+            #[inline]
+            pub fn inverse_dynamics(&self, q: &#sv, qdot: &#sv, qddot: &#sv) -> #sv {
+                #rnea_body
+                #rnea_out
+            }
+            /// The nonlinear effects `C(q, q̇) q̇ + g(q)` (RNEA at `q̈ = 0`):
+            /// `M q̈ + nle = τ`.
+            #[inline]
+            pub fn nonlinear_effects(&self, q: &#sv, qdot: &#sv) -> #sv {
+                #nle_body
+                #nle_out
+            }
+            /// The gravity torques `g(q)` (RNEA at rest).
+            #[inline]
+            pub fn gravity_torques(&self, q: &#sv) -> #sv {
+                #grav_body
+                #grav_out
+            }
+            /// Forward dynamics by ABA: `q̈(q, q̇, τ)`, without forming `M`.
+            #[inline]
+            pub fn forward_dynamics(&self, q: &#sv, qdot: &#sv, tau: &#sv) -> #sv {
+                #aba_body
+                #aba_out
+            }
+            /// `q̈(q, q̇)` unforced (ABA at `τ = 0`): what a run integrates.
+            #[inline]
+            pub fn accelerations(&self, q: &#sv, qdot: &#sv) -> #sv {
+                #acc_body
+                #acc_out
+            }
+            /// The mass matrix `M(q)` by CRBA.
+            #[inline]
+            pub fn mass_matrix(&self, t: S, q: &#sv) -> ::lagrange::nalgebra::SMatrix<S, #n, #n> {
+                #crba_body
+                ::lagrange::nalgebra::SMatrix::<S, #n, #n>::from_array_storage(
+                    ::lagrange::nalgebra::ArrayStorage([#(#columns),*])
+                )
+            }
+            /// The forcing of `M q̈ = f`: `f = −nle(q, q̇)`.
+            #[inline]
+            pub fn forcing(&self, t: S, q: &#sv, qdot: &#sv) -> #sv {
+                -self.nonlinear_effects(q, qdot)
+            }
+            /// The kinetic energy `½ Σ vᵢᵀ Iᵢ vᵢ`.
+            #[inline]
+            pub fn kinetic_energy(&self, t: S, q: &#sv, qdot: &#sv) -> S {
+                #ke_body
+                #ke
+            }
+            /// The potential energy in gravity `9.81` along `−z`.
+            #[inline]
+            pub fn potential_energy(&self, t: S, q: &#sv) -> S {
+                #pe_body
+                #pe
+            }
+        }
+
+        impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> ::lagrange::Lagrangian<#n> for #name<S> {
+            type Scalar = S;
+            const COORDINATES: [&'static str; #n] = [#(#names),*];
+            #[inline]
+            fn mass_matrix(&self, t: S, q: &#sv) -> ::lagrange::nalgebra::SMatrix<S, #n, #n> {
+                #name::mass_matrix(self, t, q)
+            }
+            #[inline]
+            fn forcing(&self, t: S, q: &#sv, qdot: &#sv) -> #sv {
+                #name::forcing(self, t, q, qdot)
+            }
+            #[inline]
+            fn kinetic_energy(&self, t: S, q: &#sv, qdot: &#sv) -> S {
+                #name::kinetic_energy(self, t, q, qdot)
+            }
+            #[inline]
+            fn potential_energy(&self, t: S, q: &#sv) -> S {
+                #name::potential_energy(self, t, q)
+            }
+            #[inline]
+            fn accelerations(
+                &self,
+                t: S,
+                q: &#sv,
+                qdot: &#sv,
+            ) -> ::core::option::Option<::core::result::Result<#sv, ::lagrange::error::IntegrationError<S, #n>>> {
+                ::core::option::Option::Some(::core::result::Result::Ok(#name::accelerations(self, q, qdot)))
+            }
+            const SOLVES_ACCELERATIONS: bool = true;
+        }
+    }
+}
