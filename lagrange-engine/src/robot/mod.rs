@@ -372,7 +372,7 @@ fn emit(input: &Input, bodies: &[Body]) -> TokenStream {
             }
             /// `q̈(q, q̇)` unforced (ABA at `τ = 0`): what a run integrates.
             #[inline]
-            pub fn accelerations(&self, q: &#sv, qdot: &#sv) -> #sv {
+            pub fn unforced_accelerations(&self, q: &#sv, qdot: &#sv) -> #sv {
                 #acc_body
                 #acc_out
             }
@@ -429,7 +429,7 @@ fn emit(input: &Input, bodies: &[Body]) -> TokenStream {
                 q: &#sv,
                 qdot: &#sv,
             ) -> ::core::option::Option<::core::result::Result<#sv, ::lagrange::error::IntegrationError<S, #n>>> {
-                ::core::option::Option::Some(::core::result::Result::Ok(#name::accelerations(self, q, qdot)))
+                ::core::option::Option::Some(::core::result::Result::Ok(#name::unforced_accelerations(self, q, qdot)))
             }
             const SOLVES_ACCELERATIONS: bool = true;
         }
