@@ -36,8 +36,18 @@ trait Robot<const N: usize> {
     const NAMES: [&'static str; N];
     fn m(&self, q: &SVector<f64, N>) -> SMatrix<f64, N, N>;
     fn nle(&self, q: &SVector<f64, N>, v: &SVector<f64, N>) -> SVector<f64, N>;
-    fn aba(&self, q: &SVector<f64, N>, v: &SVector<f64, N>, tau: &SVector<f64, N>) -> SVector<f64, N>;
-    fn rnea(&self, q: &SVector<f64, N>, v: &SVector<f64, N>, a: &SVector<f64, N>) -> SVector<f64, N>;
+    fn aba(
+        &self,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        tau: &SVector<f64, N>,
+    ) -> SVector<f64, N>;
+    fn rnea(
+        &self,
+        q: &SVector<f64, N>,
+        v: &SVector<f64, N>,
+        a: &SVector<f64, N>,
+    ) -> SVector<f64, N>;
 }
 
 macro_rules! robot {
@@ -50,10 +60,20 @@ macro_rules! robot {
             fn nle(&self, q: &SVector<f64, $n>, v: &SVector<f64, $n>) -> SVector<f64, $n> {
                 self.nonlinear_effects(q, v)
             }
-            fn aba(&self, q: &SVector<f64, $n>, v: &SVector<f64, $n>, tau: &SVector<f64, $n>) -> SVector<f64, $n> {
+            fn aba(
+                &self,
+                q: &SVector<f64, $n>,
+                v: &SVector<f64, $n>,
+                tau: &SVector<f64, $n>,
+            ) -> SVector<f64, $n> {
                 self.forward_dynamics(q, v, tau)
             }
-            fn rnea(&self, q: &SVector<f64, $n>, v: &SVector<f64, $n>, a: &SVector<f64, $n>) -> SVector<f64, $n> {
+            fn rnea(
+                &self,
+                q: &SVector<f64, $n>,
+                v: &SVector<f64, $n>,
+                a: &SVector<f64, $n>,
+            ) -> SVector<f64, $n> {
                 self.inverse_dynamics(q, v, a)
             }
         }
@@ -71,7 +91,10 @@ fn vector<const N: usize>(v: &Value) -> SVector<f64, N> {
 /// largest entry.
 fn relative(ours: &[f64], theirs: &[f64]) -> f64 {
     let scale = theirs.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let err = ours.iter().zip(theirs).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    let err = ours
+        .iter()
+        .zip(theirs)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
     err / scale
 }
 
@@ -80,20 +103,48 @@ fn relative(ours: &[f64], theirs: &[f64]) -> f64 {
 fn against_pinocchio<R: Robot<N>, const N: usize>(robot: &R, file: &str) -> [f64; 4] {
     let path = format!("{}/tests/data/robots/{file}", env!("CARGO_MANIFEST_DIR"));
     let json: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    let joints: Vec<&str> = json["joints"].as_array().unwrap().iter().map(|j| j.as_str().unwrap()).collect();
-    assert_eq!(joints, R::NAMES, "the coordinates are Pinocchio's joints, in its order");
+    let joints: Vec<&str> = json["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        joints,
+        R::NAMES,
+        "the coordinates are Pinocchio's joints, in its order"
+    );
     let states = json["states"].as_array().unwrap();
     assert_eq!(states.len(), 100);
     let mut worst = [0.0f64; 4];
     for s in states {
-        let (q, v, a, tau) = (vector::<N>(&s["q"]), vector::<N>(&s["v"]), vector::<N>(&s["a"]), vector::<N>(&s["tau"]));
-        let m_ref: Vec<f64> = s["mass_matrix"].as_array().unwrap().iter().flat_map(|row| vector::<N>(row).data.0[0]).collect();
+        let (q, v, a, tau) = (
+            vector::<N>(&s["q"]),
+            vector::<N>(&s["v"]),
+            vector::<N>(&s["a"]),
+            vector::<N>(&s["tau"]),
+        );
+        let m_ref: Vec<f64> = s["mass_matrix"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|row| vector::<N>(row).data.0[0])
+            .collect();
         let m = robot.m(&q).transpose(); // row-major, as the JSON
         let errors = [
             relative(m.as_slice(), &m_ref),
-            relative(robot.nle(&q, &v).as_slice(), vector::<N>(&s["nonlinear_effects"]).as_slice()),
-            relative(robot.aba(&q, &v, &tau).as_slice(), vector::<N>(&s["aba"]).as_slice()),
-            relative(robot.rnea(&q, &v, &a).as_slice(), vector::<N>(&s["rnea"]).as_slice()),
+            relative(
+                robot.nle(&q, &v).as_slice(),
+                vector::<N>(&s["nonlinear_effects"]).as_slice(),
+            ),
+            relative(
+                robot.aba(&q, &v, &tau).as_slice(),
+                vector::<N>(&s["aba"]).as_slice(),
+            ),
+            relative(
+                robot.rnea(&q, &v, &a).as_slice(),
+                vector::<N>(&s["rnea"]).as_slice(),
+            ),
         ];
         for (w, e) in worst.iter_mut().zip(errors) {
             *w = w.max(e);
@@ -115,9 +166,18 @@ const TOLERANCE: f64 = 1e-12;
 
 fn check<R: Robot<N>, const N: usize>(robot: &R, file: &str) {
     let worst = against_pinocchio(robot, file);
-    println!("{file}: M {:.1e}, nle {:.1e}, aba {:.1e}, rnea {:.1e}", worst[0], worst[1], worst[2], worst[3]);
-    for (what, e) in ["M", "nonlinear effects", "ABA's q̈", "RNEA's τ"].iter().zip(worst) {
-        assert!(e < TOLERANCE, "{file}: {what} off Pinocchio's by {e:e} of its largest entry");
+    println!(
+        "{file}: M {:.1e}, nle {:.1e}, aba {:.1e}, rnea {:.1e}",
+        worst[0], worst[1], worst[2], worst[3]
+    );
+    for (what, e) in ["M", "nonlinear effects", "ABA's q̈", "RNEA's τ"]
+        .iter()
+        .zip(worst)
+    {
+        assert!(
+            e < TOLERANCE,
+            "{file}: {what} off Pinocchio's by {e:e} of its largest entry"
+        );
     }
 }
 
@@ -156,9 +216,15 @@ fn tree_recursions_match_its_energies_euler_lagrange() {
     for i in 0..4 {
         for j in 0..4 {
             let (ei, ej) = (e(i) * h, e(j) * h);
-            let d2 = (t(&q, &(ei + ej)) - t(&q, &(ei - ej)) - t(&q, &(ej - ei)) + t(&q, &(-ei - ej))) / (4.0 * h * h);
+            let d2 = (t(&q, &(ei + ej)) - t(&q, &(ei - ej)) - t(&q, &(ej - ei))
+                + t(&q, &(-ei - ej)))
+                / (4.0 * h * h);
             // Rounding of T (~1e-16 × T ≈ 1e-16) over 4h²: 1e-10 of M.
-            assert!((d2 - m[(i, j)]).abs() < 1e-8 * scale_m, "M[{i},{j}] {} against ∂²T {d2}", m[(i, j)]);
+            assert!(
+                (d2 - m[(i, j)]).abs() < 1e-8 * scale_m,
+                "M[{i},{j}] {} against ∂²T {d2}",
+                m[(i, j)]
+            );
         }
     }
     // f by differences in q: step 1e-5, truncation O(h²) ~ 1e-10 relative,
@@ -172,7 +238,10 @@ fn tree_recursions_match_its_energies_euler_lagrange() {
         let dp = (p(&(q + v * h)) - p(&(q - v * h))) / (2.0 * h);
         f_el[i] = dl - dp;
     }
-    assert!((f - f_el).amax() < 1e-7 * f.amax(), "f {f} against Euler–Lagrange {f_el}");
+    assert!(
+        (f - f_el).amax() < 1e-7 * f.amax(),
+        "f {f} against Euler–Lagrange {f_el}"
+    );
 }
 
 /// The contract: the runtime's `q̈` (the model's `accelerations`, ABA at
@@ -183,12 +252,16 @@ fn panda_accelerations_solve_m_qdd_f_and_run_in_f32() {
     assert!(<Panda as Lagrangian<7>>::SOLVES_ACCELERATIONS);
     let q = SVector::<f64, 7>::from_fn(|i, _| 0.3 * i as f64 - 0.8);
     let v = SVector::<f64, 7>::from_fn(|i, _| 0.5 - 0.2 * i as f64);
-    let qdd = Lagrangian::accelerations(&panda, 0.0, &q, &v).unwrap().unwrap();
+    let qdd = Lagrangian::accelerations(&panda, 0.0, &q, &v)
+        .unwrap()
+        .unwrap();
     let (m, f) = panda.mass_matrix_and_forcing(0.0, &q, &v);
     let solved = m.cholesky().unwrap().solve(&f);
     // Two routes in f64 through M's condition (~1e3 here): 1e-11 of q̈.
     assert!((qdd - solved).amax() < 1e-11 * solved.amax());
-    let single = Panda::<f32>::new().mass_matrix(0.0, &q.cast::<f32>()).cast::<f64>();
+    let single = Panda::<f32>::new()
+        .mass_matrix(0.0, &q.cast::<f32>())
+        .cast::<f64>();
     // f32 rounding (6e-8) over a few hundred operations: 1e-5 of M.
     assert!((single - m).amax() < 1e-5 * m.amax());
 }

@@ -235,7 +235,11 @@ impl Cx<'_> {
                 a2[l][k] = a2[k][l];
             }
         }
-        Si { a: a2, b: b2, c: c1 }
+        Si {
+            a: a2,
+            b: b2,
+            c: c1,
+        }
     }
     fn si_add(&mut self, x: &Si, y: &Si) -> Si {
         let mut out = *x;
@@ -292,11 +296,7 @@ fn transforms(t: &mut Trace, bodies: &[Body], q: &[Val]) -> Vec<Xf> {
                     let (s, c) = t.sin_cos(qi);
                     // R = c 1 + (1 − c) a aᵀ + s [a]×
                     let a = b.axis;
-                    let skew = [
-                        [0.0, -a[2], a[1]],
-                        [a[2], 0.0, -a[0]],
-                        [-a[1], a[0], 0.0],
-                    ];
+                    let skew = [[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]];
                     let rj = [0, 1, 2].map(|i| {
                         [0, 1, 2].map(|j| {
                             let aa = a[i] * a[j];
@@ -326,7 +326,14 @@ fn base_acceleration() -> Sv {
 }
 
 /// RNEA: the joint forces `τ(q, q̇, q̈)` (gravity included when `gravity`).
-pub fn rnea(t: &mut Trace, bodies: &[Body], q: &[Val], qd: &[Val], qdd: &[Val], gravity: bool) -> Vec<Val> {
+pub fn rnea(
+    t: &mut Trace,
+    bodies: &[Body],
+    q: &[Val],
+    qd: &[Val],
+    qdd: &[Val],
+    gravity: bool,
+) -> Vec<Val> {
     let xs = transforms(t, bodies, q);
     let mut cx = Cx { t };
     let n = bodies.len();
@@ -519,7 +526,9 @@ pub fn potential(t: &mut Trace, bodies: &[Body], q: &[Val]) -> Val {
     let mut height = vec![ZERO; n];
     let mut sum = ZERO;
     for (i, b) in bodies.iter().enumerate() {
-        let (zp, hp) = b.parent.map_or(([ZERO, ZERO, ONE], ZERO), |p| (up[p], height[p]));
+        let (zp, hp) = b
+            .parent
+            .map_or(([ZERO, ZERO, ONE], ZERO), |p| (up[p], height[p]));
         let dz = cx.dot3(zp, xs[i].r);
         height[i] = cx.t.add(hp, dz);
         up[i] = cx.down(&xs[i], zp);

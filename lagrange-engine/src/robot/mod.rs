@@ -112,7 +112,10 @@ fn parse(input: TokenStream) -> syn::Result<Input> {
                     _ => return Err(syn::Error::new(lit.span(), "a lock's value is a number")),
                 };
                 if !value.is_finite() {
-                    return Err(syn::Error::new(lit.span(), "a lock's value is a finite number"));
+                    return Err(syn::Error::new(
+                        lit.span(),
+                        "a lock's value is a finite number",
+                    ));
                 }
                 let value = if negative { -value } else { value };
                 locks.push((
@@ -132,7 +135,10 @@ fn parse(input: TokenStream) -> syn::Result<Input> {
             body.parse::<Token![;]>()?;
         }
         let Some(path) = path else {
-            return Err(syn::Error::new(name.span(), "`#[lagrange(urdf = \"path\")]` names the file"));
+            return Err(syn::Error::new(
+                name.span(),
+                "`#[lagrange(urdf = \"path\")]` names the file",
+            ));
         };
         Ok(Input {
             attrs,
@@ -155,7 +161,11 @@ fn load(input: &Input) -> syn::Result<Vec<Body>> {
     };
     let full = std::path::Path::new(&dir).join(&rel);
     let text = std::fs::metadata(&full)
-        .map_err(|e| err(format!("cannot read `{rel}` (relative to the crate's manifest): {e}")))
+        .map_err(|e| {
+            err(format!(
+                "cannot read `{rel}` (relative to the crate's manifest): {e}"
+            ))
+        })
         .and_then(|meta| {
             if meta.len() > urdf::MAX_FILE {
                 Err(err(format!(
@@ -206,7 +216,9 @@ pub fn expand(input: TokenStream) -> TokenStream {
 fn check_states(n: usize) -> [Vec<f64>; 3] {
     // Fixed, spread values: deterministic, away from special angles.
     let a: Vec<f64> = (0..n).map(|i| 0.3 + 0.7 * i as f64).collect();
-    let b: Vec<f64> = (0..n).map(|i| ((i * 7 + 3) % 11) as f64 * 0.55 - 2.7).collect();
+    let b: Vec<f64> = (0..n)
+        .map(|i| ((i * 7 + 3) % 11) as f64 * 0.55 - 2.7)
+        .collect();
     [vec![0.0; n], a, b]
 }
 
@@ -305,12 +317,12 @@ fn emit(input: &Input, bodies: &[Body]) -> TokenStream {
     });
     let acc_out = vector(acc_out);
     let (crba_body, crba_out) = function(bodies, &["q"], |t, x| {
-        algorithms::crba(t, bodies, &x[0]).into_iter().flatten().collect()
+        algorithms::crba(t, bodies, &x[0])
+            .into_iter()
+            .flatten()
+            .collect()
     });
-    let columns: Vec<TokenStream> = crba_out
-        .chunks(n)
-        .map(|col| quote!([#(#col),*]))
-        .collect();
+    let columns: Vec<TokenStream> = crba_out.chunks(n).map(|col| quote!([#(#col),*])).collect();
     let (ke_body, ke_out) = function(bodies, &["q", "qdot"], |t, x| {
         vec![algorithms::kinetic(t, bodies, &x[0], &x[1])]
     });

@@ -149,7 +149,11 @@ impl Trace {
                     return ZERO;
                 }
                 // (-a) + (-b) = -(a + b); (-a) + b = b - a.
-                let (i, ni, j, nj) = if i <= j { (i, ni, j, nj) } else { (j, nj, i, ni) };
+                let (i, ni, j, nj) = if i <= j {
+                    (i, ni, j, nj)
+                } else {
+                    (j, nj, i, ni)
+                };
                 if ni && nj {
                     Val::V {
                         id: self.push(Op::Add(i, false, j, false)),
@@ -316,7 +320,11 @@ impl Trace {
                 Op::Add(a, na, b, nb) => {
                     let x = operand(a, na);
                     let nb_name = name(b);
-                    if nb { quote!(#x - #nb_name) } else { quote!(#x + #nb_name) }
+                    if nb {
+                        quote!(#x - #nb_name)
+                    } else {
+                        quote!(#x + #nb_name)
+                    }
                 }
                 Op::Mul(a, b) => {
                     let (x, y) = (name(a), name(b));
@@ -329,7 +337,11 @@ impl Trace {
                 Op::Offset(k, a, na) => {
                     let (kv, x) = (f64::from_bits(k), operand(a, na));
                     let kn = konst(kv.abs().to_bits());
-                    if kv < 0.0 { quote!(#x - #kn) } else { quote!(#kn + #x) }
+                    if kv < 0.0 {
+                        quote!(#x - #kn)
+                    } else {
+                        quote!(#kn + #x)
+                    }
                 }
                 Op::Recip(a) => {
                     let x = name(a);

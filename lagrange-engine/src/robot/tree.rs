@@ -66,7 +66,10 @@ pub fn bodies(urdf: &Urdf, locks: &[Lock]) -> Result<Vec<Body>, TreeError> {
             _ => {}
         }
         if locks[..k].iter().any(|l| l.joint == lock.joint) {
-            return Err(TreeError::Lock(k, format!("joint `{}` is locked twice", lock.joint)));
+            return Err(TreeError::Lock(
+                k,
+                format!("joint `{}` is locked twice", lock.joint),
+            ));
         }
     }
     let locked = |name: &str| locks.iter().find(|l| l.joint == name).map(|l| l.value);
@@ -170,8 +173,9 @@ pub fn bodies(urdf: &Urdf, locks: &[Lock]) -> Result<Vec<Body>, TreeError> {
     if bodies.is_empty() {
         return Err(TreeError::File(Refusal {
             line: None,
-            message: "the robot has no moving joint (revolute, continuous or prismatic, not locked)"
-                .to_string(),
+            message:
+                "the robot has no moving joint (revolute, continuous or prismatic, not locked)"
+                    .to_string(),
         }));
     }
     Ok(bodies)

@@ -160,9 +160,8 @@ fn numbers<const K: usize>(
     let line = line_of(doc, node);
     let element = node.tag_name().name();
     let Some(text) = node.attribute(attr) else {
-        return default.ok_or_else(|| {
-            refuse(line, format!("`<{element}>` has no `{attr}` attribute"))
-        });
+        return default
+            .ok_or_else(|| refuse(line, format!("`<{element}>` has no `{attr}` attribute")));
     };
     let mut out = [0.0; K];
     let mut count = 0;
@@ -211,8 +210,14 @@ fn origin(doc: &Document, node: Node) -> Result<Placement, Refusal> {
     let rz = rotation([0.0, 0.0, 1.0], y);
     let z = Placement { rot: rz, pos };
     let mut rot = z
-        .then(&Placement { rot: ry, pos: [0.0; 3] })
-        .then(&Placement { rot: rx, pos: [0.0; 3] })
+        .then(&Placement {
+            rot: ry,
+            pos: [0.0; 3],
+        })
+        .then(&Placement {
+            rot: rx,
+            pos: [0.0; 3],
+        })
         .rot;
     for x in rot.iter_mut().flatten() {
         if x.abs() < SNAP {
@@ -228,11 +233,18 @@ fn inertial(doc: &Document, link: Node, name: &str) -> Result<Option<Inertial>, 
     };
     let line = line_of(doc, node);
     let place = origin(doc, node)?;
-    let mass_node = child(node, "mass")
-        .ok_or_else(|| refuse(line, format!("link `{name}`'s `<inertial>` has no `<mass>`")))?;
+    let mass_node = child(node, "mass").ok_or_else(|| {
+        refuse(
+            line,
+            format!("link `{name}`'s `<inertial>` has no `<mass>`"),
+        )
+    })?;
     let [mass] = numbers::<1>(doc, mass_node, "value", None)?;
     let i_node = child(node, "inertia").ok_or_else(|| {
-        refuse(line, format!("link `{name}`'s `<inertial>` has no `<inertia>`"))
+        refuse(
+            line,
+            format!("link `{name}`'s `<inertial>` has no `<inertia>`"),
+        )
     })?;
     let get = |a: &str| numbers::<1>(doc, i_node, a, None).map(|[v]| v);
     let (xx, xy, xz, yy, yz, zz) = (
@@ -255,7 +267,9 @@ fn inertial(doc: &Document, link: Node, name: &str) -> Result<Option<Inertial>, 
         if local.iter().flatten().any(|&v| v != 0.0) {
             return Err(refuse(
                 i_line,
-                format!("link `{name}` has no mass but an inertia: a massless link's inertia is zero"),
+                format!(
+                    "link `{name}` has no mass but an inertia: a massless link's inertia is zero"
+                ),
             ));
         }
     } else {
@@ -308,7 +322,10 @@ pub fn read(text: &str) -> Result<Urdf, Refusal> {
     if robot.tag_name().name() != "robot" {
         return Err(refuse(
             line_of(&doc, robot),
-            format!("the root element is `<{}>`, not `<robot>`", robot.tag_name().name()),
+            format!(
+                "the root element is `<{}>`, not `<robot>`",
+                robot.tag_name().name()
+            ),
         ));
     }
     let name = robot.attribute("name").unwrap_or("").to_string();
@@ -322,7 +339,10 @@ pub fn read(text: &str) -> Result<Urdf, Refusal> {
         if let Some(other) = links.iter().find(|l| l.name == name) {
             return Err(refuse(
                 line,
-                format!("link `{name}` is defined twice (first on line {})", other.line),
+                format!(
+                    "link `{name}` is defined twice (first on line {})",
+                    other.line
+                ),
             ));
         }
         links.push(Link {
@@ -336,7 +356,10 @@ pub fn read(text: &str) -> Result<Urdf, Refusal> {
         let n = child(node, which)
             .ok_or_else(|| refuse(line, format!("joint `{joint}` has no `<{which}>`")))?;
         let link = n.attribute("link").ok_or_else(|| {
-            refuse(line_of(&doc, n), format!("joint `{joint}`'s `<{which}>` names no link"))
+            refuse(
+                line_of(&doc, n),
+                format!("joint `{joint}`'s `<{which}>` names no link"),
+            )
         })?;
         links.iter().position(|l| l.name == link).ok_or_else(|| {
             refuse(
@@ -376,7 +399,10 @@ pub fn read(text: &str) -> Result<Urdf, Refusal> {
         if let Some(other) = joints.iter().find(|j| j.name == name) {
             return Err(refuse(
                 line,
-                format!("joint `{name}` is defined twice (first on line {})", other.line),
+                format!(
+                    "joint `{name}` is defined twice (first on line {})",
+                    other.line
+                ),
             ));
         }
         let parent = find(name, node, "parent")?;
@@ -390,7 +416,9 @@ pub fn read(text: &str) -> Result<Urdf, Refusal> {
                 if norm.is_nan() || norm < 1e-12 {
                     return Err(refuse(
                         line_of(&doc, a),
-                        format!("joint `{name}`'s axis is zero: a joint moves about or along a direction"),
+                        format!(
+                            "joint `{name}`'s axis is zero: a joint moves about or along a direction"
+                        ),
                     ));
                 }
                 for x in &mut axis {
@@ -423,7 +451,9 @@ pub fn read(text: &str) -> Result<Urdf, Refusal> {
         }
         parent_joint[joint.child] = Some(j);
     }
-    let roots: Vec<usize> = (0..links.len()).filter(|&l| parent_joint[l].is_none()).collect();
+    let roots: Vec<usize> = (0..links.len())
+        .filter(|&l| parent_joint[l].is_none())
+        .collect();
     let root = match roots.as_slice() {
         [r] => *r,
         [] => {
@@ -461,7 +491,10 @@ pub fn read(text: &str) -> Result<Urdf, Refusal> {
     if let Some(l) = (0..links.len()).find(|&l| !reached[l]) {
         return Err(refuse(
             links[l].line,
-            format!("link `{}` lies on a loop of joints: a robot is a tree", links[l].name),
+            format!(
+                "link `{}` lies on a loop of joints: a robot is a tree",
+                links[l].name
+            ),
         ));
     }
     Ok(Urdf {

@@ -14,3 +14,4 @@ mod parameters;
 mod problems;
 mod readme;
 mod ui_messages;
+mod urdf;
