@@ -205,9 +205,9 @@ impl Cx<'_> {
     }
     fn skew(r: V3) -> M3 {
         [
-            [ZERO, r[2].neg(), r[1]],
-            [r[2], ZERO, r[0].neg()],
-            [r[1].neg(), r[0], ZERO],
+            [ZERO, r[2].negated(), r[1]],
+            [r[2], ZERO, r[0].negated()],
+            [r[1].negated(), r[0], ZERO],
         ]
     }
     /// `Xᵀ I X`: a child's inertia in its parent's frame.

@@ -63,7 +63,7 @@ pub const ONE: Val = Val::K(1.0);
 
 impl Val {
     /// The value negated.
-    pub fn neg(self) -> Val {
+    pub fn negated(self) -> Val {
         match self {
             Val::K(k) => Val::K(-k),
             Val::V { id, neg } => Val::V { id, neg: !neg },
@@ -171,7 +171,7 @@ impl Trace {
 
     /// `a - b`.
     pub fn sub(&mut self, a: Val, b: Val) -> Val {
-        self.add(a, b.neg())
+        self.add(a, b.negated())
     }
 
     /// `a * b`.
@@ -379,7 +379,7 @@ impl Trace {
         let outs = outputs
             .iter()
             .map(|&o| match o {
-                Val::K(k) if k == 0.0 => quote!(::lagrange::nalgebra::zero::<S>()),
+                z if z.is_zero() => quote!(::lagrange::nalgebra::zero::<S>()),
                 Val::K(k) => {
                     let n = konst(k.abs().to_bits());
                     if k < 0.0 { quote!((-#n)) } else { quote!(#n) }
