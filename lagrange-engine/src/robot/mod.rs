@@ -418,6 +418,7 @@ fn emit(input: &Input, bodies: &[Body]) -> TokenStream {
             }
         }
 
+        #[allow(unused_variables, clippy::all)]
         impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> ::lagrange::Lagrangian<#n> for #name<S> {
             type Scalar = S;
             const COORDINATES: [&'static str; #n] = [#(#names),*];
