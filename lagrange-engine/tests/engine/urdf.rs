@@ -179,3 +179,22 @@ fn urdf_any_truncation_of_a_robot_expands_or_errs_without_panic() {
         cut += 61;
     }
 }
+
+/// The vendored arms expand (printing the generated code's size and the
+/// expansion's time, the figures of the language guide; nothing timed is
+/// asserted).
+#[test]
+fn urdf_arms_expand_and_print_their_code_size() {
+    for (file, body) in [
+        ("ur5.urdf", ""),
+        ("panda.urdf", "locked: panda_finger_joint1 = 0.0, panda_finger_joint2 = 0.0;"),
+        ("tree.urdf", ""),
+    ] {
+        let path = format!("../tests/data/robots/{file}");
+        let start = std::time::Instant::now();
+        let text = expand_path(&path, body);
+        let elapsed = start.elapsed();
+        assert!(!text.contains("compile_error"), "{file}: {text:.300}");
+        println!("{file}: {} bytes of items in {:.1} ms", text.len(), elapsed.as_secs_f64() * 1e3);
+    }
+}
