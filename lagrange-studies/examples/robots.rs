@@ -1,0 +1,219 @@
+//! Robots from URDF beside Pinocchio: the UR5 and the Panda (fingers
+//! locked) of `tests/data/robots/`, our generated q̈ (ABA), M (CRBA) and τ
+//! (RNEA) timed against Pinocchio's C++ (`examples/robots/bench.cpp`, built
+//! against the PyPI wheel `pin`'s headers and library with `cmeel-eigen`'s
+//! Eigen), in interleaved rounds: ours, then Pinocchio's, five times; the
+//! table prints the medians. Pinocchio's part is skipped, with the reason,
+//! where its Python or a C++ compiler is missing.
+//!
+//! `cargo run --release -p lagrange-studies --example robots`
+//! (`LAGRANGE_PEERS_PYTHON` names a Python with `pin`, `example-robot-data`
+//! and `cmeel-eigen`).
+
+#[path = "support/peers_python.rs"]
+mod peers_python;
+
+use lagrange::nalgebra::SVector;
+use lagrange::prelude::*;
+use std::hint::black_box;
+use std::path::Path;
+use std::process::Command;
+use std::time::Instant;
+
+lagrangian! {
+    /// The UR5 of example-robot-data.
+    #[lagrange(urdf = "../tests/data/robots/ur5.urdf")]
+    pub struct Ur5 {}
+}
+
+lagrangian! {
+    /// The Panda of example-robot-data, its fingers locked closed.
+    #[lagrange(urdf = "../tests/data/robots/panda.urdf")]
+    pub struct Panda {
+        locked: panda_finger_joint1 = 0.0, panda_finger_joint2 = 0.0;
+    }
+}
+
+const CALLS: u32 = 200_000;
+
+/// ns per call of `f`, the median of 7 rounds of `CALLS` calls.
+fn time_ns(mut f: impl FnMut()) -> f64 {
+    let mut rounds: Vec<f64> = (0..7)
+        .map(|_| {
+            let start = Instant::now();
+            for _ in 0..CALLS {
+                f();
+            }
+            start.elapsed().as_secs_f64() * 1e9 / f64::from(CALLS)
+        })
+        .collect();
+    rounds.sort_by(f64::total_cmp);
+    rounds[3]
+}
+
+/// Our figures: q̈ (ABA), M (CRBA), M and f then the runtime's Cholesky
+/// solve, τ (RNEA).
+macro_rules! ours {
+    ($robot:expr, $n:literal) => {{
+        let robot = $robot;
+        let q = SVector::<f64, $n>::from_fn(|i, _| 0.3 * (i as f64 * 1.7).sin());
+        let v = SVector::<f64, $n>::from_fn(|i, _| (i as f64 * 2.3).cos());
+        let a = SVector::<f64, $n>::from_fn(|i, _| 0.5 - 0.1 * i as f64);
+        let tau = SVector::<f64, $n>::zeros();
+        [
+            time_ns(|| {
+                black_box(robot.forward_dynamics(black_box(&q), black_box(&v), black_box(&tau)));
+            }),
+            time_ns(|| {
+                black_box(robot.mass_matrix(0.0, black_box(&q)));
+            }),
+            time_ns(|| {
+                let (m, f) =
+                    Lagrangian::mass_matrix_and_forcing(&robot, 0.0, black_box(&q), black_box(&v));
+                black_box(m.cholesky().map(|c| c.solve(&f)));
+            }),
+            time_ns(|| {
+                black_box(robot.inverse_dynamics(black_box(&q), black_box(&v), black_box(&a)));
+            }),
+        ]
+    }};
+}
+
+/// Pinocchio's bench built against the wheel, its dumps of our two URDFs.
+fn pinocchio(dir: &Path) -> Result<(std::path::PathBuf, Vec<String>), String> {
+    let python = peers_python::importing("pinocchio")?;
+    let out = Command::new(&python)
+        .args([
+            "-c",
+            "import sysconfig; print(sysconfig.get_paths()['purelib'])",
+        ])
+        .output()
+        .map_err(|e| e.to_string())?;
+    let prefix = format!(
+        "{}/cmeel.prefix",
+        String::from_utf8_lossy(&out.stdout).trim()
+    );
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let robots = here.join("../tests/data/robots");
+    let mut args = Vec::new();
+    for (name, file, locked) in [
+        ("ur5", "ur5.urdf", &[][..]),
+        (
+            "panda",
+            "panda.urdf",
+            &["panda_finger_joint1", "panda_finger_joint2"][..],
+        ),
+    ] {
+        let dump = dir.join(format!("{name}.txt"));
+        let ok = Command::new(&python)
+            .arg(here.join("examples/robots/dump_model.py"))
+            .arg(robots.join(file))
+            .arg(&dump)
+            .args(locked)
+            .output()
+            .is_ok_and(|o| o.status.success());
+        if !ok {
+            return Err(format!("dump_model.py failed on {file}"));
+        }
+        args.push(name.to_string());
+        args.push(dump.display().to_string());
+    }
+    let bin = dir.join("bench");
+    let built = Command::new("g++")
+        .args(["-O3", "-march=native", "-DNDEBUG", "-std=c++17"])
+        .args([
+            "-DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS",
+            "-DBOOST_MPL_LIMIT_LIST_SIZE=30",
+            "-DBOOST_MPL_LIMIT_VECTOR_SIZE=30",
+            "-DBOOST_FUSION_INVOKE_MAX_ARITY=12",
+            "-DBOOST_FUSION_INVOKE_PROCEDURE_MAX_ARITY=12",
+            "-DBOOST_FUSION_INVOKE_FUNCTION_OBJECT_MAX_ARITY=12",
+        ])
+        .arg(format!("-I{prefix}/include"))
+        .arg(format!("-I{prefix}/include/eigen3"))
+        .arg(here.join("examples/robots/bench.cpp"))
+        .arg("-o")
+        .arg(&bin)
+        .arg(format!("-L{prefix}/lib"))
+        .arg("-lpinocchio_default")
+        .arg(format!("-Wl,-rpath,{prefix}/lib"))
+        .arg("-w")
+        .output()
+        .map_err(|e| format!("g++: {e}"))?;
+    if !built.status.success() {
+        return Err(format!(
+            "bench.cpp did not build: {}",
+            String::from_utf8_lossy(&built.stderr)
+                .lines()
+                .next()
+                .unwrap_or("")
+        ));
+    }
+    Ok((bin, args))
+}
+
+/// Pinocchio's figures per robot: ABA, CRBA, CRBA + solve, RNEA.
+fn run_pinocchio(bin: &Path, args: &[String]) -> Vec<(String, [f64; 4])> {
+    let out = Command::new(bin)
+        .args(args)
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).into_owned())
+        .unwrap_or_default();
+    out.lines()
+        .filter_map(|line| {
+            let w: Vec<&str> = line.split_whitespace().collect();
+            let num = |k: usize| w.get(k).and_then(|x| x.parse::<f64>().ok());
+            Some((
+                w.first()?.to_string(),
+                [num(5)?, num(7)?, num(9)?, num(11)?],
+            ))
+        })
+        .collect()
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn main() {
+    let dir = std::env::temp_dir().join(format!("lagrange-robots-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a scratch directory");
+    let peer = pinocchio(&dir);
+    if let Err(why) = &peer {
+        println!("Pinocchio skipped: {why}");
+    }
+    let mut ours_runs: Vec<[[f64; 4]; 2]> = Vec::new();
+    let mut theirs_runs: Vec<Vec<(String, [f64; 4])>> = Vec::new();
+    for _ in 0..5 {
+        ours_runs.push([ours!(Ur5::new(), 6), ours!(Panda::new(), 7)]);
+        if let Ok((bin, args)) = &peer {
+            theirs_runs.push(run_pinocchio(bin, args));
+        }
+    }
+    let what = ["q̈ (ABA)", "M (CRBA)", "M, f, solve", "τ (RNEA)"];
+    println!(
+        "\nns per call, medians of 5 interleaved rounds (each the median of 7 × {CALLS} calls)\n"
+    );
+    println!("| robot | quantity | ours | Pinocchio | ours / Pinocchio |");
+    println!("|---|---|---:|---:|---:|");
+    for (r, robot) in ["ur5", "panda"].iter().enumerate() {
+        for (k, w) in what.iter().enumerate() {
+            let ours = median(ours_runs.iter().map(|x| x[r][k]).collect());
+            let theirs: Vec<f64> = theirs_runs
+                .iter()
+                .filter_map(|run| run.iter().find(|(n, _)| n == robot).map(|(_, x)| x[k]))
+                .collect();
+            if theirs.is_empty() {
+                println!("| {robot} | {w} | {ours:.1} | – | – |");
+            } else {
+                let theirs = median(theirs);
+                println!(
+                    "| {robot} | {w} | {ours:.1} | {theirs:.1} | {:.2} |",
+                    ours / theirs
+                );
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
