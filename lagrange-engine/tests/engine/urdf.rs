@@ -187,7 +187,10 @@ fn urdf_any_truncation_of_a_robot_expands_or_errs_without_panic() {
 fn urdf_arms_expand_and_print_their_code_size() {
     for (file, body) in [
         ("ur5.urdf", ""),
-        ("panda.urdf", "locked: panda_finger_joint1 = 0.0, panda_finger_joint2 = 0.0;"),
+        (
+            "panda.urdf",
+            "locked: panda_finger_joint1 = 0.0, panda_finger_joint2 = 0.0;",
+        ),
         ("tree.urdf", ""),
     ] {
         let path = format!("../tests/data/robots/{file}");
@@ -195,6 +198,10 @@ fn urdf_arms_expand_and_print_their_code_size() {
         let text = expand_path(&path, body);
         let elapsed = start.elapsed();
         assert!(!text.contains("compile_error"), "{file}: {text:.300}");
-        println!("{file}: {} bytes of items in {:.1} ms", text.len(), elapsed.as_secs_f64() * 1e3);
+        println!(
+            "{file}: {} bytes of items in {:.1} ms",
+            text.len(),
+            elapsed.as_secs_f64() * 1e3
+        );
     }
 }
