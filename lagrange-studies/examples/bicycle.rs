@@ -18,19 +18,15 @@
 //! Writes `docs/bicycle/eigenvalues.svg`: the eigenvalues against speed,
 //! ours over the benchmark's.
 
-#[path = "../../tests/support/stability.rs"]
-mod stability;
-
 #[path = "scaling/engine.rs"]
 #[allow(dead_code)]
 mod engine;
 
-use lagrange::analysis::linearize_steady_motion;
+use lagrange::analysis::{linearize_steady_motion, stability_crossing};
 use lagrange::models::WhippleBicycle;
-use lagrange::nalgebra::{Matrix2, Matrix4, Vector4};
+use lagrange::nalgebra::{DMatrix, Matrix2, Matrix4, Vector4};
 use lagrange::prelude::*;
 use plotters::prelude::*;
-use stability::{crossing, eigenvalues, growth};
 use std::error::Error;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -53,6 +49,50 @@ fn linearized(bike: &WhippleBicycle<f64>, v: f64) -> Result<Matrix4<f64>, Box<dy
     let (q, qdot) = bike.upright(0.0, v);
     let lin = linearize_steady_motion(bike, 0.0, &q, &qdot, &["phi", "delta"], &["phi", "delta"])?;
     Ok(Matrix4::from_iterator(lin.state_matrix.iter().copied()))
+}
+
+/// The eigenvalues of `a` as `(re, im)`, sorted by real part, then
+/// imaginary part.
+fn eigenvalues(a: &Matrix4<f64>) -> Vec<(f64, f64)> {
+    let mut e: Vec<(f64, f64)> = a
+        .complex_eigenvalues()
+        .iter()
+        .map(|l| (l.re, l.im))
+        .collect();
+    e.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    e
+}
+
+/// The largest real part among the eigenvalues of `a`.
+fn growth(a: &Matrix4<f64>) -> f64 {
+    eigenvalues(a)
+        .iter()
+        .map(|e| e.0)
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// The speed in `lo..hi` where the largest real part of the nonlinear
+/// model's linearization changes sign, by the library's one call.
+fn crossing_speed(bike: &WhippleBicycle<f64>, lo: f64, hi: f64) -> Result<f64, Box<dyn Error>> {
+    let crossing = stability_crossing(lo, hi, |v| {
+        let (q, qdot) = bike.upright(0.0, v);
+        let states = ["phi", "delta"];
+        linearize_steady_motion(bike, 0.0, &q, &qdot, &states, &states).map(|l| l.state_matrix)
+    })?;
+    Ok(crossing.parameter)
+}
+
+/// The same on the benchmark's closed-form state matrix.
+fn crossing_speed_closed_form(
+    bike: &WhippleBicycle<f64>,
+    lo: f64,
+    hi: f64,
+) -> Result<f64, Box<dyn Error>> {
+    let crossing = stability_crossing(lo, hi, |v| {
+        let a = bike.benchmark_state_matrix(v);
+        Ok::<_, std::convert::Infallible>(DMatrix::from_iterator(4, 4, a.iter().copied()))
+    })?;
+    Ok(crossing.parameter)
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
@@ -126,15 +166,10 @@ fn main() -> Result<(), Box<dyn Error>> {
         "\nState matrices: largest difference {worst:.1e} of the benchmark's largest entry, 0–10 m/s."
     );
 
-    // M from the kinetic energy on the allowed rates; C1, K0, K2 from the
-    // state matrices at rest and at 5 m/s.
+    // M, C1, K0, K2 from the general reduced matrices of a steady motion
+    // (`analysis::steady_motion_matrices`), at rest and at 5 m/s.
     let [m_ref, c1_ref, k0_ref, k2_ref] = bike.benchmark_matrices();
-    let m = bike.lean_steer_mass_matrix();
-    let (a0, a5) = (linearized(&bike, 0.0)?, linearized(&bike, 5.0)?);
-    let lower = |a: &Matrix4<f64>, col: usize| a.fixed_view::<2, 2>(2, col).into_owned();
-    let k0 = -m * lower(&a0, 0) / bike.g;
-    let k2 = -m * (lower(&a5, 0) - lower(&a0, 0)) / 25.0;
-    let c1 = -m * lower(&a5, 2) / 5.0;
+    let [m, c1, k0, k2] = bike.lean_steer_matrices(5.0)?;
     println!("\n| matrix | ours | benchmark's | relative difference |");
     println!("|---|---|---|---:|");
     for (name, ours, theirs) in [
@@ -160,10 +195,10 @@ fn main() -> Result<(), Box<dyn Error>> {
         );
     }
 
-    let weave = crossing(3.0, 5.0, |v| growth(&linearized(&bike, v).expect("steady")));
-    let weave_ref = crossing(3.0, 5.0, |v| growth(&bike.benchmark_state_matrix(v)));
-    let capsize = crossing(5.5, 7.0, |v| growth(&linearized(&bike, v).expect("steady")));
-    let capsize_ref = crossing(5.5, 7.0, |v| growth(&bike.benchmark_state_matrix(v)));
+    let weave = crossing_speed(&bike, 3.0, 5.0)?;
+    let weave_ref = crossing_speed_closed_form(&bike, 3.0, 5.0)?;
+    let capsize = crossing_speed(&bike, 5.5, 7.0)?;
+    let capsize_ref = crossing_speed_closed_form(&bike, 5.5, 7.0)?;
     println!(
         "\n| speed | ours [m/s] | benchmark's closed form | published (table 2) | ours against the closed form |"
     );

@@ -5,7 +5,8 @@
 //! (Meijaard, Papadopoulos, Ruina and Schwab 2007, Proc. R. Soc. A 463,
 //! appendix A), against which it is checked.
 
-use nalgebra::{Matrix2, Matrix4, SMatrix, SVector};
+use lagrange_runtime::analysis::{AnalysisError, steady_motion_matrices};
+use nalgebra::{Matrix2, Matrix4};
 
 use crate::lagrangian;
 
@@ -167,29 +168,33 @@ impl WhippleBicycle<f64> {
     }
 
     /// This model's mass matrix for lean and steer at the upright, from its
-    /// own kinetic energy: `Bᵀ M B`, where `B` maps the lean and steer rates
-    /// to the full `q̇` that keeps every constraint with the rear wheel
-    /// still (forward speed zero). It is the `M` of the equations for the
-    /// lean and steer torques, the benchmark's `M`.
-    pub fn lean_steer_mass_matrix(&self) -> Matrix2<f64> {
-        let (q, _) = self.upright(0.0, 0.0);
-        let g = self.constraint_jacobian(0.0, &q);
-        // Given: lean (3) and steer (5) rates, the rear wheel's (6) zero;
-        // solved for: x, y, yaw, pitch and the front wheel's (0, 1, 2, 4, 7).
-        let (given, solved) = ([3usize, 5], [0usize, 1, 2, 4, 7]);
-        let lu = SMatrix::<f64, 5, 5>::from_fn(|r, c| g[(r, solved[c])]).lu();
-        let mut b = SMatrix::<f64, 8, 2>::zeros();
-        for (col, &k) in given.iter().enumerate() {
-            let rhs = SVector::<f64, 5>::from_fn(|r, _| -g[(r, k)]);
-            let rates = lu
-                .solve(&rhs)
-                .expect("the constraints fix the other rates at the upright");
-            b[(k, col)] = 1.0;
-            for (i, &u) in solved.iter().enumerate() {
-                b[(u, col)] = rates[i];
-            }
+    /// own kinetic energy through its constraints: the benchmark's `M`, by
+    /// [`steady_motion_matrices`](lagrange_runtime::analysis::steady_motion_matrices)
+    /// at rest.
+    pub fn lean_steer_mass_matrix(&self) -> Result<Matrix2<f64>, AnalysisError<f64, 8>> {
+        Ok(self.lean_steer_matrices(0.0)?[0])
+    }
+
+    /// This model's own `M`, `C1`, `K0` and `K2` for lean and steer, the
+    /// benchmark's form of its linearization, from
+    /// [`steady_motion_matrices`](lagrange_runtime::analysis::steady_motion_matrices)
+    /// at rest (`M`, `g K0`) and at speed `v > 0` (`v C1`, `g K0 + v² K2`);
+    /// at `v = 0`, `C1` and `K2` are zero (they are not determined there).
+    pub fn lean_steer_matrices(&self, v: f64) -> Result<[Matrix2<f64>; 4], AnalysisError<f64, 8>> {
+        let two = |a: &nalgebra::DMatrix<f64>| Matrix2::from_iterator(a.iter().copied());
+        let at = |v: f64| {
+            let (q, qdot) = self.upright(0.0, v);
+            steady_motion_matrices(self, 0.0, &q, &qdot, &["phi", "delta"])
+        };
+        let rest = at(0.0)?;
+        let (m, k0) = (two(&rest.mass), two(&rest.stiffness) / self.g);
+        if v == 0.0 {
+            return Ok([m, Matrix2::zeros(), k0, Matrix2::zeros()]);
         }
-        b.transpose() * self.mass_matrix(0.0, &q) * b
+        let moving = at(v)?;
+        let c1 = two(&moving.damping) / v;
+        let k2 = (two(&moving.stiffness) - two(&rest.stiffness)) / (v * v);
+        Ok([m, c1, k0, k2])
     }
 
     /// The benchmark's linearized lean–steer equations about upright

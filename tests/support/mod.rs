@@ -7,4 +7,3 @@ pub mod closed_form;
 pub mod elliptic;
 pub mod fit;
 pub mod reference;
-pub mod stability;

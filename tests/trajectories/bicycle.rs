@@ -5,10 +5,9 @@
 //! closed-form `M`, `C1`, `K0`, `K2`, the weave and capsize speeds, and
 //! nonlinear runs against the linear motion.
 
-use crate::support::stability::{crossing, growth};
-use lagrange::analysis::linearize_steady_motion;
+use lagrange::analysis::{Turns, linearize_steady_motion, stability_crossing};
 use lagrange::models::WhippleBicycle;
-use lagrange::nalgebra::{Matrix2, Matrix4, Vector4};
+use lagrange::nalgebra::{DMatrix, Matrix2, Matrix4, Vector4};
 use lagrange::prelude::*;
 
 /// The closed form as transcribed (`WhippleBicycle::benchmark_matrices`)
@@ -74,31 +73,27 @@ fn the_linearized_bicycle_is_the_benchmark() {
 }
 
 /// `M`, `C1`, `K0` and `K2` one by one against the benchmark's, each to
-/// 1e-10 of its largest entry (the bound). `M` from the kinetic
-/// energy on the rates the constraints allow (exact up to rounding: a
-/// 5 × 5 solve and a product); the others from the linearization's state
-/// matrix, `M` times its lower blocks: `K0` at rest, `K2` from the change
-/// between rest and 5 m/s, `C1` at 5 m/s. The state matrix carries the
-/// linearization's error (5.4e-11 of its largest entry), which `K2`, a
-/// difference over 25 (m/s)², divides by 25. Measured: `M` 1.8e-16, `C1`
-/// 4.2e-16, `K0` 1.9e-15, `K2` 2.0e-11.
+/// 1e-10 of its largest entry (the bound), from the general
+/// `analysis::steady_motion_matrices` (through
+/// `WhippleBicycle::lean_steer_matrices`, which only divides by `g`, `v`
+/// and `v²`): `M` is the inverse of the lean and steer compliance through
+/// the saddle-point system, exact up to rounding (a 13 × 13 LU); `C` and
+/// `K` are `−M` times the linearization's lower blocks, `K0` at rest, `C1`
+/// and `K2` at 5 m/s. The state matrix carries the linearization's error
+/// (5.4e-11 of its largest entry), which `K2`, a difference over
+/// 25 (m/s)², divides by 25. Measured: `M` 1.8e-16, `C1` 4.2e-16, `K0`
+/// 1.9e-15, `K2` 2.0e-11.
 #[test]
 fn the_benchmarks_m_c1_k0_k2_one_by_one() {
     let bike = WhippleBicycle::benchmark();
-    let [m_ref, c1_ref, k0_ref, k2_ref] = bike.benchmark_matrices();
-    let m = bike.lean_steer_mass_matrix();
-    let v = 5.0;
-    let (a0, av) = (linearized(&bike, 0.0), linearized(&bike, v));
-    let lower = |a: &Matrix4<f64>, col: usize| a.fixed_view::<2, 2>(2, col).into_owned();
-    let k0 = -m * lower(&a0, 0) / bike.g;
-    let k2 = -m * (lower(&av, 0) - lower(&a0, 0)) / (v * v);
-    let c1 = -m * lower(&av, 2) / v;
-    for (name, ours, theirs) in [
-        ("M", m, m_ref),
-        ("C1", c1, c1_ref),
-        ("K0", k0, k0_ref),
-        ("K2", k2, k2_ref),
-    ] {
+    let ours = bike
+        .lean_steer_matrices(5.0)
+        .expect("upright running is steady in lean and steer");
+    for ((name, ours), theirs) in ["M", "C1", "K0", "K2"]
+        .into_iter()
+        .zip(ours)
+        .zip(bike.benchmark_matrices())
+    {
         let error = (ours - theirs).amax() / theirs.amax();
         println!("{name}: relative difference {error:.1e}");
         assert!(error < 1e-10, "{name}: {ours} against {theirs}");
@@ -118,10 +113,37 @@ fn the_weave_and_capsize_speeds_are_the_benchmarks() {
     let bike = WhippleBicycle::benchmark();
     // The weave mode is the complex pair: the growth of the largest real
     // part between 3 and 5 m/s; capsize, the real mode, between 5.5 and 7.
-    let ours_weave = crossing(3.0, 5.0, |v| growth(&linearized(&bike, v)));
-    let theirs_weave = crossing(3.0, 5.0, |v| growth(&bike.benchmark_state_matrix(v)));
-    let ours_capsize = crossing(5.5, 7.0, |v| growth(&linearized(&bike, v)));
-    let theirs_capsize = crossing(5.5, 7.0, |v| growth(&bike.benchmark_state_matrix(v)));
+    // One call each, on the nonlinear model's linearization and on the
+    // closed form's state matrix.
+    let ours = |lo, hi| {
+        stability_crossing(lo, hi, |v| {
+            let (q, qdot) = bike.upright(0.0, v);
+            let states = ["phi", "delta"];
+            linearize_steady_motion(&bike, 0.0, &q, &qdot, &states, &states).map(|l| l.state_matrix)
+        })
+        .unwrap_or_else(|e| panic!("one crossing in {lo}..{hi}: {e}"))
+    };
+    let theirs = |lo, hi| {
+        stability_crossing(lo, hi, |v| {
+            let a = bike.benchmark_state_matrix(v);
+            Ok::<_, std::convert::Infallible>(DMatrix::from_iterator(4, 4, a.iter().copied()))
+        })
+        .unwrap_or_else(|e| panic!("one crossing in {lo}..{hi}: {e}"))
+    };
+    let (weave, capsize) = (ours(3.0, 5.0), ours(5.5, 7.0));
+    assert_eq!(weave.turns, Turns::Stable);
+    assert!(
+        weave.eigenvalue.im.abs() > 1.0,
+        "the weave is an oscillation"
+    );
+    assert_eq!(capsize.turns, Turns::Unstable);
+    assert_eq!(capsize.eigenvalue.im, 0.0, "capsize is a real mode");
+    println!(
+        "evaluations: weave {}, capsize {}",
+        weave.evaluations, capsize.evaluations
+    );
+    let (ours_weave, ours_capsize) = (weave.parameter, capsize.parameter);
+    let (theirs_weave, theirs_capsize) = (theirs(3.0, 5.0).parameter, theirs(5.5, 7.0).parameter);
     for (what, ours, theirs, published) in [
         ("weave", ours_weave, theirs_weave, 4.29238253634111),
         ("capsize", ours_capsize, theirs_capsize, 6.02426201538837),
@@ -135,10 +157,22 @@ fn the_weave_and_capsize_speeds_are_the_benchmarks() {
             (theirs - published).abs() < 1e-11 * published,
             "{what}: the closed form gives {theirs}"
         );
+        assert!(
+            (ours - published).abs() < 1e-10,
+            "{what}: {ours} against the published {published}"
+        );
         println!(
             "{what} speed {ours:.10} m/s (closed form {theirs:.10}, relative difference {error:.1e})"
         );
     }
+}
+
+/// The largest real part among the eigenvalues of `a`.
+fn growth(a: &Matrix4<f64>) -> f64 {
+    a.complex_eigenvalues()
+        .iter()
+        .map(|e| e.re)
+        .fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// The largest difference over `end` seconds between the nonlinear run
@@ -213,7 +247,7 @@ fn a_released_lean_follows_the_linear_motion_decaying_at_5_m_s_and_growing_at_3_
     }
 }
 
-/// At the capsize speed itself (the bisection above lands there) the
+/// At the capsize speed itself (where the bisection once landed) the
 /// reduction holds: an SVD of the wide selection matrix once returned a
 /// wrong pseudo-inverse at exactly this speed (residual 0.13 against 1e-14
 /// at speeds 1e-12 away), and `NotReducible`; now a QR. The bound of the

@@ -3,6 +3,7 @@
 //! thin disk rolling without slipping (`RollingDisk`), each against its
 //! closed form, both from `lagrange::models`.
 
+use lagrange::constraints::{StartError, state_from_body_rates};
 use lagrange::models::{ChaplyginSleigh, RollingBall, RollingDisk};
 use lagrange::nalgebra::{UnitQuaternion, Vector2, Vector3};
 use lagrange::prelude::*;
@@ -190,6 +191,77 @@ fn upright_rolling_is_stable_above_v_squared_gr_over_3_and_not_below() {
     assert!(
         below > 0.1,
         "below the critical speed the lean reached only {below}"
+    );
+}
+
+/// A rolling ball started the way a user has it, from its orientation and
+/// body rates, by `constraints::state_from_body_rates`: the centre's
+/// velocity comes from the rolling constraints. It equals the hand-made
+/// start of `RollingBall::state` (space rates `ω = R ω_body`) to
+/// rounding: both are a few quaternion products of order-1 values, some
+/// ulps each, so 1e-14; every constraint holds to the rounding the
+/// integrators accept (100 ε of its terms). The runs from the two starts
+/// (Dop853 at 1e-12 for 2 s, each within 1e-9 of the closed form as in
+/// the model's doctest) agree to 1e-10, where two runs of the same method
+/// from states a rounding apart can differ by the tolerance's order times
+/// a few steps' worth of different step sizes.
+#[test]
+fn a_rolling_ball_started_from_its_body_rates_matches_the_hand_made_start() {
+    let ball = RollingBall::new(1.0, 0.1);
+    let rotation = UnitQuaternion::from_euler_angles(0.3, -0.7, 1.1);
+    let (velocity, spin) = (Vector2::new(0.3, -0.2), 1.5);
+    let body = rotation.inverse() * ball.angular_velocity(&velocity, spin);
+    let (q0, v0) = state_from_body_rates(
+        &ball,
+        0.0,
+        &[("x", 0.0), ("y", 0.0)],
+        &[],
+        ["w", "a", "b", "c"],
+        &rotation,
+        &body,
+    )
+    .expect("a unit quaternion and body rates determine the rolling state");
+    let (q_hand, v_hand) = ball.state(&rotation, &velocity, spin);
+    assert!((q0 - q_hand).amax() < 1e-14, "{q0} against {q_hand}");
+    assert!((v0 - v_hand).amax() < 1e-14, "{v0} against {v_hand}");
+    let tolerance = 100.0 * f64::EPSILON;
+    assert!(ball.constraints(0.0, &q0).amax() < tolerance);
+    assert!(ball.constraint_velocities(0.0, &q0, &v0).amax() < tolerance * v0.amax());
+    let ends: Vec<_> = [(q0, v0), (q_hand, v_hand)]
+        .into_iter()
+        .map(|(q, v)| {
+            let run = Dop853::new()
+                .rtol(1e-12)
+                .atol(1e-12)
+                .integrate(&ball, 0.0, q, v, &[2.0])
+                .expect("the ball rolls");
+            let end = run.last().unwrap();
+            (end.q, end.qdot)
+        })
+        .collect();
+    let exact = ball.rotation_at(&rotation, &velocity, spin, 2.0);
+    assert!(RollingBall::rotation(&ends[0].0).angle_to(&exact) < 1e-9);
+    assert!((ends[0].0 - ends[1].0).amax() < 1e-10);
+    assert!((ends[0].1 - ends[1].1).amax() < 1e-10);
+    // A quaternion that is not of unit norm cannot be held on `unit`.
+    let err = lagrange::constraints::consistent_start(
+        &ball,
+        0.0,
+        &(q_hand * 1.01),
+        &v_hand,
+        &["w", "a", "b", "c"],
+        &["w", "a", "b", "c"],
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            StartError::NotConverged {
+                constraint: "unit",
+                ..
+            }
+        ),
+        "{err}"
     );
 }
 

@@ -122,9 +122,13 @@
 //! `manifold_inputs.rs` ([`linearize_on_manifold_with_inputs`]), `rest.rs`
 //! (equilibria and modes of a constrained model),
 //! `equilibrium.rs` ([`equilibrium`], [`EquilibriumSearch`],
-//! [`is_equilibrium`]), `modes.rs` ([`modes`]), `derivatives.rs` (the
-//! derivatives they share), `error.rs` ([`AnalysisError`]).
+//! [`is_equilibrium`]), `modes.rs` ([`modes`]), `steady.rs`
+//! ([`linearize_steady_motion`], [`steady_motion_matrices`]), `crossing.rs`
+//! ([`stability_crossing`]: where a family of them turns stable or
+//! unstable), `derivatives.rs` (the derivatives they share), `error.rs`
+//! ([`AnalysisError`]).
 
+mod crossing;
 mod derivatives;
 mod equilibrium;
 mod error;
@@ -136,13 +140,16 @@ mod neutral;
 mod rest;
 mod steady;
 
+pub use crossing::{Crossing, CrossingError, SAMPLES, Turns, stability_crossing};
 pub use equilibrium::{Equilibrium, EquilibriumSearch, equilibrium, is_equilibrium};
 pub use error::AnalysisError;
 pub use linearize::{InputLinearization, Linearization, linearize, linearize_with_inputs};
 pub use manifold::{ManifoldLinearization, linearize_on_manifold};
 pub use manifold_inputs::{ManifoldInputLinearization, linearize_on_manifold_with_inputs};
 pub use modes::{Mode, ModeKind, Modes, modes};
-pub use steady::{SteadyLinearization, linearize_steady_motion};
+pub use steady::{
+    SteadyLinearization, SteadyMatrices, linearize_steady_motion, steady_motion_matrices,
+};
 
 #[cfg(doc)]
 use crate::model::Lagrangian;

@@ -196,6 +196,153 @@ where
     })
 }
 
+/// The reduced mass, damping and stiffness matrices of the small motions
+/// about a steady motion in the kept coordinates:
+/// `M δq̈ + C δq̇ + K δq = δτ`, `δτ` generalized forces on those
+/// coordinates (the bicycle's lean and steer torques), in the order
+/// [`coordinates`](Self::coordinates) names them. From
+/// [`steady_motion_matrices`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct SteadyMatrices<S: RealField + Copy> {
+    /// The kept coordinates.
+    pub coordinates: Vec<String>,
+    /// `M`, `k × k`, symmetric.
+    pub mass: DMatrix<S>,
+    /// `C`: damping and gyroscopic terms (the bicycle's `v C1`).
+    pub damping: DMatrix<S>,
+    /// `K` (the bicycle's `g K0 + v² K2`).
+    pub stiffness: DMatrix<S>,
+    /// The linearization they come from, in the coordinates and then
+    /// their velocities: `A = [[0, I], [−M⁻¹K, −M⁻¹C]]`.
+    pub linearization: SteadyLinearization<S>,
+}
+
+/// The reduced mass, damping and stiffness matrices of `model` about the
+/// steady motion through `(t, q, q̇)`, in the coordinates `coordinates` (by
+/// name): `M δq̈ + C δq̇ + K δq = δτ` for generalized forces `δτ` on them,
+/// for any model, with rolling (velocity) constraints or holonomic ones or
+/// none.
+///
+/// `M` is the inverse of the kept coordinates' compliance through the
+/// constraints: a generalized force on the kept coordinates, applied
+/// through the saddle-point system `[[M, Gᵀ], [G, 0]]` at `q` (every
+/// constraint's row, rolling ones included, so a mass matrix singular off
+/// the constraints is fine), accelerates them by `M⁻¹ δτ`; the coordinates
+/// left out (a wheel, the position on the ground) move as the constraints
+/// and their own freedom make them, not held. That is one `(N + C)` LU
+/// solve, exact to rounding. `C` and `K` are then `−M` times the lower
+/// blocks of [`linearize_steady_motion`]'s state matrix with the same
+/// coordinates kept as positions and as velocities, and carry its error
+/// (extrapolated differences, some 1e-12 relative for the bicycle) and its
+/// refusals ([`AnalysisError::NotSteady`], [`AnalysisError::NotReducible`]).
+/// A kept coordinate that no generalized force can move on its own (its
+/// compliance singular) is [`AnalysisError::NotReducible`].
+///
+/// The Whipple bicycle's benchmark matrices at 5 m/s:
+///
+/// ```
+/// use lagrange::models::WhippleBicycle;
+/// use lagrange_runtime::analysis::steady_motion_matrices;
+///
+/// let bike = WhippleBicycle::benchmark();
+/// let [m, c1, k0, k2] = bike.benchmark_matrices();
+/// let (v, g) = (5.0, bike.g);
+/// let (q, qdot) = bike.upright(0.0, v);
+/// let ours = steady_motion_matrices(&bike, 0.0, &q, &qdot, &["phi", "delta"])?;
+/// let close = |a: &lagrange_runtime::nalgebra::DMatrix<f64>, b: lagrange_runtime::nalgebra::Matrix2<f64>| {
+///     a.iter().zip(b.iter()).all(|(x, y)| (x - y).abs() < 1e-10 * b.amax())
+/// };
+/// assert!(close(&ours.mass, m));
+/// assert!(close(&ours.damping, c1 * v));
+/// assert!(close(&ours.stiffness, k0 * g + k2 * (v * v)));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn steady_motion_matrices<L, S, const N: usize>(
+    model: &L,
+    t: S,
+    q: &SVector<S, N>,
+    qdot: &SVector<S, N>,
+    coordinates: &[&str],
+) -> Result<SteadyMatrices<S>, AnalysisError<S, N>>
+where
+    L: Lagrangian<N, Scalar = S>,
+    S: RealField + Copy,
+{
+    let linearization = linearize_steady_motion(model, t, q, qdot, coordinates, coordinates)?;
+    let k = coordinates.len();
+    let index: Vec<usize> = coordinates
+        .iter()
+        .map(|name| {
+            L::COORDINATES
+                .iter()
+                .position(|c| c == name)
+                .expect("linearize_steady_motion has checked the names")
+        })
+        .collect();
+    let g = model
+        .visit_constraints(Jacobian { t, q })
+        .unwrap_or_else(|| DMatrix::zeros(0, N));
+    let c = g.nrows();
+    let mass = model.mass_matrix(t, q);
+    let saddle = DMatrix::from_fn(N + c, N + c, |i, j| match (i < N, j < N) {
+        (true, true) => mass[(i, j)],
+        (true, false) => g[(j - N, i)],
+        (false, true) => g[(i - N, j)],
+        (false, false) => S::zero(),
+    });
+    let forces = DMatrix::from_fn(
+        N + c,
+        k,
+        |i, j| {
+            if i == index[j] { S::one() } else { S::zero() }
+        },
+    );
+    let not_reducible = || AnalysisError::NotReducible {
+        reason: format!(
+            "no generalized force on the kept coordinates ({}) moves each of them on its own \
+             through the constraints: their compliance is singular",
+            coordinates.join(", ")
+        ),
+    };
+    let response = saddle.lu().solve(&forces).ok_or_else(not_reducible)?;
+    let compliance = DMatrix::from_fn(k, k, |i, j| response[(index[i], j)]);
+    if !compliance.iter().all(|x| x.is_finite()) {
+        return Err(not_reducible());
+    }
+    let reduced = compliance.try_inverse().ok_or_else(not_reducible)?;
+    // Symmetric in exact arithmetic; its rounding made symmetric.
+    let half: S = nalgebra::convert(0.5);
+    let reduced = (&reduced + reduced.transpose()) * half;
+    let a = &linearization.state_matrix;
+    let stiffness = -(&reduced * a.view((k, 0), (k, k)));
+    let damping = -(&reduced * a.view((k, k), (k, k)));
+    Ok(SteadyMatrices {
+        coordinates: coordinates.iter().map(|c| c.to_string()).collect(),
+        mass: reduced,
+        damping,
+        stiffness,
+        linearization,
+    })
+}
+
+/// `G = ∂φ/∂q` of every constraint (rolling rows included), `C × N`.
+struct Jacobian<'a, S, const N: usize> {
+    t: S,
+    q: &'a SVector<S, N>,
+}
+
+impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Jacobian<'_, S, N> {
+    type Output = DMatrix<S>;
+
+    fn visit<H, const C: usize>(self, model: &H, _: ConstraintSettings<S>) -> DMatrix<S>
+    where
+        H: Holonomic<N, C, Scalar = S> + ?Sized,
+    {
+        let g = model.constraint_jacobian(self.t, self.q);
+        DMatrix::from_fn(C, N, |i, j| g[(i, j)])
+    }
+}
+
 /// A basis (`2N × D`) of the deviations `(δq, δq̇)` the constraints allow:
 /// the null space of the rows `[G_i, 0]` of the holonomic constraints and
 /// `[∂φ̇_i/∂q, G_i]` of every constraint (`φ̇_i` the velocity residual, of a

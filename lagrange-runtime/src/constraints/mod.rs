@@ -90,6 +90,16 @@
 //! [`InconsistentInitialConditions`](crate::InvalidInput::InconsistentInitialConditions)
 //! naming the constraint and its residual ([`InitialConditions::Reject`]).
 //!
+//! That projection moves every coordinate, in the metric of `M`. To build
+//! a start from the coordinates and velocities you know instead,
+//! [`consistent_start`] keeps those you name and solves for the rest: the
+//! positions by Gauss–Newton onto the holonomic constraints, the
+//! velocities so that every constraint's velocity residual, rolling rows
+//! included, is zero; [`state_from_body_rates`] does it for a body in a
+//! unit quaternion from its body rates (a rolling ball's centre velocity
+//! completed by its rolling constraints). Each refuses with a
+//! [`StartError`] what it cannot do.
+//!
 //! # Multipliers
 //!
 //! The constraint force on the coordinates is `−Gᵀ λ`, so `λ` depends on
@@ -119,9 +129,12 @@
 //! `model/handling.rs`, built by `model/with.rs`'s
 //! [`WithLayers`](crate::model::WithLayers); the solve,
 //! the projections, the start and [`annotate`] in `dynamics/` (`saddle.rs`,
-//! `projection.rs`, `start.rs`, `annotate.rs`); the constrained variational
+//! `projection.rs`, `start.rs`, `annotate.rs`); a start built from the
+//! coordinates known in `constraints/start.rs`; the constrained variational
 //! step in `integrators/variational/` (`constrained.rs`, `rattle.rs`). This
 //! module gathers what a user names.
+
+mod start;
 
 pub use crate::dynamics::annotate::{ConstrainedSample, annotate};
 pub use crate::dynamics::saddle::Multipliers;
@@ -130,3 +143,4 @@ pub use crate::model::Lagrangian;
 pub use crate::model::constraints::{Holonomic, Visitor};
 pub use crate::model::handling::{Constrained, ConstraintHandling};
 pub use crate::model::settings::{ConstraintSettings, Drift, InitialConditions};
+pub use start::{StartError, consistent_start, state_from_body_rates};
