@@ -11,7 +11,10 @@
 //! - the Chaplygin sleigh (`ChaplyginSleigh`) against its tanh/sech;
 //! - a rolling disk (`RollingDisk`): the largest lean after a nudge from
 //!   upright rolling, either side of the critical speed `v² = g r / 3`, and
-//!   its linearization about upright rolling against the closed form.
+//!   its linearization about upright rolling against the closed form;
+//! - a ball rolling in a unit quaternion (`RollingBall`) started from its
+//!   body rates by `constraints::state_from_body_rates`, against the
+//!   hand-made start and the closed-form roll.
 //!
 //! Writes `docs/rigid_bodies/rigid_bodies.svg`: the tumbling body's rates
 //! over four flips, and the paths of the sleigh and of the disk's contact
@@ -22,8 +25,11 @@
 mod elliptic;
 
 use lagrange::analysis::linearize_steady_motion;
-use lagrange::models::{ChaplyginSleigh, EulerTop, FreeBody, HeavyTop, RollingDisk, quaternion};
-use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3};
+use lagrange::constraints::state_from_body_rates;
+use lagrange::models::{
+    ChaplyginSleigh, EulerTop, FreeBody, HeavyTop, RollingBall, RollingDisk, quaternion,
+};
+use lagrange::nalgebra::{SVector, UnitQuaternion, Vector2, Vector3};
 use lagrange::prelude::*;
 use plotters::prelude::*;
 use std::error::Error;
@@ -37,6 +43,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     heavy_top()?;
     let sleigh_path = sleigh()?;
     let disk_path = disk()?;
+    rolling_ball()?;
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../docs/rigid_bodies/rigid_bodies.svg");
     std::fs::create_dir_all(path.parent().unwrap())?;
@@ -310,6 +317,46 @@ fn disk() -> Result<Vec<(f64, f64)>, Box<dyn Error>> {
         );
     }
     Ok(circle.iter().map(|s| (s.q[0], s.q[1])).collect())
+}
+
+/// A ball rolling in a unit quaternion, started from its orientation and
+/// body rates by the library (the centre's velocity from the rolling
+/// constraints): against the hand-made start of `RollingBall::state`, and
+/// its roll over 2 s against the closed form.
+fn rolling_ball() -> Result<(), Box<dyn Error>> {
+    let ball = RollingBall::new(1.0, 0.1);
+    let rotation = UnitQuaternion::from_euler_angles(0.3, -0.7, 1.1);
+    let (velocity, spin) = (Vector2::new(0.3, -0.2), 1.5);
+    let body = rotation.inverse() * ball.angular_velocity(&velocity, spin);
+    let (q0, v0) = state_from_body_rates(
+        &ball,
+        0.0,
+        &[("x", 0.0), ("y", 0.0)],
+        &[],
+        ["w", "a", "b", "c"],
+        &rotation,
+        &body,
+    )?;
+    let (q_hand, v_hand) = ball.state(&rotation, &velocity, spin);
+    let run = Dop853::new()
+        .rtol(1e-12)
+        .atol(1e-12)
+        .integrate(&ball, 0.0, q0, v0, &[2.0])?;
+    let end = run.last().expect("a sample");
+    let exact = ball.rotation_at(&rotation, &velocity, spin, 2.0);
+    println!("\n## A rolling ball started from its body rates\n");
+    println!(
+        "| start against the hand-made one (q, q̇) | constraints' velocity residuals | rotation after 2 s against the closed form |"
+    );
+    println!("|---:|---:|---:|");
+    println!(
+        "| {:.1e}, {:.1e} | {:.1e} | {:.1e} rad |",
+        (q0 - q_hand).amax(),
+        (v0 - v_hand).amax(),
+        ball.constraint_velocities(0.0, &q0, &v0).amax(),
+        RollingBall::rotation(&end.q).angle_to(&exact)
+    );
+    Ok(())
 }
 
 fn draw(

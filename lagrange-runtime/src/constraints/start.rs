@@ -266,7 +266,7 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Start<S, N> {
             let worst = holonomic
                 .iter()
                 .copied()
-                .filter(|&i| !(phi[i].abs() <= tolerance[i]))
+                .filter(|&i| off(phi[i], tolerance[i]))
                 .max_by(|&i, &j| {
                     phi[i]
                         .abs()
@@ -328,7 +328,7 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Start<S, N> {
         let residual = model.constraint_velocities(t, &q, &qdot);
         let tolerance = velocity_tolerance(model, t, &q, &g, &qdot);
         if let Some(i) = (0..C)
-            .filter(|&i| !(residual[i].abs() <= tolerance[i]))
+            .filter(|&i| off(residual[i], tolerance[i]))
             .max_by(|&i, &j| {
                 residual[i]
                     .abs()
@@ -343,6 +343,11 @@ impl<S: RealField + Copy, const N: usize> Visitor<S, N> for Start<S, N> {
         }
         Ok((q, qdot))
     }
+}
+
+/// A residual beyond its tolerance, or not a number.
+fn off<S: RealField + Copy>(residual: S, tolerance: S) -> bool {
+    !residual.is_finite() || residual.abs() > tolerance
 }
 
 /// The least-squares, least-norm solution of `a x = b`, from the SVD of
