@@ -77,7 +77,9 @@ fn crossing_speed(bike: &WhippleBicycle<f64>, lo: f64, hi: f64) -> Result<f64, B
     let crossing = stability_crossing(lo, hi, |v| {
         let (q, qdot) = bike.upright(0.0, v);
         let states = ["phi", "delta"];
-        linearize_steady_motion(bike, 0.0, &q, &qdot, &states, &states).map(|l| l.state_matrix)
+        linearize_steady_motion(bike, 0.0, &q, &qdot, &states, &states)
+            .map(|l| l.state_matrix)
+            .map_err(Box::new)
     })?;
     Ok(crossing.parameter)
 }

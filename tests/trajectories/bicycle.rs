@@ -123,7 +123,9 @@ fn the_weave_and_capsize_speeds_are_the_benchmarks() {
         stability_crossing(lo, hi, |v| {
             let (q, qdot) = bike.upright(0.0, v);
             let states = ["phi", "delta"];
-            linearize_steady_motion(&bike, 0.0, &q, &qdot, &states, &states).map(|l| l.state_matrix)
+            linearize_steady_motion(&bike, 0.0, &q, &qdot, &states, &states)
+                .map(|l| l.state_matrix)
+                .map_err(Box::new)
         })
         .unwrap_or_else(|e| panic!("one crossing in {lo}..{hi}: {e}"))
     };

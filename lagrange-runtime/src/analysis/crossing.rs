@@ -51,9 +51,8 @@ pub enum Turns {
 /// eigenvalues changes sign, located to the last bit.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Crossing<S: RealField + Copy> {
-    /// The crossing: the end of [`bracket`](Self::bracket) nearer the
-    /// root's computed sign change (the midpoint of two adjacent floats is
-    /// either).
+    /// The crossing: whichever end of [`bracket`](Self::bracket) has the
+    /// smaller growth rate in magnitude (no float lies between them).
     pub parameter: S,
     /// Adjacent (or equal) parameter values with growth rates of opposite
     /// signs: the crossing lies between them.
