@@ -168,11 +168,11 @@ where
 /// ```
 /// use lagrange::models::RollingBall;
 /// use lagrange_runtime::constraints::state_from_body_rates;
-/// use lagrange_runtime::nalgebra::{UnitQuaternion, Vector3};
+/// use lagrange_runtime::nalgebra::{UnitQuaternion, Vector3, Vector6};
 ///
 /// let ball = RollingBall::new(1.0, 0.1);
 /// let turned = UnitQuaternion::from_euler_angles(0.3, -0.2, 0.1);
-/// let (q, qdot) = state_from_body_rates(
+/// let (q, qdot): (Vector6<f64>, Vector6<f64>) = state_from_body_rates(
 ///     &ball, 0.0, &[("x", 1.0)], &[], ["w", "a", "b", "c"], &turned, &Vector3::new(2.0, -1.0, 0.5),
 /// )?;
 /// // Rolling: the centre moves at r ω × the vertical, ω in space.
