@@ -220,11 +220,11 @@ impl Gen<'_> {
             return "";
         }
         if self.rng.chance(0.1) {
-            return *self
+            return self
                 .rng
                 .pick(&[" > ", " in [1, 0]", " > m", " in [2, 2]", " in 0"]);
         }
-        *self.rng.pick(&[
+        self.rng.pick(&[
             " > 0",
             " >= 0",
             " < 1",
