@@ -219,12 +219,8 @@ impl Gen<'_> {
         if !self.rng.chance(0.3) {
             return "";
         }
-        if self.rng.chance(0.1) {
-            return self
-                .rng
-                .pick(&[" > ", " in [1, 0]", " > m", " in [2, 2]", " in 0"]);
-        }
-        self.rng.pick(&[
+        const MALFORMED: [&str; 5] = [" > ", " in [1, 0]", " > m", " in [2, 2]", " in 0"];
+        const WELL_FORMED: [&str; 7] = [
             " > 0",
             " >= 0",
             " < 1",
@@ -232,7 +228,11 @@ impl Gen<'_> {
             " in [0, 1]",
             " in (-1, 1)",
             " > -1e-3",
-        ])
+        ];
+        if self.rng.chance(0.1) {
+            return self.rng.pick::<&str>(&MALFORMED);
+        }
+        self.rng.pick::<&str>(&WELL_FORMED)
     }
 
     fn declare(&mut self, pool: &[&str], min: usize, max: usize) -> Vec<Name> {

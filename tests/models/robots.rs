@@ -249,7 +249,7 @@ fn tree_recursions_match_its_energies_euler_lagrange() {
 #[test]
 fn panda_accelerations_solve_m_qdd_f_and_run_in_f32() {
     let panda = Panda::new();
-    assert!(<Panda as Lagrangian<7>>::SOLVES_ACCELERATIONS);
+    const { assert!(<Panda as Lagrangian<7>>::SOLVES_ACCELERATIONS) };
     let q = SVector::<f64, 7>::from_fn(|i, _| 0.3 * i as f64 - 0.8);
     let v = SVector::<f64, 7>::from_fn(|i, _| 0.5 - 0.2 * i as f64);
     let qdd = Lagrangian::accelerations(&panda, 0.0, &q, &v)
