@@ -347,7 +347,9 @@ impl Trace {
                     let x = name(a);
                     quote!(::lagrange::nalgebra::SimdComplexField::simd_recip(#x))
                 }
-                Op::Sin(a) => {
+                // Every angle's sine and cosine in one call, written where
+                // the first of them is used.
+                Op::Sin(a) | Op::Cos(a) => {
                     if !trig_done {
                         trig_done = true;
                         let args: Vec<Ident> = angles.iter().map(|&a| name(a)).collect();
@@ -357,21 +359,12 @@ impl Trace {
                             let ([#(#s),*], [#(#c),*]) = ::lagrange::trig::sin_cos_array([#(#args),*]);
                         ));
                     }
-                    let s = sin_name(a);
-                    quote!(#s)
-                }
-                Op::Cos(a) => {
-                    if !trig_done {
-                        trig_done = true;
-                        let args: Vec<Ident> = angles.iter().map(|&a| name(a)).collect();
-                        let s: Vec<Ident> = angles.iter().map(|&a| sin_name(a)).collect();
-                        let c: Vec<Ident> = angles.iter().map(|&a| cos_name(a)).collect();
-                        body.extend(quote!(
-                            let ([#(#s),*], [#(#c),*]) = ::lagrange::trig::sin_cos_array([#(#args),*]);
-                        ));
-                    }
-                    let c = cos_name(a);
-                    quote!(#c)
+                    let x = if matches!(op, Op::Sin(_)) {
+                        sin_name(a)
+                    } else {
+                        cos_name(a)
+                    };
+                    quote!(#x)
                 }
             };
             body.extend(quote!(let #v: S = #rhs;));
