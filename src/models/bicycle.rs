@@ -30,11 +30,14 @@ lagrangian! {
     /// yaw, roll and pitch, and for the front the steer.
     pub struct WhippleBicycle {
         coordinates: x, y, psi, phi, theta, delta, thR, thF;
-        parameters: w, c, lambda, g,
-            rR, mR, IRxx, IRyy,
-            xB, zB, mB, IBxx, IByy, IBzz, IBxz,
-            xH, zH, mH, IHxx, IHyy, IHzz, IHxz,
-            rF, mF, IFxx, IFyy;
+        // The wheelbase, the wheels' radii, every mass and every principal
+        // moment positive; the trail, the steer axis's tilt, the positions
+        // and the products of inertia of either sign.
+        parameters: w > 0, c, lambda, g >= 0,
+            rR > 0, mR > 0, IRxx > 0, IRyy > 0,
+            xB, zB, mB > 0, IBxx > 0, IByy > 0, IBzz > 0, IBxz,
+            xH, zH, mH > 0, IHxx > 0, IHyy > 0, IHzz > 0, IHxz,
+            rF > 0, mF > 0, IFxx > 0, IFyy > 0;
 
         // The rear frame's axes in space: yaw about the vertical, roll about
         // the heading, pitch about the rear axle.
@@ -96,34 +99,35 @@ lagrangian! {
 impl WhippleBicycle<f64> {
     /// The benchmark bicycle of Meijaard et al. (2007), table 1.
     pub fn benchmark() -> Self {
-        Self::new(
-            1.02,                        // w
-            0.08,                        // c
-            std::f64::consts::PI / 10.0, // lambda
-            9.81,                        // g
-            0.3,                         // rR
-            2.0,                         // mR
-            0.0603,                      // IRxx
-            0.12,                        // IRyy
-            0.3,                         // xB
-            -0.9,                        // zB
-            85.0,                        // mB
-            9.2,                         // IBxx
-            11.0,                        // IByy
-            2.8,                         // IBzz
-            2.4,                         // IBxz
-            0.9,                         // xH
-            -0.7,                        // zH
-            4.0,                         // mH
-            0.05892,                     // IHxx
-            0.06,                        // IHyy
-            0.00708,                     // IHzz
-            -0.00756,                    // IHxz
-            0.35,                        // rF
-            3.0,                         // mF
-            0.1405,                      // IFxx
-            0.28,                        // IFyy
-        )
+        Self::from_parameters(WhippleBicycleParameters {
+            w: 1.02,
+            c: 0.08,
+            lambda: std::f64::consts::PI / 10.0,
+            g: 9.81,
+            rR: 0.3,
+            mR: 2.0,
+            IRxx: 0.0603,
+            IRyy: 0.12,
+            xB: 0.3,
+            zB: -0.9,
+            mB: 85.0,
+            IBxx: 9.2,
+            IByy: 11.0,
+            IBzz: 2.8,
+            IBxz: 2.4,
+            xH: 0.9,
+            zH: -0.7,
+            mH: 4.0,
+            IHxx: 0.05892,
+            IHyy: 0.06,
+            IHzz: 0.00708,
+            IHxz: -0.00756,
+            rF: 0.35,
+            mF: 3.0,
+            IFxx: 0.1405,
+            IFyy: 0.28,
+        })
+        .expect("the benchmark's parameters lie inside the model's domains")
     }
 
     /// The state of upright straight running at speed `v`: every angle

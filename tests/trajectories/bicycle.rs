@@ -6,7 +6,7 @@
 //! nonlinear runs against the linear motion.
 
 use lagrange::analysis::{Turns, linearize_steady_motion, stability_crossing};
-use lagrange::models::WhippleBicycle;
+use lagrange::models::{WhippleBicycle, WhippleBicycleParameters};
 use lagrange::nalgebra::{DMatrix, Matrix2, Matrix4, Vector4};
 use lagrange::prelude::*;
 
@@ -266,4 +266,32 @@ fn the_reduction_holds_at_the_capsize_speed_itself() {
     let v = 6.02426201650087;
     let (ours, theirs) = (linearized(&bike, v), bike.benchmark_state_matrix(v));
     assert!((ours - theirs).amax() < 1e-10 * theirs.amax());
+}
+
+/// The bicycle's 26 parameters by name: one that differs from the
+/// benchmark in the rear frame's mass alone is the benchmark's parameters
+/// with that field changed (by position it would take all 26 in order, and
+/// a swap would compile), and a value outside its domain is refused with
+/// its name.
+#[test]
+fn a_bicycle_is_built_by_name_from_another_and_a_value_outside_its_domain_is_named() {
+    let bike = WhippleBicycle::benchmark();
+    let heavier = WhippleBicycle::from_parameters(WhippleBicycleParameters {
+        mB: 100.0,
+        ..bike.parameters()
+    })
+    .unwrap();
+    assert_eq!(heavier.mB, 100.0);
+    let mut rest = heavier.parameters();
+    rest.mB = bike.mB;
+    assert_eq!(rest, bike.parameters());
+    let error = WhippleBicycle::from_parameters(WhippleBicycleParameters {
+        rF: -0.35,
+        ..bike.parameters()
+    })
+    .unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        "parameter `rF` is -0.35, outside its domain `rF > 0`"
+    );
 }

@@ -25,8 +25,15 @@ fn start() -> (SVector<f64, 2>, SVector<f64, 2>) {
 /// plus independent Gaussian noise of standard deviation `NOISE` (Box–
 /// Muller from a seeded generator).
 fn recorded(seed: u64) -> Measurements<2> {
+    recorded_from(&TRUTH, seed)
+}
+
+/// [`recorded`] from other parameters (m1, m2, l1, l2, g, c1, c2), built
+/// by the unchecked `new`, so that they may lie outside the model's
+/// domains.
+fn recorded_from(parameters: &[f64; 7], seed: u64) -> Measurements<2> {
     let times: Vec<f64> = (1..=1000).map(|i| i as f64 / 100.0).collect();
-    let truth = DampedDoublePendulum::from_scalars(&TRUTH);
+    let truth = DampedDoublePendulum::from_scalars(parameters);
     let (q0, v0) = start();
     let run = Radau5::new()
         .rtol(1e-12)
@@ -495,5 +502,34 @@ fn a_fit_from_far_inside_the_domain_stays_inside_and_converges() {
         fitted.standard_errors.as_slice(),
         names,
     );
+    fitted.model.check_parameters().unwrap();
+}
+
+/// A fit whose least-squares minimum lies outside a closed domain ends on
+/// its bound, exactly. The recording is of a pendulum pumped at its first
+/// joint (`c1 = −0.05`, built by the unchecked `new`: a negative damper, a
+/// motor feeding energy in), which the model's domain `c1 >= 0` does not
+/// admit. Fitted alone from `c1 = 0.3`, the unconstrained minimum is
+/// `−0.05` within its standard error (about 1e-4 at this noise, far from
+/// zero): each step towards it is projected onto `c1 = 0`, where the fit
+/// stops, inside the domain. Without the projection it would return about
+/// −0.05, and with a reparametrization (`c1 = exp(u)`) it could never
+/// reach zero.
+#[test]
+fn a_fit_whose_minimum_lies_outside_a_closed_domain_stops_on_its_bound() {
+    let mut pumped = TRUTH;
+    pumped[5] = -0.05;
+    let data = recorded_from(&pumped, 11);
+    let fitted = fit(
+        DampedDoublePendulum::from_scalars(&TRUTH),
+        &Dop853::new().rtol(1e-10).atol(1e-10),
+        ["c1"],
+        0.0,
+        start(),
+        &data,
+        &FitSettings::default(),
+    )
+    .unwrap();
+    assert_eq!(fitted.values[0], 0.0, "c1 ended at {}", fitted.values[0]);
     fitted.model.check_parameters().unwrap();
 }

@@ -358,7 +358,8 @@ impl Outline<'_> {
     /// `NameParameters<S>` with a field per parameter, and the checked
     /// constructors `try_new` (positional) and `from_parameters` (by
     /// name), which refuse a value outside its declared domain, with
-    /// `check_parameters`, their check. Bounded by `RealField` (a value is
+    /// `check_parameters`, their check, and `parameters`, the struct read
+    /// back off a model. Bounded by `RealField` (a value is
     /// compared with its domain's ends), where `new` takes any scalar.
     pub fn by_name(&self) -> TokenStream {
         if self.fields.is_empty() {
@@ -416,6 +417,15 @@ impl Outline<'_> {
                 pub fn check_parameters(&self) -> ::core::result::Result<(), #error> {
                     #(#checks)*
                     ::core::result::Result::Ok(())
+                }
+            }
+
+            #[allow(non_snake_case, clippy::all)]
+            impl<S: ::core::marker::Copy> #name<S> {
+                /// The model's parameters by name: with `..model.parameters()`, a model that
+                /// differs from this one in the parameters named.
+                pub fn parameters(&self) -> #parameters<S> {
+                    #parameters { #(#params: self.#params),* }
                 }
             }
         }

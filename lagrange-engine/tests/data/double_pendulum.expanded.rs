@@ -63,6 +63,20 @@ impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> DoublePendulum<S
         ::core::result::Result::Ok(())
     }
 }
+#[allow(non_snake_case, clippy::all)]
+impl<S: ::core::marker::Copy> DoublePendulum<S> {
+    /// The model's parameters by name: with `..model.parameters()`, a model that
+    /// differs from this one in the parameters named.
+    pub fn parameters(&self) -> DoublePendulumParameters<S> {
+        DoublePendulumParameters {
+            m1: self.m1,
+            m2: self.m2,
+            l1: self.l1,
+            l2: self.l2,
+            g: self.g,
+        }
+    }
+}
 #[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]
 impl<S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy> DoublePendulum<S>
 where
