@@ -61,9 +61,10 @@ pub use contact::{
     BallOnFloor, BallOnFloorParameters, BallOnTable, BallOnTableParameters, BlockOnBelt,
     BlockOnBeltParameters, BlockOnIncline, BlockOnInclineParameters, BobOnString,
     BobOnStringParameters, Die, DieParameters, Ladder, LadderParameters, ParticleOnSphere,
-    ParticleOnSphereParameters, PushedPuck, PushedPuckParameters, SlidingBall,
-    SlidingBallParameters, StickSlip, Swing, TippeTop, TippeTopParameters, TorsionBearing,
-    TorsionBearingParameters, TumblingBox, TumblingBoxParameters,
+    ParticleOnSphereParameters, PushedPuck, PushedPuckParameters, RoughLadder,
+    RoughLadderParameters, SlidingBall, SlidingBallParameters, StickSlip, Swing, TippeTop,
+    TippeTopParameters, TorsionBearing, TorsionBearingParameters, TumblingBox,
+    TumblingBoxParameters,
 };
 pub use damped_double_pendulum::{DampedDoublePendulum, DampedDoublePendulumParameters};
 pub use double_pendulum::{DoublePendulum, DoublePendulumParameters};

@@ -220,6 +220,11 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
             solution.change += response * z[c];
         }
     }
+    // A slip rate this small is nil, as a normal acceleration is (see
+    // `rest` in `modes`): where the forces are not determined (a
+    // ladder stuck at both ends), the pivoting may leave a contact at its
+    // cone's edge with a slip rate of rounding, which is no slip.
+    let rest = nalgebra::convert::<f64, S>(1e-9) * b.amax();
     let mut c = 0;
     for entry in entries {
         match *entry {
@@ -234,7 +239,7 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
             Entry::Cone { contact, .. } => {
                 solution.normal[contact] = z[c];
                 solution.friction[contact] = z[c + 1] - z[c + 2];
-                if z[c + 3] > S::zero() {
+                if z[c + 3] > rest {
                     // Slipping: friction at the cone's edge against it.
                     solution.slips[contact] = Some(z[c + 2] > z[c + 1]);
                 }
@@ -245,7 +250,7 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
             } => {
                 solution.normal[contact] = normal;
                 solution.friction[contact] = z[c] - z[c + 1];
-                if z[c + 2] > S::zero() {
+                if z[c + 2] > rest {
                     solution.slips[contact] = Some(z[c + 1] > z[c]);
                 }
                 c += 3;
@@ -257,7 +262,7 @@ fn complementarity<S: RealField + Copy, const N: usize, const K: usize>(
                     solution.friction[contact] += z[c + 1 + j] * cos;
                     solution.second_friction[contact] += z[c + 1 + j] * sin;
                 }
-                if z[c + FACETS + 1] > S::zero() {
+                if z[c + FACETS + 1] > rest {
                     // Slipping, against its friction (which way is the
                     // friction's own, not this flag).
                     solution.slips[contact] = Some(true);

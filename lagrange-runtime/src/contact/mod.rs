@@ -125,28 +125,69 @@
 //! contact at once (at most `2 v_tol / (|g̈| (1 − e))` early), and so does
 //! a short elastic one (`e = 1` never accumulates).
 //!
-//! # Forces that are not determined: friction shared by the cones
+//! # Forces that are not determined: friction inside every cone
 //!
 //! Touching contacts whose rows are dependent leave some of their forces
 //! undetermined: a crate standing on two rough corners needs only the sum
-//! of their friction forces. Any share of it that lies inside both cones
-//! is a valid answer of rigid-body mechanics, and the crate must hold as
-//! long as one exists (Coulomb: while the push is below the sum of the
-//! limits, `μ (N₁ + N₂)`) and break away exactly when none does. The
-//! smallest forces (the minimum norm) share it evenly, which leaves the
-//! less loaded corner outside its cone first. Here stuck friction is
-//! shared in proportion to each contact's cone, `μ_s N` (the least
-//! `Σ N² + Σ F² N_ref / (μ_s N)`, `N_ref` the largest normal force of a
-//! stuck contact): where its only constraint is its sum, as for contacts
-//! of one body against one flat surface, every share is the same fraction of its cone, so all lie
-//! inside exactly while one admissible share exists, and all reach their
-//! limits together. A stick limit slides every stuck contact that is at
-//! its limit then (within `1e-9` of it, relative), not one of them. The
-//! normal forces stay the smallest that hold the body. Where friction must
-//! also move normal load between contacts to stay admissible (a ladder
-//! stuck at both ends), this sharing is not guaranteed admissible; the
-//! general answer, one complementarity problem over normal forces and
-//! friction cones, is not built yet.
+//! of their friction forces, and a ladder stuck against a rough wall on a
+//! rough floor has four unknown forces and three equations of
+//! equilibrium, so friction at the wall can take weight off the floor.
+//! The accelerations are determined, and every distribution `λ₀ + Z z`
+//! along the null space `Z` of the forces' responses (`M⁻¹ Dᵀ Z = 0`)
+//! gives them; any of those whose friction lies inside every cone (`|Fᵢ|
+//! ≤ μ_s Nᵢ`, `Nᵢ ≥ 0`) is a valid answer of rigid-body mechanics, and the
+//! body must hold as long as one exists and break away exactly when none
+//! does. The minimum-norm forces are not such a choice: they share a
+//! crate's friction evenly, leaving the less loaded corner outside its
+//! cone first, and they give a ladder's wall no normal force at all (its
+//! friction none, under the share below), so the floor carries what the
+//! wall could have.
+//!
+//! The choice is made in two steps. First the minimum-norm normal forces
+//! and friction shared in proportion to each contact's cone, `μ_s N` (the
+//! least `Σ N² + Σ F² N_ref / (μ_s N)`, `N_ref` the largest normal force
+//! of a stuck contact): where the shared friction's only constraint is its
+//! sum (contacts of one body against one flat surface: a crate, a box's
+//! corners), every share is then the same fraction of its cone, the least
+//! use of the cones there is. Then the use of the cones, `ρ = maxᵢ |Fᵢ| /
+//! (μ_s Nᵢ)`, is compared with the least possible over the null space,
+//! `ρ*` (an admissible distribution exists exactly where `ρ* ≤ 1`), found
+//! by bisection on the feasibility of the polyhedron `|Fᵢ| ≤ ρ μ_s Nᵢ`, `Nᵢ
+//! ≥ 0` in the null-space coordinates (two half-spaces per cone, one per
+//! normal force; a one-dimensional null space exactly, as intervals, a
+//! larger one by Lemke's method on the dual of a projection onto it). The
+//! share is kept where its use is at most `ρ_t = (1 + ρ*)/2` (`ρ*` itself
+//! beyond 1), and otherwise replaced by its projection onto that
+//! polyhedron at `ρ_t`: the nearest forces that use no cone more than
+//! halfway between the least possible use and the limit.
+//!
+//! - **Admissible**: every stuck contact keeps a margin `μ_s N − |F| ≥ (1
+//!   − ρ*) μ_s N / 2`, positive while an admissible distribution exists;
+//!   it reaches zero, at the contacts that limit the body, exactly where
+//!   none remains, so the stick limit's event (`μ_s N − |F|` through zero)
+//!   is located there and only there. A stick limit slides every stuck
+//!   contact that is at its limit then (within `1e-9` of it, relative),
+//!   not one of them: a ladder's two ends, a crate's two corners.
+//! - **Unique and continuous**: where several admissible distributions
+//!   exist, the one taken is the nearest to the proportional share among
+//!   those that use no cone beyond `ρ_t`, a projection onto a convex set,
+//!   so one; it moves continuously with the state wherever that set has an
+//!   interior (the projection of a share on its boundary is the share), so
+//!   the event sees a continuous margin. Where the cones could squeeze the
+//!   body without limit (a ladder jammed by `μ_w μ_f ≥ 1`) the forces stay
+//!   the nearest to the share, bounded. The normal forces the body does not
+//!   need to redistribute stay the smallest that hold it.
+//! - **Cost**: nothing beyond the share where its use is at most a half,
+//!   one singular value decomposition of the responses and one feasibility
+//!   test where it qualifies all the same (a crate: its forces are the
+//!   share's bit for bit), and where it does not, some 55 feasibility
+//!   tests of the bisection and one projection, each a pass over the
+//!   bounds for a one-dimensional null space, a Lemke solve for a larger
+//!   one. It is paid only in solves whose rows are dependent.
+//! - **Not covered**: stuck contacts whose friction acts in a plane (a
+//!   disc, not two half-spaces) keep the proportional share, which is
+//!   admissible where its only constraint is its sum and not guaranteed
+//!   elsewhere.
 //!
 //! # Friction in a plane: a slip vector and a disc of forces
 //!
@@ -178,7 +219,7 @@
 //! tests measure 0.9952 along the middle of a side). A second-order cone
 //! solve would give the disc itself; it is not built. Where friction is
 //! statically indeterminate, stuck friction is shared in proportion to
-//! the discs, as in the plane.
+//! the discs (the first step above, without the second).
 //!
 //! # Guards
 //!
@@ -231,6 +272,7 @@ use nalgebra::{RealField, SMatrix, SVector};
 
 use crate::model::Lagrangian;
 
+mod admissible;
 mod decide;
 mod erased;
 mod held;

@@ -20,10 +20,10 @@ pub(crate) type Solved<S, const N: usize, const K: usize> = (SVector<S, N>, Cont
 /// tangential (a stuck contact's friction, along the slip's first row, or
 /// along a slip vector's second).
 #[derive(Clone, Copy)]
-struct Unknown {
-    contact: usize,
-    tangential: bool,
-    second: bool,
+pub(super) struct Unknown {
+    pub(super) contact: usize,
+    pub(super) tangential: bool,
+    pub(super) second: bool,
 }
 
 /// Where the friction of the contacts that slip in a plane
@@ -297,7 +297,9 @@ pub(crate) fn accelerations<S: RealField + Copy, const N: usize, const K: usize>
     }
     let (lambda, rank) = least_solve(a.clone(), &b)?;
     let lambda = if rank < m && unknowns.iter().any(|u| u.tangential) {
-        share_friction(a, &b, lambda, &unknowns, &laws)?
+        let shared = share_friction(a, &b, lambda, &unknowns, &laws)?;
+        let columns = DMatrix::from_fn(N, m, |r, c| responses[c][r]);
+        super::admissible::admissible(&columns, shared, &unknowns, &laws)
     } else {
         lambda
     };

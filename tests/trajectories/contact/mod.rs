@@ -8,6 +8,7 @@ mod closed_forms;
 mod frames;
 mod friction;
 mod held;
+mod ladder;
 mod methods;
 mod plane;
 mod tippe_top;
