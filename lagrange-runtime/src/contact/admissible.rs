@@ -268,3 +268,71 @@ fn project<S: RealField + Copy>(bounds: &[Bound<S>], k: usize, rho: S) -> Option
     let violation = (&c * &z - &d).max();
     (violation <= tiny).then_some(z)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two stuck contacts of one body that push along one direction and
+    /// rub along another (`N × m` responses `[e₀, e₁, e₀, e₁]`): only the
+    /// sums `N₁ + N₂` and `F₁ + F₂` are determined, a null space of two
+    /// dimensions (load and friction both move between them), solved by
+    /// Lemke's method.
+    fn two_contacts(mu: f64) -> (DMatrix<f64>, [Unknown; 4], [ContactLaw<f64>; 2]) {
+        let responses = DMatrix::from_row_slice(2, 4, &[1.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 1.0]);
+        let unknown = |contact, tangential| Unknown {
+            contact,
+            tangential,
+            second: false,
+        };
+        let unknowns = [
+            unknown(0, false),
+            unknown(0, true),
+            unknown(1, false),
+            unknown(1, true),
+        ];
+        let law = ContactLaw::frictionless(0.0).with_friction(mu);
+        (responses, unknowns, [law, law])
+    }
+
+    #[test]
+    fn a_share_outside_a_cone_moves_to_the_nearest_using_them_halfway_from_the_least_to_the_limit()
+    {
+        let mu = 0.6;
+        let (responses, unknowns, laws) = two_contacts(mu);
+        // N = (1.5, 0.5), F = (0, 1): the second contact at 3.33 times its
+        // cone; the least use is the sums' `1 / (0.6 × 2)`, so the target
+        // is halfway from it to 1.
+        let first = DVector::from_vec(vec![1.5, 0.0, 0.5, 1.0]);
+        let least = 1.0 / (mu * 2.0);
+        let target = (1.0 + least) / 2.0;
+        let x = admissible(&responses, first.clone(), &unknowns, &laws);
+        // The same accelerations: the sums to rounding.
+        assert!((x[0] + x[2] - 2.0).abs() < 1e-14, "{x}");
+        assert!((x[1] + x[3] - 1.0).abs() < 1e-14, "{x}");
+        let uses = [x[1].abs() / (mu * x[0]), x[3].abs() / (mu * x[2])];
+        for u in uses {
+            assert!(u <= target * (1.0 + 1e-12), "{uses:?} beyond {target}");
+        }
+        // Nearest to the share: the contact it overloaded at the target's
+        // bound exactly (the projection moves no further than it must).
+        assert!((uses[1] - target).abs() < 1e-9, "{uses:?}, target {target}");
+    }
+
+    #[test]
+    fn a_share_within_its_bound_is_kept_bit_for_bit_and_none_admissible_is_the_least_use() {
+        let mu = 0.6;
+        let (responses, unknowns, laws) = two_contacts(mu);
+        // Each at 0.5 of its cone, the least use of the sums: kept.
+        let even = DVector::from_vec(vec![1.0, 0.3, 1.0, 0.3]);
+        assert_eq!(admissible(&responses, even.clone(), &unknowns, &laws), even);
+        // Friction of 1.5 against cones of 1.2 in all: none admissible;
+        // the forces use the cones as little as can be, 1.25 each.
+        let beyond = DVector::from_vec(vec![1.5, 0.0, 0.5, 1.5]);
+        let x = admissible(&responses, beyond, &unknowns, &laws);
+        let uses = [x[1].abs() / (mu * x[0]), x[3].abs() / (mu * x[2])];
+        for u in uses {
+            assert!((u - 1.25).abs() < 1e-9, "{uses:?}");
+        }
+    }
+}
