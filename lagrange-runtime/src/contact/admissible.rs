@@ -29,7 +29,7 @@
 //!   interior (it moves with `ρ*` and the forces, and at the switch from
 //!   `λ₀` to its projection `λ₀` lies on `S(ρ_t)`'s boundary); the forces
 //!   stay bounded where the cones could squeeze the body without limit
-//!   (a ladder jammed by `μ_w μ_f > 1`), being the nearest to `λ₀`;
+//!   (a ladder wedged, `μ_w μ_f ≥ 1`), being the nearest to `λ₀`;
 //! - where `λ₀` already qualifies (a crate on two corners, whose shares are
 //!   one fraction of their cones, the least use), nothing is solved
 //!   beyond one feasibility test, and the forces are `λ₀` bit for bit.

@@ -54,7 +54,9 @@
 //! (friction makes the problem inconsistent: Painlevé's paradox), the run
 //! ends with [`ContactError::NoConsistentMode`], at that time and state.
 //! A contact forced by its own event (a release, a stick limit) takes the
-//! mode the event says, and the others are decided around it. A touching
+//! mode the event says, and the others are decided around it. A slip rate
+//! within `1e-9` of the problem's largest term is no slip (the pivoting
+//! leaves rounding there where forces are not determined). A touching
 //! contact that the solution leaves without force but on the surface (its
 //! normal acceleration nil, to `1e-9` of the largest) touches still:
 //! where loads are not determined (four corners of a face), the pivoting
@@ -139,9 +141,9 @@
 //! body must hold as long as one exists and break away exactly when none
 //! does. The minimum-norm forces are not such a choice: they share a
 //! crate's friction evenly, leaving the less loaded corner outside its
-//! cone first, and they give a ladder's wall no normal force at all (its
-//! friction none, under the share below), so the floor carries what the
-//! wall could have.
+//! cone first, and for a ladder standing unpushed they give the wall no
+//! normal force at all (and so, under the share below, no friction), so
+//! the floor carries what the wall could have.
 //!
 //! The choice is made in two steps. First the minimum-norm normal forces
 //! and friction shared in proportion to each contact's cone, `μ_s N` (the
@@ -174,13 +176,13 @@
 //!   so one; it moves continuously with the state wherever that set has an
 //!   interior (the projection of a share on its boundary is the share), so
 //!   the event sees a continuous margin. Where the cones could squeeze the
-//!   body without limit (a ladder jammed by `μ_w μ_f ≥ 1`) the forces stay
+//!   body without limit (a ladder wedged, `μ_w μ_f ≥ 1`) the forces stay
 //!   the nearest to the share, bounded. The normal forces the body does not
 //!   need to redistribute stay the smallest that hold it.
 //! - **Cost**: nothing beyond the share where its use is at most a half,
 //!   one singular value decomposition of the responses and one feasibility
 //!   test where it qualifies all the same (a crate: its forces are the
-//!   share's bit for bit), and where it does not, some 55 feasibility
+//!   share's bit for bit), and where it does not, about 50 feasibility
 //!   tests of the bisection and one projection, each a pass over the
 //!   bounds for a one-dimensional null space, a Lemke solve for a larger
 //!   one. It is paid only in solves whose rows are dependent.
