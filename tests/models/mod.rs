@@ -16,6 +16,7 @@ mod more_models;
 mod named_lets;
 pub(crate) mod parameter_derivatives;
 mod physics_names;
+mod robot_frames;
 mod robots;
 mod textbook_models;
 mod trigonometry;

@@ -539,3 +539,10 @@ pub fn potential(t: &mut Trace, bodies: &[Body], q: &[Val]) -> Val {
     }
     cx.t.mul(Val::K(GRAVITY), sum)
 }
+
+// Beside the recursions, on the same spatial arithmetic: the frames'
+// kinematics and the inertial-parameter regressor.
+#[path = "frames.rs"]
+pub mod frames;
+#[path = "regressor.rs"]
+pub mod regressor;

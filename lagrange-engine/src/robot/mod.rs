@@ -15,10 +15,12 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod algorithms;
+pub mod api;
 pub mod trace;
 pub mod tree;
 pub mod urdf;
 
+use algorithms::frames::{self, Frame};
 use proc_macro2::{Span, TokenStream};
 use quote::{format_ident, quote};
 use syn::parse::{ParseStream, Parser};
@@ -154,8 +156,9 @@ fn parse(input: TokenStream) -> syn::Result<Input> {
     parser.parse2(input)
 }
 
-/// The bodies of the robot the input names, or the error on its tokens.
-fn load(input: &Input) -> syn::Result<Vec<Body>> {
+/// The bodies and frames of the robot the input names, or the error on its
+/// tokens.
+fn load(input: &Input) -> syn::Result<(Vec<Body>, Vec<Frame>)> {
     let rel = input.path.value();
     let span = input.path.span();
     let err = |message: String| syn::Error::new(span, message);
@@ -187,12 +190,14 @@ fn load(input: &Input) -> syn::Result<Vec<Body>> {
         None => err(format!("{rel}: {}", r.message)),
     };
     let robot = urdf::read(&text).map_err(at)?;
-    tree::bodies(&robot, &locks).map_err(|e| match e {
+    let bodies = tree::bodies(&robot, &locks).map_err(|e| match e {
         TreeError::File(r) => at(r),
         TreeError::Lock(k, message) => {
             syn::Error::new(input.locks[k].0.span(), format!("{message} (in `{rel}`)"))
         }
-    })
+    })?;
+    let frames = frames::frames(&robot, &locks, &bodies);
+    Ok((bodies, frames))
 }
 
 /// Expands a robot from URDF: the items, or a `compile_error!` and a stub.
@@ -201,8 +206,14 @@ pub fn expand(input: TokenStream) -> TokenStream {
         Ok(i) => i,
         Err(e) => return e.to_compile_error(),
     };
-    match load(&input).and_then(|bodies| check(&input, &bodies).map(|()| bodies)) {
-        Ok(bodies) => emit(&input, &bodies),
+    match load(&input)
+        .and_then(|(bodies, frames)| check(&input, &bodies).map(|()| (bodies, frames)))
+    {
+        Ok((bodies, frames)) => {
+            let mut items = emit(&input, &bodies);
+            items.extend(api::emit(&input.name, &bodies, &frames));
+            items
+        }
         Err(e) => {
             let (vis, name) = (&input.vis, &input.name);
             let error = e.to_compile_error();
