@@ -8,7 +8,9 @@
 //!
 //! `cargo run --release -p lagrange-studies --example robots`
 //! (`LAGRANGE_PEERS_PYTHON` names a Python with `pin`, `example-robot-data`
-//! and `cmeel-eigen`).
+//! and `cmeel-eigen`; `LAGRANGE_PINOCCHIO_BENCH` names `bench.cpp` built
+//! already against the same wheel, as this example builds it: the build
+//! takes minutes).
 
 #[path = "support/peers_python.rs"]
 mod peers_python;
@@ -118,6 +120,9 @@ fn pinocchio(dir: &Path) -> Result<(std::path::PathBuf, Vec<String>), String> {
         args.push(name.to_string());
         args.push(dump.display().to_string());
     }
+    if let Ok(bin) = std::env::var("LAGRANGE_PINOCCHIO_BENCH") {
+        return Ok((bin.into(), args));
+    }
     let bin = dir.join("bench");
     let built = Command::new("g++")
         .args(["-O3", "-march=native", "-DNDEBUG", "-std=c++17"])
@@ -161,11 +166,21 @@ fn run_pinocchio(bin: &Path, args: &[String]) -> Vec<(String, [f64; 4])> {
         .unwrap_or_default();
     out.lines()
         .filter_map(|line| {
+            // `NAME nv N aba_ns X crba_ns Y crba_solve_ns Z rnea_ns W`:
+            // each figure read after its key.
             let w: Vec<&str> = line.split_whitespace().collect();
-            let num = |k: usize| w.get(k).and_then(|x| x.parse::<f64>().ok());
+            let num = |key: &str| {
+                let at = w.iter().position(|x| *x == key)?;
+                w.get(at + 1)?.parse::<f64>().ok()
+            };
             Some((
                 w.first()?.to_string(),
-                [num(5)?, num(7)?, num(9)?, num(11)?],
+                [
+                    num("aba_ns")?,
+                    num("crba_ns")?,
+                    num("crba_solve_ns")?,
+                    num("rnea_ns")?,
+                ],
             ))
         })
         .collect()
