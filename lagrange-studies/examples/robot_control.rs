@@ -34,6 +34,8 @@ lagrangian! {
 
 type V = SVector<f64, 7>;
 type Pi = SVector<f64, 10>;
+/// A run's sample: `(t, q, q̇)`.
+type Sample = (f64, V, V);
 
 /// The last body's parameters in the regressor's columns.
 const LAST: usize = 60;
@@ -194,7 +196,7 @@ fn simulate(
     q0: V,
     qdot0: V,
     seconds: f64,
-) -> Result<Vec<(f64, V, V)>, Box<dyn Error>> {
+) -> Result<Vec<Sample>, Box<dyn Error>> {
     let plant = Plant { truth, control };
     let times: Vec<f64> = (0..=(seconds * 100.0).round() as usize)
         .map(|i| 0.01 * i as f64)
@@ -339,7 +341,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         )
     };
     let track_identified = track(identified)?;
-    let tracking_error = |run: &[(f64, V, V)]| -> Vec<(f64, f64)> {
+    let tracking_error = |run: &[Sample]| -> Vec<(f64, f64)> {
         run.iter()
             .map(|(t, q, _)| (*t, degrees(error(q, &trajectory(*t).0))))
             .collect()
@@ -361,7 +363,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             (p.x, p.z)
         })
         .collect();
-    let hold_error = |run: &[(f64, V, V)]| -> Vec<(f64, f64)> {
+    let hold_error = |run: &[Sample]| -> Vec<(f64, f64)> {
         run.iter()
             .map(|(t, q, _)| (*t, degrees(error(q, &ready()))))
             .collect()
