@@ -5,10 +5,21 @@
 //! the Hessian of the kinetic energy, `f` the Euler–Lagrange equations of
 //! `T − V`, both by differences of the energies the macro writes directly
 //! (not by the recursions).
+//!
+//! Floating bases (the Go2, romeo_small) are compared in Pinocchio's
+//! free-flyer coordinates: its configuration `(p, qx, qy, qz, qw, qⱼ)` is
+//! ours `(p, qw, qx, qy, qz, qⱼ)` reordered, and its velocity (the base's
+//! spatial velocity in the base frame, linear then angular, then the
+//! joints') is the velocity `ν` our recursions take, so `M`, `nle`, `ν̇` and
+//! `τ` compare entry by entry. The quaternion coordinates' own dynamics
+//! (the `Lagrangian` in `q̇`, `|q| = 1` held by its constraint) are checked
+//! through the map `ṗ = R v`, `q̇ = ½ q (0, ω)` and back
+//! `ν̇ = (Rᵀ p̈ − ω × v, 2 Im(q̄ q̈), q̈ⱼ)`, written here with nalgebra's
+//! quaternions.
 
-use lagrange::Lagrangian;
 use lagrange::nalgebra::{SMatrix, SVector};
 use lagrange::prelude::*;
+use lagrange::{Holonomic, Lagrangian};
 use serde_json::Value;
 
 lagrangian! {
@@ -23,6 +34,25 @@ lagrangian! {
     pub struct Panda {
         locked: panda_finger_joint1 = 0.0, panda_finger_joint2 = 0.0;
     }
+}
+
+lagrangian! {
+    /// The xArm7 of example-robot-data.
+    #[lagrange(urdf = "tests/data/robots/xarm7.urdf")]
+    pub struct Xarm7 {}
+}
+
+lagrangian! {
+    /// The Unitree Go2 of example-robot-data on a floating base.
+    #[lagrange(urdf = "tests/data/robots/go2.urdf", floating)]
+    pub struct Go2 {}
+}
+
+lagrangian! {
+    /// The romeo_small humanoid of example-robot-data (31 joints) on a
+    /// floating base.
+    #[lagrange(urdf = "tests/data/robots/romeo_small.urdf", floating)]
+    pub struct Romeo {}
 }
 
 lagrangian! {
@@ -82,6 +112,7 @@ macro_rules! robot {
 robot!(Ur5, 6);
 robot!(Panda, 7);
 robot!(Tree, 4);
+robot!(Xarm7, 7);
 
 fn vector<const N: usize>(v: &Value) -> SVector<f64, N> {
     SVector::from_iterator(v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()))
@@ -182,6 +213,11 @@ fn check<R: Robot<N>, const N: usize>(robot: &R, file: &str) {
 }
 
 #[test]
+fn xarm7_matches_pinocchio() {
+    check(&Xarm7::new(), "reference_xarm7.json");
+}
+
+#[test]
 fn ur5_matches_pinocchio() {
     check(&Ur5::new(), "reference_ur5.json");
 }
@@ -264,4 +300,300 @@ fn panda_accelerations_solve_m_qdd_f_and_run_in_f32() {
         .cast::<f64>();
     // f32 rounding (6e-8) over a few hundred operations: 1e-5 of M.
     assert!((single - m).amax() < 1e-5 * m.amax());
+}
+
+/// What a robot on a floating base is asked: `NQ` coordinates, `NV`
+/// velocities.
+trait FloatingRobot<const NQ: usize, const NV: usize>:
+    Holonomic<NQ, 1, Scalar = f64> + Lagrangian<NQ, Scalar = f64>
+{
+    const JOINTS: &'static [&'static str];
+    fn m(&self, q: &SVector<f64, NQ>) -> SMatrix<f64, NV, NV>;
+    fn nle(&self, q: &SVector<f64, NQ>, v: &SVector<f64, NV>) -> SVector<f64, NV>;
+    fn aba(
+        &self,
+        q: &SVector<f64, NQ>,
+        v: &SVector<f64, NV>,
+        tau: &SVector<f64, NV>,
+    ) -> SVector<f64, NV>;
+    fn rnea(
+        &self,
+        q: &SVector<f64, NQ>,
+        v: &SVector<f64, NV>,
+        a: &SVector<f64, NV>,
+    ) -> SVector<f64, NV>;
+    fn rates(&self, q: &SVector<f64, NQ>, v: &SVector<f64, NV>) -> SVector<f64, NQ>;
+}
+
+macro_rules! floating_robot {
+    ($t:ty, $nq:literal, $nv:literal) => {
+        impl FloatingRobot<$nq, $nv> for $t {
+            const JOINTS: &'static [&'static str] = {
+                let (_, joints) = <$t>::COORDINATES.split_at(7);
+                joints
+            };
+            fn m(&self, q: &SVector<f64, $nq>) -> SMatrix<f64, $nv, $nv> {
+                self.velocity_mass_matrix(q)
+            }
+            fn nle(&self, q: &SVector<f64, $nq>, v: &SVector<f64, $nv>) -> SVector<f64, $nv> {
+                self.nonlinear_effects(q, v)
+            }
+            fn aba(
+                &self,
+                q: &SVector<f64, $nq>,
+                v: &SVector<f64, $nv>,
+                tau: &SVector<f64, $nv>,
+            ) -> SVector<f64, $nv> {
+                self.forward_dynamics(q, v, tau)
+            }
+            fn rnea(
+                &self,
+                q: &SVector<f64, $nq>,
+                v: &SVector<f64, $nv>,
+                a: &SVector<f64, $nv>,
+            ) -> SVector<f64, $nv> {
+                self.inverse_dynamics(q, v, a)
+            }
+            fn rates(&self, q: &SVector<f64, $nq>, v: &SVector<f64, $nv>) -> SVector<f64, $nq> {
+                <$t>::rates(self, q, v)
+            }
+        }
+    };
+}
+floating_robot!(Go2, 19, 18);
+floating_robot!(Romeo, 38, 37);
+
+/// Pinocchio's free-flyer configuration in our order: the quaternion's
+/// `(x, y, z, w)` to `(w, x, y, z)`.
+fn from_pinocchio<const NQ: usize>(q: &SVector<f64, NQ>) -> SVector<f64, NQ> {
+    let mut ours = *q;
+    ours[3] = q[6];
+    ours[4] = q[3];
+    ours[5] = q[4];
+    ours[6] = q[5];
+    ours
+}
+
+/// `ν̇` of the coordinates' accelerations `q̈` at `(q, ν)`: `Rᵀ p̈ − ω × v`,
+/// `2 Im(q̄ q̈)`, the joints' `q̈`.
+fn velocity_accelerations<const NQ: usize, const NV: usize>(
+    q: &SVector<f64, NQ>,
+    v: &SVector<f64, NV>,
+    qdd: &SVector<f64, NQ>,
+) -> SVector<f64, NV> {
+    use lagrange::nalgebra::{Quaternion, UnitQuaternion, Vector3};
+    let quat = Quaternion::new(q[3], q[4], q[5], q[6]);
+    let rot = UnitQuaternion::from_quaternion(quat);
+    let (lin, w) = (
+        Vector3::new(v[0], v[1], v[2]),
+        Vector3::new(v[3], v[4], v[5]),
+    );
+    let pdd = Vector3::new(qdd[0], qdd[1], qdd[2]);
+    let a_lin = rot.inverse() * pdd - w.cross(&lin);
+    let a_ang = (quat.conjugate() * Quaternion::new(qdd[3], qdd[4], qdd[5], qdd[6])).imag() * 2.0;
+    SVector::from_fn(|i, _| match i {
+        0..3 => a_lin[i],
+        3..6 => a_ang[i - 3],
+        _ => qdd[i + 1],
+    })
+}
+
+/// The floating base's checks at every recorded state: the worst relative
+/// errors of M, nle, ABA's ν̇ and RNEA's τ in Pinocchio's velocities; and
+/// of the quaternion coordinates' dynamics: `T(q, q̇)` against
+/// `½ νᵀ M ν`, and `q̈` of the saddle-point system (`M_q`, `f_q`, `G`, `γ`)
+/// mapped to `ν̇` against Pinocchio's unforced `M⁻¹ (−nle)`.
+fn floating_against_pinocchio<R: FloatingRobot<NQ, NV>, const NQ: usize, const NV: usize>(
+    robot: &R,
+    file: &str,
+) -> [f64; 6] {
+    let path = format!("{}/tests/data/robots/{file}", env!("CARGO_MANIFEST_DIR"));
+    let json: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let joints: Vec<&str> = json["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j.as_str().unwrap())
+        .collect();
+    // Pinocchio orders a link's children by their joints' names (urdfdom's
+    // map), ours by the file: the same joints, romeo's neck and arms in
+    // another order. `pin[k]`: Pinocchio's index of our joint `k`.
+    let mut sorted = joints.clone();
+    sorted.sort_unstable();
+    let mut ours = R::JOINTS.to_vec();
+    ours.sort_unstable();
+    assert_eq!(sorted, ours, "the joints are Pinocchio's");
+    let pin: Vec<usize> = R::JOINTS
+        .iter()
+        .map(|j| joints.iter().position(|p| p == j).unwrap())
+        .collect();
+    // Pinocchio's index of our entry `i` of a configuration (the base's 7
+    // first) or a velocity (the base's 6 first).
+    let at_q = |i: usize| if i < 7 { i } else { 7 + pin[i - 7] };
+    let at_v = |i: usize| if i < 6 { i } else { 6 + pin[i - 6] };
+    let velocity = |x: &Value| {
+        let x = vector::<NV>(x);
+        SVector::<f64, NV>::from_fn(|i, _| x[at_v(i)])
+    };
+    let states = json["states"].as_array().unwrap();
+    assert_eq!(states.len(), 100);
+    let mut worst = [0.0f64; 6];
+    for s in states {
+        let q_pin = vector::<NQ>(&s["q"]);
+        let q = from_pinocchio(&SVector::<f64, NQ>::from_fn(|i, _| q_pin[at_q(i)]));
+        let (v, a, tau) = (velocity(&s["v"]), velocity(&s["a"]), velocity(&s["tau"]));
+        // The upper triangle, row by row.
+        let upper = vector_of(&s["mass_matrix_upper"]);
+        let mut m_pin = SMatrix::<f64, NV, NV>::zeros();
+        let mut k = 0;
+        for i in 0..NV {
+            for j in i..NV {
+                m_pin[(i, j)] = upper[k];
+                m_pin[(j, i)] = upper[k];
+                k += 1;
+            }
+        }
+        let m_ref = SMatrix::<f64, NV, NV>::from_fn(|i, j| m_pin[(at_v(i), at_v(j))]);
+        let nle_ref = velocity(&s["nonlinear_effects"]);
+        // The quaternion coordinates: rates of Pinocchio's velocity, the
+        // saddle-point system [[M, Gᵀ], [G, 0]] solved whole (LU).
+        let qdot = robot.rates(&q, &v);
+        let kinetic = robot.kinetic_energy(0.0, &q, &qdot);
+        let kinetic_ref = 0.5 * v.dot(&(m_ref * v));
+        let (mq, fq) = robot.mass_matrix_and_forcing(0.0, &q, &qdot);
+        let g = robot.constraint_jacobian(0.0, &q);
+        let gamma = robot.constraint_bias(0.0, &q, &qdot);
+        let mut kkt = lagrange::nalgebra::DMatrix::<f64>::zeros(NQ + 1, NQ + 1);
+        let mut rhs = lagrange::nalgebra::DVector::<f64>::zeros(NQ + 1);
+        for i in 0..NQ {
+            for j in 0..NQ {
+                kkt[(i, j)] = mq[(i, j)];
+            }
+            kkt[(i, NQ)] = g[i];
+            kkt[(NQ, i)] = g[i];
+            rhs[i] = fq[i];
+        }
+        rhs[NQ] = -gamma[0];
+        let x = kkt.lu().solve(&rhs).unwrap();
+        let qdd = SVector::<f64, NQ>::from_fn(|i, _| x[i]);
+        let unforced_ref = m_ref.cholesky().unwrap().solve(&(-nle_ref));
+        let errors = [
+            relative(robot.m(&q).as_slice(), m_ref.as_slice()),
+            relative(robot.nle(&q, &v).as_slice(), nle_ref.as_slice()),
+            relative(
+                robot.aba(&q, &v, &tau).as_slice(),
+                velocity(&s["aba"]).as_slice(),
+            ),
+            relative(
+                robot.rnea(&q, &v, &a).as_slice(),
+                velocity(&s["rnea"]).as_slice(),
+            ),
+            (kinetic - kinetic_ref).abs() / kinetic_ref,
+            relative(
+                velocity_accelerations(&q, &v, &qdd).as_slice(),
+                unforced_ref.as_slice(),
+            ),
+        ];
+        for (w, e) in worst.iter_mut().zip(errors) {
+            *w = w.max(e);
+        }
+    }
+    worst
+}
+
+fn vector_of(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+// M, nle, ν̇ and τ: TOLERANCE, for the reasons given there (the base's 6 × 6
+// solve in ABA is one more Cholesky of a well-conditioned block). The
+// quaternion coordinates' q̈ comes from a second route (our M_q and f_q,
+// the saddle-point system by LU, M's condition entering twice) against
+// Pinocchio's M⁻¹(−nle) solved here: 1e-9 of its largest entry, still a
+// millionth of what a wrong sign or factor in the map shows.
+const MAP_TOLERANCE: f64 = 1e-9;
+
+fn check_floating<R: FloatingRobot<NQ, NV>, const NQ: usize, const NV: usize>(
+    robot: &R,
+    file: &str,
+) {
+    let worst = floating_against_pinocchio(robot, file);
+    println!(
+        "{file}: M {:.1e}, nle {:.1e}, aba {:.1e}, rnea {:.1e}; in q̇: T {:.1e}, q̈ {:.1e}",
+        worst[0], worst[1], worst[2], worst[3], worst[4], worst[5]
+    );
+    for (k, (what, e)) in [
+        "M",
+        "nonlinear effects",
+        "ABA's ν̇",
+        "RNEA's τ",
+        "T in the quaternion's rates",
+        "q̈ of the quaternion coordinates",
+    ]
+    .iter()
+    .zip(worst)
+    .enumerate()
+    {
+        let tolerance = if k < 5 { TOLERANCE } else { MAP_TOLERANCE };
+        assert!(
+            e < tolerance,
+            "{file}: {what} off Pinocchio's by {e:e} of its largest entry"
+        );
+    }
+}
+
+#[test]
+fn go2_on_a_floating_base_matches_pinocchio() {
+    check_floating(&Go2::new(), "reference_go2.json");
+}
+
+#[test]
+fn romeo_humanoid_on_a_floating_base_matches_pinocchio() {
+    check_floating(&Romeo::new(), "reference_romeo.json");
+}
+
+/// A run of the Go2 falling free, tumbling, its legs swinging: the energy
+/// `T + V` kept and `|q| = 1` held, through the runtime's constrained
+/// right-hand side (the quaternion's norm a `Holonomic` constraint, as a
+/// free body's is).
+#[test]
+fn go2_falls_keeping_its_energy_and_unit_quaternion() {
+    use lagrange::nalgebra::{Quaternion, UnitQuaternion};
+    let go2 = Go2::new();
+    let turn = UnitQuaternion::from_euler_angles(0.3, -0.5, 1.1);
+    let quat: &Quaternion<f64> = turn.as_ref();
+    let mut q = SVector::<f64, 19>::zeros();
+    q[2] = 0.5;
+    (q[3], q[4], q[5], q[6]) = (quat.w, quat.i, quat.j, quat.k);
+    for k in 7..19 {
+        q[k] = 0.4 * ((k * 5) % 7) as f64 / 7.0 - 0.2;
+    }
+    let v = SVector::<f64, 18>::from_fn(|i, _| 0.8 * ((i * 3) % 5) as f64 / 5.0 - 0.4);
+    let qdot = go2.rates(&q, &v);
+    let energy = |q: &SVector<f64, 19>, qd: &SVector<f64, 19>| {
+        go2.kinetic_energy(0.0, q, qd) + go2.potential_energy(0.0, q)
+    };
+    let e0 = energy(&q, &qdot);
+    let run = Dop853::new()
+        .rtol(1e-10)
+        .atol(1e-10)
+        .integrate(&go2, 0.0, q, qdot, &[0.3])
+        .unwrap();
+    let end = run.last().unwrap();
+    // The tolerance 1e-10 per step over some hundred steps: the energy to
+    // 1e-7 of the robot's energy scale (its weight times a metre, ~150 J).
+    let scale = 15.0 * 9.81;
+    assert!(
+        (energy(&end.q, &end.qdot) - e0).abs() < 1e-7 * scale,
+        "energy {} against {e0}",
+        energy(&end.q, &end.qdot)
+    );
+    let norm = end.q.fixed_rows::<4>(3).norm();
+    assert!((norm - 1.0).abs() < 1e-12, "|q| = {norm}");
+    // It fell: gravity acts on the base's height.
+    assert!(end.q[2] < 0.5 - 0.3 * 0.3, "height {}", end.q[2]);
 }

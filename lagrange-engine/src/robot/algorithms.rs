@@ -4,13 +4,85 @@
 //! quantities are in its own frame (the child link's joint frame);
 //! spatial vectors are (angular; linear), gravity is the base's
 //! acceleration upwards.
+//!
+//! A floating base is the standard treatment: a 6-DoF joint from the world
+//! to the root link, its motion subspace the identity, its velocity the
+//! base's spatial velocity in the base frame. Its vectors enter and leave
+//! in Pinocchio's free-flyer order, (linear; angular) then the joints: the
+//! velocity `(v, ω, q̇ⱼ)`, the forces `(f, n, τⱼ)`; ABA ends at the base by
+//! solving its 6 × 6 articulated inertia (`LDLᵀ`, traced).
 
 use super::trace::{ONE, Trace, Val, ZERO};
-use super::tree::Body;
+use super::tree::{Body, Mass};
 use super::urdf::JointKind;
 
-type V3 = [Val; 3];
-type M3 = [[Val; 3]; 3];
+/// A traced 3-vector.
+pub type V3 = [Val; 3];
+/// A traced 3 × 3 matrix, row-major.
+pub type M3 = [[Val; 3]; 3];
+
+/// A floating base in the trace: its body, and where it is.
+pub struct Floating<'a> {
+    /// The root link's mass, and what is fixed to it.
+    pub mass: &'a Mass,
+    /// The base's axes in the world's coordinates (columns).
+    pub rot: M3,
+    /// The base's origin in the world.
+    pub pos: V3,
+}
+
+/// The rotation (body to space) of the quaternion `(w, x, y, z)` in its
+/// homogeneous form `q v q̄`: `|q|²` times a rotation, the rotation itself
+/// on the unit sphere where the constraint holds the quaternion.
+pub fn quaternion_rotation(t: &mut Trace, quat: [Val; 4]) -> M3 {
+    let [w, x, y, z] = quat;
+    let mut p = |a: Val, b: Val| t.mul(a, b);
+    let (ww, xx, yy, zz) = (p(w, w), p(x, x), p(y, y), p(z, z));
+    let (xy, xz, yz) = (p(x, y), p(x, z), p(y, z));
+    let (wx, wy, wz) = (p(w, x), p(w, y), p(w, z));
+    let two = Val::K(2.0);
+    let mut d = |a: Val, b: Val, c: Val, e: Val| {
+        let s = t.add(a, b);
+        let s = t.sub(s, c);
+        t.sub(s, e)
+    };
+    let r00 = d(ww, xx, yy, zz);
+    let r11 = d(ww, yy, xx, zz);
+    let r22 = d(ww, zz, xx, yy);
+    let mut o = |a: Val, b: Val, plus: bool| {
+        let s = if plus { t.add(a, b) } else { t.sub(a, b) };
+        t.mul(two, s)
+    };
+    [
+        [r00, o(xy, wz, false), o(xz, wy, true)],
+        [o(xy, wz, true), r11, o(yz, wx, false)],
+        [o(xz, wy, false), o(yz, wx, true), r22],
+    ]
+}
+
+/// A floating base's spatial vector from Pinocchio's order (linear;
+/// angular), and the joints' part after it; a fixed base's: none, all.
+fn split(floating: bool, x: &[Val]) -> (Sv, &[Val]) {
+    if floating {
+        (
+            Sv {
+                w: [x[3], x[4], x[5]],
+                v: [x[0], x[1], x[2]],
+            },
+            &x[6..],
+        )
+    } else {
+        (SV0, x)
+    }
+}
+
+/// A base's spatial vector then the joints', in Pinocchio's order.
+fn join(base: Option<Sv>, joints: Vec<Val>) -> Vec<Val> {
+    match base {
+        Some(b) => b.v.into_iter().chain(b.w).chain(joints).collect(),
+        None => joints,
+    }
+}
 
 /// Gravity's magnitude along −z, Pinocchio's default.
 pub const GRAVITY: f64 = 9.81;
@@ -255,6 +327,14 @@ impl Cx<'_> {
 }
 
 fn rigid(b: &Body) -> Si {
+    rigid_mass(&Mass {
+        mass: b.mass,
+        h: b.h,
+        inertia: b.inertia,
+    })
+}
+
+fn rigid_mass(b: &Mass) -> Si {
     let h = k3(b.h);
     let m = Val::K(b.mass);
     Si {
@@ -325,10 +405,21 @@ fn base_acceleration() -> Sv {
     }
 }
 
-/// RNEA: the joint forces `τ(q, q̇, q̈)` (gravity included when `gravity`).
+/// Gravity's acceleration upwards in a floating base's axes, `Rᵀ ẑ g`.
+fn gravity_in_base(cx: &mut Cx, fb: &Floating) -> Sv {
+    let up = [fb.rot[2][0], fb.rot[2][1], fb.rot[2][2]];
+    Sv {
+        w: [ZERO; 3],
+        v: cx.scale3(Val::K(GRAVITY), up),
+    }
+}
+
+/// RNEA: the joint forces `τ(q, q̇, q̈)` (gravity included when `gravity`);
+/// with a floating base, `q̇`, `q̈` and `τ` start with the base's six.
 pub fn rnea(
     t: &mut Trace,
     bodies: &[Body],
+    fb: Option<&Floating>,
     q: &[Val],
     qd: &[Val],
     qdd: &[Val],
@@ -337,15 +428,37 @@ pub fn rnea(
     let xs = transforms(t, bodies, q);
     let mut cx = Cx { t };
     let n = bodies.len();
+    let (vb, qd) = split(fb.is_some(), qd);
+    let (ab, qdd) = split(fb.is_some(), qdd);
     let mut v = vec![SV0; n];
     let mut a = vec![SV0; n];
     let mut f = vec![SV0; n];
     let a0 = if gravity { base_acceleration() } else { SV0 };
+    // The base: its acceleration the joint's plus gravity's, its force
+    // `I a + v ×* I v`.
+    let root = fb.map(|fb| {
+        let ab = if gravity {
+            let g = gravity_in_base(&mut cx, fb);
+            cx.sv_add(ab, g)
+        } else {
+            ab
+        };
+        let inertia = rigid_mass(fb.mass);
+        let ia = cx.inertia_times(&inertia, ab);
+        let iv = cx.inertia_times(&inertia, vb);
+        let vf = cx.cross_force(vb, iv);
+        (ab, cx.sv_add(ia, vf))
+    });
+    let (v_root, a_root) = match root {
+        Some((ab, _)) => (vb, ab),
+        None => (SV0, a0),
+    };
+    let mut f_root = root.map(|(_, f)| f);
     for i in 0..n {
         let s = subspace(&bodies[i]);
         let (vp, ap) = match bodies[i].parent {
             Some(p) => (v[p], a[p]),
-            None => (SV0, a0),
+            None => (v_root, a_root),
         };
         let vj = Sv {
             w: cx.scale3(qd[i], s.w),
@@ -371,58 +484,156 @@ pub fn rnea(
     for i in (0..n).rev() {
         let s = subspace(&bodies[i]);
         tau[i] = cx.sv_dot(s, f[i]);
-        if let Some(p) = bodies[i].parent {
-            let fp = cx.force(&xs[i], f[i]);
-            f[p] = cx.sv_add(f[p], fp);
+        match (bodies[i].parent, f_root) {
+            (Some(p), _) => {
+                let fp = cx.force(&xs[i], f[i]);
+                f[p] = cx.sv_add(f[p], fp);
+            }
+            (None, Some(fr)) => {
+                let fp = cx.force(&xs[i], f[i]);
+                f_root = Some(cx.sv_add(fr, fp));
+            }
+            (None, None) => {}
         }
     }
-    tau
+    join(f_root, tau)
 }
 
-/// CRBA: the mass matrix, row-major, symmetric.
-pub fn crba(t: &mut Trace, bodies: &[Body], q: &[Val]) -> Vec<Vec<Val>> {
+/// CRBA: the mass matrix, row-major, symmetric; with a floating base, its
+/// first six rows and columns the base's.
+pub fn crba(t: &mut Trace, bodies: &[Body], fb: Option<&Floating>, q: &[Val]) -> Vec<Vec<Val>> {
     let xs = transforms(t, bodies, q);
     let mut cx = Cx { t };
     let n = bodies.len();
     let mut ic: Vec<Si> = bodies.iter().map(rigid).collect();
+    let mut ic_root = fb.map(|fb| rigid_mass(fb.mass));
     for i in (0..n).rev() {
-        if let Some(p) = bodies[i].parent {
-            let up = cx.inertia_up(&xs[i], &ic[i]);
-            ic[p] = cx.si_add(&ic[p], &up);
+        match (bodies[i].parent, ic_root) {
+            (Some(p), _) => {
+                let up = cx.inertia_up(&xs[i], &ic[i]);
+                ic[p] = cx.si_add(&ic[p], &up);
+            }
+            (None, Some(root)) => {
+                let up = cx.inertia_up(&xs[i], &ic[i]);
+                ic_root = Some(cx.si_add(&root, &up));
+            }
+            (None, None) => {}
         }
     }
-    let mut m = vec![vec![ZERO; n]; n];
+    let o = if fb.is_some() { 6 } else { 0 };
+    let mut m = vec![vec![ZERO; n + o]; n + o];
     for i in 0..n {
         let mut f = cx.inertia_times(&ic[i], subspace(&bodies[i]));
-        m[i][i] = cx.sv_dot(subspace(&bodies[i]), f);
+        m[o + i][o + i] = cx.sv_dot(subspace(&bodies[i]), f);
         let mut j = i;
         while let Some(p) = bodies[j].parent {
             f = cx.force(&xs[j], f);
             j = p;
             let mij = cx.sv_dot(subspace(&bodies[j]), f);
-            m[i][j] = mij;
-            m[j][i] = mij;
+            m[o + i][o + j] = mij;
+            m[o + j][o + i] = mij;
+        }
+        if fb.is_some() {
+            // The base's column: the joint's force at the base, (f; n).
+            let f = cx.force(&xs[j], f);
+            for (k, x) in f.v.into_iter().chain(f.w).enumerate() {
+                m[k][o + i] = x;
+                m[o + i][k] = x;
+            }
+        }
+    }
+    if let Some(root) = ic_root {
+        // The composite inertia of the whole robot in (linear; angular)
+        // order: [[C, Bᵀ], [B, A]].
+        for k in 0..3 {
+            for l in 0..3 {
+                m[k][l] = root.c[k][l];
+                m[k][3 + l] = root.b[l][k];
+                m[3 + k][l] = root.b[k][l];
+                m[3 + k][3 + l] = root.a[k][l];
+            }
         }
     }
     m
 }
 
-/// ABA: the accelerations `q̈(q, q̇, τ)`, gravity included.
-pub fn aba(t: &mut Trace, bodies: &[Body], q: &[Val], qd: &[Val], tau: &[Val]) -> Vec<Val> {
+/// `x` solving `A x = b`, `A` symmetric positive definite (a floating
+/// base's articulated inertia), by `LDLᵀ` without pivots (stable on a
+/// positive definite matrix).
+fn solve_spd(cx: &mut Cx, a: &[[Val; 6]; 6], b: [Val; 6]) -> [Val; 6] {
+    let mut l = [[ZERO; 6]; 6];
+    let mut d_inv = [ONE; 6];
+    let mut d = [ZERO; 6];
+    for j in 0..6 {
+        let mut djj = a[j][j];
+        for k in 0..j {
+            let ld = cx.t.mul(l[j][k], d[k]);
+            let x = cx.t.mul(ld, l[j][k]);
+            djj = cx.t.sub(djj, x);
+        }
+        d[j] = djj;
+        d_inv[j] = cx.t.recip(djj);
+        for i in j + 1..6 {
+            let mut x = a[i][j];
+            for k in 0..j {
+                let ld = cx.t.mul(l[i][k], d[k]);
+                let y = cx.t.mul(ld, l[j][k]);
+                x = cx.t.sub(x, y);
+            }
+            l[i][j] = cx.t.mul(x, d_inv[j]);
+        }
+    }
+    let mut y = b;
+    for i in 0..6 {
+        for k in 0..i {
+            let p = cx.t.mul(l[i][k], y[k]);
+            y[i] = cx.t.sub(y[i], p);
+        }
+    }
+    let mut x = [ZERO; 6];
+    for i in (0..6).rev() {
+        let mut xi = cx.t.mul(y[i], d_inv[i]);
+        for k in i + 1..6 {
+            let p = cx.t.mul(l[k][i], x[k]);
+            xi = cx.t.sub(xi, p);
+        }
+        x[i] = xi;
+    }
+    x
+}
+
+/// ABA: the accelerations `q̈(q, q̇, τ)`, gravity included; with a
+/// floating base, `q̇`, `τ` and `q̈` start with the base's six.
+pub fn aba(
+    t: &mut Trace,
+    bodies: &[Body],
+    fb: Option<&Floating>,
+    q: &[Val],
+    qd: &[Val],
+    tau: &[Val],
+) -> Vec<Val> {
     let xs = transforms(t, bodies, q);
     let mut cx = Cx { t };
     let n = bodies.len();
+    let (vb, qd) = split(fb.is_some(), qd);
+    let (tau_b, tau) = split(fb.is_some(), tau);
     let mut v = vec![SV0; n];
     let mut c = vec![SV0; n];
     let mut ia: Vec<Si> = bodies.iter().map(rigid).collect();
     let mut pa = vec![SV0; n];
+    // The base's articulated inertia and bias force, from its own body.
+    let mut root = fb.map(|fb| {
+        let inertia = rigid_mass(fb.mass);
+        let iv = cx.inertia_times(&inertia, vb);
+        (inertia, cx.cross_force(vb, iv))
+    });
     for i in 0..n {
         let s = subspace(&bodies[i]);
         let vj = Sv {
             w: cx.scale3(qd[i], s.w),
             v: cx.scale3(qd[i], s.v),
         };
-        let vp = bodies[i].parent.map_or(SV0, |p| v[p]);
+        let vp = bodies[i].parent.map_or(vb, |p| v[p]);
         let vx = cx.motion(&xs[i], vp);
         v[i] = cx.sv_add(vx, vj);
         c[i] = cx.cross_motion(v[i], vj);
@@ -441,7 +652,7 @@ pub fn aba(t: &mut Trace, bodies: &[Body], q: &[Val], qd: &[Val], tau: &[Val]) -
         u[i] = cx.t.sub(tau[i], sp);
         u_vec[i] = ui;
         d_inv[i] = di;
-        if let Some(p) = bodies[i].parent {
+        if bodies[i].parent.is_some() || root.is_some() {
             // Iᵃ = Iᴬ − U Uᵀ / D, pᵃ = pᴬ + Iᵃ c + U u / D.
             let ud = Sv {
                 w: cx.scale3(di, ui.w),
@@ -470,15 +681,53 @@ pub fn aba(t: &mut Trace, bodies: &[Body], q: &[Val], qd: &[Val], tau: &[Val]) -
             let p_art = cx.sv_add(pa[i], ic);
             let p_art = cx.sv_add(p_art, uu);
             let i_up = cx.inertia_up(&xs[i], &a_art);
-            ia[p] = cx.si_add(&ia[p], &i_up);
             let p_up = cx.force(&xs[i], p_art);
-            pa[p] = cx.sv_add(pa[p], p_up);
+            match (bodies[i].parent, root) {
+                (Some(p), _) => {
+                    ia[p] = cx.si_add(&ia[p], &i_up);
+                    pa[p] = cx.sv_add(pa[p], p_up);
+                }
+                (None, Some((ri, rp))) => {
+                    root = Some((cx.si_add(&ri, &i_up), cx.sv_add(rp, p_up)));
+                }
+                (None, None) => {}
+            }
         }
     }
+    // The base: `a = Iᴬ⁻¹ (τ − pᴬ)`, its spatial acceleration with gravity's
+    // (the world's upwards); its `q̈` that less gravity's.
+    let mut base_qdd = None;
+    let a_root = match (fb, root) {
+        (Some(fb), Some((ri, rp))) => {
+            let mut m = [[ZERO; 6]; 6];
+            for k in 0..3 {
+                for l in 0..3 {
+                    m[k][l] = ri.a[k][l];
+                    m[k][3 + l] = ri.b[k][l];
+                    m[3 + k][l] = ri.b[l][k];
+                    m[3 + k][3 + l] = ri.c[k][l];
+                }
+            }
+            let r = [0, 1, 2].map(|k| cx.t.sub(tau_b.w[k], rp.w[k]));
+            let r2 = [0, 1, 2].map(|k| cx.t.sub(tau_b.v[k], rp.v[k]));
+            let x = solve_spd(&mut cx, &m, [r[0], r[1], r[2], r2[0], r2[1], r2[2]]);
+            let a = Sv {
+                w: [x[0], x[1], x[2]],
+                v: [x[3], x[4], x[5]],
+            };
+            let g = gravity_in_base(&mut cx, fb);
+            base_qdd = Some(Sv {
+                w: a.w,
+                v: cx.sub3(a.v, g.v),
+            });
+            a
+        }
+        _ => base_acceleration(),
+    };
     let mut a = vec![SV0; n];
     let mut qdd = vec![ZERO; n];
     for i in 0..n {
-        let ap = bodies[i].parent.map_or(base_acceleration(), |p| a[p]);
+        let ap = bodies[i].parent.map_or(a_root, |p| a[p]);
         let ax = cx.motion(&xs[i], ap);
         let ai = cx.sv_add(ax, c[i]);
         let ua = cx.sv_dot(u_vec[i], ai);
@@ -491,22 +740,34 @@ pub fn aba(t: &mut Trace, bodies: &[Body], q: &[Val], qd: &[Val], tau: &[Val]) -
         };
         a[i] = cx.sv_add(ai, aj);
     }
-    qdd
+    join(base_qdd, qdd)
 }
 
-/// The kinetic energy `½ Σ vᵢᵀ Iᵢ vᵢ`.
-pub fn kinetic(t: &mut Trace, bodies: &[Body], q: &[Val], qd: &[Val]) -> Val {
+/// The kinetic energy `½ Σ vᵢᵀ Iᵢ vᵢ` (the base's among them when it
+/// floats, `q̇` then its velocity and the joints').
+pub fn kinetic(
+    t: &mut Trace,
+    bodies: &[Body],
+    fb: Option<&Floating>,
+    q: &[Val],
+    qd: &[Val],
+) -> Val {
     let xs = transforms(t, bodies, q);
     let mut cx = Cx { t };
+    let (vb, qd) = split(fb.is_some(), qd);
     let mut v = vec![SV0; bodies.len()];
     let mut twice = ZERO;
+    if let Some(fb) = fb {
+        let iv = cx.inertia_times(&rigid_mass(fb.mass), vb);
+        twice = cx.sv_dot(vb, iv);
+    }
     for (i, b) in bodies.iter().enumerate() {
         let s = subspace(b);
         let vj = Sv {
             w: cx.scale3(qd[i], s.w),
             v: cx.scale3(qd[i], s.v),
         };
-        let vp = b.parent.map_or(SV0, |p| v[p]);
+        let vp = b.parent.map_or(vb, |p| v[p]);
         let vx = cx.motion(&xs[i], vp);
         v[i] = cx.sv_add(vx, vj);
         let iv = cx.inertia_times(&rigid(b), v[i]);
@@ -517,18 +778,27 @@ pub fn kinetic(t: &mut Trace, bodies: &[Body], q: &[Val], qd: &[Val]) -> Val {
 }
 
 /// The potential energy `g Σ (mᵢ zᵢ + ẑ · hᵢ)`, with `ẑ` the world's up
-/// in each body's axes and `zᵢ` its origin's height.
-pub fn potential(t: &mut Trace, bodies: &[Body], q: &[Val]) -> Val {
+/// in each body's axes and `zᵢ` its origin's height (the base's among
+/// them when it floats).
+pub fn potential(t: &mut Trace, bodies: &[Body], fb: Option<&Floating>, q: &[Val]) -> Val {
     let xs = transforms(t, bodies, q);
     let mut cx = Cx { t };
     let n = bodies.len();
     let mut up = vec![[ZERO; 3]; n];
     let mut height = vec![ZERO; n];
     let mut sum = ZERO;
+    let (z_root, h_root) = match fb {
+        Some(fb) => {
+            let zb = [fb.rot[2][0], fb.rot[2][1], fb.rot[2][2]];
+            let mz = cx.t.mul(Val::K(fb.mass.mass), fb.pos[2]);
+            let zh = cx.dot3(zb, k3(fb.mass.h));
+            sum = cx.t.add(mz, zh);
+            (zb, fb.pos[2])
+        }
+        None => ([ZERO, ZERO, ONE], ZERO),
+    };
     for (i, b) in bodies.iter().enumerate() {
-        let (zp, hp) = b
-            .parent
-            .map_or(([ZERO, ZERO, ONE], ZERO), |p| (up[p], height[p]));
+        let (zp, hp) = b.parent.map_or((z_root, h_root), |p| (up[p], height[p]));
         let dz = cx.dot3(zp, xs[i].r);
         height[i] = cx.t.add(hp, dz);
         up[i] = cx.down(&xs[i], zp);

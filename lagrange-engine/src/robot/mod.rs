@@ -16,6 +16,7 @@
 
 pub mod algorithms;
 pub mod api;
+pub mod floating;
 pub mod trace;
 pub mod tree;
 pub mod urdf;
@@ -26,7 +27,7 @@ use quote::{format_ident, quote};
 use syn::parse::{ParseStream, Parser};
 use syn::{Attribute, Ident, LitStr, Token, Visibility, braced};
 use trace::{Trace, Val};
-use tree::{Body, Lock, TreeError};
+use tree::{Body, Lock, Mass, TreeError};
 
 /// What the macro's input says of a robot.
 struct Input {
@@ -35,6 +36,8 @@ struct Input {
     name: Ident,
     path: LitStr,
     locks: Vec<(Ident, Lock)>,
+    /// `floating`: the root link is a free body.
+    floating: bool,
 }
 
 /// Whether the input is a robot from URDF: the struct carries
@@ -66,6 +69,7 @@ fn parse(input: TokenStream) -> syn::Result<Input> {
     let parser = |stream: ParseStream| -> syn::Result<Input> {
         let mut attrs = stream.call(Attribute::parse_outer)?;
         let mut path = None;
+        let mut floating = false;
         let mut error: Option<syn::Error> = None;
         attrs.retain(|a| {
             if !a.path().is_ident("lagrange") {
@@ -75,10 +79,22 @@ fn parse(input: TokenStream) -> syn::Result<Input> {
                 if m.path.is_ident("urdf") {
                     path = Some(m.value()?.parse::<LitStr>()?);
                     Ok(())
+                } else if m.path.is_ident("floating") {
+                    if m.input.peek(Token![=]) || m.input.peek(syn::token::Paren) {
+                        return Err(m.error(
+                            "`floating` takes no value: `#[lagrange(urdf = \"path\", floating)]` sets the root link free",
+                        ));
+                    }
+                    if floating {
+                        return Err(m.error("`floating` is given twice"));
+                    }
+                    floating = true;
+                    Ok(())
                 } else {
                     Err(m.error(
-                        "a robot from URDF takes `#[lagrange(urdf = \"path\")]` alone: its dynamics are \
-                         Featherstone's recursions, not derived from T and V",
+                        "a robot from URDF takes `#[lagrange(urdf = \"path\")]`, or `#[lagrange(urdf = \"path\", \
+                         floating)]` for a floating base, and nothing else: its dynamics are Featherstone's \
+                         recursions, not derived from T and V",
                     ))
                 }
             });
@@ -151,14 +167,15 @@ fn parse(input: TokenStream) -> syn::Result<Input> {
             name,
             path,
             locks,
+            floating,
         })
     };
     parser.parse2(input)
 }
 
-/// The bodies and frames of the robot the input names, or the error on its
-/// tokens.
-fn load(input: &Input) -> syn::Result<(Vec<Body>, Vec<Frame>)> {
+/// The bodies and frames of the robot the input names and its root's
+/// mass, or the error on its tokens.
+fn load(input: &Input) -> syn::Result<(Vec<Body>, Mass, Vec<Frame>)> {
     let rel = input.path.value();
     let span = input.path.span();
     let err = |message: String| syn::Error::new(span, message);
@@ -190,14 +207,26 @@ fn load(input: &Input) -> syn::Result<(Vec<Body>, Vec<Frame>)> {
         None => err(format!("{rel}: {}", r.message)),
     };
     let robot = urdf::read(&text).map_err(at)?;
-    let bodies = tree::bodies(&robot, &locks).map_err(|e| match e {
+    let (bodies, root) = tree::bodies(&robot, &locks, input.floating).map_err(|e| match e {
         TreeError::File(r) => at(r),
         TreeError::Lock(k, message) => {
             syn::Error::new(input.locks[k].0.span(), format!("{message} (in `{rel}`)"))
         }
     })?;
+    if input.floating {
+        if let Some(b) = bodies
+            .iter()
+            .find(|b| floating::BASE.contains(&b.name.as_str()))
+        {
+            return Err(err(format!(
+                "{rel}: joint `{}` is named as one of the floating base's coordinates ({})",
+                b.name,
+                floating::BASE.join(", ")
+            )));
+        }
+    }
     let frames = frames::frames(&robot, &locks, &bodies);
-    Ok((bodies, frames))
+    Ok((bodies, root, frames))
 }
 
 /// Expands a robot from URDF: the items, or a `compile_error!` and a stub.
@@ -207,9 +236,15 @@ pub fn expand(input: TokenStream) -> TokenStream {
         Err(e) => return e.to_compile_error(),
     };
     match load(&input)
-        .and_then(|(bodies, frames)| check(&input, &bodies).map(|()| (bodies, frames)))
+        .and_then(|(bodies, root, frames)| {
+            check(&input, &bodies, &root).map(|()| (bodies, root, frames))
+        })
     {
-        Ok((bodies, frames)) => {
+        // The frames, their Jacobians and the regressor are generated for
+        // a fixed base only (`api`): on a floating base they would need
+        // the base's placement in every frame's walk.
+        Ok((bodies, root, _)) if input.floating => floating::emit(&input, &bodies, &root),
+        Ok((bodies, _, frames)) => {
             let mut items = emit(&input, &bodies);
             items.extend(api::emit(&input.name, &bodies, &frames));
             items
@@ -236,13 +271,25 @@ fn check_states(n: usize) -> [Vec<f64>; 3] {
     [vec![0.0; n], a, b]
 }
 
-/// `M` positive definite at a few states: every joint moves some mass.
-fn check(input: &Input, bodies: &[Body]) -> syn::Result<()> {
+/// `M` positive definite at a few states: every joint moves some mass (on
+/// a floating base, `M` in the velocities; the base's pose does not enter it).
+fn check(input: &Input, bodies: &[Body], root: &Mass) -> syn::Result<()> {
     let n = bodies.len();
     let mut t = Trace::default();
     let q: Vec<Val> = (0..n).map(|i| t.input(quote!(q[#i]))).collect();
-    let m = algorithms::crba(&mut t, bodies, &q);
-    for state in check_states(n) {
+    let fb = input.floating.then(|| algorithms::Floating {
+        mass: root,
+        rot: [
+            [trace::ONE, trace::ZERO, trace::ZERO],
+            [trace::ZERO, trace::ONE, trace::ZERO],
+            [trace::ZERO, trace::ZERO, trace::ONE],
+        ],
+        pos: [trace::ZERO; 3],
+    });
+    let m = algorithms::crba(&mut t, bodies, fb.as_ref(), &q);
+    let o = if input.floating { 6 } else { 0 };
+    let n = n + o;
+    for state in check_states(n - o) {
         let values = t.eval(&state);
         let mut a: Vec<Vec<f64>> = m
             .iter()
@@ -254,6 +301,16 @@ fn check(input: &Input, bodies: &[Body]) -> syn::Result<()> {
             for k in 0..j {
                 a[j][j] -= a[j][k] * a[j][k];
             }
+            if (a[j][j].is_nan() || a[j][j] <= 1e-12 * scale) && j < o {
+                return Err(syn::Error::new(
+                    input.path.span(),
+                    format!(
+                        "{}: the mass matrix is singular: the floating base carries no mass or inertia along one of \
+                         its six motions (the root link and what is fixed to it, with the joints, are massless there)",
+                        input.path.value(),
+                    ),
+                ));
+            }
             if a[j][j].is_nan() || a[j][j] <= 1e-12 * scale {
                 return Err(syn::Error::new(
                     input.path.span(),
@@ -261,7 +318,7 @@ fn check(input: &Input, bodies: &[Body]) -> syn::Result<()> {
                         "{}: the mass matrix is singular: joint `{}` moves no mass or inertia about its axis \
                          (what it carries is massless, or it turns a body about its own symmetry line alone)",
                         input.path.value(),
-                        bodies[j].name
+                        bodies[j - o].name
                     ),
                 ));
             }
@@ -285,10 +342,19 @@ fn function(
     run: impl FnOnce(&mut Trace, &[Vec<Val>]) -> Vec<Val>,
 ) -> (TokenStream, Vec<TokenStream>) {
     let n = bodies.len();
+    let reads: Vec<(&str, usize)> = reads.iter().map(|&r| (r, n)).collect();
+    function_of(&reads, run)
+}
+
+/// One generated function's body, its inputs (a name, a length) read.
+fn function_of(
+    reads: &[(&str, usize)],
+    run: impl FnOnce(&mut Trace, &[Vec<Val>]) -> Vec<Val>,
+) -> (TokenStream, Vec<TokenStream>) {
     let mut t = Trace::default();
     let inputs: Vec<Vec<Val>> = reads
         .iter()
-        .map(|r| {
+        .map(|&(r, n)| {
             let r = format_ident!("{}", r);
             (0..n).map(|i| t.input(quote!(#r[#i]))).collect()
         })
@@ -308,40 +374,40 @@ fn emit(input: &Input, bodies: &[Body]) -> TokenStream {
         ))
     };
     let (rnea_body, rnea_out) = function(bodies, &["q", "qdot", "qddot"], |t, x| {
-        algorithms::rnea(t, bodies, &x[0], &x[1], &x[2], true)
+        algorithms::rnea(t, bodies, None, &x[0], &x[1], &x[2], true)
     });
     let rnea_out = vector(rnea_out);
     let (nle_body, nle_out) = function(bodies, &["q", "qdot"], |t, x| {
         let zero = vec![trace::ZERO; n];
-        algorithms::rnea(t, bodies, &x[0], &x[1], &zero, true)
+        algorithms::rnea(t, bodies, None, &x[0], &x[1], &zero, true)
     });
     let nle_out = vector(nle_out);
     let (grav_body, grav_out) = function(bodies, &["q"], |t, x| {
         let zero = vec![trace::ZERO; n];
-        algorithms::rnea(t, bodies, &x[0], &zero, &zero, true)
+        algorithms::rnea(t, bodies, None, &x[0], &zero, &zero, true)
     });
     let grav_out = vector(grav_out);
     let (aba_body, aba_out) = function(bodies, &["q", "qdot", "tau"], |t, x| {
-        algorithms::aba(t, bodies, &x[0], &x[1], &x[2])
+        algorithms::aba(t, bodies, None, &x[0], &x[1], &x[2])
     });
     let aba_out = vector(aba_out);
     let (acc_body, acc_out) = function(bodies, &["q", "qdot"], |t, x| {
         let zero = vec![trace::ZERO; n];
-        algorithms::aba(t, bodies, &x[0], &x[1], &zero)
+        algorithms::aba(t, bodies, None, &x[0], &x[1], &zero)
     });
     let acc_out = vector(acc_out);
     let (crba_body, crba_out) = function(bodies, &["q"], |t, x| {
-        algorithms::crba(t, bodies, &x[0])
+        algorithms::crba(t, bodies, None, &x[0])
             .into_iter()
             .flatten()
             .collect()
     });
     let columns: Vec<TokenStream> = crba_out.chunks(n).map(|col| quote!([#(#col),*])).collect();
     let (ke_body, ke_out) = function(bodies, &["q", "qdot"], |t, x| {
-        vec![algorithms::kinetic(t, bodies, &x[0], &x[1])]
+        vec![algorithms::kinetic(t, bodies, None, &x[0], &x[1])]
     });
     let (pe_body, pe_out) = function(bodies, &["q"], |t, x| {
-        vec![algorithms::potential(t, bodies, &x[0])]
+        vec![algorithms::potential(t, bodies, None, &x[0])]
     });
     let (ke, pe) = (&ke_out[0], &pe_out[0]);
     let doc_n = format!("Number of degrees of freedom: the moving joints of `{rel}`.");

@@ -29,6 +29,18 @@ pub struct Body {
     pub inertia: [[f64; 3]; 3],
 }
 
+/// The mass of the root link and of what is fixed to it: a floating base's
+/// body (in the root link's frame).
+#[derive(Clone, Debug, Default)]
+pub struct Mass {
+    /// The mass.
+    pub mass: f64,
+    /// The first moment `m c`.
+    pub h: [f64; 3],
+    /// The inertia about the origin.
+    pub inertia: [[f64; 3]; 3],
+}
+
 /// A joint locked at a value: an angle, or a displacement.
 #[derive(Clone, Debug)]
 pub struct Lock {
@@ -47,8 +59,10 @@ pub enum TreeError {
 }
 
 /// The moving bodies, parents before children (depth first, children in the
-/// file's order).
-pub fn bodies(urdf: &Urdf, locks: &[Lock]) -> Result<Vec<Body>, TreeError> {
+/// file's order), and the root's mass (what a floating base carries; a
+/// fixed base's is never read). A floating base may carry no joint (a
+/// free body); a fixed one needs one.
+pub fn bodies(urdf: &Urdf, locks: &[Lock], floating: bool) -> Result<(Vec<Body>, Mass), TreeError> {
     for (k, lock) in locks.iter().enumerate() {
         match urdf.joints.iter().find(|j| j.name == lock.joint) {
             None => {
@@ -74,6 +88,7 @@ pub fn bodies(urdf: &Urdf, locks: &[Lock]) -> Result<Vec<Body>, TreeError> {
     }
     let locked = |name: &str| locks.iter().find(|l| l.joint == name).map(|l| l.value);
     let mut bodies: Vec<Body> = Vec::new();
+    let mut root = Mass::default();
     // (the joint reaching the link, none for the root; the link; the body
     // the joint's parent is fixed to; the joint frame in that body's frame)
     let mut stack = vec![(None::<usize>, urdf.root, None::<usize>, Placement::IDENTITY)];
@@ -140,26 +155,33 @@ pub fn bodies(urdf: &Urdf, locks: &[Lock]) -> Result<Vec<Body>, TreeError> {
                 }
             }
         };
-        if let (Some(b), Some(inertial)) = (body, urdf.links[link].inertial) {
+        if let Some(inertial) = urdf.links[link].inertial {
             // Into the body's frame: c' = R c + p, I' = R I Rᵀ, then about
             // the origin: I' + m (|c'|² 1 − c' c'ᵀ).
             let c = frame.apply(inertial.com);
             let r = frame.rot;
             let m = inertial.mass;
-            let target = &mut bodies[b];
+            let target = match body {
+                Some(b) => {
+                    let b = &mut bodies[b];
+                    (&mut b.mass, &mut b.h, &mut b.inertia)
+                }
+                None => (&mut root.mass, &mut root.h, &mut root.inertia),
+            };
+            let (mass, h, inertia) = target;
             let cc: f64 = c.iter().map(|x| x * x).sum();
             for i in 0..3 {
-                target.h[i] += m * c[i];
+                h[i] += m * c[i];
                 for j in 0..3 {
                     let rot: f64 = (0..3)
                         .flat_map(|k| (0..3).map(move |l| (k, l)))
                         .map(|(k, l)| r[i][k] * inertial.inertia[k][l] * r[j][l])
                         .sum();
                     let delta = if i == j { cc } else { 0.0 };
-                    target.inertia[i][j] += rot + m * (delta - c[i] * c[j]);
+                    inertia[i][j] += rot + m * (delta - c[i] * c[j]);
                 }
             }
-            target.mass += m;
+            *mass += m;
         }
         // Children in the file's order: pushed in reverse. A link without
         // `<inertial>` fixed to the base or a body is a frame (the world, a
@@ -170,7 +192,7 @@ pub fn bodies(urdf: &Urdf, locks: &[Lock]) -> Result<Vec<Body>, TreeError> {
             }
         }
     }
-    if bodies.is_empty() {
+    if bodies.is_empty() && !floating {
         return Err(TreeError::File(Refusal {
             line: None,
             message:
@@ -178,5 +200,5 @@ pub fn bodies(urdf: &Urdf, locks: &[Lock]) -> Result<Vec<Body>, TreeError> {
                     .to_string(),
         }));
     }
-    Ok(bodies)
+    Ok((bodies, root))
 }

@@ -14,9 +14,27 @@ fn expand_urdf(name: &str, urdf: &str, body: &str) -> String {
 }
 
 fn expand_path(path: &str, body: &str) -> String {
-    let src = format!("#[lagrange(urdf = {path:?})] pub struct Robot {{ {body} }}");
+    expand_with(&format!("urdf = {path:?}"), body)
+}
+
+/// The expansion with the attribute's inside given.
+fn expand_with(attribute: &str, body: &str) -> String {
+    let src = format!("#[lagrange({attribute})] pub struct Robot {{ {body} }}");
     let tokens: TokenStream = src.parse().unwrap();
     lagrange_engine::expand(tokens).to_string()
+}
+
+/// A URDF written to a scratch file, expanded on a floating base (with
+/// `extra` after `floating` in the attribute).
+fn expand_floating(name: &str, urdf: &str, extra: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("lagrange-urdf-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(format!("{name}.urdf"));
+    std::fs::write(&path, urdf).unwrap();
+    expand_with(
+        &format!("urdf = {:?}, floating{extra}", path.display().to_string()),
+        "",
+    )
 }
 
 const LINK: &str = r#"<inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>"#;
@@ -156,6 +174,72 @@ fn urdf_joint_moving_no_mass_is_an_error() {
 }
 
 #[test]
+fn urdf_floating_base_expands_to_both_coordinates_and_its_constraint() {
+    let urdf = one_joint("revolute", "<axis xyz=\"0 1 0\"/>").replace(
+        "<link name=\"base\"/>",
+        &format!("<link name=\"base\">{LINK}</link>"),
+    );
+    let text = expand_floating("floating", &urdf, "");
+    assert!(!text.contains("compile_error"), "{text:.400}");
+    for f in [
+        "velocity_mass_matrix",
+        "forward_dynamics",
+        "rates",
+        "Holonomic < 8usize , 1 >",
+        "mass_regular_on_constraints_only",
+        "\"base_qw\"",
+    ] {
+        assert!(text.contains(f), "{f} generated");
+    }
+    assert_eq!(
+        text,
+        expand_floating("floating", &urdf, ""),
+        "deterministic"
+    );
+    // A free body alone: the base's 7 coordinates, no joint.
+    let body = format!("<robot name=\"b\">\n<link name=\"base\">{LINK}</link>\n</robot>\n");
+    let text = expand_floating("free_body", &body, "");
+    assert!(!text.contains("compile_error"), "{text:.400}");
+    assert!(text.contains("Holonomic < 7usize , 1 >"), "{text:.400}");
+}
+
+#[test]
+fn urdf_floating_misuse_is_an_error() {
+    let urdf = one_joint("revolute", "");
+    let text = expand_floating("floating_value", &urdf, " = true");
+    assert!(
+        error_of(&text).contains("`floating` takes no value"),
+        "{text}"
+    );
+    let text = expand_floating("floating_twice", &urdf, ", floating");
+    assert!(
+        error_of(&text).contains("`floating` is given twice"),
+        "{text}"
+    );
+    let text = expand_floating(
+        "floating_name",
+        &urdf.replace("name=\"j\"", "name=\"base_x\""),
+        "",
+    );
+    assert!(
+        error_of(&text)
+            .contains("joint `base_x` is named as one of the floating base's coordinates"),
+        "{text}"
+    );
+    let massless = "<robot name=\"b\">\n<link name=\"base\"/>\n</robot>\n";
+    let text = expand_floating("floating_massless", massless, "");
+    assert!(
+        error_of(&text).contains("the floating base carries no mass"),
+        "{text}"
+    );
+    let text = expand_with("urdf = \"x.urdf\", fixed", "");
+    assert!(
+        error_of(&text).contains("floating)]` for a floating base"),
+        "{text}"
+    );
+}
+
+#[test]
 fn urdf_lock_of_an_unknown_joint_is_an_error_on_its_name() {
     let text = expand_urdf("lock", &one_joint("revolute", ""), "locked: k = 0.5;");
     assert!(
@@ -180,22 +264,26 @@ fn urdf_any_truncation_of_a_robot_expands_or_errs_without_panic() {
     }
 }
 
-/// The vendored arms expand (printing the generated code's size and the
+/// The vendored robots expand (printing the generated code's size and the
 /// expansion's time, the figures of the language guide; nothing timed is
 /// asserted).
 #[test]
 fn urdf_arms_expand_and_print_their_code_size() {
-    for (file, body) in [
-        ("ur5.urdf", ""),
+    for (file, floating, body) in [
+        ("ur5.urdf", "", ""),
         (
             "panda.urdf",
+            "",
             "locked: panda_finger_joint1 = 0.0, panda_finger_joint2 = 0.0;",
         ),
-        ("tree.urdf", ""),
+        ("tree.urdf", "", ""),
+        ("xarm7.urdf", "", ""),
+        ("go2.urdf", ", floating", ""),
+        ("romeo_small.urdf", ", floating", ""),
     ] {
         let path = format!("../tests/data/robots/{file}");
         let start = std::time::Instant::now();
-        let text = expand_path(&path, body);
+        let text = expand_with(&format!("urdf = {path:?}{floating}"), body);
         let elapsed = start.elapsed();
         assert!(!text.contains("compile_error"), "{file}: {text:.300}");
         println!(
