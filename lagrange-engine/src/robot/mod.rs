@@ -277,7 +277,7 @@ fn check(input: &Input, bodies: &[Body], root: &Mass) -> syn::Result<()> {
     let n = bodies.len();
     let mut t = Trace::default();
     let q: Vec<Val> = (0..n).map(|i| t.input(quote!(q[#i]))).collect();
-    let fb = input.floating.then(|| algorithms::Floating {
+    let fb = input.floating.then_some(algorithms::Floating {
         mass: root,
         rot: [
             [trace::ONE, trace::ZERO, trace::ZERO],
