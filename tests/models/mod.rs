@@ -16,6 +16,8 @@ mod more_models;
 mod named_lets;
 pub(crate) mod parameter_derivatives;
 mod physics_names;
+mod robot_frames;
+mod robots;
 mod textbook_models;
 mod trigonometry;
 mod vectors;

@@ -6,7 +6,7 @@
 //! against differences of the placement; `Y π` against RNEA; the same code
 //! in `f32` and on SIMD lanes.
 
-use super::dynamics::{Panda, Tree, Ur5};
+use super::robots::{Panda, Tree, Ur5};
 use lagrange::ensemble::AutoF64x4;
 use lagrange::nalgebra::{DMatrix, Matrix3, SMatrix, SVector, SimdValue, Vector3};
 use serde_json::Value;
