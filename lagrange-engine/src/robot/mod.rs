@@ -235,11 +235,9 @@ pub fn expand(input: TokenStream) -> TokenStream {
         Ok(i) => i,
         Err(e) => return e.to_compile_error(),
     };
-    match load(&input)
-        .and_then(|(bodies, root, frames)| {
-            check(&input, &bodies, &root).map(|()| (bodies, root, frames))
-        })
-    {
+    match load(&input).and_then(|(bodies, root, frames)| {
+        check(&input, &bodies, &root).map(|()| (bodies, root, frames))
+    }) {
         // The frames, their Jacobians and the regressor are generated for
         // a fixed base only (`api`): on a floating base they would need
         // the base's placement in every frame's walk.
