@@ -7,8 +7,8 @@
 
 use super::{Cx, transforms};
 use crate::robot::trace::{Trace, Val};
-use crate::robot::tree::{Body, Lock};
-use crate::robot::urdf::{JointKind, Placement, Urdf, rotation};
+use crate::robot::tree::{Body, Lock, rigid_motion};
+use crate::robot::urdf::{Placement, Urdf};
 
 /// A frame of the robot: a URDF link.
 #[derive(Clone, Debug)]
@@ -37,18 +37,7 @@ pub fn frames(urdf: &Urdf, locks: &[Lock], bodies: &[Body]) -> Vec<Frame> {
             None => (None, Placement::IDENTITY),
             Some(j) => {
                 let joint = &urdf.joints[j];
-                let motion = match (joint.kind, locked(&joint.name)) {
-                    (JointKind::Fixed, _) => Some(Placement::IDENTITY),
-                    (JointKind::Revolute, Some(v)) => Some(Placement {
-                        rot: rotation(joint.axis, v),
-                        pos: [0.0; 3],
-                    }),
-                    (JointKind::Prismatic, Some(v)) => Some(Placement {
-                        rot: Placement::IDENTITY.rot,
-                        pos: joint.axis.map(|a| a * v),
-                    }),
-                    _ => None,
-                };
+                let motion = rigid_motion(joint, locked(&joint.name));
                 match motion {
                     Some(motion) => (parent, at.then(&motion)),
                     None => (

@@ -2,7 +2,7 @@
 //! (or locked) to a body merged into it, its inertia expressed about the
 //! body's joint frame.
 
-use super::urdf::{JointKind, Placement, Refusal, Urdf, rotation};
+use super::urdf::{Joint, JointKind, Placement, Refusal, Urdf, rotation};
 
 /// The most moving joints a robot may have: the generated `M` has `N²`
 /// entries, and the code grows with them.
@@ -58,6 +58,24 @@ pub enum TreeError {
     Lock(usize, String),
 }
 
+/// The placement a joint that does not move gives its child: a fixed
+/// joint's identity, a locked revolute or prismatic joint's turn or shift
+/// by its locked value; `None` for a joint that moves (a body of its own).
+pub fn rigid_motion(joint: &Joint, locked: Option<f64>) -> Option<Placement> {
+    match (joint.kind, locked) {
+        (JointKind::Fixed, _) => Some(Placement::IDENTITY),
+        (JointKind::Revolute, Some(v)) => Some(Placement {
+            rot: rotation(joint.axis, v),
+            pos: [0.0; 3],
+        }),
+        (JointKind::Prismatic, Some(v)) => Some(Placement {
+            rot: Placement::IDENTITY.rot,
+            pos: joint.axis.map(|a| a * v),
+        }),
+        _ => None,
+    }
+}
+
 /// The moving bodies, parents before children (depth first, children in the
 /// file's order), and the root's mass (what a floating base carries; a
 /// fixed base's is never read). A floating base may carry no joint (a
@@ -98,18 +116,7 @@ pub fn bodies(urdf: &Urdf, locks: &[Lock], floating: bool) -> Result<(Vec<Body>,
             Some(j) => {
                 let joint = &urdf.joints[j];
                 let child_link = &urdf.links[link];
-                let motion = match (joint.kind, locked(&joint.name)) {
-                    (JointKind::Fixed, _) => Some(Placement::IDENTITY),
-                    (JointKind::Revolute, Some(v)) => Some(Placement {
-                        rot: rotation(joint.axis, v),
-                        pos: [0.0; 3],
-                    }),
-                    (JointKind::Prismatic, Some(v)) => Some(Placement {
-                        rot: Placement::IDENTITY.rot,
-                        pos: joint.axis.map(|a| a * v),
-                    }),
-                    _ => None,
-                };
+                let motion = rigid_motion(joint, locked(&joint.name));
                 match motion {
                     Some(motion) => (parent, at.then(&motion)),
                     None => {
