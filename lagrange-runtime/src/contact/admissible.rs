@@ -39,8 +39,12 @@
 //! interval; a larger one by Lemke's method on the projection's dual, `w
 //! = d + C Cᵀ y` (`C z ≤ d` the polyhedron in orthonormal coordinates `z`
 //! of the null space), whose matrix is positive semidefinite, so the
-//! method finds the projection or proves the polyhedron empty. Contacts whose friction acts
-//! in a plane (a disc, not two half-spaces) keep the proportional share.
+//! method finds the projection or proves the polyhedron empty.
+//!
+//! A contact whose friction acts in a plane bounds `S(ρ)` by a disc,
+//! `|Fᵢ| ≤ ρ μ_s Nᵢ` with `Fᵢ` two components (a second-order cone), not
+//! two half-spaces: the set is convex still, and each test of it, and the
+//! projection, is a barrier method's (see [`Cones::feasible`]).
 
 use nalgebra::{DMatrix, DVector, RealField};
 
@@ -58,6 +62,210 @@ struct Bound<S: RealField + Copy> {
     d1: S,
 }
 
+/// The cone of a stuck contact whose friction acts in a plane, in the
+/// null-space coordinates: friction `F(z) = f₀ + A z` (two components)
+/// and normal force `N(z) = n₀ + n·z`, held to `|F(z)| ≤ ρ μ_s N(z)`.
+struct Disc<S: RealField + Copy> {
+    f0: (S, S),
+    rows: (DVector<S>, DVector<S>),
+    n0: S,
+    n: DVector<S>,
+    mu: S,
+}
+
+/// The set `S(ρ)` where some cones are discs: the linear bounds (the
+/// planar cones' sides, the normal forces' signs) and the discs, tested
+/// and projected onto by a barrier method (see [`Self::feasible`]).
+struct Cones<S: RealField + Copy> {
+    k: usize,
+    bounds: Vec<Bound<S>>,
+    discs: Vec<Disc<S>>,
+    /// The problem's force scale (its largest force), for the stopping
+    /// tolerances.
+    scale: S,
+}
+
+/// One term of the barrier at a point: its value, gradient and Hessian
+/// in the variables `(z, s)` (`s` the phase-one slack, absent in a
+/// projection).
+struct Barrier<S: RealField + Copy> {
+    value: S,
+    gradient: DVector<S>,
+    hessian: DMatrix<S>,
+}
+
+impl<S: RealField + Copy> Cones<S> {
+    /// `−Σ log` of every bound's slack at `y = (z, s)` (the slack `s`
+    /// added to each where `phase_one`): `d − c·z (+ s)` for a linear
+    /// bound, `τ² − |F|²` with `τ = ρ μ_s N (+ s)` for a disc (the
+    /// second-order cone's barrier). `None` outside the set's interior.
+    fn barrier(&self, y: &DVector<S>, rho: S, phase_one: bool) -> Option<Barrier<S>> {
+        let n = y.len();
+        let z = y.rows(0, self.k);
+        let s = if phase_one { y[self.k] } else { S::zero() };
+        let two = S::one() + S::one();
+        let mut value = S::zero();
+        let mut gradient = DVector::zeros(n);
+        let mut hessian = DMatrix::zeros(n, n);
+        // A row of the variables: `c` on z, `1` on s in phase one.
+        let row = |c: &DVector<S>, on_s: S| {
+            let mut r = DVector::zeros(n);
+            r.rows_mut(0, self.k).copy_from(c);
+            if phase_one {
+                r[self.k] = on_s;
+            }
+            r
+        };
+        for b in &self.bounds {
+            let c = &b.c0 + &b.c1 * rho;
+            let slack = b.d0 + b.d1 * rho - c.dot(&z) + s;
+            if slack <= S::zero() {
+                return None;
+            }
+            let r = row(&c, -S::one());
+            // −log(slack), slack = d − r·y.
+            value -= slack.ln();
+            gradient += &r / slack;
+            hessian += &r * r.transpose() / (slack * slack);
+        }
+        for d in &self.discs {
+            let f = (d.f0.0 + d.rows.0.dot(&z), d.f0.1 + d.rows.1.dot(&z));
+            let tau = rho * d.mu * (d.n0 + d.n.dot(&z)) + s;
+            let q = tau * tau - f.0 * f.0 - f.1 * f.1;
+            if tau <= S::zero() || q <= S::zero() {
+                return None;
+            }
+            let rt = row(&(&d.n * (rho * d.mu)), S::one());
+            let r0 = row(&d.rows.0, S::zero());
+            let r1 = row(&d.rows.1, S::zero());
+            // −log(τ² − F₀² − F₁²): gradient −(2τ ∇τ − 2F₀ ∇F₀ − 2F₁ ∇F₁)/q,
+            // Hessian −(2 ∇τ∇τᵀ − 2 ∇F₀∇F₀ᵀ − 2 ∇F₁∇F₁ᵀ)/q + g gᵀ.
+            let g = (&rt * tau - &r0 * f.0 - &r1 * f.1) * (-two / q);
+            value -= q.ln();
+            hessian += (&r0 * r0.transpose() + &r1 * r1.transpose() - &rt * rt.transpose())
+                * (two / q)
+                + &g * g.transpose();
+            gradient += g;
+        }
+        Some(Barrier {
+            value,
+            gradient,
+            hessian,
+        })
+    }
+
+    /// The barrier method (Boyd and Vandenberghe, *Convex Optimization*,
+    /// §11.3): `t · objective(y) + barrier(y)` minimized by Newton's method
+    /// with a backtracking line search that stays inside, for `t` rising
+    /// twentyfold until the duality gap, the bounds' count over `t`, is
+    /// below `1e-13` of the force scale. The objective is `s` in phase one
+    /// (where `stop` ends it as soon as `s < 0`: a point inside `S(ρ)`
+    /// found), `|z|²/2` in a projection. `None` where Newton's system is
+    /// not solvable.
+    fn minimize(&self, mut y: DVector<S>, rho: S, phase_one: bool) -> Option<DVector<S>> {
+        let c = nalgebra::convert::<f64, S>;
+        let n = y.len();
+        let count = c((self.bounds.len() + 2 * self.discs.len()) as f64);
+        let objective = |y: &DVector<S>| {
+            if phase_one {
+                (y[self.k], {
+                    let mut g = DVector::zeros(n);
+                    g[self.k] = S::one();
+                    g
+                })
+            } else {
+                let z = y.rows(0, self.k).into_owned();
+                (z.norm_squared() / c(2.0), y.clone())
+            }
+        };
+        let tolerance = c(1e-13) * self.scale;
+        let mut t = S::one() / self.scale;
+        for _ in 0..40 {
+            for _ in 0..100 {
+                if phase_one && y[self.k] < S::zero() {
+                    return Some(y);
+                }
+                let b = self.barrier(&y, rho, phase_one)?;
+                let (f, g) = objective(&y);
+                let mut hessian = b.hessian;
+                // A direction no bound sees (none in these problems, whose
+                // null spaces the bounds close) kept solvable.
+                let ridge = c(1e-14) * hessian.diagonal().amax();
+                for i in 0..n {
+                    hessian[(i, i)] += ridge;
+                }
+                if !phase_one {
+                    for i in 0..self.k {
+                        hessian[(i, i)] += t;
+                    }
+                }
+                let gradient = g * t + b.gradient;
+                let step = hessian.cholesky()?.solve(&(-&gradient));
+                let decrement = -gradient.dot(&step);
+                // Centred enough: the gap, not this, sets the accuracy.
+                if decrement <= c(1e-12) {
+                    break;
+                }
+                let value = t * f + b.value;
+                let mut alpha = S::one();
+                let mut moved = false;
+                for _ in 0..60 {
+                    let next = &y + &step * alpha;
+                    if let Some(nb) = self.barrier(&next, rho, phase_one) {
+                        let next_value = t * objective(&next).0 + nb.value;
+                        if next_value <= value - c(0.25) * alpha * decrement {
+                            // Progress below the value's rounding: as
+                            // centred as it can be.
+                            moved =
+                                value - next_value > c(64.0) * S::default_epsilon() * value.abs();
+                            y = next;
+                            break;
+                        }
+                    }
+                    alpha /= c(2.0);
+                }
+                if !moved {
+                    break;
+                }
+            }
+            // Centred: the least slack is at least `s` less the gap, so a
+            // positive one proves `S(ρ)` empty.
+            if count / t <= tolerance || (phase_one && y[self.k] - count / t > tolerance) {
+                break;
+            }
+            t *= c(20.0);
+        }
+        Some(y)
+    }
+
+    /// A point inside `S(ρ)` (every bound and disc held strictly), or
+    /// `None` where the least slack that holds them all is positive to the
+    /// duality gap (`S(ρ)` empty, or too thin to be told from empty at the
+    /// forces' rounding): phase one of the barrier method from the origin,
+    /// with the slack that makes it inside.
+    fn feasible(&self, rho: S) -> Option<DVector<S>> {
+        let zero = S::zero();
+        let mut start = zero;
+        for b in &self.bounds {
+            start = start.max(-(b.d0 + b.d1 * rho));
+        }
+        for d in &self.discs {
+            start = start.max(d.f0.0.hypot(d.f0.1) - rho * d.mu * d.n0);
+        }
+        let mut y = DVector::zeros(self.k + 1);
+        y[self.k] = start + self.scale;
+        let y = self.minimize(y, rho, true)?;
+        (y[self.k] < zero).then(|| y.rows(0, self.k).into_owned())
+    }
+
+    /// The point of `S(ρ)` nearest the origin, to the duality gap, inside
+    /// it: the barrier method's projection from a point inside.
+    fn project(&self, rho: S) -> Option<DVector<S>> {
+        let inside = self.feasible(rho)?;
+        self.minimize(inside, rho, false)
+    }
+}
+
 /// The forces of `first` moved along the null space of `responses` (the
 /// `N × m` responses of the unknowns, column by column) to the choice
 /// described in the module's docs, the nearest in the forces' Euclidean
@@ -69,18 +277,19 @@ pub(super) fn admissible<S: RealField + Copy>(
     unknowns: &[Unknown],
     laws: &[ContactLaw<S>],
 ) -> DVector<S> {
-    if unknowns
-        .iter()
-        .any(|u| u.tangential && laws[u.contact].in_plane)
-    {
-        return first;
-    }
     let m = unknowns.len();
     let zero = S::zero();
     let normal_index = |contact: usize| {
         unknowns
             .iter()
             .position(|u| u.contact == contact && !u.tangential)
+    };
+    // A friction unknown's partner along the second row of a slip vector
+    // (for the first row of a contact whose friction acts in a plane).
+    let second_index = |contact: usize| {
+        unknowns
+            .iter()
+            .position(|u| u.contact == contact && u.tangential && u.second)
     };
     // The share's own use of the cones (unbounded where a normal force
     // pulls, or friction acts without one).
@@ -93,12 +302,18 @@ pub(super) fn admissible<S: RealField + Copy>(
             }
             continue;
         }
+        if u.second {
+            continue;
+        }
         let normal = laws[u.contact]
             .normal
             .or_else(|| normal_index(u.contact).map(|k| first[k]))
             .unwrap_or(zero);
         let capacity = laws[u.contact].static_friction * normal;
-        let size = first[c].abs();
+        let size = match second_index(u.contact) {
+            Some(c2) => (first[c] * first[c] + first[c2] * first[c2]).sqrt(),
+            None => first[c].abs(),
+        };
         if size > zero {
             use0 = if capacity > zero {
                 use0.max(size / capacity)
@@ -121,6 +336,7 @@ pub(super) fn admissible<S: RealField + Copy>(
     };
     let k = basis.ncols();
     let mut bounds = Vec::new();
+    let mut discs = Vec::new();
     for (c, u) in unknowns.iter().enumerate() {
         let row = basis.row(c).transpose();
         if !u.tangential {
@@ -133,12 +349,25 @@ pub(super) fn admissible<S: RealField + Copy>(
             });
             continue;
         }
+        if u.second {
+            continue;
+        }
         let mu = laws[u.contact].static_friction;
         let (n_row, n0) = match (laws[u.contact].normal, normal_index(u.contact)) {
             (Some(given), _) => (DVector::zeros(k), given),
             (None, Some(n)) => (basis.row(n).transpose(), first[n]),
             (None, None) => (DVector::zeros(k), zero),
         };
+        if let Some(c2) = second_index(u.contact) {
+            discs.push(Disc {
+                f0: (first[c], first[c2]),
+                rows: (row, basis.row(c2).transpose()),
+                n0,
+                n: n_row,
+                mu,
+            });
+            continue;
+        }
         // ±F − ρ μ N ≤ 0, each side.
         for sign in [one, -one] {
             bounds.push(Bound {
@@ -149,7 +378,24 @@ pub(super) fn admissible<S: RealField + Copy>(
             });
         }
     }
-    let project = |rho: S| project(&bounds, k, rho);
+    let scale = first.amax();
+    let cones = Cones {
+        k,
+        bounds,
+        discs,
+        scale,
+    };
+    // Friction along one direction only: the polyhedron's projection, by
+    // intervals or Lemke's method; with discs, the barrier method's (the
+    // bisection only asks whether a point exists).
+    let planar = cones.discs.is_empty();
+    let project = |rho: S| {
+        if planar {
+            project(&cones.bounds, k, rho)
+        } else {
+            cones.feasible(rho)
+        }
+    };
     // ρ* by bisection between `lo` (S(lo) empty, or lo = 0) and `hi`
     // (S(hi) not): from below the threshold, or where the share itself
     // does not bound it, from the least power of two that is feasible.
@@ -174,7 +420,16 @@ pub(super) fn admissible<S: RealField + Copy>(
         hi = zero;
     }
     let eps = nalgebra::convert::<f64, S>(4.0) * S::default_epsilon();
-    while hi - lo > eps * hi.max(one) {
+    // With discs, each test is a barrier method's: `ρ*` only to `1e-6` of
+    // its distance from the limit where that is larger than rounding (the
+    // margin it leaves is then `(1 − ρ*)/2` of the cones to that share; it
+    // is exact where it matters, as `ρ*` reaches 1).
+    let coarse = if planar {
+        zero
+    } else {
+        nalgebra::convert::<f64, S>(1e-6)
+    };
+    while hi - lo > (eps * hi.max(one)).max(coarse * (one - hi)) {
         let mid = (lo + hi) / two;
         if project(mid).is_some() {
             hi = mid;
@@ -183,7 +438,12 @@ pub(super) fn admissible<S: RealField + Copy>(
         }
     }
     let target = if hi <= one { (one + hi) / two } else { hi };
-    match project(target) {
+    let nearest = if planar {
+        project(target)
+    } else {
+        cones.project(target)
+    };
+    match nearest {
         Some(z) => first + basis * z,
         None => first,
     }
@@ -333,6 +593,151 @@ mod tests {
         let uses = [x[1].abs() / (mu * x[0]), x[3].abs() / (mu * x[2])];
         for u in uses {
             assert!((u - 1.25).abs() < 1e-9, "{uses:?}");
+        }
+    }
+
+    /// Three contacts with friction in a plane against given loads (1, 2
+    /// and 3), on one body whose friction is determined only by its sum
+    /// (`2 × 6` responses): a null space of four dimensions, solved by
+    /// the barrier method.
+    fn three_discs(mu: f64) -> (DMatrix<f64>, [Unknown; 6], [ContactLaw<f64>; 3]) {
+        let responses = DMatrix::from_row_slice(
+            2,
+            6,
+            &[1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0],
+        );
+        let unknown = |contact, second| Unknown {
+            contact,
+            tangential: true,
+            second,
+        };
+        let unknowns = [
+            unknown(0, false),
+            unknown(0, true),
+            unknown(1, false),
+            unknown(1, true),
+            unknown(2, false),
+            unknown(2, true),
+        ];
+        let law = |n| ContactLaw::given_normal(n, mu, mu).in_plane();
+        (responses, unknowns, [law(1.0), law(2.0), law(3.0)])
+    }
+
+    fn disc_uses(x: &DVector<f64>, mu: f64) -> [f64; 3] {
+        [0, 1, 2].map(|i| x[2 * i].hypot(x[2 * i + 1]) / (mu * (i + 1) as f64))
+    }
+
+    #[test]
+    fn friction_in_discs_moves_to_the_nearest_using_them_halfway_from_the_least_to_the_limit() {
+        let mu = 0.5;
+        let (responses, unknowns, laws) = three_discs(mu);
+        // The sum (1.2, 0.9), of size 1.5, all on the first contact: 3
+        // times its disc. The least use is the sum's over the discs' 3, 0.5.
+        let first = DVector::from_vec(vec![1.2, 0.9, 0.0, 0.0, 0.0, 0.0]);
+        let target = (1.0 + 0.5) / 2.0;
+        let x = admissible(&responses, first, &unknowns, &laws);
+        // The same accelerations: the sums to rounding.
+        assert!((x[0] + x[2] + x[4] - 1.2).abs() < 1e-13, "{x}");
+        assert!((x[1] + x[3] + x[5] - 0.9).abs() < 1e-13, "{x}");
+        let uses = disc_uses(&x, mu);
+        // Within the target, which the bisection finds to `1e-6` of the
+        // least use's distance from 1 (0.5 here): 2.5e-7.
+        for u in uses {
+            assert!(u <= target + 3e-7, "{uses:?} beyond {target}");
+        }
+        // Nearest to the share: the contact it overloaded at the target's
+        // bound (the projection moves no further than it must), to the
+        // barrier method's duality gap and the target's own error.
+        assert!((uses[0] - target).abs() < 3e-7, "{uses:?}, target {target}");
+    }
+
+    #[test]
+    fn friction_in_discs_beyond_every_distribution_uses_them_as_little_as_can_be() {
+        let mu = 0.5;
+        let (responses, unknowns, laws) = three_discs(mu);
+        // A sum of size 3.6 against discs of 3 in all: none admissible;
+        // the least use, 1.2, on every disc.
+        let first = DVector::from_vec(vec![0.0, 0.0, 0.0, 0.0, 2.88, 2.16]);
+        let x = admissible(&responses, first, &unknowns, &laws);
+        assert!((x[0] + x[2] + x[4] - 2.88).abs() < 1e-13, "{x}");
+        for u in disc_uses(&x, mu) {
+            assert!((u - 1.2).abs() < 1e-9, "{x}");
+        }
+    }
+
+    /// A rod on two supports (`models::PushedRod`: loads 0.4 and 0.6 of
+    /// its weight 9.81, pushed by `p` at 30° from its axis, 0.3 ahead of
+    /// its centre of mass) at rest: its six unknowns' responses, a null
+    /// space of one dimension (friction along the rod moved from one
+    /// support to the other), and the proportional share.
+    fn rod(
+        p: f64,
+    ) -> (
+        DMatrix<f64>,
+        DVector<f64>,
+        [Unknown; 6],
+        [ContactLaw<f64>; 2],
+    ) {
+        let (a1, a2, c, j, a) = (0.6, 0.4, 0.3, 0.1, 30f64.to_radians());
+        // Columns: back N, F, F₂, front N, F, F₂; rows x, y, z, yaw, pitch
+        // (M = diag(1, 1, 1, j, j)).
+        let d = DMatrix::from_column_slice(
+            5,
+            6,
+            &[
+                0.0, 0.0, 1.0, 0.0, a1, //
+                1.0, 0.0, 0.0, 0.0, 0.0, //
+                0.0, 1.0, 0.0, -a1, 0.0, //
+                0.0, 0.0, 1.0, 0.0, -a2, //
+                1.0, 0.0, 0.0, 0.0, 0.0, //
+                0.0, 1.0, 0.0, a2, 0.0,
+            ],
+        );
+        let responses =
+            DMatrix::from_diagonal(&DVector::from_vec(vec![1.0, 1.0, 1.0, 1.0 / j, 1.0 / j])) * d;
+        let span = a1 + a2;
+        let (n0, n1) = (9.81 * a2 / span, 9.81 * a1 / span);
+        let along = -p * a.cos() / 9.81;
+        let across = -p * a.sin() / span;
+        let first = DVector::from_vec(vec![
+            n0,
+            along * n0,
+            across * (a2 + c),
+            n1,
+            along * n1,
+            across * (a1 - c),
+        ]);
+        let unknown = |contact, tangential, second| Unknown {
+            contact,
+            tangential,
+            second,
+        };
+        let unknowns = [
+            unknown(0, false, false),
+            unknown(0, true, false),
+            unknown(0, true, true),
+            unknown(1, false, false),
+            unknown(1, true, false),
+            unknown(1, true, true),
+        ];
+        let law = ContactLaw::frictionless(0.0).with_friction(0.5).in_plane();
+        (responses, first, unknowns, [law, law])
+    }
+
+    #[test]
+    fn the_rod_on_two_supports_keeps_both_discs_up_to_its_closed_form_push() {
+        // Its closed-form breakaway push, 4.5990 (`PushedRod::breakaway_push`).
+        for p in [3.0, 3.7, 3.72, 3.9, 4.2, 4.5, 4.59] {
+            let (responses, first, unknowns, laws) = rod(p);
+            let x = admissible(&responses, first.clone(), &unknowns, &laws);
+            let uses = [
+                x[1].hypot(x[2]) / (0.5 * x[0]),
+                x[4].hypot(x[5]) / (0.5 * x[3]),
+            ];
+            assert!((&responses * (&x - &first)).amax() < 1e-12, "{x}");
+            for u in uses {
+                assert!(u < 1.0, "p = {p}: {uses:?}");
+            }
         }
     }
 }

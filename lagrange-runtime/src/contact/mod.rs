@@ -154,14 +154,16 @@
 //! use of the cones there is. Then the use of the cones, `ρ = maxᵢ |Fᵢ| /
 //! (μ_s Nᵢ)`, is compared with the least possible over the null space,
 //! `ρ*` (an admissible distribution exists exactly where `ρ* ≤ 1`), found
-//! by bisection on the feasibility of the polyhedron `|Fᵢ| ≤ ρ μ_s Nᵢ`, `Nᵢ
-//! ≥ 0` in the null-space coordinates (two half-spaces per cone, one per
-//! normal force; a one-dimensional null space exactly, as intervals, a
-//! larger one by Lemke's method on the dual of a projection onto it). The
+//! by bisection on the feasibility of the convex set `S(ρ)`: `|Fᵢ| ≤ ρ
+//! μ_s Nᵢ`, `Nᵢ ≥ 0` in the null-space coordinates (two half-spaces per
+//! cone along one slip direction, a second-order cone per disc of
+//! friction in a plane, one half-space per normal force; a
+//! one-dimensional null space exactly, as intervals, a larger one by
+//! Lemke's method on the dual of a projection onto it). The
 //! share is kept where its use is at most `ρ_t = (1 + ρ*)/2` (`ρ*` itself
-//! beyond 1), and otherwise replaced by its projection onto that
-//! polyhedron at `ρ_t`: the nearest forces that use no cone more than
-//! halfway between the least possible use and the limit.
+//! beyond 1), and otherwise replaced by its projection onto `S(ρ_t)`: the
+//! nearest forces that use no cone more than halfway between the least
+//! possible use and the limit.
 //!
 //! - **Admissible**: every stuck contact keeps a margin `μ_s N − |F| ≥ (1
 //!   − ρ*) μ_s N / 2`, positive while an admissible distribution exists;
@@ -179,18 +181,34 @@
 //!   body without limit (a ladder wedged, `μ_w μ_f ≥ 1`) the forces stay
 //!   the nearest to the share, bounded. The normal forces the body does not
 //!   need to redistribute stay the smallest that hold it.
+//! - **Discs, by a barrier method**: a disc `|Fᵢ| ≤ ρ μ_s Nᵢ` (friction
+//!   in a plane, `Fᵢ` two components) makes `S(ρ)` a second-order cone
+//!   program's set, convex still. Each test of it is the barrier method's
+//!   phase one (Boyd and Vandenberghe, *Convex Optimization*, §11.3, 11.4):
+//!   the least slack `s` that holds every bound and disc `|Fᵢ| ≤ ρ μ_s Nᵢ +
+//!   s`, with the cone's barrier `−log((ρ μ_s Nᵢ + s)² − |Fᵢ|²)`, Newton's
+//!   method, and the duality gap brought below `1e-13` of the largest
+//!   force: a point with `s < 0` is inside, and a centred `s` beyond the gap
+//!   proves the set empty. The projection is the same method on `|z|²/2`
+//!   from that point, so the forces taken lie strictly inside every disc.
+//!   With discs the bisection stops at `1e-6` of `1 − ρ*` where that is
+//!   above rounding: the margin left is `(1 − ρ*)/2` of each cone to that
+//!   share, and `ρ*` is exact where it matters, as it reaches 1. The disc
+//!   itself, to that gap, is what a breakaway must be exact against: a
+//!   pyramid of `n` sides inscribed in it holds `cos(π/n)` of it along the
+//!   middle of a side (99.5 % at 32 sides), and could break a body away up
+//!   to that share of its load early, one circumscribed as late, with
+//!   forces outside the disc: far beyond the events' time tolerance.
 //! - **Cost**: nothing beyond the share where its use is at most a half,
 //!   one singular value decomposition of the responses and one feasibility
-//!   test where it qualifies all the same (a crate: its forces are the
-//!   share's bit for bit), and where it does not, about 50 feasibility
-//!   tests of the bisection and one projection, each a pass over the
-//!   bounds for a one-dimensional null space, a Lemke solve for a larger
-//!   one. It is paid only in solves whose rows are dependent.
-//! - **Not covered**: stuck contacts whose friction acts in a plane (a
-//!   disc, not two half-spaces) keep the proportional share, which is
-//!   admissible where its only constraint is its sum and not guaranteed
-//!   elsewhere.
-//!
+//!   test where it qualifies all the same (a crate, a die's face: its
+//!   forces are the share's bit for bit), and where it does not, about 50
+//!   feasibility tests of the bisection and one projection, each a pass
+//!   over the bounds for a one-dimensional null space, a Lemke solve for a
+//!   larger one; with discs, about 20 to 50 barrier solves of the null
+//!   space's few dimensions, each some tens of Newton steps. It is paid
+//!   only in solves whose rows are dependent.
+
 //! # Friction in a plane: a slip vector and a disc of forces
 //!
 //! A contact in 3D slips in the plane of the surface: its slip is a
@@ -219,9 +237,10 @@
 //! slipping impact's friction impulse, or a decision within `1 −
 //! cos(π/32)` (0.48 %) of the limit, sees at most 99.5 % of it (the
 //! tests measure 0.9952 along the middle of a side). A second-order cone
-//! solve would give the disc itself; it is not built. Where friction is
-//! statically indeterminate, stuck friction is shared in proportion to
-//! the discs (the first step above, without the second).
+//! solve would give the disc itself; it is not built for the decisions.
+//! Where friction is statically indeterminate between switches, the
+//! forces are chosen inside every disc as above, against the disc itself
+//! (by a barrier method, not a polygon).
 //!
 //! # Guards
 //!
