@@ -21,7 +21,8 @@
 //! [`BallOnFloor`], [`ParticleOnSphere`], [`Ladder`], [`BobOnString`],
 //! [`SlidingBall`], [`BlockOnIncline`], [`BlockOnBelt`], [`TumblingBox`]
 //! and [`TorsionBearing`] (friction in a joint, against a given load);
-//! four touch a table in 3D, with friction in its plane: [`PushedPuck`],
+//! five touch a table in 3D, with friction in its plane: [`PushedPuck`],
+//! [`PushedRod`] (on two supports that share its friction),
 //! [`BallOnTable`], [`Die`] and [`TippeTop`], the last three in unit
 //! quaternions.
 //! One is a branched [`Tree`] of ten links in relative angles, whose
@@ -61,9 +62,9 @@ pub use contact::{
     BallOnFloor, BallOnFloorParameters, BallOnTable, BallOnTableParameters, BlockOnBelt,
     BlockOnBeltParameters, BlockOnIncline, BlockOnInclineParameters, BobOnString,
     BobOnStringParameters, Die, DieParameters, Ladder, LadderParameters, ParticleOnSphere,
-    ParticleOnSphereParameters, PushedPuck, PushedPuckParameters, RoughLadder,
-    RoughLadderParameters, SlidingBall, SlidingBallParameters, StickSlip, Swing, TippeTop,
-    TippeTopParameters, TorsionBearing, TorsionBearingParameters, TumblingBox,
+    ParticleOnSphereParameters, PushedPuck, PushedPuckParameters, PushedRod, PushedRodParameters,
+    RoughLadder, RoughLadderParameters, SlidingBall, SlidingBallParameters, StickSlip, Swing,
+    TippeTop, TippeTopParameters, TorsionBearing, TorsionBearingParameters, TumblingBox,
     TumblingBoxParameters,
 };
 pub use damped_double_pendulum::{DampedDoublePendulum, DampedDoublePendulumParameters};
