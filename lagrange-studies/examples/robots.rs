@@ -1,10 +1,18 @@
-//! Robots from URDF beside Pinocchio: the UR5 and the Panda (fingers
-//! locked) of `tests/data/robots/`, our generated q̈ (ABA), M (CRBA) and τ
-//! (RNEA) timed against Pinocchio's C++ (`examples/robots/bench.cpp`, built
-//! against the PyPI wheel `pin`'s headers and library with `cmeel-eigen`'s
-//! Eigen), in interleaved rounds: ours, then Pinocchio's, five times; the
-//! table prints the medians. Pinocchio's part is skipped, with the reason,
-//! where its Python or a C++ compiler is missing.
+//! Robots from URDF beside Pinocchio: the UR5, the Panda (fingers locked)
+//! and the xArm7 on fixed bases, the Go2 and romeo_small (31 joints) on
+//! floating bases, all of `tests/data/robots/`; our generated q̈ (ABA), M
+//! (CRBA) and τ (RNEA) timed against Pinocchio's C++
+//! (`examples/robots/bench.cpp`, built against the PyPI wheel `pin`'s
+//! headers and library with `cmeel-eigen`'s Eigen), in interleaved rounds:
+//! ours, then Pinocchio's, five times; the table prints the medians. A
+//! floating base is compared in Pinocchio's velocities `ν` (its free
+//! flyer's `v`: the base's linear and angular velocity in its own frame,
+//! then the joints): `forward_dynamics` is ν̇ by ABA,
+//! `velocity_mass_matrix` M in ν by CRBA, `inverse_dynamics` τ by RNEA, and
+//! "M, f, solve" `velocity_mass_matrix`, `nonlinear_effects` and a
+//! Cholesky solve, as Pinocchio's CRBA, `nonLinearEffects` and
+//! `cholesky::solve`. Pinocchio's part is skipped, with the reason, where
+//! its Python or a C++ compiler is missing.
 //!
 //! `cargo run --release -p lagrange-studies --example robots`
 //! (`LAGRANGE_PEERS_PYTHON` names a Python with `pin`, `example-robot-data`
@@ -34,6 +42,25 @@ lagrangian! {
     pub struct Panda {
         locked: panda_finger_joint1 = 0.0, panda_finger_joint2 = 0.0;
     }
+}
+
+lagrangian! {
+    /// The xArm7 of example-robot-data.
+    #[lagrange(urdf = "../tests/data/robots/xarm7.urdf")]
+    pub struct Xarm7 {}
+}
+
+lagrangian! {
+    /// The Unitree Go2 of example-robot-data on a floating base.
+    #[lagrange(urdf = "../tests/data/robots/go2.urdf", floating)]
+    pub struct Go2 {}
+}
+
+lagrangian! {
+    /// The romeo_small humanoid of example-robot-data (31 joints) on a
+    /// floating base.
+    #[lagrange(urdf = "../tests/data/robots/romeo_small.urdf", floating)]
+    pub struct Romeo {}
 }
 
 const CALLS: u32 = 200_000;
@@ -81,7 +108,53 @@ macro_rules! ours {
     }};
 }
 
-/// Pinocchio's bench built against the wheel, its dumps of our two URDFs.
+/// Our figures on a floating base, in the velocities `ν`: ν̇ (ABA), M in ν
+/// (CRBA), M and the nonlinear effects then a Cholesky solve, τ (RNEA).
+macro_rules! ours_floating {
+    ($robot:expr, $nq:literal, $nv:literal) => {{
+        let robot = $robot;
+        let mut q = SVector::<f64, $nq>::from_fn(|i, _| 0.3 * (i as f64 * 1.7).sin());
+        let norm = q.fixed_rows::<4>(3).norm();
+        for k in 3..7 {
+            q[k] /= norm;
+        }
+        let v = SVector::<f64, $nv>::from_fn(|i, _| (i as f64 * 2.3).cos());
+        let a = SVector::<f64, $nv>::from_fn(|i, _| 0.5 - 0.1 * i as f64);
+        let tau = SVector::<f64, $nv>::zeros();
+        [
+            time_ns(|| {
+                black_box(robot.forward_dynamics(black_box(&q), black_box(&v), black_box(&tau)));
+            }),
+            time_ns(|| {
+                black_box(robot.velocity_mass_matrix(black_box(&q)));
+            }),
+            time_ns(|| {
+                let m = robot.velocity_mass_matrix(black_box(&q));
+                let f = -robot.nonlinear_effects(black_box(&q), black_box(&v));
+                black_box(m.cholesky().map(|c| c.solve(&f)));
+            }),
+            time_ns(|| {
+                black_box(robot.inverse_dynamics(black_box(&q), black_box(&v), black_box(&a)));
+            }),
+        ]
+    }};
+}
+
+/// The robots, in the table's order: name, file, its arguments to
+/// `dump_model.py` (locked joints, `--floating`).
+const ROBOTS: [(&str, &str, &[&str]); 5] = [
+    ("ur5", "ur5.urdf", &[]),
+    (
+        "panda",
+        "panda.urdf",
+        &["panda_finger_joint1", "panda_finger_joint2"],
+    ),
+    ("xarm7", "xarm7.urdf", &[]),
+    ("go2", "go2.urdf", &["--floating"]),
+    ("romeo", "romeo_small.urdf", &["--floating"]),
+];
+
+/// Pinocchio's bench built against the wheel, its dumps of our URDFs.
 fn pinocchio(dir: &Path) -> Result<(std::path::PathBuf, Vec<String>), String> {
     let python = peers_python::importing("pinocchio")?;
     let out = Command::new(&python)
@@ -98,14 +171,7 @@ fn pinocchio(dir: &Path) -> Result<(std::path::PathBuf, Vec<String>), String> {
     let here = Path::new(env!("CARGO_MANIFEST_DIR"));
     let robots = here.join("../tests/data/robots");
     let mut args = Vec::new();
-    for (name, file, locked) in [
-        ("ur5", "ur5.urdf", &[][..]),
-        (
-            "panda",
-            "panda.urdf",
-            &["panda_finger_joint1", "panda_finger_joint2"][..],
-        ),
-    ] {
+    for (name, file, locked) in ROBOTS {
         let dump = dir.join(format!("{name}.txt"));
         let ok = Command::new(&python)
             .arg(here.join("examples/robots/dump_model.py"))
@@ -198,10 +264,16 @@ fn main() {
     if let Err(why) = &peer {
         println!("Pinocchio skipped: {why}");
     }
-    let mut ours_runs: Vec<[[f64; 4]; 2]> = Vec::new();
+    let mut ours_runs: Vec<[[f64; 4]; 5]> = Vec::new();
     let mut theirs_runs: Vec<Vec<(String, [f64; 4])>> = Vec::new();
     for _ in 0..5 {
-        ours_runs.push([ours!(Ur5::new(), 6), ours!(Panda::new(), 7)]);
+        ours_runs.push([
+            ours!(Ur5::new(), 6),
+            ours!(Panda::new(), 7),
+            ours!(Xarm7::new(), 7),
+            ours_floating!(Go2::new(), 19, 18),
+            ours_floating!(Romeo::new(), 38, 37),
+        ]);
         if let Ok((bin, args)) = &peer {
             theirs_runs.push(run_pinocchio(bin, args));
         }
@@ -212,7 +284,7 @@ fn main() {
     );
     println!("| robot | quantity | ours | Pinocchio | ours / Pinocchio |");
     println!("|---|---|---:|---:|---:|");
-    for (r, robot) in ["ur5", "panda"].iter().enumerate() {
+    for (r, (robot, _, _)) in ROBOTS.iter().enumerate() {
         for (k, w) in what.iter().enumerate() {
             let ours = median(ours_runs.iter().map(|x| x[r][k]).collect());
             let theirs: Vec<f64> = theirs_runs
