@@ -4,9 +4,10 @@
 //! inertial-parameter regressor, against Pinocchio's values
 //! (`tests/data/robots/reference_*.json`, `reference.py`); the Jacobian
 //! against differences of the placement; `Y π` against RNEA; the same code
-//! in `f32` and on SIMD lanes.
+//! in `f32` and on SIMD lanes; the same on the Go2's floating base, in
+//! Pinocchio's velocities `ν`.
 
-use super::robots::{Panda, Tree, Ur5};
+use super::robots::{Go2, Panda, Tree, Ur5, from_pinocchio};
 use lagrange::ensemble::AutoF64x4;
 use lagrange::nalgebra::{DMatrix, Matrix3, SMatrix, SVector, SimdValue, Vector3};
 use serde_json::Value;
@@ -328,4 +329,150 @@ fn frames_and_regressor_run_in_f32_and_on_lanes() {
         assert!((jk - js).amax() < 1e-14 * js.amax(), "lane {k}: {jk} {js}");
         assert!((yk - ys).amax() < 1e-14 * ys.amax(), "lane {k}");
     }
+}
+
+/// The Go2 on its floating base, in Pinocchio's velocities `ν`: every link
+/// frame's placement, the front left foot's Jacobian (6 × 18, the base's
+/// six columns first) and velocity and the gravity forces at the 20 states
+/// that carry them, the regressor (18 × 130, the base's body first) at the
+/// 5 that carry it, against Pinocchio; `Y π` against RNEA at all 100.
+#[test]
+fn go2_frames_and_regressor_on_a_floating_base_match_pinocchio() {
+    let json = json("reference_go2.json");
+    let go2 = Go2::new();
+    let joints: Vec<&str> = json["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j.as_str().unwrap())
+        .collect();
+    // Pinocchio's index of our joint `k` (it orders a link's children by
+    // their joints' names), of our entry `i` of a configuration (the
+    // base's 7 first) and of a velocity (the base's 6 first).
+    let pin: Vec<usize> = Go2::<f64>::COORDINATES[7..]
+        .iter()
+        .map(|j| joints.iter().position(|p| p == j).unwrap())
+        .collect();
+    let at_q = |i: usize| if i < 7 { i } else { 7 + pin[i - 7] };
+    let at_v = |i: usize| if i < 6 { i } else { 6 + pin[i - 6] };
+    let velocity = |x: &Value| {
+        let x = vector::<18>(x);
+        SVector::<f64, 18>::from_fn(|i, _| x[at_v(i)])
+    };
+    let mut links: Vec<&str> = json["links"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j.as_str().unwrap())
+        .collect();
+    let mut ours = Go2::<f64>::FRAMES.to_vec();
+    links.sort_unstable();
+    ours.sort_unstable();
+    assert_eq!(links, ours, "the frames are Pinocchio's BODY frames");
+    let tool = Go2::<f64>::frame_index(json["tool"].as_str().unwrap()).unwrap();
+    let pi = SVector::<f64, 130>::from_column_slice(&Go2::<f64>::PARAMETERS);
+    let mut worst = [0.0f64; 6];
+    let (mut placed, mut regressed) = (0, 0);
+    for s in json["states"].as_array().unwrap() {
+        let q_pin = vector::<19>(&s["q"]);
+        let q = from_pinocchio(&SVector::<f64, 19>::from_fn(|i, _| q_pin[at_q(i)]));
+        let (v, a) = (velocity(&s["v"]), velocity(&s["a"]));
+        let y = go2.regressor(&q, &v, &a);
+        let tau = go2.inverse_dynamics(&q, &v, &a);
+        worst[5] = worst[5].max(relative((y * pi).as_slice(), tau.as_slice()));
+        if let Some(placements) = s.get("placements") {
+            placed += 1;
+            for (k, name) in Go2::<f64>::FRAMES.iter().enumerate() {
+                let (r, p) = go2.frame_placement(&q, k);
+                let ours: Vec<f64> = r.transpose().iter().chain(p.iter()).copied().collect();
+                worst[0] = worst[0].max(relative(&ours, &numbers(&placements[*name])));
+            }
+            let theirs = numbers(&s["jacobian"]); // row-major, Pinocchio's columns
+            let theirs = SMatrix::<f64, 6, 18>::from_fn(|r, c| theirs[18 * r + at_v(c)]);
+            let j = go2.frame_jacobian(&q, tool);
+            worst[1] = worst[1].max(relative(j.as_slice(), theirs.as_slice()));
+            let w = go2.frame_velocity(&q, &v, tool);
+            worst[2] = worst[2].max(relative(w.as_slice(), &numbers(&s["frame_velocity"])));
+            let g = go2.gravity_torques(&q);
+            worst[3] = worst[3].max(relative(g.as_slice(), velocity(&s["gravity"]).as_slice()));
+        }
+        if let Some(theirs) = s.get("regressor") {
+            regressed += 1;
+            let theirs = numbers(theirs); // 18 rows of 130, Pinocchio's order
+            // Our column of body `b` (0 the base's), parameter `p`.
+            let col = |c: usize| match c / 10 {
+                0 => c,
+                b => 10 * (1 + pin[b - 1]) + c % 10,
+            };
+            let theirs = SMatrix::<f64, 18, 130>::from_fn(|r, c| theirs[130 * at_v(r) + col(c)]);
+            worst[4] = worst[4].max(relative(y.as_slice(), theirs.as_slice()));
+        }
+    }
+    assert_eq!((placed, regressed), (20, 5));
+    println!(
+        "go2: placements {:.1e}, jacobian {:.1e}, velocity {:.1e}, gravity {:.1e}, regressor {:.1e}, Y π {:.1e}",
+        worst[0], worst[1], worst[2], worst[3], worst[4], worst[5]
+    );
+    for (what, e) in [
+        "link placements",
+        "foot Jacobian",
+        "foot velocity",
+        "gravity forces",
+        "regressor",
+        "Y π against RNEA",
+    ]
+    .iter()
+    .zip(worst)
+    {
+        // TOLERANCE, as on the fixed bases: the base's rotation is one more
+        // product of O(1) numbers before the same walk.
+        assert!(
+            e < TOLERANCE,
+            "go2: {what} off by {e:e} of the largest entry"
+        );
+    }
+}
+
+/// The Go2's frame velocities `J ν` against central differences of the
+/// frames' placements along the coordinates' rates `q̇` of `ν`, every
+/// frame, the base's columns included; and the same code in `f32`.
+#[test]
+fn go2_frame_velocities_are_the_placements_rates() {
+    use lagrange::nalgebra::{Quaternion, UnitQuaternion};
+    let go2 = Go2::new();
+    let turn = UnitQuaternion::from_euler_angles(0.4, -0.7, 2.0);
+    let quat: &Quaternion<f64> = turn.as_ref();
+    let mut q = SVector::<f64, 19>::from_fn(|i, _| 0.3 * i as f64 - 2.1);
+    (q[3], q[4], q[5], q[6]) = (quat.w, quat.i, quat.j, quat.k);
+    let v = SVector::<f64, 18>::from_fn(|i, _| 0.9 - 0.17 * i as f64);
+    let qdot = go2.rates(&q, &v);
+    // Step 1e-5: truncation O(h²) ~ 1e-10, rounding 1e-16 / 1e-5 = 1e-11
+    // (the quaternion leaves the sphere by O(h²), symmetrically); 1e-8.
+    let h = 1e-5;
+    for frame in 0..Go2::<f64>::FRAMES.len() {
+        let w = go2.frame_velocity(&q, &v, frame);
+        let (r, _) = go2.frame_placement(&q, frame);
+        let (rp, pp) = go2.frame_placement(&(q + qdot * h), frame);
+        let (rm, pm) = go2.frame_placement(&(q - qdot * h), frame);
+        let dp = (pp - pm) / (2.0 * h);
+        let dr = (rp - rm) / (2.0 * h) * r.transpose();
+        let omega = Vector3::new(dr[(2, 1)], dr[(0, 2)], dr[(1, 0)]);
+        let diff = (dp - w.fixed_rows::<3>(0)).amax() + (omega - w.fixed_rows::<3>(3)).amax();
+        assert!(
+            diff < 1e-8,
+            "frame {}: velocity {w} against differences {dp} {omega}",
+            Go2::<f64>::FRAMES[frame]
+        );
+    }
+    let a = SVector::<f64, 18>::from_fn(|i, _| 1.0 - 0.3 * i as f64);
+    let tool = Go2::<f64>::frame_index("FL_foot").unwrap();
+    let (j, y) = (go2.frame_jacobian(&q, tool), go2.regressor(&q, &v, &a));
+    let single = Go2::<f32>::new();
+    let j32 = single.frame_jacobian(&q.cast(), tool).cast::<f64>();
+    let y32 = single
+        .regressor(&q.cast(), &v.cast(), &a.cast())
+        .cast::<f64>();
+    // f32 rounding (6e-8) over some tens to hundreds of operations: 1e-5.
+    assert!((j32 - j).amax() < 1e-5 * j.amax());
+    assert!((y32 - y).amax() < 1e-5 * y.amax());
 }

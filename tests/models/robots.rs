@@ -365,7 +365,7 @@ floating_robot!(Romeo, 38, 37);
 
 /// Pinocchio's free-flyer configuration in our order: the quaternion's
 /// `(x, y, z, w)` to `(w, x, y, z)`.
-fn from_pinocchio<const NQ: usize>(q: &SVector<f64, NQ>) -> SVector<f64, NQ> {
+pub(super) fn from_pinocchio<const NQ: usize>(q: &SVector<f64, NQ>) -> SVector<f64, NQ> {
     let mut ours = *q;
     ours[3] = q[6];
     ours[4] = q[3];

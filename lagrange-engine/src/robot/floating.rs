@@ -40,7 +40,7 @@ pub const BASE: [&str; 7] = [
 ];
 
 /// The base read from the configuration's first seven inputs.
-fn base<'a>(t: &mut Trace, mass: &'a Mass, q: &[Val]) -> Floating<'a> {
+pub(super) fn base<'a>(t: &mut Trace, mass: &'a Mass, q: &[Val]) -> Floating<'a> {
     let rot = algorithms::quaternion_rotation(t, [q[3], q[4], q[5], q[6]]);
     Floating {
         mass,

@@ -5,7 +5,7 @@
 //! joint the frame's body hangs from), so this module writes the
 //! kinematics once for all frames.
 
-use super::{Cx, transforms};
+use super::{Cx, Floating, transforms};
 use crate::robot::trace::{Trace, Val};
 use crate::robot::tree::{Body, Lock, rigid_motion};
 use crate::robot::urdf::{Placement, Urdf};
@@ -92,8 +92,9 @@ fn then_k(cx: &mut Cx, a: &Pose, b: &Placement) -> Pose {
     }
 }
 
-/// The world placement of every body's frame at `q`.
-pub fn body_poses(t: &mut Trace, bodies: &[Body], q: &[Val]) -> Vec<Pose> {
+/// The world placement of every body's frame at `q` (the joints'
+/// coordinates), under a floating base where it is where `fb` says.
+pub fn body_poses(t: &mut Trace, bodies: &[Body], fb: Option<&Floating>, q: &[Val]) -> Vec<Pose> {
     let xs = transforms(t, bodies, q);
     let mut cx = Cx { t };
     let mut poses: Vec<Pose> = Vec::with_capacity(bodies.len());
@@ -104,7 +105,13 @@ pub fn body_poses(t: &mut Trace, bodies: &[Body], q: &[Val]) -> Vec<Pose> {
                 rot: poses[p].rot,
                 pos: poses[p].pos,
             },
-            None => constant(&Placement::IDENTITY),
+            None => match fb {
+                Some(fb) => Pose {
+                    rot: fb.rot,
+                    pos: fb.pos,
+                },
+                None => constant(&Placement::IDENTITY),
+            },
         };
         // R = R_p R_o R_j, p = p_p + R_p r.
         let ro = Placement {

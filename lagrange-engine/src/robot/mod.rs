@@ -238,10 +238,11 @@ pub fn expand(input: TokenStream) -> TokenStream {
     match load(&input).and_then(|(bodies, root, frames)| {
         check(&input, &bodies, &root).map(|()| (bodies, root, frames))
     }) {
-        // The frames, their Jacobians and the regressor are generated for
-        // a fixed base only (`api`): on a floating base they would need
-        // the base's placement in every frame's walk.
-        Ok((bodies, root, _)) if input.floating => floating::emit(&input, &bodies, &root),
+        Ok((bodies, root, frames)) if input.floating => {
+            let mut items = floating::emit(&input, &bodies, &root);
+            items.extend(api::emit_floating(&input.name, &bodies, &frames, &root));
+            items
+        }
         Ok((bodies, _, frames)) => {
             let mut items = emit(&input, &bodies);
             items.extend(api::emit(&input.name, &bodies, &frames));

@@ -4,11 +4,15 @@
 //! Izz`, in the body's axes. RNEA is linear in each body's spatial inertia:
 //! body `k`'s force `f = I a + v ×* I v` is a 6 × 10 matrix times its `π`,
 //! each column carried to the root through the joints as RNEA carries a
-//! force, and read by each joint it passes (`Sᵀ f`).
+//! force, and read by each joint it passes (`Sᵀ f`). On a floating base
+//! the base's body has its ten first, and the base's six rows read every
+//! force that reaches it (its wrench, force then moment, in its frame).
 
-use super::{Cx, SV0, Si, Sv, base_acceleration, subspace, transforms};
+use super::{
+    Cx, Floating, SV0, Si, Sv, base_acceleration, gravity_in_base, split, subspace, transforms,
+};
 use crate::robot::trace::{ONE, Trace, Val, ZERO};
-use crate::robot::tree::Body;
+use crate::robot::tree::{Body, Mass};
 
 /// Parameters per body.
 pub const PER_BODY: usize = 10;
@@ -18,11 +22,20 @@ const INERTIA: [(usize, usize); 6] = [(0, 0), (0, 1), (1, 1), (0, 2), (1, 2), (2
 
 /// A body's ten parameters, in `π`'s order.
 pub fn parameters(b: &Body) -> [f64; PER_BODY] {
+    mass_parameters(&b.mass, &b.h, &b.inertia)
+}
+
+/// A floating base's body's ten parameters, in `π`'s order.
+pub fn base_parameters(m: &Mass) -> [f64; PER_BODY] {
+    mass_parameters(&m.mass, &m.h, &m.inertia)
+}
+
+fn mass_parameters(mass: &f64, h: &[f64; 3], inertia: &[[f64; 3]; 3]) -> [f64; PER_BODY] {
     let mut p = [0.0; PER_BODY];
-    p[0] = b.mass;
-    p[1..4].copy_from_slice(&b.h);
+    p[0] = *mass;
+    p[1..4].copy_from_slice(h);
     for (k, &(i, j)) in INERTIA.iter().enumerate() {
-        p[4 + k] = b.inertia[i][j];
+        p[4 + k] = inertia[i][j];
     }
     p
 }
@@ -55,10 +68,13 @@ fn unit(p: usize) -> Si {
 }
 
 /// `Y`, row-major: `N` rows of `10 N`; `τ = Y π` with gravity when
-/// `gravity`.
+/// `gravity`. On a floating base (`fb`), `q̇` and `q̈` start with the
+/// base's six (Pinocchio's order) and `Y` has `6 + N` rows of
+/// `10 (1 + N)`, the base's body first.
 pub fn regressor(
     t: &mut Trace,
     bodies: &[Body],
+    fb: Option<&Floating>,
     q: &[Val],
     qd: &[Val],
     qdd: &[Val],
@@ -67,16 +83,49 @@ pub fn regressor(
     let xs = transforms(t, bodies, q);
     let mut cx = Cx { t };
     let n = bodies.len();
+    let (vb, qd) = split(fb.is_some(), qd);
+    let (ab, qdd) = split(fb.is_some(), qdd);
     let mut v = vec![SV0; n];
     let mut a = vec![SV0; n];
     let a0 = if gravity { base_acceleration() } else { SV0 };
-    let mut y = vec![vec![ZERO; PER_BODY * n]; n];
+    // Rows and columns before the joints' (the base's), and the base's
+    // velocity and acceleration (gravity's included).
+    let (ro, co) = if fb.is_some() { (6, PER_BODY) } else { (0, 0) };
+    let mut y = vec![vec![ZERO; co + PER_BODY * n]; ro + n];
+    let (v_root, a_root) = match fb {
+        Some(fb) => {
+            let ab = if gravity {
+                let g = gravity_in_base(&mut cx, fb);
+                cx.sv_add(ab, g)
+            } else {
+                ab
+            };
+            (vb, ab)
+        }
+        None => (SV0, a0),
+    };
+    let base_rows = |y: &mut Vec<Vec<Val>>, col: usize, f: Sv| {
+        for (r, x) in f.v.into_iter().chain(f.w).enumerate() {
+            y[r][col] = x;
+        }
+    };
+    if fb.is_some() {
+        // The base's own body: `f = I a + v ×* I v`, read by its rows.
+        for p in 0..PER_BODY {
+            let inertia = unit(p);
+            let ia = cx.inertia_times(&inertia, a_root);
+            let iv = cx.inertia_times(&inertia, v_root);
+            let vf = cx.cross_force(v_root, iv);
+            let f = cx.sv_add(ia, vf);
+            base_rows(&mut y, p, f);
+        }
+    }
     for k in 0..n {
         // RNEA's forward pass: the body's velocity and acceleration.
         let s = subspace(&bodies[k]);
         let (vp, ap) = match bodies[k].parent {
             Some(p) => (v[p], a[p]),
-            None => (SV0, a0),
+            None => (v_root, a_root),
         };
         let vj = Sv {
             w: cx.scale3(qd[k], s.w),
@@ -98,10 +147,10 @@ pub fn regressor(
             let iv = cx.inertia_times(&inertia, v[k]);
             let vf = cx.cross_force(v[k], iv);
             let mut f = cx.sv_add(ia, vf);
-            let col = PER_BODY * k + p;
+            let col = co + PER_BODY * k + p;
             let mut j = k;
             loop {
-                y[j][col] = cx.sv_dot(subspace(&bodies[j]), f);
+                y[ro + j][col] = cx.sv_dot(subspace(&bodies[j]), f);
                 match bodies[j].parent {
                     Some(parent) => {
                         f = cx.force(&xs[j], f);
@@ -109,6 +158,10 @@ pub fn regressor(
                     }
                     None => break,
                 }
+            }
+            if fb.is_some() {
+                let f = cx.force(&xs[j], f);
+                base_rows(&mut y, col, f);
             }
         }
     }

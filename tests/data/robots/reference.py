@@ -5,7 +5,8 @@ For each robot of this folder, at 100 random states (seeded): M (CRBA), the nonl
 first 20 of them the placement of every link frame (rotation row-major, then the origin), the
 tool frame's Jacobian and velocity in LOCAL_WORLD_ALIGNED (linear rows first) and the gravity
 torques, and at the first 5 the joint-torque regressor (10 parameters per joint: m, m c, the
-inertia about the joint frame), for the robots with a tool frame named in ROBOTS. Writes `reference_NAME.json` beside this script. The tests
+inertia about the joint frame; on a floating base the free flyer's body first, its rows the
+base's wrench), for the robots with a tool frame named in ROBOTS. Writes `reference_NAME.json` beside this script. The tests
 read the JSON and need no Python.
 
 Fixed bases: the UR5, the Panda (fingers locked at 0 as Pinocchio's `buildReducedModel` at
@@ -14,7 +15,7 @@ repository. Floating bases (the Go2 and romeo_small from example-robot-data): Pi
 free-flyer root joint, its configuration (x, y, z, qx, qy, qz, qw, joints), the quaternion
 random and unit; its velocity the base's spatial velocity in the base frame (linear,
 angular, joints), as are the accelerations and the base's wrench (force, moment) in `tau`.
-For these M is stored as its upper triangle, row by row (M is symmetric): romeo's 37 x 37
+The Go2's tool frame is its front left foot, `FL_foot`. For these M is stored as its upper triangle, row by row (M is symmetric): romeo's 37 x 37
 matrices at 100 states would double the file otherwise.
 
     pip install pin          # Pinocchio (4.1 wrote the files in the repository)
@@ -30,7 +31,7 @@ ROBOTS = [
     ("panda", "panda.urdf", ["panda_finger_joint1", "panda_finger_joint2"], "panda_hand_tcp", False),
     ("tree", "tree.urdf", [], "tool", False),
     ("xarm7", "xarm7.urdf", [], None, False),
-    ("go2", "go2.urdf", [], None, True),
+    ("go2", "go2.urdf", [], "FL_foot", True),
     ("romeo", "romeo_small.urdf", [], None, True),
 ]
 STATES = 100
