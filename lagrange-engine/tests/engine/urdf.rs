@@ -268,7 +268,7 @@ fn urdf_any_truncation_of_a_robot_expands_or_errs_without_panic() {
 /// expansion's time, the figures of the language guide; nothing timed is
 /// asserted).
 #[test]
-fn urdf_arms_expand_and_print_their_code_size() {
+fn urdf_arms_expand_and_print_their_code_size_and_operations() {
     for (file, floating, body) in [
         ("ur5.urdf", "", ""),
         (
@@ -291,5 +291,36 @@ fn urdf_arms_expand_and_print_their_code_size() {
             text.len(),
             elapsed.as_secs_f64() * 1e3
         );
+        for (function, [mul, add, recip]) in operation_counts(&text) {
+            println!("  {function}: {mul} ×, {add} ±, {recip} 1/x");
+        }
     }
+}
+
+/// The arithmetic of each traced function of an expansion: every
+/// statement `let vN: S = ..;` is one operation (a product, a product by a
+/// constant, a sum or difference, a reciprocal), read from the text.
+fn operation_counts(text: &str) -> Vec<(String, [usize; 3])> {
+    let mut out = Vec::new();
+    for chunk in text.split(" fn ").skip(1) {
+        let name = chunk.split(['(', '<', ' ']).next().unwrap_or("").to_string();
+        let mut counts = [0usize; 3];
+        for statement in chunk.split("let v").skip(1) {
+            let Some((_, rhs)) = statement.split_once(": S =") else {
+                continue;
+            };
+            let rhs = rhs.split(';').next().unwrap_or("");
+            if rhs.contains('*') {
+                counts[0] += 1;
+            } else if rhs.contains("simd_recip") {
+                counts[2] += 1;
+            } else if rhs.contains(" + ") || rhs.contains(" - ") {
+                counts[1] += 1;
+            }
+        }
+        if counts.iter().sum::<usize>() > 0 {
+            out.push((name, counts));
+        }
+    }
+    out
 }
