@@ -303,7 +303,11 @@ fn urdf_arms_expand_and_print_their_code_size_and_operations() {
 fn operation_counts(text: &str) -> Vec<(String, [usize; 3])> {
     let mut out = Vec::new();
     for chunk in text.split(" fn ").skip(1) {
-        let name = chunk.split(['(', '<', ' ']).next().unwrap_or("").to_string();
+        let name = chunk
+            .split(['(', '<', ' '])
+            .next()
+            .unwrap_or("")
+            .to_string();
         let mut counts = [0usize; 3];
         for statement in chunk.split("let v").skip(1) {
             let Some((_, rhs)) = statement.split_once(": S =") else {
