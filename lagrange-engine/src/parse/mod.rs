@@ -97,7 +97,7 @@ pub fn parse(tokens: TokenStream) -> syn::Result<Parsed> {
 /// limit, and at opt-level 0 (as rustc's proc-macro builds compile syn by
 /// default) thousands of nested parentheses took more than 4 MiB of stack.
 /// The error is the parser's own, on the first bracket past the limit.
-fn groups_nest_within_the_limit(tokens: &TokenStream) -> syn::Result<()> {
+pub(crate) fn groups_nest_within_the_limit(tokens: &TokenStream) -> syn::Result<()> {
     // The model's braces, a section's, a contact law's, an index: levels
     // the expression parser does not count.
     const ENCLOSING: usize = 4;

@@ -30,9 +30,8 @@ use super::algorithms::{self, Floating, M3};
 use super::trace::{ONE, Trace, Val, ZERO};
 use super::tree::{Body, Mass};
 use super::{Input, function_of};
-use proc_macro2::{Span, TokenStream};
+use proc_macro2::TokenStream;
 use quote::quote;
-use syn::LitStr;
 
 /// The names of the base's seven coordinates.
 pub const BASE: [&str; 7] = [
@@ -191,7 +190,7 @@ pub(super) fn emit(input: &Input, bodies: &[Body], mass: &Mass) -> TokenStream {
     };
     let sq = quote!(::lagrange::nalgebra::SVector<S, #nq>);
     let sv = quote!(::lagrange::nalgebra::SVector<S, #nv>);
-    let file = LitStr::new(&rel, Span::call_site());
+    let include = input.include();
     let holonomic = quote!(::lagrange::Holonomic<#nq, 1>);
     quote! {
         #(#attrs)*
@@ -199,7 +198,7 @@ pub(super) fn emit(input: &Input, bodies: &[Body], mass: &Mass) -> TokenStream {
         #vis struct #name<S = f64>(::core::marker::PhantomData<S>);
 
         // The URDF read at compile time: rebuilt when it changes.
-        const _: &[u8] = include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/", #file));
+        #include
 
         #[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]
         impl<S> #name<S> where #simd {

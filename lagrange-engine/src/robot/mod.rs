@@ -17,6 +17,7 @@
 pub mod algorithms;
 pub mod api;
 pub mod floating;
+pub mod language;
 pub mod trace;
 pub mod tree;
 pub mod urdf;
@@ -38,11 +39,49 @@ struct Input {
     locks: Vec<(Ident, Lock)>,
     /// `floating`: the root link is a free body.
     floating: bool,
+    /// A robot written as bodies and joints: its links and joints (and
+    /// `path` is a string of its name), instead of a file.
+    inline: Option<language::Inline>,
 }
 
-/// Whether the input is a robot from URDF: the struct carries
-/// `#[lagrange(urdf = "...")]`.
+impl Input {
+    /// Where an error about the robot (about joint `joint`, if any) lands,
+    /// and the words naming the robot: the file's path, or for a robot
+    /// written in the language, the joint's name (else the struct's) and
+    /// `robot `Name``.
+    fn site(&self, joint: Option<&str>) -> (Span, String) {
+        match &self.inline {
+            None => (self.path.span(), self.path.value()),
+            Some(inline) => (
+                joint
+                    .and_then(|j| inline.joint_span(j))
+                    .unwrap_or_else(|| self.name.span()),
+                format!("robot `{}`", self.name),
+            ),
+        }
+    }
+
+    /// The item that rebuilds the crate when the URDF changes (none for a
+    /// robot written in the language).
+    fn include(&self) -> TokenStream {
+        if self.inline.is_some() {
+            return TokenStream::new();
+        }
+        let file = LitStr::new(&self.path.value(), Span::call_site());
+        quote! {
+            // The URDF read at compile time: rebuilt when it changes.
+            const _: &[u8] = include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/", #file));
+        }
+    }
+}
+
+/// Whether the input is a robot: from URDF, the struct carries
+/// `#[lagrange(urdf = "...")]`; in the language, its braces hold `bodies:`
+/// or `joints:` ([`language::is_inline`]).
 pub fn is_robot(input: &TokenStream) -> bool {
+    if language::is_inline(input) {
+        return true;
+    }
     let probe = |stream: ParseStream| -> syn::Result<bool> {
         let attrs = stream.call(Attribute::parse_outer)?;
         let _ = stream.parse::<TokenStream>();
@@ -168,6 +207,53 @@ fn parse(input: TokenStream) -> syn::Result<Input> {
             path,
             locks,
             floating,
+            inline: None,
+        })
+    };
+    parser.parse2(input)
+}
+
+/// A robot written as bodies and joints: its attributes (`#[lagrange(..)]`
+/// refused: the robot's options are its sections), name and sections.
+fn parse_inline(input: TokenStream) -> syn::Result<Input> {
+    crate::parse::groups_nest_within_the_limit(&input)?;
+    let parser = |stream: ParseStream| -> syn::Result<Input> {
+        let attrs = stream.call(Attribute::parse_outer)?;
+        if let Some(a) = attrs.iter().find(|a| a.path().is_ident("lagrange")) {
+            return Err(syn::Error::new_spanned(
+                a,
+                "a robot written as bodies and joints takes no `#[lagrange(..)]` options: a floating base is the \
+                 joint `floating base -> trunk`, its dynamics are Featherstone's recursions",
+            ));
+        }
+        let vis: Visibility = stream.parse()?;
+        stream.parse::<Token![struct]>()?;
+        let name: Ident = stream.parse()?;
+        let body;
+        braced!(body in stream);
+        let sections: TokenStream = body.parse()?;
+        let inline = language::read(sections, &name)?;
+        let locks = inline
+            .locks
+            .iter()
+            .map(|(joint, value)| {
+                (
+                    joint.clone(),
+                    Lock {
+                        joint: joint.to_string(),
+                        value: *value,
+                    },
+                )
+            })
+            .collect();
+        Ok(Input {
+            attrs,
+            vis,
+            path: LitStr::new(&name.to_string(), name.span()),
+            name,
+            locks,
+            floating: inline.floating,
+            inline: Some(inline),
         })
     };
     parser.parse2(input)
@@ -176,6 +262,9 @@ fn parse(input: TokenStream) -> syn::Result<Input> {
 /// The bodies and frames of the robot the input names and its root's
 /// mass, or the error on its tokens.
 fn load(input: &Input) -> syn::Result<(Vec<Body>, Mass, Vec<Frame>)> {
+    if let Some(inline) = &input.inline {
+        return load_inline(input, inline);
+    }
     let rel = input.path.value();
     let span = input.path.span();
     let err = |message: String| syn::Error::new(span, message);
@@ -229,9 +318,54 @@ fn load(input: &Input) -> syn::Result<(Vec<Body>, Mass, Vec<Frame>)> {
     Ok((bodies, root, frames))
 }
 
-/// Expands a robot from URDF: the items, or a `compile_error!` and a stub.
+/// The bodies and frames of a robot written in the language, its tree's
+/// refusals on the names they are about.
+fn load_inline(
+    input: &Input,
+    inline: &language::Inline,
+) -> syn::Result<(Vec<Body>, Mass, Vec<Frame>)> {
+    let locks: Vec<Lock> = input.locks.iter().map(|(_, l)| l.clone()).collect();
+    let robot = &inline.urdf;
+    let (bodies, root) = tree::bodies(robot, &locks, input.floating).map_err(|e| match e {
+        TreeError::File(r) => syn::Error::new(
+            inline.span(r.line).unwrap_or_else(|| input.name.span()),
+            match r.line {
+                Some(_) => r.message,
+                None => format!("robot `{}`: {}", input.name, r.message),
+            },
+        ),
+        TreeError::Lock(k, message) => syn::Error::new(input.locks[k].0.span(), message),
+    })?;
+    if input.floating {
+        if let Some(b) = bodies
+            .iter()
+            .find(|b| floating::BASE.contains(&b.name.as_str()))
+        {
+            return Err(syn::Error::new(
+                inline
+                    .joint_span(&b.name)
+                    .unwrap_or_else(|| input.name.span()),
+                format!(
+                    "joint `{}` is named as one of the floating base's coordinates ({})",
+                    b.name,
+                    floating::BASE.join(", ")
+                ),
+            ));
+        }
+    }
+    let frames = frames::frames(robot, &locks, &bodies);
+    Ok((bodies, root, frames))
+}
+
+/// Expands a robot from URDF or written as bodies and joints: the items,
+/// or a `compile_error!` and a stub.
 pub fn expand(input: TokenStream) -> TokenStream {
-    let input = match parse(input) {
+    let parsed = if language::is_inline(&input) {
+        parse_inline(input)
+    } else {
+        parse(input)
+    };
+    let input = match parsed {
         Ok(i) => i,
         Err(e) => return e.to_compile_error(),
     };
@@ -301,22 +435,22 @@ fn check(input: &Input, bodies: &[Body], root: &Mass) -> syn::Result<()> {
                 a[j][j] -= a[j][k] * a[j][k];
             }
             if (a[j][j].is_nan() || a[j][j] <= 1e-12 * scale) && j < o {
+                let (span, robot) = input.site(None);
                 return Err(syn::Error::new(
-                    input.path.span(),
+                    span,
                     format!(
-                        "{}: the mass matrix is singular: the floating base carries no mass or inertia along one of \
+                        "{robot}: the mass matrix is singular: the floating base carries no mass or inertia along one of \
                          its six motions (the root link and what is fixed to it, with the joints, are massless there)",
-                        input.path.value(),
                     ),
                 ));
             }
             if a[j][j].is_nan() || a[j][j] <= 1e-12 * scale {
+                let (span, robot) = input.site(Some(&bodies[j - o].name));
                 return Err(syn::Error::new(
-                    input.path.span(),
+                    span,
                     format!(
-                        "{}: the mass matrix is singular: joint `{}` moves no mass or inertia about its axis \
+                        "{robot}: the mass matrix is singular: joint `{}` moves no mass or inertia about its axis \
                          (what it carries is massless, or it turns a body about its own symmetry line alone)",
-                        input.path.value(),
                         bodies[j - o].name
                     ),
                 ));
@@ -415,14 +549,13 @@ fn emit(input: &Input, bodies: &[Body]) -> TokenStream {
         S::Element: ::lagrange::nalgebra::RealField + ::core::marker::Copy,
     };
     let sv = quote!(::lagrange::nalgebra::SVector<S, #n>);
-    let file = LitStr::new(&rel, Span::call_site());
+    let include = input.include();
     quote! {
         #(#attrs)*
         #[derive(Clone, Copy, Debug, Default, PartialEq)]
         #vis struct #name<S = f64>(::core::marker::PhantomData<S>);
 
-        // The URDF read at compile time: rebuilt when it changes.
-        const _: &[u8] = include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/", #file));
+        #include
 
         #[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]
         impl<S> #name<S> where #simd {

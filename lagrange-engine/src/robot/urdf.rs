@@ -196,20 +196,20 @@ fn child<'a, 'i>(node: Node<'a, 'i>, name: &str) -> Option<Node<'a, 'i>> {
 /// Rotation entries this close to 0 are taken as 0: `rpy` angles of
 /// ±π/2 leave 6e-17 where a permutation has 0, and the exact zero lets the
 /// generated code skip those products (a change of 1e-16 relative).
-const SNAP: f64 = 4.0 * f64::EPSILON;
+pub const SNAP: f64 = 4.0 * f64::EPSILON;
 
-/// `<origin xyz rpy>`: the placement `Rz(y) Ry(p) Rx(r)`, `xyz`.
-fn origin(doc: &Document, node: Node) -> Result<Placement, Refusal> {
-    let Some(o) = child(node, "origin") else {
-        return Ok(Placement::IDENTITY);
-    };
-    let pos = numbers::<3>(doc, o, "xyz", Some([0.0; 3]))?;
-    let [r, p, y] = numbers::<3>(doc, o, "rpy", Some([0.0; 3]))?;
+/// The rotation `Rz(y) Ry(p) Rx(r)` of an `rpy`, snapped ([`snapped`]).
+pub fn rpy(r: f64, p: f64, y: f64) -> [[f64; 3]; 3] {
+    placement([0.0; 3], [r, p, y]).rot
+}
+
+/// The placement of `xyz` and `rpy`: `Rz(y) Ry(p) Rx(r)` snapped.
+fn placement(pos: [f64; 3], [r, p, y]: [f64; 3]) -> Placement {
     let rx = rotation([1.0, 0.0, 0.0], r);
     let ry = rotation([0.0, 1.0, 0.0], p);
     let rz = rotation([0.0, 0.0, 1.0], y);
     let z = Placement { rot: rz, pos };
-    let mut rot = z
+    let place = z
         .then(&Placement {
             rot: ry,
             pos: [0.0; 3],
@@ -217,14 +217,45 @@ fn origin(doc: &Document, node: Node) -> Result<Placement, Refusal> {
         .then(&Placement {
             rot: rx,
             pos: [0.0; 3],
-        })
-        .rot;
+        });
+    Placement {
+        rot: snapped(place.rot),
+        pos: place.pos,
+    }
+}
+
+/// A rotation's entries within [`SNAP`] of zero set to zero.
+pub fn snapped(mut rot: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
     for x in rot.iter_mut().flatten() {
         if x.abs() < SNAP {
             *x = 0.0;
         }
     }
-    Ok(Placement { rot, pos })
+    rot
+}
+
+/// `<origin xyz rpy>`: the placement `Rz(y) Ry(p) Rx(r)`, `xyz`.
+fn origin(doc: &Document, node: Node) -> Result<Placement, Refusal> {
+    let Some(o) = child(node, "origin") else {
+        return Ok(Placement::IDENTITY);
+    };
+    let pos = numbers::<3>(doc, o, "xyz", Some([0.0; 3]))?;
+    let angles = numbers::<3>(doc, o, "rpy", Some([0.0; 3]))?;
+    Ok(placement(pos, angles))
+}
+
+/// An inertia given in axes `r` expressed in the link's: `R I Rᵀ`.
+pub fn rotated_inertia(r: &[[f64; 3]; 3], local: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    let mut inertia = [[0.0; 3]; 3];
+    for (i, row) in inertia.iter_mut().enumerate() {
+        for (j, v) in row.iter_mut().enumerate() {
+            *v = (0..3)
+                .flat_map(|k| (0..3).map(move |l| (k, l)))
+                .map(|(k, l)| r[i][k] * local[k][l] * r[j][l])
+                .sum();
+        }
+    }
+    inertia
 }
 
 fn inertial(doc: &Document, link: Node, name: &str) -> Result<Option<Inertial>, Refusal> {
@@ -287,16 +318,7 @@ fn inertial(doc: &Document, link: Node, name: &str) -> Result<Option<Inertial>, 
         }
     }
     // Into the link's axes: R I Rᵀ.
-    let r = place.rot;
-    let mut inertia = [[0.0; 3]; 3];
-    for (i, row) in inertia.iter_mut().enumerate() {
-        for (j, v) in row.iter_mut().enumerate() {
-            *v = (0..3)
-                .flat_map(|k| (0..3).map(move |l| (k, l)))
-                .map(|(k, l)| r[i][k] * local[k][l] * r[j][l])
-                .sum();
-        }
-    }
+    let inertia = rotated_inertia(&place.rot, &local);
     Ok(Some(Inertial {
         mass,
         com: place.pos,

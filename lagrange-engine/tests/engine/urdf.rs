@@ -328,3 +328,333 @@ fn operation_counts(text: &str) -> Vec<(String, [usize; 3])> {
     }
     out
 }
+
+// Robots written as bodies and joints in the macro's input: read into the
+// URDF route's links and joints, so that everything after reading is the
+// same code; each refusal one error on the tokens it is about.
+
+/// `tests/data/robots/tree.urdf` written in the language, its numbers
+/// copied: the inertias' `rpy` as `axes`, each `<origin>` as
+/// `translate(xyz) * rotate_rpy(rpy)`.
+const TREE: &str = "
+    bodies:
+        hub: mass 2.5, com [0.02, -0.01, 0.11], axes rotate_rpy(0.1, -0.2, 0.3),
+             inertia [[0.031, 0.002, -0.001], [0.002, 0.027, 0.003], [-0.001, 0.003, 0.019]];
+        slider: mass 1.2, com [0.1, 0.02, 0.0], inertia [[0.004, 0, 0.0005], [0, 0.011, 0], [0.0005, 0, 0.012]];
+        wrist: mass 0.6, com [0, 0, 0.07], inertia [[0.002, 0.0001, 0], [0.0001, 0.0021, 0], [0, 0, 0.0009]];
+        weight: mass 0.3, inertia diag(0.0003, 0.0003, 0.0003);
+        tool;
+        arm: mass 0.9, com [0, 0.12, 0], axes rotate_rpy(0, 0.3, 0), inertia diag(0.006, 0.001, 0.0055);
+    joints:
+        a_yaw: revolute base -> hub, at translate(0.05, 0, 0.2) * rotate_rpy(0, 0, 0.4), axis [0.1, 0.2, 0.97];
+        b_slide: prismatic hub -> slider, at translate(0, 0.03, 0.25) * rotate_rpy(0.3, 0.5, -0.2), axis [0.8, 0, 0.6];
+        c_wrist: revolute slider -> wrist, at translate(0.2, 0, 0) * rotate_x(PI / 2), axis [0, 1, 0];
+        weight_mount: fixed wrist -> weight, at translate(0.03, -0.02, 0.12) * rotate_rpy(0.2, 0, 0);
+        tool_frame: fixed weight -> tool, at translate(0, 0, 0.05);
+        d_arm: revolute hub -> arm, at translate(0.04, 0, 0.15) * rotate_rpy(-0.4, 0.1, 1.1), axis [0.6, -0.48, 0.64];
+";
+
+/// The expansion of `pub struct Robot { body }`.
+fn expand_inline(body: &str) -> String {
+    let tokens: TokenStream = format!("pub struct Robot {{ {body} }}").parse().unwrap();
+    lagrange_engine::expand(tokens).to_string()
+}
+
+/// The one `compile_error!` of a robot written in the language: its
+/// message and the source text its span covers (start to end, on one line).
+fn inline_error(body: &str) -> (String, String) {
+    let src = format!("pub struct Robot {{ {body} }}");
+    let tokens: TokenStream = src.parse().unwrap();
+    let out = lagrange_engine::expand(tokens);
+    let mut found = Vec::new();
+    let mut stack = vec![out];
+    while let Some(ts) = stack.pop() {
+        let trees: Vec<proc_macro2::TokenTree> = ts.into_iter().collect();
+        for (i, t) in trees.iter().enumerate() {
+            match t {
+                proc_macro2::TokenTree::Ident(id) if id == "compile_error" => {
+                    if let Some(proc_macro2::TokenTree::Group(g)) = trees.get(i + 2) {
+                        let lit: syn::LitStr = syn::parse_str(&g.stream().to_string()).unwrap();
+                        found.push((lit.value(), id.span().start(), g.span().end()));
+                    }
+                }
+                proc_macro2::TokenTree::Group(g) => stack.push(g.stream()),
+                _ => {}
+            }
+        }
+    }
+    assert_eq!(found.len(), 1, "one error: {found:?}");
+    let (message, start, end) = found.remove(0);
+    assert_eq!(start.line, end.line, "{message}");
+    let line = src.lines().nth(start.line - 1).unwrap();
+    let chars: Vec<char> = line.chars().collect();
+    (message, chars[start.column..end.column].iter().collect())
+}
+
+/// A one-body robot whose body and joint are given.
+fn one_body(body: &str, joint: &str) -> String {
+    format!("bodies: arm: {body}; joints: j: {joint};")
+}
+
+const ARM: &str = "mass 1, com [0, 0, 0.5], inertia diag(0.1, 0.1, 0.02)";
+
+#[test]
+fn inline_tree_expands_to_the_same_items_as_its_urdf() {
+    let inline = expand_inline(TREE);
+    assert!(!inline.contains("compile_error"), "{inline:.600}");
+    // The file's own tokens: the include that rebuilds on a change, and
+    // the path in a doc string.
+    let file = expand_with("urdf = \"../tests/data/robots/tree.urdf\"", "")
+        .replace(
+            "const _ : & [u8] = include_bytes ! (concat ! (env ! (\"CARGO_MANIFEST_DIR\") , \"/\" , \"../tests/data/robots/tree.urdf\")) ; ",
+            "",
+        )
+        .replace("`../tests/data/robots/tree.urdf`", "`Robot`");
+    // `rotate_x(PI / 2)` is the file's `rpy="1.5707963267948966 0 0"`
+    // after snapping: every item, recursion, frame and regressor the same
+    // tokens, so the same bits.
+    if let Some(at) = inline.bytes().zip(file.bytes()).position(|(a, b)| a != b) {
+        let from = at.saturating_sub(300);
+        panic!(
+            "the expansions differ at byte {at}:\n{}\n{}",
+            &inline[from..(at + 200).min(inline.len())],
+            &file[from..(at + 200).min(file.len())]
+        );
+    }
+    assert_eq!(inline.len(), file.len());
+}
+
+#[test]
+fn inline_expansion_is_deterministic_and_a_floating_base_expands() {
+    assert_eq!(expand_inline(TREE), expand_inline(TREE));
+    let text = expand_inline(&format!(
+        "bodies: trunk: {ARM}; leg: {ARM}; joints: free: floating base -> trunk; \
+         hip: revolute trunk -> leg, at translate(0, 0.1, 0), axis [0, 1, 0];"
+    ));
+    assert!(!text.contains("compile_error"), "{text:.600}");
+    for item in ["velocity_mass_matrix", "base_qw", "VELOCITIES", "Holonomic"] {
+        assert!(text.contains(item), "{item}");
+    }
+}
+
+#[test]
+fn inline_values_are_constant_expressions_of_constants() {
+    // `0.3 / 2`, `PI / 2`, a vector and a matrix constant, composed
+    // transforms, a rotation times a vector.
+    let text = expand_inline(
+        "constants: l = 0.3, z = [0, 0, 1], I = diag(0.01, 0.01, 0.002), tilt = rotate_x(PI / 2);
+         bodies: upper: mass 1.2, com l / 2 * z, inertia I; fore: mass 0.8, com [0, 0, 0.12], inertia 0.5 * I;
+         joints: shoulder: revolute base -> upper, at translate(0, 0, 0.1) * rotate_z(-PI / 4), axis z;
+                 elbow: revolute upper -> fore, at translate(l * z) * tilt, axis tilt * [0, 1, 0];
+         locked: elbow = PI / 6;",
+    );
+    assert!(!text.contains("compile_error"), "{text:.600}");
+    assert!(text.contains("\"shoulder\""));
+}
+
+/// Each mistake: one error, its words, and the tokens it lands on.
+#[test]
+fn inline_mistakes_are_one_error_on_their_tokens() {
+    let indefinite = "mass 1, inertia [[0.1, 0, 0], [0, -0.1, 0], [0, 0, 0.1]]";
+    let triangle = "mass 1, inertia diag(0.1, 0.1, 0.3)";
+    let revolute = "revolute base -> arm, axis [0, 0, 1]";
+    let cases: &[(String, &str, &str)] = &[
+        (
+            one_body(indefinite, revolute),
+            "body `arm`'s inertia is not positive definite",
+            "[[0.1, 0, 0], [0, -0.1, 0], [0, 0, 0.1]]",
+        ),
+        (
+            one_body(triangle, revolute),
+            "break the triangle inequality",
+            "diag(0.1, 0.1, 0.3)",
+        ),
+        (
+            one_body(ARM, "revolute base -> arm, axis [0, 0.0, 0]"),
+            "joint `j`'s axis is zero",
+            "[0, 0.0, 0]",
+        ),
+        (
+            one_body("mass -2, inertia diag(1, 1, 1)", revolute),
+            "body `arm` has a negative mass, -2",
+            "-2",
+        ),
+        (
+            one_body(ARM, "revolute base -> hand, axis [0, 0, 1]"),
+            "joint `j`'s child `hand` is no body of the robot",
+            "hand",
+        ),
+        (
+            one_body(ARM, "revolute base -> arm"),
+            "joint `j` is revolute and needs an `axis`",
+            "j",
+        ),
+        (
+            one_body(ARM, "hinge base -> arm"),
+            "a joint is `revolute`, `continuous`, `prismatic`, `fixed` or `floating`",
+            "hinge",
+        ),
+        (
+            one_body(ARM, "revolute base -> arm, axis [0, 0, 1], pitch 2"),
+            "a revolute joint takes `at` (its frame in the parent's) and `axis`, not `pitch`",
+            "pitch",
+        ),
+        (
+            one_body(
+                "mass 1, inertia [[0.1, 0.01, 0], [0, 0.1, 0], [0, 0, 0.1]]",
+                revolute,
+            ),
+            "inertia is not symmetric",
+            "[[0.1, 0.01, 0], [0, 0.1, 0], [0, 0, 0.1]]",
+        ),
+        (
+            one_body("mass 0, inertia diag(0.1, 0.1, 0.1)", revolute),
+            "no mass but an inertia",
+            "diag(0.1, 0.1, 0.1)",
+        ),
+        (
+            one_body("mass 1", revolute),
+            "body `arm` has a mass but no `inertia`",
+            "arm",
+        ),
+        (
+            one_body("mass 1, inertia [0.1, 0.1, 0.1]", revolute),
+            "an inertia is a matrix",
+            "[0.1, 0.1, 0.1]",
+        ),
+        (
+            one_body(
+                ARM,
+                "revolute base -> arm, at translate(0, 0, 1) + rotate_x(1), axis [0, 0, 1]",
+            ),
+            "a transform plus a transform",
+            "+",
+        ),
+        (
+            one_body(ARM, "revolute base -> arm, axis [0, 0, 1] / 0"),
+            "division by zero",
+            "/",
+        ),
+        (
+            one_body(ARM, "revolute base -> arm, axis [0, 0, l]"),
+            "`l` is no constant",
+            "l",
+        ),
+        (
+            one_body(ARM, "revolute base -> arm, at turn(1), axis [0, 0, 1]"),
+            "`turn` is no function",
+            "turn",
+        ),
+        (
+            one_body(ARM, "revolute base -> arm, axis [0, 0, 1]; locked: k = 0.1"),
+            "the robot has no joint `k`",
+            "k",
+        ),
+        (
+            one_body("", revolute).replace("arm: ;", "arm: mass 1, mass 2;"),
+            "`mass` is given twice",
+            "mass",
+        ),
+        (
+            one_body(ARM, "fixed base -> arm"),
+            "the robot has no moving joint",
+            "Robot",
+        ),
+        (
+            one_body(ARM, "revolute base -> arm, axis [0, 0, 1]").replace("arm:", "base:"),
+            "`base` is the world",
+            "base",
+        ),
+        (
+            format!("bodies: arm: {ARM}; arm: {ARM}; joints: j: {revolute};"),
+            "body `arm` is defined twice",
+            "arm",
+        ),
+        (
+            format!(
+                "bodies: arm: {ARM}; hand: {ARM}; joints: j: {revolute}; j: revolute arm -> hand, axis [1, 0, 0];"
+            ),
+            "joint `j` is defined twice",
+            "j",
+        ),
+        (
+            format!(
+                "bodies: arm: {ARM}; hand: {ARM}; joints: j: {revolute}; k: revolute base -> hand, axis [1, 0, 0]; l: fixed hand -> arm;"
+            ),
+            "body `arm` is attached twice: by joint `j` and by joint `l`",
+            "arm",
+        ),
+        (
+            format!("bodies: arm: {ARM}; hand: {ARM}; joints: j: {revolute};"),
+            "body `hand` is attached to nothing",
+            "hand",
+        ),
+        (
+            format!(
+                "bodies: arm: {ARM}; hand: {ARM}; foot: {ARM}; joints: j: {revolute}; k: revolute hand -> foot, axis [1, 0, 0]; l: revolute foot -> hand, axis [1, 0, 0];"
+            ),
+            "body `hand` lies on a loop of joints",
+            "hand",
+        ),
+        (
+            format!(
+                "bodies: arm: {ARM}; hand: mass 0; joints: j: {revolute}; k: revolute arm -> hand, axis [1, 0, 0];"
+            ),
+            "robot `Robot`: the mass matrix is singular: joint `k` moves no mass",
+            "k",
+        ),
+        (
+            format!(
+                "bodies: trunk: {ARM}; leg: {ARM}; joints: f: floating base -> trunk; g: floating base -> leg;"
+            ),
+            "a second floating joint",
+            "g",
+        ),
+        (
+            format!(
+                "bodies: trunk: {ARM}; leg: {ARM}; joints: f: floating base -> trunk; g: revolute base -> leg, axis [1, 0, 0];"
+            ),
+            "every other joint hangs from the floating body `trunk`",
+            "base",
+        ),
+        (
+            format!(
+                "bodies: trunk: {ARM}; leg: {ARM}; joints: f: floating trunk -> leg; g: {revolute};"
+            )
+            .replace("-> arm", "-> trunk"),
+            "a floating base hangs from `base`",
+            "trunk",
+        ),
+        (
+            "masses: 1; joints: j: revolute base -> arm, axis [0, 0, 1];".to_string(),
+            "takes the sections",
+            "masses: 1",
+        ),
+        (
+            one_body(ARM, "revolute base -> arm, axis [0, 0, 1]; masses: 1"),
+            "a joint reads `masses: revolute parent -> child",
+            "1",
+        ),
+    ];
+    for (body, message, at) in cases {
+        let (got, span) = inline_error(body);
+        assert!(
+            got.contains(message),
+            "{body}\n  gave: {got}\n  expected: {message}"
+        );
+        assert_eq!(span, *at, "{body}: {got}");
+    }
+}
+
+/// Every prefix of the tree's tokens (a model cut anywhere) expands or
+/// errs, never panics.
+#[test]
+fn inline_any_truncation_expands_or_errs_without_panic() {
+    let tokens: Vec<proc_macro2::TokenTree> =
+        TREE.parse::<TokenStream>().unwrap().into_iter().collect();
+    for n in 0..=tokens.len() {
+        let body: TokenStream = tokens[..n].iter().cloned().collect();
+        let src: TokenStream = format!("pub struct Robot {{ {body} }}").parse().unwrap();
+        let _ = lagrange_engine::expand(src);
+    }
+}
