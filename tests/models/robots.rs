@@ -61,6 +61,135 @@ lagrangian! {
     pub struct Tree {}
 }
 
+// The same robots written as bodies and joints in the macro's input (no
+// file), their numbers copied from the URDFs: each `<inertial>` a body's
+// `mass`, `com`, `axes` (its `rpy`) and `inertia`, each `<origin>`
+// `translate(xyz) * rotate_rpy(rpy)`. `base` is the world, so the files'
+// `world` is `base` and the UR5's own `base` frame is `base_frame`.
+
+lagrangian! {
+    /// The UR5 written as bodies and joints, from the numbers of `ur5.urdf`.
+    pub struct Ur5Written {
+        bodies:
+            base_link: mass 4.0, inertia diag(0.00443333156, 0.00443333156, 0.0072);
+            shoulder_link: mass 3.7, inertia diag(0.010267495893, 0.010267495893, 0.00666);
+            upper_arm_link: mass 8.393, com [0.0, 0.0, 0.28], inertia diag(0.22689067591, 0.22689067591, 0.0151074);
+            forearm_link: mass 2.275, com [0.0, 0.0, 0.25], inertia diag(0.049443313556, 0.049443313556, 0.004095);
+            wrist_1_link: mass 1.219, inertia diag(0.111172755531, 0.111172755531, 0.21942);
+            wrist_2_link: mass 1.219, inertia diag(0.111172755531, 0.111172755531, 0.21942);
+            wrist_3_link: mass 0.1879, inertia diag(0.0171364731454, 0.0171364731454, 0.033822);
+            ee_link;
+            base_frame;
+            tool0;
+        joints:
+            shoulder_pan_joint: revolute base_link -> shoulder_link, at translate(0.0, 0.0, 0.089159), axis [0, 0, 1];
+            shoulder_lift_joint: revolute shoulder_link -> upper_arm_link,
+                at translate(0.0, 0.13585, 0.0) * rotate_rpy(0.0, 1.57079632679, 0.0), axis [0, 1, 0];
+            elbow_joint: revolute upper_arm_link -> forearm_link, at translate(0.0, -0.1197, 0.425), axis [0, 1, 0];
+            wrist_1_joint: revolute forearm_link -> wrist_1_link,
+                at translate(0.0, 0.0, 0.39225) * rotate_rpy(0.0, 1.57079632679, 0.0), axis [0, 1, 0];
+            wrist_2_joint: revolute wrist_1_link -> wrist_2_link, at translate(0.0, 0.093, 0.0), axis [0, 0, 1];
+            wrist_3_joint: revolute wrist_2_link -> wrist_3_link, at translate(0.0, 0.0, 0.09465), axis [0, 1, 0];
+            ee_fixed_joint: fixed wrist_3_link -> ee_link, at translate(0.0, 0.0823, 0.0) * rotate_rpy(0.0, 0.0, 1.57079632679);
+            base_fixed_joint: fixed base_link -> base_frame, at rotate_rpy(0, 0, -3.14159265359);
+            tool0_fixed_joint: fixed wrist_3_link -> tool0, at translate(0, 0.0823, 0) * rotate_rpy(-1.57079632679, 0, 0);
+            world_joint: fixed base -> base_link;
+    }
+}
+
+lagrangian! {
+    /// `tree.urdf` written as bodies and joints: unaligned axes, a
+    /// prismatic joint, a mass on a fixed joint, a massless tool frame.
+    pub struct TreeWritten {
+        bodies:
+            hub: mass 2.5, com [0.02, -0.01, 0.11], axes rotate_rpy(0.1, -0.2, 0.3),
+                 inertia [[0.031, 0.002, -0.001], [0.002, 0.027, 0.003], [-0.001, 0.003, 0.019]];
+            slider: mass 1.2, com [0.1, 0.02, 0.0], inertia [[0.004, 0, 0.0005], [0, 0.011, 0], [0.0005, 0, 0.012]];
+            wrist: mass 0.6, com [0, 0, 0.07], inertia [[0.002, 0.0001, 0], [0.0001, 0.0021, 0], [0, 0, 0.0009]];
+            weight: mass 0.3, inertia diag(0.0003, 0.0003, 0.0003);
+            tool;
+            arm: mass 0.9, com [0, 0.12, 0], axes rotate_rpy(0, 0.3, 0), inertia diag(0.006, 0.001, 0.0055);
+        joints:
+            a_yaw: revolute base -> hub, at translate(0.05, 0, 0.2) * rotate_rpy(0, 0, 0.4), axis [0.1, 0.2, 0.97];
+            b_slide: prismatic hub -> slider, at translate(0, 0.03, 0.25) * rotate_rpy(0.3, 0.5, -0.2), axis [0.8, 0, 0.6];
+            c_wrist: revolute slider -> wrist, at translate(0.2, 0, 0) * rotate_x(PI / 2), axis [0, 1, 0];
+            weight_mount: fixed wrist -> weight, at translate(0.03, -0.02, 0.12) * rotate_rpy(0.2, 0, 0);
+            tool_frame: fixed weight -> tool, at translate(0, 0, 0.05);
+            d_arm: revolute hub -> arm, at translate(0.04, 0, 0.15) * rotate_rpy(-0.4, 0.1, 1.1), axis [0.6, -0.48, 0.64];
+    }
+}
+
+lagrangian! {
+    /// The Go2 written as bodies and joints on a floating base, from the
+    /// numbers of `go2.urdf` (its `base` link is `trunk`).
+    pub struct Go2Written {
+        bodies:
+            trunk: mass 6.921, com [0.021112, 0, -0.005366], inertia [[0.02448, 0.00012166, 0.0014849], [0.00012166, 0.098077, -3.12E-05], [0.0014849, -3.12E-05, 0.107]];
+            FL_hip: mass 0.678, com [-0.0054, 0.00194, -0.000105], inertia [[0.00048, -3.01E-06, 1.11E-06], [-3.01E-06, 0.000884, -1.42E-06], [1.11E-06, -1.42E-06, 0.000596]];
+            FL_hip_rotor: mass 0.089, inertia diag(0.000111842, 0.000059647, 0.000059647);
+            FL_thigh: mass 1.152, com [-0.00374, -0.0223, -0.0327], inertia [[0.00584, 8.72E-05, -0.000289], [8.72E-05, 0.0058, 0.000808], [-0.000289, 0.000808, 0.00103]];
+            FL_thigh_rotor: mass 0.089, inertia diag(0.000059647, 0.000111842, 0.000059647);
+            FL_calf: mass 0.154, com [0.00548, -0.000975, -0.115], inertia [[0.00108, 3.4E-07, 1.72E-05], [3.4E-07, 0.0011, 8.28E-06], [1.72E-05, 8.28E-06, 3.29E-05]];
+            FL_calf_rotor: mass 0.089, inertia diag(0.000059647, 0.000111842, 0.000059647);
+            FL_foot: mass 0.04, inertia diag(9.6e-06, 9.6e-06, 9.6e-06);
+            FR_hip: mass 0.678, com [-0.0054, -0.00194, -0.000105], inertia [[0.00048, 3.01E-06, 1.11E-06], [3.01E-06, 0.000884, 1.42E-06], [1.11E-06, 1.42E-06, 0.000596]];
+            FR_hip_rotor: mass 0.089, inertia diag(0.000111842, 0.000059647, 0.000059647);
+            FR_thigh: mass 1.152, com [-0.00374, 0.0223, -0.0327], inertia [[0.00584, -8.72E-05, -0.000289], [-8.72E-05, 0.0058, -0.000808], [-0.000289, -0.000808, 0.00103]];
+            FR_thigh_rotor: mass 0.089, inertia diag(0.000059647, 0.000111842, 0.000059647);
+            FR_calf: mass 0.154, com [0.00548, 0.000975, -0.115], inertia [[0.00108, -3.4E-07, 1.72E-05], [-3.4E-07, 0.0011, -8.28E-06], [1.72E-05, -8.28E-06, 3.29E-05]];
+            FR_calf_rotor: mass 0.089, inertia diag(0.000059647, 0.000111842, 0.000059647);
+            FR_foot: mass 0.04, inertia diag(9.6e-06, 9.6e-06, 9.6e-06);
+            RL_hip: mass 0.678, com [0.0054, 0.00194, -0.000105], inertia [[0.00048, 3.01E-06, -1.11E-06], [3.01E-06, 0.000884, -1.42E-06], [-1.11E-06, -1.42E-06, 0.000596]];
+            RL_hip_rotor: mass 0.089, inertia diag(0.000111842, 0.000059647, 0.000059647);
+            RL_thigh: mass 1.152, com [-0.00374, -0.0223, -0.0327], inertia [[0.00584, 8.72E-05, -0.000289], [8.72E-05, 0.0058, 0.000808], [-0.000289, 0.000808, 0.00103]];
+            RL_thigh_rotor: mass 0.089, inertia diag(0.000059647, 0.000111842, 0.000059647);
+            RL_calf: mass 0.154, com [0.00548, -0.000975, -0.115], inertia [[0.00108, 3.4E-07, 1.72E-05], [3.4E-07, 0.0011, 8.28E-06], [1.72E-05, 8.28E-06, 3.29E-05]];
+            RL_calf_rotor: mass 0.089, inertia diag(0.000059647, 0.000111842, 0.000059647);
+            RL_foot: mass 0.04, inertia diag(9.6e-06, 9.6e-06, 9.6e-06);
+            RR_hip: mass 0.678, com [0.0054, -0.00194, -0.000105], inertia [[0.00048, -3.01E-06, -1.11E-06], [-3.01E-06, 0.000884, 1.42E-06], [-1.11E-06, 1.42E-06, 0.000596]];
+            RR_hip_rotor: mass 0.089, inertia diag(0.000111842, 0.000059647, 0.000059647);
+            RR_thigh: mass 1.152, com [-0.00374, 0.0223, -0.0327], inertia [[0.00584, -8.72E-05, -0.000289], [-8.72E-05, 0.0058, -0.000808], [-0.000289, -0.000808, 0.00103]];
+            RR_thigh_rotor: mass 0.089, inertia diag(0.000059647, 0.000111842, 0.000059647);
+            RR_calf: mass 0.154, com [0.00548, 0.000975, -0.115], inertia [[0.00108, -3.4E-07, 1.72E-05], [-3.4E-07, 0.0011, -8.28E-06], [1.72E-05, -8.28E-06, 3.29E-05]];
+            RR_calf_rotor: mass 0.089, inertia diag(0.000059647, 0.000111842, 0.000059647);
+            RR_foot: mass 0.04, inertia diag(9.6e-06, 9.6e-06, 9.6e-06);
+            imu;
+            radar;
+        joints:
+            free: floating base -> trunk;
+            FL_hip_joint: revolute trunk -> FL_hip, at translate(0.1934, 0.0465, 0), axis [1, 0, 0];
+            FL_hip_rotor_joint: fixed trunk -> FL_hip_rotor, at translate(0.11215, 0.04675, 0);
+            FL_thigh_joint: revolute FL_hip -> FL_thigh, at translate(0, 0.0955, 0), axis [0, 1, 0];
+            FL_thigh_rotor_joint: fixed FL_hip -> FL_thigh_rotor, at translate(0, -0.00015, 0);
+            FL_calf_joint: revolute FL_thigh -> FL_calf, at translate(0, 0, -0.213), axis [0, 1, 0];
+            FL_calf_rotor_joint: fixed FL_thigh -> FL_calf_rotor, at translate(0, -0.03235, 0);
+            FL_foot_joint: fixed FL_calf -> FL_foot, at translate(0, 0, -0.213);
+            FR_hip_joint: revolute trunk -> FR_hip, at translate(0.1934, -0.0465, 0), axis [1, 0, 0];
+            FR_hip_rotor_joint: fixed trunk -> FR_hip_rotor, at translate(0.11215, -0.04675, 0);
+            FR_thigh_joint: revolute FR_hip -> FR_thigh, at translate(0, -0.0955, 0), axis [0, 1, 0];
+            FR_thigh_rotor_joint: fixed FR_hip -> FR_thigh_rotor, at translate(0, 0.00015, 0);
+            FR_calf_joint: revolute FR_thigh -> FR_calf, at translate(0, 0, -0.213), axis [0, 1, 0];
+            FR_calf_rotor_joint: fixed FR_thigh -> FR_calf_rotor, at translate(0, 0.03235, 0);
+            FR_foot_joint: fixed FR_calf -> FR_foot, at translate(0, 0, -0.213);
+            RL_hip_joint: revolute trunk -> RL_hip, at translate(-0.1934, 0.0465, 0), axis [1, 0, 0];
+            RL_hip_rotor_joint: fixed trunk -> RL_hip_rotor, at translate(-0.11215, 0.04675, 0);
+            RL_thigh_joint: revolute RL_hip -> RL_thigh, at translate(0, 0.0955, 0), axis [0, 1, 0];
+            RL_thigh_rotor_joint: fixed RL_hip -> RL_thigh_rotor, at translate(0, -0.00015, 0);
+            RL_calf_joint: revolute RL_thigh -> RL_calf, at translate(0, 0, -0.213), axis [0, 1, 0];
+            RL_calf_rotor_joint: fixed RL_thigh -> RL_calf_rotor, at translate(0, -0.03235, 0);
+            RL_foot_joint: fixed RL_calf -> RL_foot, at translate(0, 0, -0.213);
+            RR_hip_joint: revolute trunk -> RR_hip, at translate(-0.1934, -0.0465, 0), axis [1, 0, 0];
+            RR_hip_rotor_joint: fixed trunk -> RR_hip_rotor, at translate(-0.11215, -0.04675, 0);
+            RR_thigh_joint: revolute RR_hip -> RR_thigh, at translate(0, -0.0955, 0), axis [0, 1, 0];
+            RR_thigh_rotor_joint: fixed RR_hip -> RR_thigh_rotor, at translate(0, 0.00015, 0);
+            RR_calf_joint: revolute RR_thigh -> RR_calf, at translate(0, 0, -0.213), axis [0, 1, 0];
+            RR_calf_rotor_joint: fixed RR_thigh -> RR_calf_rotor, at translate(0, 0.03235, 0);
+            RR_foot_joint: fixed RR_calf -> RR_foot, at translate(0, 0, -0.213);
+            imu_joint: fixed trunk -> imu, at translate(-0.02557, 0, 0.04232);
+            radar_joint: fixed trunk -> radar, at translate(0.28945, 0, -0.046825) * rotate_rpy(0, 2.8782, 0);
+    }
+}
+
 /// What a robot is asked, at one state.
 trait Robot<const N: usize> {
     const NAMES: [&'static str; N];
@@ -113,6 +242,8 @@ robot!(Ur5, 6);
 robot!(Panda, 7);
 robot!(Tree, 4);
 robot!(Xarm7, 7);
+robot!(Ur5Written, 6);
+robot!(TreeWritten, 4);
 
 fn vector<const N: usize>(v: &Value) -> SVector<f64, N> {
     SVector::from_iterator(v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()))
@@ -362,6 +493,7 @@ macro_rules! floating_robot {
 }
 floating_robot!(Go2, 19, 18);
 floating_robot!(Romeo, 38, 37);
+floating_robot!(Go2Written, 19, 18);
 
 /// Pinocchio's free-flyer configuration in our order: the quaternion's
 /// `(x, y, z, w)` to `(w, x, y, z)`.
@@ -596,4 +728,88 @@ fn go2_falls_keeping_its_energy_and_unit_quaternion() {
     assert!((norm - 1.0).abs() < 1e-12, "|q| = {norm}");
     // It fell: gravity acts on the base's height.
     assert!(end.q[2] < 0.5 - 0.3 * 0.3, "height {}", end.q[2]);
+}
+
+/// States spread over the joints' ranges: angles and displacements in
+/// `[-2, 2]`, rates and accelerations in `[-3, 3]` (SplitMix64, seeded).
+fn spread<const N: usize>(seed: u64, count: usize) -> Vec<[SVector<f64, N>; 3]> {
+    let mut state = seed;
+    let mut next = move || {
+        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    (0..count)
+        .map(|_| {
+            let q = SVector::from_fn(|_, _| 2.0 * next());
+            let v = SVector::from_fn(|_, _| 3.0 * next());
+            let a = SVector::from_fn(|_, _| 3.0 * next());
+            [q, v, a]
+        })
+        .collect()
+}
+
+/// Two robots whose trees are the same give the same bits: the robot
+/// written in the language is read into the URDF route's links and
+/// joints, and from there the code is that route's.
+fn same_bits<A: Robot<N>, B: Robot<N>, const N: usize>(written: &A, file: &B) {
+    assert_eq!(A::NAMES, B::NAMES);
+    for [q, v, a] in spread::<N>(7, 50) {
+        assert_eq!(written.m(&q), file.m(&q));
+        assert_eq!(written.nle(&q, &v), file.nle(&q, &v));
+        assert_eq!(written.aba(&q, &v, &a), file.aba(&q, &v, &a));
+        assert_eq!(written.rnea(&q, &v, &a), file.rnea(&q, &v, &a));
+    }
+}
+
+#[test]
+fn ur5_written_as_bodies_and_joints_is_its_urdf_bit_for_bit() {
+    same_bits(&Ur5Written::new(), &Ur5::new());
+    check(&Ur5Written::new(), "reference_ur5.json");
+    // Its frames come with it: the tool frame's placement and Jacobian.
+    let (written, file) = (Ur5Written::<f64>::new(), Ur5::<f64>::new());
+    let (a, b) = (
+        Ur5Written::<f64>::frame_index("tool0").unwrap(),
+        Ur5::<f64>::frame_index("tool0").unwrap(),
+    );
+    for [q, _, _] in spread::<6>(8, 10) {
+        assert_eq!(written.frame_placement(&q, a), file.frame_placement(&q, b));
+        assert_eq!(written.frame_jacobian(&q, a), file.frame_jacobian(&q, b));
+    }
+}
+
+#[test]
+fn tree_written_as_bodies_and_joints_is_its_urdf_bit_for_bit() {
+    same_bits(&TreeWritten::new(), &Tree::new());
+    check(&TreeWritten::new(), "reference_tree.json");
+}
+
+/// The Go2 written on a floating base: the recursions in `ν` and the
+/// `Lagrangian` in the quaternion's rates, bit for bit the URDF's.
+#[test]
+fn go2_written_as_bodies_and_joints_is_its_urdf_bit_for_bit() {
+    let (written, file) = (Go2Written::new(), Go2::new());
+    assert_eq!(Go2Written::<f64>::COORDINATES, Go2::<f64>::COORDINATES);
+    for (k, [p, v, a]) in spread::<18>(9, 30).into_iter().enumerate() {
+        let mut q = SVector::<f64, 19>::zeros();
+        q.fixed_rows_mut::<3>(0).copy_from(&p.fixed_rows::<3>(0));
+        let quat =
+            SVector::<f64, 4>::new(1.0, 0.3 * p[3], -0.2 * p[4], 0.1 * p[5] + 0.01 * k as f64)
+                .normalize();
+        q.fixed_rows_mut::<4>(3).copy_from(&quat);
+        q.fixed_rows_mut::<12>(7).copy_from(&p.fixed_rows::<12>(6));
+        assert_eq!(written.m(&q), file.m(&q));
+        assert_eq!(written.nle(&q, &v), file.nle(&q, &v));
+        assert_eq!(written.aba(&q, &v, &a), file.aba(&q, &v, &a));
+        assert_eq!(written.rnea(&q, &v, &a), file.rnea(&q, &v, &a));
+        let qdot = file.rates(&q, &v);
+        assert_eq!(written.mass_matrix(0.0, &q), file.mass_matrix(0.0, &q));
+        assert_eq!(
+            Lagrangian::forcing(&written, 0.0, &q, &qdot),
+            Lagrangian::forcing(&file, 0.0, &q, &qdot)
+        );
+    }
+    check_floating(&written, "reference_go2.json");
 }
