@@ -517,8 +517,7 @@ fn properties(s: ParseStream) -> Res<Props> {
         if value.is_empty() {
             return err(&key, format!("`{key}` has no value"));
         }
-        if let Some((first, _)) = out.iter().find(|(k, _): &&(Ident, TokenStream)| *k == key) {
-            let _ = first;
+        if out.iter().any(|(k, _): &(Ident, TokenStream)| *k == key) {
             return err(&key, format!("`{key}` is given twice"));
         }
         out.push((key, value));
@@ -880,8 +879,7 @@ fn build(
         return err(name, "the robot has no bodies: `bodies:` lists them");
     }
     for (k, b) in bodies.iter().enumerate() {
-        if let Some(first) = bodies[..k].iter().find(|o| o.name == b.name) {
-            let _ = first;
+        if bodies[..k].iter().any(|o| o.name == b.name) {
             return err(&b.name, format!("body `{}` is defined twice", b.name));
         }
     }
@@ -952,8 +950,7 @@ fn build(
                     ),
                 );
             }
-            if let Some(f) = floating {
-                let _: usize = f;
+            if floating.is_some() {
                 return err(
                     &j.name,
                     format!(

@@ -658,3 +658,84 @@ fn inline_any_truncation_expands_or_errs_without_panic() {
         let _ = lagrange_engine::expand(src);
     }
 }
+
+/// A chain of `n` links written in the language, its axes turning from
+/// joint to joint (no two neighbours parallel, so that little folds).
+fn inline_chain(n: usize) -> String {
+    let mut body = String::from("bodies: ");
+    let mut joints = String::from("joints: ");
+    let axes = ["[0, 1, 0]", "[1, 0, 0]", "[0.6, 0, 0.8]"];
+    for k in 0..n {
+        body += &format!("b{k}: mass 1, com [0, 0, 0.2], inertia diag(0.02, 0.02, 0.004); ");
+        let parent = if k == 0 {
+            "base".to_string()
+        } else {
+            format!("b{}", k - 1)
+        };
+        joints += &format!(
+            "j{k}: revolute {parent} -> b{k}, at translate(0, 0, 0.3) * rotate_x(0.3), axis {}; ",
+            axes[k % 3]
+        );
+    }
+    body + &joints
+}
+
+/// The bytes of one generated method's tokens, from its name to the next
+/// method's.
+fn method_size(text: &str, name: &str) -> usize {
+    let start = text
+        .find(&format!("pub fn {name} "))
+        .unwrap_or_else(|| panic!("{name} generated"));
+    let rest = &text[start + 1..];
+    rest.find("pub fn ").map_or(rest.len(), |end| end + 1)
+}
+
+/// How a robot's generated code grows with its joints: chains of 4 to 32
+/// links written in the language (printed, the figures of the language
+/// reference). Sizes are tokens, deterministic. Past the first links
+/// (where the base's known axes fold more), each doubling of the chain at
+/// most 2.5 times `q̈` by ABA and `τ` by RNEA (linear growth doubles them)
+/// and more than 3 times `M` by CRBA (quadratic growth, an entry per pair
+/// of joints, quadruples it).
+#[test]
+fn inline_chains_print_how_their_code_grows() {
+    let mut sizes = Vec::new();
+    println!(
+        "links | items (bytes) | forward_dynamics | inverse_dynamics | mass_matrix | expanded in"
+    );
+    for n in [4, 8, 16, 32] {
+        let start = std::time::Instant::now();
+        let text = expand_inline(&inline_chain(n));
+        let elapsed = start.elapsed();
+        assert!(!text.contains("compile_error"), "{n}: {text:.300}");
+        let s = [
+            method_size(&text, "forward_dynamics"),
+            method_size(&text, "inverse_dynamics"),
+            method_size(&text, "mass_matrix"),
+        ];
+        println!(
+            "{n} | {} | {} | {} | {} | {:.1} ms",
+            text.len(),
+            s[0],
+            s[1],
+            s[2],
+            elapsed.as_secs_f64() * 1e3
+        );
+        sizes.push(s);
+    }
+    for w in sizes[2..].windows(2) {
+        let (before, after) = (w[0], w[1]);
+        assert!(
+            after[0] * 2 < before[0] * 5,
+            "ABA grows linearly: {before:?} to {after:?}"
+        );
+        assert!(
+            after[1] * 2 < before[1] * 5,
+            "RNEA grows linearly: {before:?} to {after:?}"
+        );
+        assert!(
+            after[2] > before[2] * 3,
+            "M grows quadratically: {before:?} to {after:?}"
+        );
+    }
+}
