@@ -129,6 +129,8 @@ pub mod guide {
     pub mod contacts {}
     #[doc = include_str!("../docs/guides/control.md")]
     pub mod control {}
+    #[doc = include_str!("../docs/guides/robots.md")]
+    pub mod robots {}
     #[doc = include_str!("../docs/guides/identify.md")]
     pub mod identify {}
     #[doc = include_str!("../docs/guides/events.md")]
