@@ -451,7 +451,7 @@ fn call(name: &Ident, args: &[Value]) -> Res<Value> {
     }
 }
 
-/// A robot read from the language: what [`super::load`] takes instead of a
+/// A robot read from the language: what the robot route loads instead of a
 /// file.
 pub struct Inline {
     /// The links and joints, as a file would give them.
