@@ -26,7 +26,7 @@ use std::error::Error;
 
 lagrangian! {
     /// The Panda of example-robot-data, its fingers locked closed.
-    #[lagrange(urdf = "../tests/data/robots/panda.urdf")]
+    #[lagrange(urdf = "../tests/data/robots/panda.urdf", regressor)]
     pub struct Panda {
         locked: panda_finger_joint1 = 0.0, panda_finger_joint2 = 0.0;
     }

@@ -24,13 +24,13 @@ use serde_json::Value;
 
 lagrangian! {
     /// The UR5 of example-robot-data.
-    #[lagrange(urdf = "tests/data/robots/ur5.urdf")]
+    #[lagrange(urdf = "tests/data/robots/ur5.urdf", regressor)]
     pub struct Ur5 {}
 }
 
 lagrangian! {
     /// The Panda of example-robot-data, its fingers locked closed.
-    #[lagrange(urdf = "tests/data/robots/panda.urdf")]
+    #[lagrange(urdf = "tests/data/robots/panda.urdf", regressor)]
     pub struct Panda {
         locked: panda_finger_joint1 = 0.0, panda_finger_joint2 = 0.0;
     }
@@ -44,7 +44,7 @@ lagrangian! {
 
 lagrangian! {
     /// The Unitree Go2 of example-robot-data on a floating base.
-    #[lagrange(urdf = "tests/data/robots/go2.urdf", floating)]
+    #[lagrange(urdf = "tests/data/robots/go2.urdf", floating, regressor)]
     pub struct Go2 {}
 }
 
@@ -57,7 +57,7 @@ lagrangian! {
 
 lagrangian! {
     /// A tree of four joints on unaligned axes, one prismatic.
-    #[lagrange(urdf = "tests/data/robots/tree.urdf")]
+    #[lagrange(urdf = "tests/data/robots/tree.urdf", regressor)]
     pub struct Tree {}
 }
 

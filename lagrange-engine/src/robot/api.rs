@@ -89,7 +89,7 @@ fn placements(outs: &[TokenStream]) -> Vec<TokenStream> {
 }
 
 /// The `impl` block of the frames and the regressor.
-pub fn emit(name: &syn::Ident, bodies: &[Body], frames: &[Frame]) -> TokenStream {
+pub fn emit(name: &syn::Ident, bodies: &[Body], frames: &[Frame], regressor: bool) -> TokenStream {
     let n = bodies.len();
     let nf = frames.len();
     let (poses_body, poses_out) = function(bodies, &["q"], |t, x| {
@@ -105,20 +105,49 @@ pub fn emit(name: &syn::Ident, bodies: &[Body], frames: &[Frame]) -> TokenStream
         axis,
         prismatic,
     } = tables(bodies, frames);
-    let np = regressor::PER_BODY * n;
-    let params: Vec<Literal> = bodies
-        .iter()
-        .flat_map(regressor::parameters)
-        .map(lit)
-        .collect();
-    let (y_body, y_out) = function(bodies, &["q", "qdot", "qddot"], |t, x| {
-        let y = regressor::regressor(t, bodies, None, &x[0], &x[1], &x[2], true);
-        // Column-major, as nalgebra stores it.
-        (0..np)
-            .flat_map(|c| y.iter().map(move |row| row[c]))
-            .collect()
-    });
-    let y_cols: Vec<TokenStream> = y_out.chunks(n).map(|c| quote!([#(#c),*])).collect();
+    // The regressor and its parameters, where `#[lagrange(regressor)]`
+    // asks for them: `10 n` columns, the largest item of a large robot.
+    let regressor_items = if regressor {
+        let sv = quote!(::lagrange::nalgebra::SVector<S, #n>);
+        let np = regressor::PER_BODY * n;
+        let params: Vec<Literal> = bodies
+            .iter()
+            .flat_map(regressor::parameters)
+            .map(lit)
+            .collect();
+        let (y_body, y_out) = function(bodies, &["q", "qdot", "qddot"], |t, x| {
+            let y = regressor::regressor(t, bodies, None, &x[0], &x[1], &x[2], true);
+            // Column-major, as nalgebra stores it.
+            (0..np)
+                .flat_map(|c| y.iter().map(move |row| row[c]))
+                .collect()
+        });
+        let y_cols: Vec<TokenStream> = y_out.chunks(n).map(|c| quote!([#(#c),*])).collect();
+        quote! {
+        /// The inertial parameters `π` of the file, ten per body in
+        /// the coordinates' order: `m`, the first moment `m c` (3), and
+        /// the inertia about the joint frame `Ixx, Ixy, Iyy, Ixz, Iyz,
+        /// Izz`, in the body's axes (what is fixed or locked to a
+        /// body included): [`regressor`](Self::regressor)` · π = τ`.
+        pub const PARAMETERS: [f64; #np] = [#(#params),*];
+
+        /// The inertial-parameter regressor `Y(q, q̇, q̈)`: `Y π` is
+        /// [`inverse_dynamics`](Self::inverse_dynamics)`(q, q̇, q̈)` for
+        /// every `π` (ten per body, as
+        /// [`PARAMETERS`](Self::PARAMETERS)), gravity included: what
+        /// identifies masses and inertias from measured torques by
+        /// least squares.
+        #[inline]
+        pub fn regressor(&self, q: &#sv, qdot: &#sv, qddot: &#sv) -> ::lagrange::nalgebra::SMatrix<S, #n, #np> {
+            #y_body
+            ::lagrange::nalgebra::SMatrix::<S, #n, #np>::from_array_storage(
+                ::lagrange::nalgebra::ArrayStorage([#(#y_cols),*])
+            )
+        }
+        }
+    } else {
+        TokenStream::new()
+    };
     let simd = quote! {
         S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy,
         S::Element: ::lagrange::nalgebra::RealField + ::core::marker::Copy,
@@ -134,12 +163,6 @@ pub fn emit(name: &syn::Ident, bodies: &[Body], frames: &[Frame]) -> TokenStream
             /// Names of the frames: the URDF's links, every one, parents
             /// first (a frame is fixed to a moving body or to the base).
             pub const FRAMES: [&'static str; #nf] = [#(#frame_names),*];
-            /// The inertial parameters `π` of the file, ten per body in
-            /// the coordinates' order: `m`, the first moment `m c` (3), and
-            /// the inertia about the joint frame `Ixx, Ixy, Iyy, Ixz, Iyz,
-            /// Izz`, in the body's axes (what is fixed or locked to a
-            /// body included): [`regressor`](Self::regressor)` · π = τ`.
-            pub const PARAMETERS: [f64; #np] = [#(#params),*];
             const FRAME_BODY: [::core::option::Option<usize>; #nf] = [#(#frame_body),*];
             const FRAME_ROT: [[f64; 9]; #nf] = [#(#frame_rot),*];
             const FRAME_POS: [[f64; 3]; #nf] = [#(#frame_pos),*];
@@ -222,19 +245,8 @@ pub fn emit(name: &syn::Ident, bodies: &[Body], frames: &[Frame]) -> TokenStream
                 self.frame_jacobian(q, frame) * qdot
             }
 
-            /// The inertial-parameter regressor `Y(q, q̇, q̈)`: `Y π` is
-            /// [`inverse_dynamics`](Self::inverse_dynamics)`(q, q̇, q̈)` for
-            /// every `π` (ten per body, as
-            /// [`PARAMETERS`](Self::PARAMETERS)), gravity included: what
-            /// identifies masses and inertias from measured torques by
-            /// least squares.
-            #[inline]
-            pub fn regressor(&self, q: &#sv, qdot: &#sv, qddot: &#sv) -> ::lagrange::nalgebra::SMatrix<S, #n, #np> {
-                #y_body
-                ::lagrange::nalgebra::SMatrix::<S, #n, #np>::from_array_storage(
-                    ::lagrange::nalgebra::ArrayStorage([#(#y_cols),*])
-                )
-            }
+
+            #regressor_items
         }
     }
 }
@@ -265,6 +277,7 @@ pub fn emit_floating(
     bodies: &[Body],
     frames: &[Frame],
     mass: &super::tree::Mass,
+    regressor: bool,
 ) -> TokenStream {
     let n = bodies.len();
     let (nq, nv) = (7 + n, 6 + n);
@@ -287,21 +300,51 @@ pub fn emit_floating(
         axis,
         prismatic,
     } = tables(bodies, frames);
-    let np = regressor::PER_BODY * (n + 1);
-    let params: Vec<Literal> = regressor::base_parameters(mass)
-        .into_iter()
-        .chain(bodies.iter().flat_map(regressor::parameters))
-        .map(lit)
-        .collect();
-    let (y_body, y_out) = super::function_of(&[("q", nq), ("v", nv), ("a", nv)], |t, x| {
-        let fb = super::floating::base(t, mass, &x[0]);
-        let y = regressor::regressor(t, bodies, Some(&fb), &x[0][7..], &x[1], &x[2], true);
-        // Column-major, as nalgebra stores it.
-        (0..np)
-            .flat_map(|c| y.iter().map(move |row| row[c]))
-            .collect()
-    });
-    let y_cols: Vec<TokenStream> = y_out.chunks(nv).map(|c| quote!([#(#c),*])).collect();
+    // The regressor and its parameters, where `#[lagrange(regressor)]`
+    // asks for them: `10 n` columns, the largest item of a large robot.
+    let regressor_items = if regressor {
+        let sq = quote!(::lagrange::nalgebra::SVector<S, #nq>);
+        let sv = quote!(::lagrange::nalgebra::SVector<S, #nv>);
+        let np = regressor::PER_BODY * (n + 1);
+        let params: Vec<Literal> = regressor::base_parameters(mass)
+            .into_iter()
+            .chain(bodies.iter().flat_map(regressor::parameters))
+            .map(lit)
+            .collect();
+        let (y_body, y_out) = super::function_of(&[("q", nq), ("v", nv), ("a", nv)], |t, x| {
+            let fb = super::floating::base(t, mass, &x[0]);
+            let y = regressor::regressor(t, bodies, Some(&fb), &x[0][7..], &x[1], &x[2], true);
+            // Column-major, as nalgebra stores it.
+            (0..np)
+                .flat_map(|c| y.iter().map(move |row| row[c]))
+                .collect()
+        });
+        let y_cols: Vec<TokenStream> = y_out.chunks(nv).map(|c| quote!([#(#c),*])).collect();
+        quote! {
+        /// The inertial parameters `π` of the file, ten per body, the
+        /// floating base's body first, then the joints' bodies in the
+        /// coordinates' order: `m`, the first moment `m c` (3), and the
+        /// inertia about the body's frame `Ixx, Ixy, Iyy, Ixz, Iyz, Izz`,
+        /// in the body's axes (what is fixed or locked to a body
+        /// included): [`regressor`](Self::regressor)` · π = τ`.
+        pub const PARAMETERS: [f64; #np] = [#(#params),*];
+
+        /// The inertial-parameter regressor `Y(q, ν, ν̇)`: `Y π` is
+        /// [`inverse_dynamics`](Self::inverse_dynamics)`(q, ν, ν̇)` for
+        /// every `π` (ten per body, the base's first, as
+        /// [`PARAMETERS`](Self::PARAMETERS)), gravity included; its
+        /// first six rows are the base's wrench.
+        #[inline]
+        pub fn regressor(&self, q: &#sq, v: &#sv, a: &#sv) -> ::lagrange::nalgebra::SMatrix<S, #nv, #np> {
+            #y_body
+            ::lagrange::nalgebra::SMatrix::<S, #nv, #np>::from_array_storage(
+                ::lagrange::nalgebra::ArrayStorage([#(#y_cols),*])
+            )
+        }
+        }
+    } else {
+        TokenStream::new()
+    };
     let simd = quote! {
         S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy,
         S::Element: ::lagrange::nalgebra::RealField + ::core::marker::Copy,
@@ -318,13 +361,6 @@ pub fn emit_floating(
             /// Names of the frames: the URDF's links, every one, parents
             /// first (a frame is fixed to a moving body or to the base's).
             pub const FRAMES: [&'static str; #nf] = [#(#frame_names),*];
-            /// The inertial parameters `π` of the file, ten per body, the
-            /// floating base's body first, then the joints' bodies in the
-            /// coordinates' order: `m`, the first moment `m c` (3), and the
-            /// inertia about the body's frame `Ixx, Ixy, Iyy, Ixz, Iyz, Izz`,
-            /// in the body's axes (what is fixed or locked to a body
-            /// included): [`regressor`](Self::regressor)` · π = τ`.
-            pub const PARAMETERS: [f64; #np] = [#(#params),*];
             const FRAME_BODY: [::core::option::Option<usize>; #nf] = [#(#frame_body),*];
             const FRAME_ROT: [[f64; 9]; #nf] = [#(#frame_rot),*];
             const FRAME_POS: [[f64; 3]; #nf] = [#(#frame_pos),*];
@@ -432,18 +468,8 @@ pub fn emit_floating(
                 self.frame_jacobian(q, frame) * v
             }
 
-            /// The inertial-parameter regressor `Y(q, ν, ν̇)`: `Y π` is
-            /// [`inverse_dynamics`](Self::inverse_dynamics)`(q, ν, ν̇)` for
-            /// every `π` (ten per body, the base's first, as
-            /// [`PARAMETERS`](Self::PARAMETERS)), gravity included; its
-            /// first six rows are the base's wrench.
-            #[inline]
-            pub fn regressor(&self, q: &#sq, v: &#sv, a: &#sv) -> ::lagrange::nalgebra::SMatrix<S, #nv, #np> {
-                #y_body
-                ::lagrange::nalgebra::SMatrix::<S, #nv, #np>::from_array_storage(
-                    ::lagrange::nalgebra::ArrayStorage([#(#y_cols),*])
-                )
-            }
+
+            #regressor_items
         }
     }
 }

@@ -39,6 +39,10 @@ struct Input {
     locks: Vec<(Ident, Lock)>,
     /// `floating`: the root link is a free body.
     floating: bool,
+    /// `regressor`: also write the inertial-parameter regressor and the
+    /// parameters `π` (opt-in, as the energy models' regressor: `10 n`
+    /// columns, the largest item of a large robot).
+    regressor: bool,
     /// A robot written as bodies and joints: its links and joints (and
     /// `path` is a string of its name), instead of a file.
     inline: Option<language::Inline>,
@@ -104,11 +108,27 @@ pub fn is_robot(input: &TokenStream) -> bool {
     probe.parse2(input.clone()).unwrap_or(false)
 }
 
+/// `regressor` in a robot's `#[lagrange(..)]`: a flag, given once.
+fn regressor_flag(m: &syn::meta::ParseNestedMeta, regressor: &mut bool) -> syn::Result<()> {
+    if m.input.peek(Token![=]) || m.input.peek(syn::token::Paren) {
+        return Err(m.error(
+            "a robot's `regressor` takes no value: `#[lagrange(regressor)]` writes the regressor in every inertial \
+             parameter of every body",
+        ));
+    }
+    if *regressor {
+        return Err(m.error("`regressor` is given twice"));
+    }
+    *regressor = true;
+    Ok(())
+}
+
 fn parse(input: TokenStream) -> syn::Result<Input> {
     let parser = |stream: ParseStream| -> syn::Result<Input> {
         let mut attrs = stream.call(Attribute::parse_outer)?;
         let mut path = None;
         let mut floating = false;
+        let mut regressor = false;
         let mut error: Option<syn::Error> = None;
         attrs.retain(|a| {
             if !a.path().is_ident("lagrange") {
@@ -129,11 +149,13 @@ fn parse(input: TokenStream) -> syn::Result<Input> {
                     }
                     floating = true;
                     Ok(())
+                } else if m.path.is_ident("regressor") {
+                    regressor_flag(&m, &mut regressor)
                 } else {
                     Err(m.error(
-                        "a robot from URDF takes `#[lagrange(urdf = \"path\")]`, or `#[lagrange(urdf = \"path\", \
-                         floating)]` for a floating base, and nothing else: its dynamics are Featherstone's \
-                         recursions, not derived from T and V",
+                        "a robot from URDF takes `#[lagrange(urdf = \"path\")]`, with `floating` for a floating \
+                         base and `regressor` for the inertial-parameter regressor, and nothing else: its dynamics \
+                         are Featherstone's recursions, not derived from T and V",
                     ))
                 }
             });
@@ -207,6 +229,7 @@ fn parse(input: TokenStream) -> syn::Result<Input> {
             path,
             locks,
             floating,
+            regressor,
             inline: None,
         })
     };
@@ -218,13 +241,31 @@ fn parse(input: TokenStream) -> syn::Result<Input> {
 fn parse_inline(input: TokenStream) -> syn::Result<Input> {
     crate::parse::groups_nest_within_the_limit(&input)?;
     let parser = |stream: ParseStream| -> syn::Result<Input> {
-        let attrs = stream.call(Attribute::parse_outer)?;
-        if let Some(a) = attrs.iter().find(|a| a.path().is_ident("lagrange")) {
-            return Err(syn::Error::new_spanned(
-                a,
-                "a robot written as bodies and joints takes no `#[lagrange(..)]` options: a floating base is the \
-                 joint `floating base -> trunk`, its dynamics are Featherstone's recursions",
-            ));
+        let mut attrs = stream.call(Attribute::parse_outer)?;
+        let mut regressor = false;
+        let mut error: Option<syn::Error> = None;
+        attrs.retain(|a| {
+            if !a.path().is_ident("lagrange") {
+                return true;
+            }
+            let r = a.parse_nested_meta(|m| {
+                if m.path.is_ident("regressor") {
+                    regressor_flag(&m, &mut regressor)
+                } else {
+                    Err(m.error(
+                        "a robot written as bodies and joints takes one `#[lagrange(..)]` option, `regressor` (the \
+                         inertial-parameter regressor): a floating base is the joint `floating base -> trunk`, its \
+                         dynamics are Featherstone's recursions",
+                    ))
+                }
+            });
+            if let Err(e) = r {
+                error.get_or_insert(e);
+            }
+            false
+        });
+        if let Some(e) = error {
+            return Err(e);
         }
         let vis: Visibility = stream.parse()?;
         stream.parse::<Token![struct]>()?;
@@ -253,6 +294,7 @@ fn parse_inline(input: TokenStream) -> syn::Result<Input> {
             name,
             locks,
             floating: inline.floating,
+            regressor,
             inline: Some(inline),
         })
     };
@@ -374,12 +416,18 @@ pub fn expand(input: TokenStream) -> TokenStream {
     }) {
         Ok((bodies, root, frames)) if input.floating => {
             let mut items = floating::emit(&input, &bodies, &root);
-            items.extend(api::emit_floating(&input.name, &bodies, &frames, &root));
+            items.extend(api::emit_floating(
+                &input.name,
+                &bodies,
+                &frames,
+                &root,
+                input.regressor,
+            ));
             items
         }
         Ok((bodies, _, frames)) => {
             let mut items = emit(&input, &bodies);
-            items.extend(api::emit(&input.name, &bodies, &frames));
+            items.extend(api::emit(&input.name, &bodies, &frames, input.regressor));
             items
         }
         Err(e) => {

@@ -232,9 +232,19 @@ fn urdf_floating_misuse_is_an_error() {
         error_of(&text).contains("the floating base carries no mass"),
         "{text}"
     );
+    let text = expand_with("urdf = \"x.urdf\", regressor = true", "");
+    assert!(
+        error_of(&text).contains("a robot's `regressor` takes no value"),
+        "{text}"
+    );
+    let text = expand_with("urdf = \"x.urdf\", regressor, regressor", "");
+    assert!(
+        error_of(&text).contains("`regressor` is given twice"),
+        "{text}"
+    );
     let text = expand_with("urdf = \"x.urdf\", fixed", "");
     assert!(
-        error_of(&text).contains("floating)]` for a floating base"),
+        error_of(&text).contains("with `floating` for a floating base and `regressor` for the"),
         "{text}"
     );
 }
@@ -738,4 +748,26 @@ fn inline_chains_print_how_their_code_grows() {
             "M grows quadratically: {before:?} to {after:?}"
         );
     }
+}
+
+/// The regressor is opt-in on both routes: written only where
+/// `#[lagrange(regressor)]` asks for it, and any other option refused.
+#[test]
+fn the_regressor_is_written_only_where_asked_for() {
+    let without = expand_inline(TREE);
+    let tokens: TokenStream = format!("#[lagrange(regressor)] pub struct Robot {{ {TREE} }}")
+        .parse()
+        .unwrap();
+    let with = lagrange_engine::expand(tokens).to_string();
+    assert!(!with.contains("compile_error"), "{with:.300}");
+    assert!(with.contains("pub fn regressor") && with.contains("PARAMETERS"));
+    assert!(!without.contains("pub fn regressor") && !without.contains("PARAMETERS"));
+    let tokens: TokenStream = format!("#[lagrange(jacobians)] pub struct Robot {{ {TREE} }}")
+        .parse()
+        .unwrap();
+    let refused = lagrange_engine::expand(tokens).to_string();
+    assert!(
+        refused.contains("takes one `#[lagrange(..)]` option, `regressor`"),
+        "{refused:.300}"
+    );
 }
