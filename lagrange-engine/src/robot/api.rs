@@ -124,26 +124,26 @@ pub fn emit(name: &syn::Ident, bodies: &[Body], frames: &[Frame], regressor: boo
         });
         let y_cols: Vec<TokenStream> = y_out.chunks(n).map(|c| quote!([#(#c),*])).collect();
         quote! {
-        /// The inertial parameters `π` of the file, ten per body in
-        /// the coordinates' order: `m`, the first moment `m c` (3), and
-        /// the inertia about the joint frame `Ixx, Ixy, Iyy, Ixz, Iyz,
-        /// Izz`, in the body's axes (what is fixed or locked to a
-        /// body included): [`regressor`](Self::regressor)` · π = τ`.
-        pub const PARAMETERS: [f64; #np] = [#(#params),*];
+            /// The inertial parameters `π` of the file, ten per body in
+            /// the coordinates' order: `m`, the first moment `m c` (3), and
+            /// the inertia about the joint frame `Ixx, Ixy, Iyy, Ixz, Iyz,
+            /// Izz`, in the body's axes (what is fixed or locked to a
+            /// body included): [`regressor`](Self::regressor)` · π = τ`.
+            pub const PARAMETERS: [f64; #np] = [#(#params),*];
 
-        /// The inertial-parameter regressor `Y(q, q̇, q̈)`: `Y π` is
-        /// [`inverse_dynamics`](Self::inverse_dynamics)`(q, q̇, q̈)` for
-        /// every `π` (ten per body, as
-        /// [`PARAMETERS`](Self::PARAMETERS)), gravity included: what
-        /// identifies masses and inertias from measured torques by
-        /// least squares.
-        #[inline]
-        pub fn regressor(&self, q: &#sv, qdot: &#sv, qddot: &#sv) -> ::lagrange::nalgebra::SMatrix<S, #n, #np> {
-            #y_body
-            ::lagrange::nalgebra::SMatrix::<S, #n, #np>::from_array_storage(
-                ::lagrange::nalgebra::ArrayStorage([#(#y_cols),*])
-            )
-        }
+            /// The inertial-parameter regressor `Y(q, q̇, q̈)`: `Y π` is
+            /// [`inverse_dynamics`](Self::inverse_dynamics)`(q, q̇, q̈)` for
+            /// every `π` (ten per body, as
+            /// [`PARAMETERS`](Self::PARAMETERS)), gravity included: what
+            /// identifies masses and inertias from measured torques by
+            /// least squares.
+            #[inline]
+            pub fn regressor(&self, q: &#sv, qdot: &#sv, qddot: &#sv) -> ::lagrange::nalgebra::SMatrix<S, #n, #np> {
+                #y_body
+                ::lagrange::nalgebra::SMatrix::<S, #n, #np>::from_array_storage(
+                    ::lagrange::nalgebra::ArrayStorage([#(#y_cols),*])
+                )
+            }
         }
     } else {
         TokenStream::new()
@@ -321,26 +321,26 @@ pub fn emit_floating(
         });
         let y_cols: Vec<TokenStream> = y_out.chunks(nv).map(|c| quote!([#(#c),*])).collect();
         quote! {
-        /// The inertial parameters `π` of the file, ten per body, the
-        /// floating base's body first, then the joints' bodies in the
-        /// coordinates' order: `m`, the first moment `m c` (3), and the
-        /// inertia about the body's frame `Ixx, Ixy, Iyy, Ixz, Iyz, Izz`,
-        /// in the body's axes (what is fixed or locked to a body
-        /// included): [`regressor`](Self::regressor)` · π = τ`.
-        pub const PARAMETERS: [f64; #np] = [#(#params),*];
+            /// The inertial parameters `π` of the file, ten per body, the
+            /// floating base's body first, then the joints' bodies in the
+            /// coordinates' order: `m`, the first moment `m c` (3), and the
+            /// inertia about the body's frame `Ixx, Ixy, Iyy, Ixz, Iyz, Izz`,
+            /// in the body's axes (what is fixed or locked to a body
+            /// included): [`regressor`](Self::regressor)` · π = τ`.
+            pub const PARAMETERS: [f64; #np] = [#(#params),*];
 
-        /// The inertial-parameter regressor `Y(q, ν, ν̇)`: `Y π` is
-        /// [`inverse_dynamics`](Self::inverse_dynamics)`(q, ν, ν̇)` for
-        /// every `π` (ten per body, the base's first, as
-        /// [`PARAMETERS`](Self::PARAMETERS)), gravity included; its
-        /// first six rows are the base's wrench.
-        #[inline]
-        pub fn regressor(&self, q: &#sq, v: &#sv, a: &#sv) -> ::lagrange::nalgebra::SMatrix<S, #nv, #np> {
-            #y_body
-            ::lagrange::nalgebra::SMatrix::<S, #nv, #np>::from_array_storage(
-                ::lagrange::nalgebra::ArrayStorage([#(#y_cols),*])
-            )
-        }
+            /// The inertial-parameter regressor `Y(q, ν, ν̇)`: `Y π` is
+            /// [`inverse_dynamics`](Self::inverse_dynamics)`(q, ν, ν̇)` for
+            /// every `π` (ten per body, the base's first, as
+            /// [`PARAMETERS`](Self::PARAMETERS)), gravity included; its
+            /// first six rows are the base's wrench.
+            #[inline]
+            pub fn regressor(&self, q: &#sq, v: &#sv, a: &#sv) -> ::lagrange::nalgebra::SMatrix<S, #nv, #np> {
+                #y_body
+                ::lagrange::nalgebra::SMatrix::<S, #nv, #np>::from_array_storage(
+                    ::lagrange::nalgebra::ArrayStorage([#(#y_cols),*])
+                )
+            }
         }
     } else {
         TokenStream::new()
