@@ -702,10 +702,10 @@ mod tests {
         let first = DVector::from_vec(vec![
             n0,
             along * n0,
-            across * (a2 + c),
+            across * (a2 - c),
             n1,
             along * n1,
-            across * (a1 - c),
+            across * (a1 + c),
         ]);
         let unknown = |contact, tangential, second| Unknown {
             contact,
@@ -726,8 +726,8 @@ mod tests {
 
     #[test]
     fn the_rod_on_two_supports_keeps_both_discs_up_to_its_closed_form_push() {
-        // Its closed-form breakaway push, 4.5990 (`PushedRod::breakaway_push`).
-        for p in [3.0, 3.7, 3.72, 3.9, 4.2, 4.5, 4.59] {
+        // Its closed-form breakaway push, 4.6429 (`PushedRod::breakaway_push`).
+        for p in [3.0, 3.7, 3.72, 3.9, 4.2, 4.5, 4.6, 4.64] {
             let (responses, first, unknowns, laws) = rod(p);
             let x = admissible(&responses, first.clone(), &unknowns, &laws);
             let uses = [
@@ -738,6 +738,14 @@ mod tests {
             for u in uses {
                 assert!(u < 1.0, "p = {p}: {uses:?}");
             }
+        }
+        // Beyond it, no distribution is admissible: the least use is above
+        // 1 on some disc.
+        for p in [4.65, 4.8] {
+            let (responses, first, unknowns, laws) = rod(p);
+            let x = admissible(&responses, first, &unknowns, &laws);
+            let most = (x[1].hypot(x[2]) / (0.5 * x[0])).max(x[4].hypot(x[5]) / (0.5 * x[3]));
+            assert!(most > 1.0, "p = {p}: {most}");
         }
     }
 }

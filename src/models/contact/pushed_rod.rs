@@ -64,13 +64,15 @@ impl PushedRod<f64> {
     /// The friction across the rod (the table's `y` for a rod along `x`)
     /// that each support must carry, for a push of size `p` at rest along
     /// `x`: the push's component across, `p sin a`, shared so that the
-    /// moment about the centre of mass is nil, `−p sin a (a2 + c, a1 − c)
-    /// / (a1 + a2)`. Only the friction along the rod is shared freely.
+    /// moment about the centre of mass is nil (`−a1 F₁ + a2 F₂ + c p sin a
+    /// = 0`), `−p sin a (a2 − c, a1 + c) / (a1 + a2)`: the support nearer
+    /// the push carries more. Only the friction along the rod is shared
+    /// freely.
     pub fn across(&self, p: f64) -> (f64, f64) {
         let (span, across) = (self.a1 + self.a2, p * self.a.sin());
         (
-            -across * (self.a2 + self.c) / span,
-            -across * (self.a1 - self.c) / span,
+            -across * (self.a2 - self.c) / span,
+            -across * (self.a1 + self.c) / span,
         )
     }
 

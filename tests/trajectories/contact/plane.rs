@@ -4,7 +4,7 @@
 //! table, and a die thrown onto it that comes to rest.
 
 use lagrange::contact::{Cause, ContactSettings, Mode};
-use lagrange::models::{BallOnTable, Die, PushedPuck, quaternion};
+use lagrange::models::{BallOnTable, Die, PushedPuck, PushedRod, quaternion};
 use lagrange::nalgebra::{UnitQuaternion, Vector3};
 use lagrange::prelude::*;
 
@@ -84,6 +84,100 @@ fn a_puck_pushed_across_a_rough_table_breaks_away_at_the_disc_of_friction_in_any
             );
         }
     }
+}
+
+/// A rod on two rough supports (loads 0.4 and 0.6 of its weight, behind
+/// and ahead of its centre of mass), pushed in the table's plane at 30°
+/// to its axis, 0.3 ahead of its centre of mass, from 0.9 of its
+/// closed-form breakaway push `P_b` (`PushedRod::breakaway_push`, 0.9466
+/// μ m g: the push's moment loads the front disc across the rod). While
+/// both supports stick, their friction along the rod is not determined;
+/// every distribution the run takes must lie inside both discs, and the
+/// rod must hold until `t_b = (P_b − p0)/rate`, where no admissible
+/// distribution is left, and break away there. Shared in proportion to
+/// the loads instead, the friction would leave the front disc 3 % before
+/// `P_b` (`PushedRod::proportional_use`).
+#[test]
+fn a_rod_on_two_rough_supports_holds_inside_both_discs_and_breaks_away_at_the_closed_form_push() {
+    let (m, j, a1, a2, c, g, mu, rate) = (1.0, 0.1, 0.6, 0.4, 0.3, 9.81, 0.5, 0.5);
+    let a = 30f64.to_radians();
+    let p_b = PushedRod::new(m, j, a1, a2, c, g, mu, a, 0.0, rate).breakaway_push();
+    let p0 = 0.9 * p_b;
+    let rod = PushedRod::new(m, j, a1, a2, c, g, mu, a, p0, rate);
+    let t_b = (p_b - p0) / rate;
+    // To a little after the breakaway: both supports then slip from rest,
+    // their slips turning fastest while they are smallest, and the steps
+    // are short (about 4,700 in the first 0.02 s when this was written,
+    // against 9 for the 0.93 s it holds).
+    let run = run(&rod, ([0.0; 5], [0.0; 5]), &times(t_b + 0.02, 100)).unwrap();
+    let switches = run.switches();
+    let after: Vec<_> = switches[2..]
+        .iter()
+        .map(|s| (s.name, s.cause, s.to))
+        .collect();
+    println!(
+        "breaks away at {} ({:.1e} s from the closed form, P_b = {p_b}), {} steps",
+        switches[2].t,
+        switches[2].t - t_b,
+        run.trajectory().stats().steps_accepted
+    );
+    assert!(
+        switches[..2]
+            .iter()
+            .all(|s| s.cause == Cause::Start && s.to == Mode::Stuck)
+    );
+    // Both discs are full at the breakaway (the only admissible
+    // distribution left), and both supports set off.
+    assert_eq!(
+        after,
+        [
+            ("back", Cause::StickLimit, Mode::Slipping),
+            ("front", Cause::StickLimit, Mode::Slipping)
+        ]
+    );
+    // The margin is smooth in t while it holds, and located to the event
+    // tolerance (rounding of forces of 5 N over the push's rate of 0.5
+    // N/s: some 1e-14 s; 1.1e-13 s when this was written).
+    assert!(
+        (switches[2].t - t_b).abs() < 1e-9,
+        "broke away at {}, closed form {t_b}",
+        switches[2].t
+    );
+    let (n_back, n_front) = rod.loads();
+    let mut uses = (0.0f64, 0.0f64);
+    for (sample, forces) in run.trajectory().iter().zip(run.forces()) {
+        if sample.t >= switches[2].t {
+            break;
+        }
+        // At rest: Dop853's steps of 0.1 s while it holds, each of a
+        // local error within its atol of 1e-12 (1.3e-12 m when this was
+        // written).
+        assert!(
+            sample.q.norm() < 1e-11,
+            "moved by {:e} at {}",
+            sample.q.norm(),
+            sample.t
+        );
+        // Normal forces of 4 and 6 N, each support's friction within its
+        // disc, to rounding: 1e-12.
+        for (i, n) in [n_back, n_front].into_iter().enumerate() {
+            assert!((forces.normal[i] - n).abs() < 1e-12);
+            let size = forces.friction[i].hypot(forces.second_friction[i]);
+            assert!(
+                size <= mu * forces.normal[i] + 1e-12,
+                "support {i} at {}: friction {size} outside its disc {}",
+                sample.t,
+                mu * forces.normal[i]
+            );
+            let u = size / (mu * forces.normal[i]);
+            if i == 0 {
+                uses.0 = uses.0.max(u)
+            } else {
+                uses.1 = uses.1.max(u)
+            }
+        }
+    }
+    println!("largest uses of the discs while it holds: {uses:?}");
 }
 
 /// A uniform ball thrown along a table, spinning about a horizontal axis,
