@@ -43,8 +43,12 @@
 //!
 //! A contact whose friction acts in a plane bounds `S(ρ)` by a disc,
 //! `|Fᵢ| ≤ ρ μ_s Nᵢ` with `Fᵢ` two components (a second-order cone), not
-//! two half-spaces: the set is convex still, and each test of it, and the
-//! projection, is a barrier method's (see [`Cones::feasible`]).
+//! two half-spaces: the set is convex still. On a null space of one
+//! dimension (a rod on two supports) each disc cuts an interval from the
+//! line, found from the roots of a quadratic, and the test and the
+//! projection are exact ([`Cones::on_a_line`]); on a larger one, each test
+//! of it, and the projection, is a barrier method's (see
+//! [`Cones::feasible`]).
 
 use nalgebra::{DMatrix, DVector, RealField};
 
@@ -264,6 +268,91 @@ impl<S: RealField + Copy> Cones<S> {
         let inside = self.feasible(rho)?;
         self.minimize(inside, rho, false)
     }
+
+    /// On a null space of one dimension (`k = 1`), exactly: `S(ρ)` is an
+    /// interval, the intersection of each linear bound's half-line and
+    /// each disc's interval, and the point nearest the origin is the
+    /// origin clamped into it; `None` where it is empty. A disc on the
+    /// line `z` is `|f₀ + r z| ≤ τ₀ + τ₁ z` (`τ = ρ μ_s N`): the second-order
+    /// cone cut by a line, an interval, bounded by the roots of `q(z) = A
+    /// z² + 2 B z + C` (`A = |r|² − τ₁²`, `B = f₀·r − τ₀ τ₁`, `C = |f₀|² −
+    /// τ₀²`) on the side where `τ ≥ 0`: between them where `A > 0`, beyond
+    /// the one on the rising side of `τ` where `A < 0`. Microseconds,
+    /// where the barrier method takes milliseconds.
+    fn on_a_line(&self, rho: S) -> Option<DVector<S>> {
+        debug_assert_eq!(self.k, 1);
+        let zero = S::zero();
+        let (mut lo, mut hi) = (-S::one() / zero, S::one() / zero);
+        let tiny = nalgebra::convert::<f64, S>(1e-13) * self.scale;
+        for b in &self.bounds {
+            let (c, d) = (b.c0[0] + b.c1[0] * rho, b.d0 + b.d1 * rho);
+            if c.abs() <= tiny {
+                if d < -tiny {
+                    return None;
+                }
+            } else if c > zero {
+                hi = hi.min(d / c);
+            } else {
+                lo = lo.max(d / c);
+            }
+        }
+        for d in &self.discs {
+            let (r0, r1) = (d.rows.0[0], d.rows.1[0]);
+            let (t0, t1) = (rho * d.mu * d.n0, rho * d.mu * d.n[0]);
+            let a = r0 * r0 + r1 * r1 - t1 * t1;
+            let b = d.f0.0 * r0 + d.f0.1 * r1 - t0 * t1;
+            let c = d.f0.0 * d.f0.0 + d.f0.1 * d.f0.1 - t0 * t0;
+            // τ ≥ 0.
+            if t1.abs() <= tiny {
+                if t0 < zero {
+                    return None;
+                }
+            } else if t1 > zero {
+                lo = lo.max(-t0 / t1);
+            } else {
+                hi = hi.min(-t0 / t1);
+            }
+            let discriminant = b * b - a * c;
+            if a == zero {
+                // q linear: 2 B z + C ≤ 0.
+                if b > zero {
+                    hi = hi.min(-c / (b + b));
+                } else if b < zero {
+                    lo = lo.max(-c / (b + b));
+                } else if c > zero {
+                    return None;
+                }
+                continue;
+            }
+            if discriminant < zero {
+                // q of one sign: ≤ 0 nowhere where A > 0 (empty), and
+                // everywhere where A < 0 (τ ≥ 0 is then the bound).
+                if a > zero {
+                    return None;
+                }
+                continue;
+            }
+            // The roots without cancellation: q = −(B + sign(B) √D), z =
+            // q / A and C / q.
+            let root = discriminant.sqrt();
+            let q = -(b + if b < zero { -root } else { root });
+            let (z1, z2) = if q == zero {
+                (zero, zero)
+            } else {
+                let (u, v) = (q / a, c / q);
+                (u.min(v), u.max(v))
+            };
+            if a > zero {
+                lo = lo.max(z1);
+                hi = hi.min(z2);
+            } else if t1 > zero {
+                lo = lo.max(z2);
+            } else {
+                hi = hi.min(z1);
+            }
+        }
+        (lo <= hi).then(|| DVector::from_element(1, zero.max(lo).min(hi)))
+    }
 }
 
 /// The forces of `first` moved along the null space of `responses` (the
@@ -389,9 +478,14 @@ pub(super) fn admissible<S: RealField + Copy>(
     // intervals or Lemke's method; with discs, the barrier method's (the
     // bisection only asks whether a point exists).
     let planar = cones.discs.is_empty();
+    // Exact, by intervals or Lemke's method: without discs, or with them on
+    // a line.
+    let exact = planar || k == 1;
     let project = |rho: S| {
         if planar {
             project(&cones.bounds, k, rho)
+        } else if k == 1 {
+            cones.on_a_line(rho)
         } else {
             cones.feasible(rho)
         }
@@ -424,7 +518,7 @@ pub(super) fn admissible<S: RealField + Copy>(
     // its distance from the limit where that is larger than rounding (the
     // margin it leaves is then `(1 − ρ*)/2` of the cones to that share; it
     // is exact where it matters, as `ρ*` reaches 1).
-    let coarse = if planar {
+    let coarse = if exact {
         zero
     } else {
         nalgebra::convert::<f64, S>(1e-6)
@@ -438,7 +532,7 @@ pub(super) fn admissible<S: RealField + Copy>(
         }
     }
     let target = if hi <= one { (one + hi) / two } else { hi };
-    let nearest = if planar {
+    let nearest = if exact {
         project(target)
     } else {
         cones.project(target)
@@ -738,6 +832,23 @@ mod tests {
             for u in uses {
                 assert!(u < 1.0, "p = {p}: {uses:?}");
             }
+        }
+        // On the line of its null space the discs are solved exactly: 1e-9
+        // of the push on either side of the closed form (4.642930807794184,
+        // `PushedRod::breakaway_push`, bisected to rounding) is told apart,
+        // the least use there within 1e-8 of 1 (the use is linear in the
+        // push near it, of slope about 1/P).
+        let p_b = 4.642930807794184;
+        for (p, holds) in [(p_b * (1.0 - 1e-9), true), (p_b * (1.0 + 1e-9), false)] {
+            let (responses, first, unknowns, laws) = rod(p);
+            let x = admissible(&responses, first, &unknowns, &laws);
+            let uses = [
+                x[1].hypot(x[2]) / (0.5 * x[0]),
+                x[4].hypot(x[5]) / (0.5 * x[3]),
+            ];
+            let most = uses[0].max(uses[1]);
+            assert_eq!(most <= 1.0, holds, "p = {p}: {uses:?}");
+            assert!((most - 1.0).abs() < 1e-8, "p = {p}: {uses:?}");
         }
         // Beyond it, no distribution is admissible: the least use is above
         // 1 on some disc.

@@ -137,7 +137,7 @@ fn a_rod_on_two_rough_supports_holds_inside_both_discs_and_breaks_away_at_the_cl
     );
     // The margin is smooth in t while it holds, and located to the event
     // tolerance (rounding of forces of 5 N over the push's rate of 0.5
-    // N/s: some 1e-14 s; 1.1e-13 s when this was written).
+    // N/s: some 1e-14 s; 4.4e-15 s when this was written).
     assert!(
         (switches[2].t - t_b).abs() < 1e-9,
         "broke away at {}, closed form {t_b}",
