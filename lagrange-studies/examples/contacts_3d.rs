@@ -12,8 +12,10 @@
 //! Writes `docs/contacts/contacts_3d.svg`: the ball thrown with backspin
 //! (its velocity along the throw, which turns back once it rolls) and the
 //! die coming to rest (its height and its energy); and
-//! `docs/contacts/tippe_top.svg`: the tippe top's tilt and Jellett's
-//! integral over time.
+//! `docs/contacts/tippe_top.svg`: two tippe tops' tilts and Jellett's
+//! integrals over time (Leine and Glocker's, which turns over part way,
+//! and the same top with its moments exchanged, which turns over fully);
+//! and prints how far the top turns, by its moments.
 
 use lagrange::contact::{Cause, ContactSettings, ContactTrajectory};
 use lagrange::models::{BallOnTable, Die, PushedPuck, TippeTop, quaternion};
@@ -137,52 +139,79 @@ fn main() -> Result<(), Box<dyn Error>> {
     );
     mujoco_die(&q)?;
 
-    // The tippe top, spun about the vertical, turns over while it slides.
-    // Its slip comes to rest turning with the precession, where Coulomb's
-    // law is stiff: `direction_speed` 1e-4 m/s (at the default 1e-6 the
-    // run takes its 100,000 steps at the stop).
-    let top = TippeTop::leine_glocker(0.1);
-    let spun = top.spun(0.1, 180.0);
-    let turning = run_with(
-        &top,
-        spun,
-        4.0,
-        800,
-        1e-12,
-        ContactSettings {
-            direction_speed: 1e-4,
-            ..ContactSettings::default()
-        },
-    )?;
-    let j0 = top.jellett(&spun.0.into(), &spun.1.into());
-    let e0 = top.energy(0.0, &spun.0.into(), &spun.1.into());
-    let (mut jellett, mut rise, mut previous) = (0.0f64, 0.0f64, e0);
-    let mut horizontal = None;
-    for sample in turning.trajectory().iter() {
-        jellett = jellett.max((top.jellett(&sample.q, &sample.qdot) - j0).abs() / j0.abs());
-        let energy = top.energy(sample.t, &sample.q, &sample.qdot);
-        rise = rise.max(energy - previous);
-        previous = energy;
-        if horizontal.is_none() && top.tilt(&sample.q) > core::f64::consts::FRAC_PI_2 {
-            horizontal = Some(sample.t);
+    // The tippe top, spun about the vertical, turns over while it slides:
+    // Leine and Glocker's part way (its slip stops at 155°), the same top
+    // with its moments exchanged fully. Its slip comes to rest turning with
+    // the precession, where Coulomb's law is stiff: `direction_speed` 1e-4
+    // m/s (at the default 1e-6 the run takes its 100,000 steps at the
+    // stop).
+    let settings = ContactSettings {
+        direction_speed: 1e-4,
+        ..ContactSettings::default()
+    };
+    let mut tops = Vec::new();
+    for (name, top) in [
+        ("Leine and Glocker's", TippeTop::leine_glocker(0.1)),
+        ("oblate", TippeTop::oblate(0.1)),
+    ] {
+        let spun = top.spun(0.1, 180.0);
+        let turning = run_with(&top, spun, 5.0, 1000, 1e-13, settings)?;
+        let j0 = top.jellett(&spun.0.into(), &spun.1.into());
+        let e0 = top.energy(0.0, &spun.0.into(), &spun.1.into());
+        let (mut jellett, mut rise, mut previous) = (0.0f64, 0.0f64, e0);
+        let mut horizontal = None;
+        for sample in turning.trajectory().iter() {
+            jellett = jellett.max((top.jellett(&sample.q, &sample.qdot) - j0).abs() / j0.abs());
+            let energy = top.energy(sample.t, &sample.q, &sample.qdot);
+            rise = rise.max(energy - previous);
+            previous = energy;
+            if horizontal.is_none() && top.tilt(&sample.q) > core::f64::consts::FRAC_PI_2 {
+                horizontal = Some(sample.t);
+            }
         }
+        let rolls = turning
+            .switches()
+            .iter()
+            .find(|s| s.cause == Cause::SlideStopped)
+            .ok_or("the tippe top never stopped slipping")?;
+        println!(
+            "\ntippe top ({name}, C/A = {:.3}, μ = 0.1), tilted 0.1 rad, 180 rad/s about the \
+             vertical, 5 s with Dop853 at 1e-13: through the horizontal by {:.3} s (samples every 5 ms), its slip stops \
+             at {:.4} s at a tilt of {:.4} rad ({:.1}°), then it rolls; Jellett's integral kept \
+             to {jellett:.1e} relative, the energy's largest rise between samples {:.1e} of the \
+             start's; {} steps",
+            top.i3 / top.i1,
+            horizontal.ok_or("the tippe top never turned over")?,
+            rolls.t,
+            top.tilt(&rolls.q),
+            top.tilt(&rolls.q).to_degrees(),
+            rise / e0,
+            turning.trajectory().stats().steps_accepted
+        );
+        tops.push((name, top, turning, j0));
     }
-    let rolls = turning
-        .switches()
-        .iter()
-        .find(|s| s.cause == Cause::SlideStopped)
-        .ok_or("the tippe top never stopped slipping")?;
-    println!(
-        "\ntippe top (Leine and Glocker's, μ = 0.1), tilted 0.1 rad, 180 rad/s about the \
-         vertical: through the horizontal by {:.2} s (samples every 5 ms), its slip stops at \
-         {:.4} s at a tilt of {:.3} rad, then it rolls; Jellett's integral kept to {jellett:.1e} \
-         relative, the energy's largest rise between samples {:.1e} of the start's; {} steps",
-        horizontal.ok_or("the tippe top never turned over")?,
-        rolls.t,
-        top.tilt(&rolls.q),
-        rise / e0,
-        turning.trajectory().stats().steps_accepted
-    );
+    // How far the top turns before its slip stops, by its moments: the
+    // moment along the axis varied, that across it 8e-7 kg m² (7e-7 for
+    // the oblate top's 8/7), spun alike.
+    println!("\nC/A      tilt where the slip stops [rad]");
+    for (i1, i3) in [
+        (8e-7, 6.6e-7),
+        (8e-7, 7e-7),
+        (8e-7, 7.8e-7),
+        (8e-7, 8e-7),
+        (8e-7, 8.4e-7),
+        (8e-7, 8.8e-7),
+        (7e-7, 8e-7),
+    ] {
+        let top = TippeTop::new(6e-3, 0.015, 0.003, i1, i3, 9.81, 0.1);
+        let turning = run_with(&top, top.spun(0.1, 180.0), 6.0, 10, 1e-12, settings)?;
+        let stop = turning
+            .switches()
+            .iter()
+            .find(|s| s.cause == Cause::SlideStopped)
+            .map_or(f64::NAN, |s| top.tilt(&s.q));
+        println!("{:<8.3} {stop:.4}", i3 / i1);
+    }
 
     let path =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/contacts/contacts_3d.svg");
@@ -190,43 +219,53 @@ fn main() -> Result<(), Box<dyn Error>> {
     draw(&path, (&backspun, t_roll), (&die, &thrown))?;
     println!("\nwrote {}", path.display());
     let path = path.with_file_name("tippe_top.svg");
-    draw_top(&path, &top, &turning, j0)?;
+    draw_top(&path, &tops)?;
     println!("wrote {}", path.display());
     Ok(())
 }
 
-/// The tippe top's tilt, and Jellett's integral's relative change.
+/// The tippe tops' tilts, and their Jellett's integrals' relative changes.
 fn draw_top(
     path: &std::path::Path,
-    top: &TippeTop<f64>,
-    run: &ContactTrajectory<f64, 7, 1>,
-    j0: f64,
+    tops: &[(&str, TippeTop<f64>, ContactTrajectory<f64, 7, 1>, f64)],
 ) -> Result<(), Box<dyn Error>> {
     let root = SVGBackend::new(path, (1200, 480)).into_drawing_area();
     root.fill(&WHITE)?;
     let (left, right) = root.split_horizontally(600);
     let mut chart = ChartBuilder::on(&left)
-        .caption("tippe top: the tilt of its axis", ("sans-serif", 18))
+        .caption("tippe tops: the tilt of the axis", ("sans-serif", 18))
         .margin(10)
         .x_label_area_size(35)
         .y_label_area_size(50)
-        .build_cartesian_2d(0.0..4.0, 0.0..core::f64::consts::PI)?;
+        .build_cartesian_2d(0.0..5.0, 0.0..core::f64::consts::PI)?;
     chart
         .configure_mesh()
         .x_desc("t [s]")
         .y_desc("tilt [rad]")
         .draw()?;
-    chart.draw_series(LineSeries::new(
-        run.trajectory().iter().map(|s| (s.t, top.tilt(&s.q))),
-        BLUE.stroke_width(2),
-    ))?;
+    let colours = [BLUE, GREEN];
+    for ((name, top, run, _), colour) in tops.iter().zip(colours) {
+        chart
+            .draw_series(LineSeries::new(
+                run.trajectory().iter().map(|s| (s.t, top.tilt(&s.q))),
+                colour.stroke_width(2),
+            ))?
+            .label(format!("{name}, C/A = {:.3}", top.i3 / top.i1))
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], colour));
+    }
     chart.draw_series(LineSeries::new(
         [
             (0.0, core::f64::consts::FRAC_PI_2),
-            (4.0, core::f64::consts::FRAC_PI_2),
+            (5.0, core::f64::consts::FRAC_PI_2),
         ],
         BLACK.mix(0.4).stroke_width(1),
     ))?;
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
     let mut chart = ChartBuilder::on(&right)
         .caption(
             "Jellett's integral L_G · (P − G): relative change",
@@ -235,18 +274,20 @@ fn draw_top(
         .margin(10)
         .x_label_area_size(35)
         .y_label_area_size(60)
-        .build_cartesian_2d(0.0..4.0, -1e-10..1e-10)?;
+        .build_cartesian_2d(0.0..5.0, -1e-10..1e-10)?;
     chart
         .configure_mesh()
         .x_desc("t [s]")
         .y_label_formatter(&|y| format!("{y:.0e}"))
         .draw()?;
-    chart.draw_series(LineSeries::new(
-        run.trajectory()
-            .iter()
-            .map(|s| (s.t, (top.jellett(&s.q, &s.qdot) - j0) / j0)),
-        RED.stroke_width(2),
-    ))?;
+    for ((_, top, run, j0), colour) in tops.iter().zip(colours) {
+        chart.draw_series(LineSeries::new(
+            run.trajectory()
+                .iter()
+                .map(|s| (s.t, (top.jellett(&s.q, &s.qdot) - j0) / j0)),
+            colour.stroke_width(2),
+        ))?;
+    }
     root.present()?;
     Ok(())
 }

@@ -85,6 +85,21 @@ impl TippeTop<f64> {
         Self::new(6e-3, 0.015, 0.003, 8e-7, 7e-7, 9.81, mu)
     }
 
+    /// Leine and Glocker's tippe top with its two moments exchanged: 7e-7
+    /// kg m² across the axis and 8e-7 kg m² along it (`C/A = 8/7`, still
+    /// inside `(1 − α, 1 + α)` = (0.8, 1.2)), otherwise the same. Spun at
+    /// 180 rad/s and tilted 0.1 rad on a table with `μ = 0.1`, it turns
+    /// over fully: its slip stops at 3.0971 rad (177.5°, at 4.22 s) and it
+    /// rolls on its stem's side, where
+    /// [`leine_glocker`](Self::leine_glocker)'s stops at 2.71 rad
+    /// (`tests/trajectories/contact/tippe_top.rs`). With `C/A` = 0.825,
+    /// 0.875, 0.975, 1, 1.05, 1.1 and 8/7 at that spin, the slip stopped at
+    /// 2.34, 2.71, 3.03, 3.05, 3.08, 3.10 and 3.10 rad (the moment across
+    /// the axis 8e-7 kg m² but for 8/7).
+    pub fn oblate(mu: f64) -> Self {
+        Self::new(6e-3, 0.015, 0.003, 7e-7, 8e-7, 9.81, mu)
+    }
+
     /// The symmetry axis in space, `k = R(q) e₃` (up when the top stands
     /// on its ball, down when it has turned over onto its stem).
     pub fn axis(q: &SVector<f64, 7>) -> Vector3<f64> {
