@@ -1,9 +1,13 @@
-//! Contacts on a model with constraints of its own: a body in a unit
-//! quaternion touching the floor, its norm constraint held with the
-//! contacts.
+//! Contacts on a model with constraints of its own, held with the
+//! contacts: a body in a unit quaternion touching the floor (its norm), a
+//! pendulum held on its circle (a constraint on positions, a closed
+//! loop's kind) and a knife-edge sleigh (a constraint on velocities,
+//! rolling's kind) striking walls.
 
-use lagrange::models::{Die, TumblingBox, quaternion};
-use lagrange::nalgebra::{SVector, UnitQuaternion, Vector3};
+use lagrange::contact::Cause;
+use lagrange::models::{ChaplyginSleigh, Die, Pendulum, PendulumWall, TumblingBox, quaternion};
+use lagrange::nalgebra::{SVector, UnitQuaternion, Vector1, Vector3};
+use lagrange::prelude::*;
 
 use super::{run, times};
 
@@ -97,4 +101,207 @@ fn a_die_in_a_quaternion_tumbles_in_a_plane_as_the_planar_box_does_switch_for_sw
     // The norm drifts by the method's error between switches, and each
     // switch projects it back.
     assert!(worst_norm < 1e-10, "{worst_norm:e}");
+}
+
+lagrangian! {
+    /// A pendulum bob in Cartesian coordinates held on its circle by a
+    /// constraint (a closed loop's kind: a holonomic constraint the run
+    /// holds with a multiplier), striking a wall at `x = −l sin β`.
+    struct WalledCartesianPendulum {
+        coordinates: x, y;
+        parameters: m, l, g, beta, e;
+        kinetic: m/2*(dot(x)^2 + dot(y)^2);
+        potential: m*g*y;
+        constraints: rod: x^2 + y^2 = l^2;
+        contacts: wall: x >= -l*sin(beta) { restitution: e };
+    }
+}
+
+/// A pendulum in Cartesian coordinates (its rod a constraint) swinging
+/// against a wall, against the minimal pendulum with the same wall as an
+/// event that reverses `θ̇` (`models::PendulumWall`): the wall's normal
+/// is along x, the bob's velocity along the circle, and Newton's law on
+/// the gap's rate, `ẋ⁺ = −e ẋ⁻`, with the velocity kept on the circle by
+/// the rod's impulse, is `θ̇⁺ = −e θ̇⁻`. Released from rest at 1 rad, β =
+/// 0.2, e = 0.8: its impacts at the minimal run's times, and each swing's
+/// amplitude the closed form's, `cos a⁺ = cos β − e² (cos β − cos a)`
+/// (`PendulumWall::amplitude_after`).
+#[test]
+fn a_pendulum_held_on_its_circle_by_a_constraint_strikes_a_wall_as_the_minimal_one_does() {
+    let (m, l, g, beta, e) = (1.0, 1.0, 9.81, 0.2, 0.8);
+    let a0 = 1.0f64;
+    let walled = WalledCartesianPendulum::new(m, l, g, beta, e);
+    let end = 6.0;
+    let samples = times(end, 600);
+    let cartesian = run(
+        &walled,
+        ([l * a0.sin(), -l * a0.cos()], [0.0, 0.0]),
+        &samples,
+    )
+    .unwrap();
+    let pendulum = Pendulum::new(m, l, g);
+    let wall = PendulumWall {
+        beta,
+        restitution: e,
+    };
+    let events = Events::new().with(wall.event());
+    let minimal = super::tight()
+        .integrate_with_events(
+            &pendulum,
+            0.0,
+            Vector1::new(a0),
+            Vector1::new(0.0),
+            &samples,
+            &events,
+        )
+        .unwrap();
+    let impacts: Vec<_> = cartesian
+        .switches()
+        .iter()
+        .filter(|s| s.cause == Cause::Impact)
+        .collect();
+    let expected: Vec<f64> = minimal.events().iter().map(|ev| ev.t).collect();
+    assert_eq!(impacts.len(), expected.len(), "{impacts:?}\n{expected:?}");
+    assert!(impacts.len() >= 4);
+    let worst_time = impacts
+        .iter()
+        .zip(&expected)
+        .fold(0.0f64, |w, (s, t)| w.max((s.t - t).abs()));
+    // Each swing's amplitude from its energy at every sample, `cos a =
+    // −(y + |v|²/(2 g))/l` (the apex's height), against the closed form
+    // from the one before.
+    let amplitude_at = |q: &SVector<f64, 2>, v: &SVector<f64, 2>| {
+        (-(q[1] + v.norm_squared() / (2.0 * g)) / l).acos()
+    };
+    let mut amplitude = a0;
+    let mut worst_amplitude = 0.0f64;
+    let mut worst_circle = 0.0f64;
+    for (k, impact) in impacts.iter().enumerate() {
+        let next = impacts.get(k + 1).map_or(end, |s| s.t);
+        amplitude = wall.amplitude_after(amplitude);
+        for s in cartesian.trajectory().iter() {
+            if s.t > impact.t && s.t < next {
+                worst_amplitude =
+                    worst_amplitude.max((amplitude_at(&s.q, &s.qdot) - amplitude).abs());
+            }
+        }
+    }
+    for s in cartesian.trajectory().iter() {
+        worst_circle = worst_circle.max((s.q.norm() - l).abs());
+        // Never through the wall beyond the drift of a located arrival.
+        assert!(walled.gaps(s.t, &s.q)[0] > -1e-9);
+    }
+    println!(
+        "{} impacts within {worst_time:.1e} s of the minimal run's; amplitudes within \
+         {worst_amplitude:.1e} rad of the closed form; on the circle within \
+         {worst_circle:.1e}",
+        impacts.len()
+    );
+    // Both located to the event tolerance on trajectories within Dop853's
+    // 1e-12: 1e-9 s is a thousand times that.
+    assert!(worst_time < 1e-9, "{worst_time:e} s");
+    // The energy to Dop853's 1e-12 and the impacts' located states,
+    // through `acos` (its slope `1/sin a`, below 5 at these amplitudes):
+    // 1e-10 rad leaves a factor of ten.
+    assert!(worst_amplitude < 1e-10, "{worst_amplitude:e} rad");
+    // The constraint's drift between switches (the method's error), and
+    // each switch projects it back.
+    assert!(worst_circle < 1e-10, "{worst_circle:e}");
+}
+
+lagrangian! {
+    /// The Chaplygin sleigh (`models::ChaplyginSleigh`: a knife edge at
+    /// `a` behind the mass centre that cannot slide sideways, a velocity
+    /// constraint) whose mass centre strikes a frictionless wall at `x =
+    /// w`.
+    struct WalledSleigh {
+        coordinates: x, y, theta;
+        parameters: m, i, a, w, e;
+        kinetic: m/2*(dot(x)^2 + dot(y)^2) + i/2*dot(theta)^2;
+        potential: 0;
+        constraints: edge: cos(theta)*dot(y) - sin(theta)*dot(x) = a*dot(theta);
+        contacts: wall: x <= w { restitution: e };
+    }
+}
+
+/// The sleigh, a velocity constraint (rolling's kind), striking a wall
+/// askew: the impact's impulses, the wall's `Λ` along x and the edge's
+/// sideways, leave the edge's constraint held (`A v⁺ = 0`) and reverse
+/// the gap's rate by the restitution (`ġ⁺ = −e ġ⁻`). Neither constraint
+/// impulse works on the mean velocity that both states satisfy, so the
+/// energy changes by `½ (ġ⁺ + ġ⁻) Λ = ½ (1 − e) ġ⁻ Λ` alone: kept where
+/// `e = 1`, and otherwise that loss (the energy the switch records).
+#[test]
+fn a_sleigh_under_a_velocity_constraint_strikes_a_wall_keeping_its_constraint_and_its_energy_law() {
+    let (m, i, a, w) = (2.0, 0.3, 0.4, 1.0);
+    for e in [1.0, 0.5] {
+        let sleigh = WalledSleigh::new(m, i, a, w, e);
+        // Heading 0.4 rad off the wall's normal, turning: speed 1 m/s.
+        let theta = 0.4f64;
+        let (v, omega) = (1.0, 0.8);
+        let qdot = [
+            v * theta.cos() - a * omega * theta.sin(),
+            v * theta.sin() + a * omega * theta.cos(),
+            omega,
+        ];
+        let energy = |qd: &SVector<f64, 3>| {
+            m / 2.0 * (qd[0] * qd[0] + qd[1] * qd[1]) + i / 2.0 * qd[2] * qd[2]
+        };
+        let edge = |q: &SVector<f64, 3>, qd: &SVector<f64, 3>| {
+            q[2].cos() * qd[1] - q[2].sin() * qd[0] - a * qd[2]
+        };
+        let run = run(&sleigh, ([0.0, 0.0, theta], qdot), &times(2.0, 200)).unwrap();
+        let impact = run
+            .switches()
+            .iter()
+            .find(|s| s.cause == Cause::Impact)
+            .expect("no impact");
+        // The switch records the state after the impact. Before it, the
+        // same sleigh without the wall (`models::ChaplyginSleigh`) run to
+        // the impact's time: its gap's rate `ġ⁻ = −ẋ`.
+        let free = super::tight()
+            .integrate(
+                &ChaplyginSleigh::new(m, i, a),
+                0.0,
+                SVector::from([0.0, 0.0, theta]),
+                SVector::from(qdot),
+                &[impact.t],
+            )
+            .unwrap();
+        let before = -free.last().unwrap().qdot[0];
+        let after = -impact.qdot[0];
+        let e0 = energy(&SVector::from(qdot));
+        // No force works between impacts: the energy just before is the
+        // start's.
+        let lost = e0 - energy(&impact.qdot);
+        let law = -0.5 * (after + before) * impact.impulse.0;
+        println!(
+            "e = {e}: impact at {:.6} s, impulse {:.6}; gap's rate {before:.12} -> {after:.12}; energy \
+             lost {lost:.6e} J (law {law:.6e}, recorded {:.6e}); edge's constraint after {:.1e}",
+            impact.t,
+            impact.impulse.0,
+            impact.energy_lost,
+            edge(&impact.q, &impact.qdot),
+        );
+        // Rates of 1 m/s to Dop853's 1e-12 and the impact's location: 1e-9.
+        assert!(
+            (after + e * before).abs() < 1e-9,
+            "e = {e}: {before} -> {after}"
+        );
+        // Energies of 1 J, likewise.
+        assert!((lost - law).abs() < 1e-9, "e = {e}: lost {lost}, law {law}");
+        assert!((impact.energy_lost - law).abs() < 1e-9);
+        // The constraint held after the impact, to its projection's
+        // tolerance.
+        for s in run.trajectory().iter() {
+            assert!(edge(&s.q, &s.qdot).abs() < 1e-10, "edge slides at {}", s.t);
+        }
+        assert!(
+            run.switches()
+                .iter()
+                .filter(|s| s.cause == Cause::Impact)
+                .count()
+                >= 1
+        );
+    }
 }
