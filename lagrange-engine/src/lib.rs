@@ -405,9 +405,22 @@ fn within_budget<T>(model: &model::Model, result: syn::Result<T>) -> syn::Result
 
 /// The macro: tokens in, items out. Never panics on user input; every error
 /// is a `compile_error!` on the offending tokens, plus a stub of the model.
+/// A URDF's path is relative to the manifest of the crate being compiled
+/// (`CARGO_MANIFEST_DIR`, which cargo sets for rustc).
 pub fn expand(input: TokenStream) -> TokenStream {
+    expand_with(input, None)
+}
+
+/// [`expand`], with a URDF's path relative to `manifest_dir` instead of
+/// `CARGO_MANIFEST_DIR`: for a tool that expands the models of several
+/// crates in one process (the golden test, over the whole repository).
+pub fn expand_in(input: TokenStream, manifest_dir: &std::path::Path) -> TokenStream {
+    expand_with(input, Some(manifest_dir))
+}
+
+fn expand_with(input: TokenStream, manifest_dir: Option<&std::path::Path>) -> TokenStream {
     if robot::is_robot(&input) {
-        return robot::expand(input);
+        return robot::expand(input, manifest_dir);
     }
     let parsed = match parse::parse(input) {
         Ok(p) => p,

@@ -302,18 +302,26 @@ fn parse_inline(input: TokenStream) -> syn::Result<Input> {
 }
 
 /// The bodies and frames of the robot the input names and its root's
-/// mass, or the error on its tokens.
-fn load(input: &Input) -> syn::Result<(Vec<Body>, Mass, Vec<Frame>)> {
+/// mass, or the error on its tokens; a URDF's path relative to
+/// `manifest_dir`, else to `CARGO_MANIFEST_DIR`.
+fn load(
+    input: &Input,
+    manifest_dir: Option<&std::path::Path>,
+) -> syn::Result<(Vec<Body>, Mass, Vec<Frame>)> {
     if let Some(inline) = &input.inline {
         return load_inline(input, inline);
     }
     let rel = input.path.value();
     let span = input.path.span();
     let err = |message: String| syn::Error::new(span, message);
-    let Ok(dir) = std::env::var("CARGO_MANIFEST_DIR") else {
-        return Err(err("CARGO_MANIFEST_DIR is not set: the URDF's path is relative to the crate's manifest, which cargo names".into()));
+    let dir = match manifest_dir {
+        Some(dir) => dir.to_path_buf(),
+        None => match std::env::var("CARGO_MANIFEST_DIR") {
+            Ok(dir) => std::path::PathBuf::from(dir),
+            Err(_) => return Err(err("CARGO_MANIFEST_DIR is not set: the URDF's path is relative to the crate's manifest, which cargo names".into())),
+        },
     };
-    let full = std::path::Path::new(&dir).join(&rel);
+    let full = dir.join(&rel);
     let text = std::fs::metadata(&full)
         .map_err(|e| {
             err(format!(
@@ -400,8 +408,8 @@ fn load_inline(
 }
 
 /// Expands a robot from URDF or written as bodies and joints: the items,
-/// or a `compile_error!` and a stub.
-pub fn expand(input: TokenStream) -> TokenStream {
+/// or a `compile_error!` and a stub (`manifest_dir` as in [`load`]).
+pub fn expand(input: TokenStream, manifest_dir: Option<&std::path::Path>) -> TokenStream {
     let parsed = if language::is_inline(&input) {
         parse_inline(input)
     } else {
@@ -411,7 +419,7 @@ pub fn expand(input: TokenStream) -> TokenStream {
         Ok(i) => i,
         Err(e) => return e.to_compile_error(),
     };
-    match load(&input).and_then(|(bodies, root, frames)| {
+    match load(&input, manifest_dir).and_then(|(bodies, root, frames)| {
         check(&input, &bodies, &root).map(|()| (bodies, root, frames))
     }) {
         Ok((bodies, root, frames)) if input.floating => {

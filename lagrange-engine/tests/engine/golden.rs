@@ -79,8 +79,11 @@ fn key(body: &TokenStream) -> String {
     )
 }
 
-/// Key of each model (name and input fingerprint) → its expansion.
-fn expansions() -> BTreeMap<String, String> {
+/// Key of each model (name and input fingerprint) → its expansion; and
+/// the models outside the UI tests' error cases that expanded to an error
+/// here (each compiles where it is written, so an error here is the
+/// test's own: a URDF path resolved against the wrong crate).
+fn expansions() -> (BTreeMap<String, String>, Vec<String>) {
     let root = repo_root();
     let mut files = Vec::new();
     for dir in [
@@ -93,6 +96,7 @@ fn expansions() -> BTreeMap<String, String> {
         rust_files(&root.join(dir), &mut files);
     }
     let mut out = BTreeMap::new();
+    let mut errors = Vec::new();
     for file in files {
         let text = std::fs::read_to_string(&file).unwrap();
         if !text.contains("lagrangian!") {
@@ -103,9 +107,27 @@ fn expansions() -> BTreeMap<String, String> {
         let Ok(stream) = text.parse::<TokenStream>() else {
             continue;
         };
+        // A robot's URDF path is relative to the manifest of the crate
+        // the file belongs to (the nearest directory above it with a
+        // `Cargo.toml`), as the macro resolves it there.
+        let manifest_dir = file
+            .ancestors()
+            .skip(1)
+            .find(|dir| dir.join("Cargo.toml").is_file())
+            .unwrap_or(&root);
+        let error_cases = file.starts_with(root.join("lagrange-ui"));
         for body in lagrange_engine::invocations(stream) {
             let k = key(&body);
-            out.insert(k, lagrange_engine::expand(body).to_string());
+            // A model written in a `macro_rules!` (its `$` metavariables
+            // unbound here) or a template's placeholder is not one the
+            // crate compiles as it stands.
+            let text = body.to_string();
+            let template = text.contains('$') || text.contains("__MODEL__");
+            let expansion = lagrange_engine::expand_in(body, manifest_dir).to_string();
+            if !error_cases && !template && expansion.contains("compile_error") {
+                errors.push(format!("{k} in {}", file.display()));
+            }
+            out.insert(k, expansion);
         }
     }
     for text in [DOUBLE_PENDULUM.to_string(), indexed_chain(20)] {
@@ -113,7 +135,7 @@ fn expansions() -> BTreeMap<String, String> {
         let k = key(&body);
         out.insert(k, lagrange_engine::expand(body).to_string());
     }
-    out
+    (out, errors)
 }
 
 fn manifest(expansions: &BTreeMap<String, String>) -> String {
@@ -136,9 +158,15 @@ fn parse_manifest(text: &str) -> BTreeMap<String, String> {
 #[test]
 fn every_model_in_the_repository_expands_to_the_recorded_code() {
     let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
-    let all = expansions();
-    // The scan must have found the models it is meant to guard.
+    let (all, errors) = expansions();
+    // The scan must have found the models it is meant to guard, and
+    // expanded them as their crates do.
     assert!(all.len() > 50, "only {} models found", all.len());
+    assert!(
+        errors.is_empty(),
+        "models that compile where they are written expanded to errors here:\n{}",
+        errors.join("\n")
+    );
     let dp_key = key(&DOUBLE_PENDULUM.parse().unwrap());
     let chain_key = key(&indexed_chain(20).parse().unwrap());
     let dp = syn::parse_file(&all[&dp_key]).expect("the expansion is Rust");
