@@ -8,11 +8,15 @@
 //! floating base is compared in Pinocchio's velocities `ν` (its free
 //! flyer's `v`: the base's linear and angular velocity in its own frame,
 //! then the joints): `forward_dynamics` is ν̇ by ABA,
-//! `velocity_mass_matrix` M in ν by CRBA, `inverse_dynamics` τ by RNEA, and
-//! "M, f, solve" `velocity_mass_matrix`, `nonlinear_effects` and a
-//! Cholesky solve, as Pinocchio's CRBA, `nonLinearEffects` and
-//! `cholesky::solve`. Pinocchio's part is skipped, with the reason, where
-//! its Python or a C++ compiler is missing.
+//! `velocity_mass_matrix` M in ν by CRBA, `inverse_dynamics` τ by RNEA.
+//! "M, f, solve" is `mass_matrix` (on a floating base
+//! `velocity_mass_matrix`), `nonlinear_effects` and the generated
+//! `solve_mass_matrix` (`solve_velocity_mass_matrix`): Featherstone's
+//! sparse `Lᵀ D L` unrolled over the robot's tree, as Pinocchio's CRBA,
+//! `nonLinearEffects` and `cholesky::decompose` + `cholesky::solve` (the
+//! same factorization, looped over its parent table). Pinocchio's part is
+//! skipped, with the reason, where its Python or a C++ compiler is
+//! missing. `LAGRANGE_ROBOTS_ROUNDS` sets the interleaved rounds (5).
 //!
 //! `cargo run --release -p lagrange-studies --example robots`
 //! (`LAGRANGE_PEERS_PYTHON` names a Python with `pin`, `example-robot-data`
@@ -80,7 +84,7 @@ fn time_ns(mut f: impl FnMut()) -> f64 {
     rounds[3]
 }
 
-/// Our figures: q̈ (ABA), M (CRBA), M and f then the runtime's Cholesky
+/// Our figures: q̈ (ABA), M (CRBA), M and f then the generated sparse
 /// solve, τ (RNEA).
 macro_rules! ours {
     ($robot:expr, $n:literal) => {{
@@ -97,9 +101,9 @@ macro_rules! ours {
                 black_box(robot.mass_matrix(0.0, black_box(&q)));
             }),
             time_ns(|| {
-                let (m, f) =
-                    Lagrangian::mass_matrix_and_forcing(&robot, 0.0, black_box(&q), black_box(&v));
-                black_box(m.cholesky().map(|c| c.solve(&f)));
+                let m = robot.mass_matrix(0.0, black_box(&q));
+                let f = -robot.nonlinear_effects(black_box(&q), black_box(&v));
+                black_box(robot.solve_mass_matrix(&m, &f));
             }),
             time_ns(|| {
                 black_box(robot.inverse_dynamics(black_box(&q), black_box(&v), black_box(&a)));
@@ -109,7 +113,8 @@ macro_rules! ours {
 }
 
 /// Our figures on a floating base, in the velocities `ν`: ν̇ (ABA), M in ν
-/// (CRBA), M and the nonlinear effects then a Cholesky solve, τ (RNEA).
+/// (CRBA), M and the nonlinear effects then the generated sparse solve, τ
+/// (RNEA).
 macro_rules! ours_floating {
     ($robot:expr, $nq:literal, $nv:literal) => {{
         let robot = $robot;
@@ -131,7 +136,7 @@ macro_rules! ours_floating {
             time_ns(|| {
                 let m = robot.velocity_mass_matrix(black_box(&q));
                 let f = -robot.nonlinear_effects(black_box(&q), black_box(&v));
-                black_box(m.cholesky().map(|c| c.solve(&f)));
+                black_box(robot.solve_velocity_mass_matrix(&m, &f));
             }),
             time_ns(|| {
                 black_box(robot.inverse_dynamics(black_box(&q), black_box(&v), black_box(&a)));
@@ -266,7 +271,12 @@ fn main() {
     }
     let mut ours_runs: Vec<[[f64; 4]; 5]> = Vec::new();
     let mut theirs_runs: Vec<Vec<(String, [f64; 4])>> = Vec::new();
-    for _ in 0..5 {
+    let rounds: usize = std::env::var("LAGRANGE_ROBOTS_ROUNDS")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .filter(|&r| r > 0)
+        .unwrap_or(5);
+    for _ in 0..rounds {
         ours_runs.push([
             ours!(Ur5::new(), 6),
             ours!(Panda::new(), 7),
@@ -280,7 +290,7 @@ fn main() {
     }
     let what = ["q̈ (ABA)", "M (CRBA)", "M, f, solve", "τ (RNEA)"];
     println!(
-        "\nns per call, medians of 5 interleaved rounds (each the median of 7 × {CALLS} calls)\n"
+        "\nns per call, medians of {rounds} interleaved rounds (each the median of 7 × {CALLS} calls)\n"
     );
     println!("| robot | quantity | ours | Pinocchio | ours / Pinocchio |");
     println!("|---|---|---:|---:|---:|");

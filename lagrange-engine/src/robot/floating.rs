@@ -20,11 +20,14 @@
 //!
 //! The recursions are traced and unrolled (`inverse_dynamics`,
 //! `forward_dynamics`, `velocity_mass_matrix`, `gravity_torques`, the
-//! energies, the maps); what is built from them (`nonlinear_effects`,
-//! `unforced_accelerations`, `mass_matrix`, `forcing`) calls them and
-//! applies `J`'s 6 × 7 base block in loops, so that each recursion's code
-//! is written once: romeo's items are half the size they were with each
-//! traced apart, and its crate builds in half the time.
+//! energies, the maps, `solve_velocity_mass_matrix` of [`super::solve`]);
+//! what is built from them (`unforced_accelerations`, `mass_matrix`,
+//! `forcing`) calls them and applies `J`'s 6 × 7 base block in loops, so
+//! that each recursion's code is written once: romeo's items are half the
+//! size they were with each traced apart, and its crate builds in half the
+//! time. The one exception is `nonlinear_effects`, RNEA traced a second
+//! time at `ν̇ = 0` so that its zeros fold (at run time, `0 · x` does not
+//! for floats): it is on the path of `M`, `nle` and a solve.
 
 use super::algorithms::{self, Floating, M3};
 use super::trace::{ONE, Trace, Val, ZERO};
@@ -136,6 +139,15 @@ pub(super) fn emit(input: &Input, bodies: &[Body], mass: &Mass) -> TokenStream {
         algorithms::rnea(t, bodies, Some(&fb), &x[0][7..], &x[1], &x[2], true)
     });
     let rnea_out = vector(nv, out);
+    // RNEA at `ν̇ = 0` traced apart, the zeros folded (at run time `0 · x`
+    // is not, for floats).
+    let (nle_body, out) = function_of(&[("q", nq), ("v", nv)], |t, x| {
+        let fb = base(t, mass, &x[0]);
+        algorithms::rnea(t, bodies, Some(&fb), &x[0][7..], &x[1], &zero, true)
+    });
+    let nle_out = vector(nv, out);
+    let parents: Vec<Option<usize>> = bodies.iter().map(|b| b.parent).collect();
+    let (solve_body, _) = super::solve::emit(&super::solve::parent_table(&parents, 6));
     let (grav_body, out) = function_of(&[("q", nq)], |t, x| {
         let fb = base(t, mass, &x[0]);
         algorithms::rnea(t, bodies, Some(&fb), &x[0][7..], &zero, &zero, true)
@@ -230,7 +242,8 @@ pub(super) fn emit(input: &Input, bodies: &[Body], mass: &Mass) -> TokenStream {
             /// The nonlinear effects (RNEA at `ν̇ = 0`): `M ν̇ + nle = τ`.
             #[inline]
             pub fn nonlinear_effects(&self, q: &#sq, v: &#sv) -> #sv {
-                self.inverse_dynamics(q, v, &<#sv>::zeros())
+                #nle_body
+                #nle_out
             }
             /// The gravity forces (RNEA at rest), the base's wrench first.
             #[inline]
@@ -395,6 +408,30 @@ pub(super) fn emit(input: &Input, bodies: &[Body], mass: &Mass) -> TokenStream {
             #[inline]
             fn visit_constraints<V: ::lagrange::constraints::Visitor<S, #nq>>(&self, visitor: V) -> ::core::option::Option<V::Output> {
                 ::core::option::Option::Some(visitor.visit::<Self, 1>(self, ::core::default::Default::default()))
+            }
+        }
+
+        #[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]
+        impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> #name<S> {
+            /// `M⁻¹ b` for the mass matrix `m` in the velocities `ν` of
+            /// [`velocity_mass_matrix`](Self::velocity_mass_matrix):
+            /// Featherstone's sparse `M = Lᵀ D L`, unrolled over this robot's
+            /// tree (the base's six velocities a chain at its root), then its
+            /// two substitutions (`Σ depth²` operations, not a dense
+            /// Cholesky's `N³ / 6`). Reads only the lower triangle's entries
+            /// `(i, j)` with `j` an ancestor of `i` (the others are zero in
+            /// any `M` of this tree). `None` where a pivot of `D` is not
+            /// finite or not above `N ε` times the largest (`m` not positive
+            /// definite, or too ill-conditioned), or `x` is not finite: never
+            /// a NaN. `M ν̇ = τ − nle` is
+            /// `solve_velocity_mass_matrix(&m, &(tau - nle))`.
+            #[inline]
+            pub fn solve_velocity_mass_matrix(
+                &self,
+                m: &::lagrange::nalgebra::SMatrix<S, #nv, #nv>,
+                b: &#sv,
+            ) -> ::core::option::Option<#sv> {
+                #solve_body
             }
         }
 

@@ -18,6 +18,7 @@ pub mod algorithms;
 pub mod api;
 pub mod floating;
 pub mod language;
+pub mod solve;
 pub mod trace;
 pub mod tree;
 pub mod urdf;
@@ -599,6 +600,8 @@ fn emit(input: &Input, bodies: &[Body]) -> TokenStream {
         vec![algorithms::potential(t, bodies, None, &x[0])]
     });
     let (ke, pe) = (&ke_out[0], &pe_out[0]);
+    let parents: Vec<Option<usize>> = bodies.iter().map(|b| b.parent).collect();
+    let (solve_body, _) = solve::emit(&solve::parent_table(&parents, 0));
     let doc_n = format!("Number of degrees of freedom: the moving joints of `{rel}`.");
     let simd = quote! {
         S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy,
@@ -713,6 +716,28 @@ fn emit(input: &Input, bodies: &[Body]) -> TokenStream {
                 ::core::option::Option::Some(::core::result::Result::Ok(#name::unforced_accelerations(self, q, qdot)))
             }
             const SOLVES_ACCELERATIONS: bool = true;
+        }
+
+        #[allow(unused_variables, unused_parens, non_snake_case, clippy::all, clippy::pedantic)]
+        impl<S: ::lagrange::nalgebra::RealField + ::core::marker::Copy> #name<S> {
+            /// `M⁻¹ b` for the mass matrix `m` of [`mass_matrix`](Self::mass_matrix):
+            /// Featherstone's sparse `M = Lᵀ D L`, unrolled over this robot's
+            /// tree, then its two substitutions (`Σ depth²` operations, not
+            /// a dense Cholesky's `N³ / 6`). Reads only the lower triangle's
+            /// entries `(i, j)` with `j` an ancestor of `i` (the others are
+            /// zero in any `M` of this tree). `None` where a pivot of `D` is
+            /// not finite or not above `N ε` times the largest (`m` not
+            /// positive definite, or too ill-conditioned), or `x` is not
+            /// finite: never a NaN. `M q̈ = τ − nle` is
+            /// `solve_mass_matrix(&m, &(tau - nle))`.
+            #[inline]
+            pub fn solve_mass_matrix(
+                &self,
+                m: &::lagrange::nalgebra::SMatrix<S, #n, #n>,
+                b: &#sv,
+            ) -> ::core::option::Option<#sv> {
+                #solve_body
+            }
         }
     }
 }

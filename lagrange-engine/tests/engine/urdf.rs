@@ -301,16 +301,17 @@ fn urdf_arms_expand_and_print_their_code_size_and_operations() {
             text.len(),
             elapsed.as_secs_f64() * 1e3
         );
-        for (function, [mul, add, recip]) in operation_counts(&text) {
-            println!("  {function}: {mul} ×, {add} ±, {recip} 1/x");
+        for (function, [mul, add, recip, bytes]) in operation_counts(&text) {
+            println!("  {function}: {mul} ×, {add} ±, {recip} 1/x, {bytes} bytes");
         }
     }
 }
 
 /// The arithmetic of each traced function of an expansion: every
 /// statement `let vN: S = ..;` is one operation (a product, a product by a
-/// constant, a sum or difference, a reciprocal), read from the text.
-fn operation_counts(text: &str) -> Vec<(String, [usize; 3])> {
+/// constant, a sum or difference, a reciprocal), read from the text; and
+/// the function's size in bytes.
+fn operation_counts(text: &str) -> Vec<(String, [usize; 4])> {
     let mut out = Vec::new();
     for chunk in text.split(" fn ").skip(1) {
         let name = chunk
@@ -318,7 +319,7 @@ fn operation_counts(text: &str) -> Vec<(String, [usize; 3])> {
             .next()
             .unwrap_or("")
             .to_string();
-        let mut counts = [0usize; 3];
+        let mut counts = [0, 0, 0, chunk.len()];
         for statement in chunk.split("let v").skip(1) {
             let Some((_, rhs)) = statement.split_once(": S =") else {
                 continue;
@@ -332,7 +333,7 @@ fn operation_counts(text: &str) -> Vec<(String, [usize; 3])> {
                 counts[1] += 1;
             }
         }
-        if counts.iter().sum::<usize>() > 0 {
+        if counts[..3].iter().sum::<usize>() > 0 {
             out.push((name, counts));
         }
     }
