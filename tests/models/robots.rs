@@ -850,7 +850,8 @@ fn solve_against_dense_and_aba<const N: usize>(
     for (m, b, aba) in states {
         let x = solve(&m, &b).unwrap_or_else(|| panic!("{name}: the solve refused a regular M"));
         let dense = m.cholesky().expect("M is positive definite").solve(&b);
-        let eigen = lagrange::nalgebra::DMatrix::from_column_slice(N, N, m.as_slice()).symmetric_eigenvalues();
+        let eigen = lagrange::nalgebra::DMatrix::from_column_slice(N, N, m.as_slice())
+            .symmetric_eigenvalues();
         let kappa = eigen.max() / eigen.min();
         let bound = 10.0 * N as f64 * f64::EPSILON * kappa * dense.amax();
         for reference in [dense, aba] {
@@ -893,10 +894,7 @@ fn emitted_solve_matches_the_dense_solve_and_aba() {
 /// romeo_small (37 velocities).
 #[test]
 fn emitted_velocity_solve_matches_the_dense_solve_and_aba() {
-    fn floating<R: FloatingRobot<NQ, NV>, const NQ: usize, const NV: usize>(
-        robot: &R,
-        name: &str,
-    ) {
+    fn floating<R: FloatingRobot<NQ, NV>, const NQ: usize, const NV: usize>(robot: &R, name: &str) {
         let states = spread::<NV>(13, 40).into_iter().map(|[p, v, tau]| {
             let mut q = SVector::<f64, NQ>::zeros();
             q.fixed_rows_mut::<3>(0).copy_from(&p.fixed_rows::<3>(0));
