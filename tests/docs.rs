@@ -28,11 +28,11 @@ const FIGURES: &[Figure] = &[
         places: &[
             (
                 "ARCHITECTURE.md",
-                "`cargo test`, the README's command: 418 s.",
+                "`cargo test`, the README's command: 218 s.",
             ),
             (
                 "README.md",
-                "Run the test suite (418 s from a fresh clone on 2 cores;",
+                "Run the test suite (218 s from a fresh clone on 2 cores;",
             ),
         ],
     },
