@@ -25,9 +25,12 @@
 //! `forcing`) calls them and applies `J`'s 6 × 7 base block in loops, so
 //! that each recursion's code is written once: romeo's items are half the
 //! size they were with each traced apart, and its crate builds in half the
-//! time. The one exception is `nonlinear_effects`, RNEA traced a second
-//! time at `ν̇ = 0` so that its zeros fold (at run time, `0 · x` does not
-//! for floats): it is on the path of `M`, `nle` and a solve.
+//! time. `nonlinear_effects` calls `inverse_dynamics` at `ν̇ = 0`: RNEA
+//! traced a second time with the zeros folded had 2 % fewer operations
+//! (romeo's 3134 multiplications against 3199), measured slower on the
+//! Go2 (about 340 against 320 ns: more code beside `M` and the solve in
+//! the instruction cache), and added a third to the floating robots'
+//! expansions (202 kB of tokens on romeo).
 
 use super::algorithms::{self, Floating, M3};
 use super::trace::{ONE, Trace, Val, ZERO};
@@ -139,13 +142,6 @@ pub(super) fn emit(input: &Input, bodies: &[Body], mass: &Mass) -> TokenStream {
         algorithms::rnea(t, bodies, Some(&fb), &x[0][7..], &x[1], &x[2], true)
     });
     let rnea_out = vector(nv, out);
-    // RNEA at `ν̇ = 0` traced apart, the zeros folded (at run time `0 · x`
-    // is not, for floats).
-    let (nle_body, out) = function_of(&[("q", nq), ("v", nv)], |t, x| {
-        let fb = base(t, mass, &x[0]);
-        algorithms::rnea(t, bodies, Some(&fb), &x[0][7..], &x[1], &zero, true)
-    });
-    let nle_out = vector(nv, out);
     let parents: Vec<Option<usize>> = bodies.iter().map(|b| b.parent).collect();
     let (solve_body, _) = super::solve::emit(&super::solve::parent_table(&parents, 6));
     let (grav_body, out) = function_of(&[("q", nq)], |t, x| {
@@ -242,8 +238,7 @@ pub(super) fn emit(input: &Input, bodies: &[Body], mass: &Mass) -> TokenStream {
             /// The nonlinear effects (RNEA at `ν̇ = 0`): `M ν̇ + nle = τ`.
             #[inline]
             pub fn nonlinear_effects(&self, q: &#sq, v: &#sv) -> #sv {
-                #nle_body
-                #nle_out
+                self.inverse_dynamics(q, v, &<#sv>::zeros())
             }
             /// The gravity forces (RNEA at rest), the base's wrench first.
             #[inline]
