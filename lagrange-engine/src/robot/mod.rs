@@ -409,7 +409,8 @@ fn load_inline(
 }
 
 /// Expands a robot from URDF or written as bodies and joints: the items,
-/// or a `compile_error!` and a stub (`manifest_dir` as in [`load`]).
+/// or a `compile_error!` and a stub; a URDF's path relative to
+/// `manifest_dir`, else to `CARGO_MANIFEST_DIR`.
 pub fn expand(input: TokenStream, manifest_dir: Option<&std::path::Path>) -> TokenStream {
     let parsed = if language::is_inline(&input) {
         parse_inline(input)
