@@ -41,11 +41,11 @@ const FIGURES: &[Figure] = &[
         places: &[
             (
                 "ARCHITECTURE.md",
-                "`.ci/run`: 631 to 1203 s on recent runs, by the machine's load (1203 s at the last measurement, load 1 to 2)",
+                "`.ci/run`: 606 to 1203 s on recent runs, by the machine's load (606 s at the last measurement, load 1.6 to 1.8)",
             ),
             (
                 ".ci/run",
-                "About 11 to 20 minutes from a fresh target on 2 cores, by the shared machine's load (631 s to 1203 s on recent runs, 1203 s at the last measurement;",
+                "About 10 to 20 minutes from a fresh target on 2 cores, by the shared machine's load (606 s to 1203 s on recent runs, 606 s at the last measurement;",
             ),
         ],
     },
