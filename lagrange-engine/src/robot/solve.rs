@@ -95,11 +95,9 @@ fn traced(t: &mut Trace, parents: &[Option<usize>]) -> (Vec<Val>, Vec<Val>) {
 
 /// The body of the generated `solve_*mass_matrix(&self, m, b) ->
 /// Option<SVector>`: the unrolled factorization and substitutions, then
-/// `None` where a pivot is not finite, or not above `N ε` times the
-/// largest (the runtime's test for Cholesky's pivots,
-/// `lagrange_runtime::linalg::mass::solve_mass_matrix`: `M` is not
-/// positive definite, or so ill-conditioned that `x` would be noise), or
-/// `x` is not finite (overflow). Also returns the number of operations
+/// the runtime's check of the pivots and the result
+/// (`lagrange_runtime::linalg::mass::checked_solution`, the test
+/// `solve_mass_matrix` makes on Cholesky's pivots). Also returns the number of operations
 /// written, for the docs and the tests of the code's size.
 pub(super) fn emit(parents: &[Option<usize>]) -> (TokenStream, usize) {
     let n = parents.len();
@@ -115,22 +113,7 @@ pub(super) fn emit(parents: &[Option<usize>]) -> (TokenStream, usize) {
         let x = ::lagrange::nalgebra::SVector::<S, #n>::from_array_storage(
             ::lagrange::nalgebra::ArrayStorage([[#(#xs),*]])
         );
-        let mut finite = true;
-        let (mut smallest, mut largest) = (d[0], d[0]);
-        for p in d {
-            finite &= p.is_finite();
-            smallest = smallest.min(p);
-            largest = largest.max(p);
-        }
-        for v in x.iter() {
-            finite &= v.is_finite();
-        }
-        let size = ::lagrange::nalgebra::convert::<f64, S>(#n as f64);
-        if finite && smallest > size * S::default_epsilon() * largest {
-            ::core::option::Option::Some(x)
-        } else {
-            ::core::option::Option::None
-        }
+        ::lagrange::linalg::mass::checked_solution(&d, x)
     };
     (tokens, ops)
 }

@@ -282,20 +282,13 @@ impl<S: RealField + Copy> Cones<S> {
     fn on_a_line(&self, rho: S) -> Option<DVector<S>> {
         debug_assert_eq!(self.k, 1);
         let zero = S::zero();
-        let (mut lo, mut hi) = (-S::one() / zero, S::one() / zero);
         let tiny = nalgebra::convert::<f64, S>(1e-13) * self.scale;
-        for b in &self.bounds {
-            let (c, d) = (b.c0[0] + b.c1[0] * rho, b.d0 + b.d1 * rho);
-            if c.abs() <= tiny {
-                if d < -tiny {
-                    return None;
-                }
-            } else if c > zero {
-                hi = hi.min(d / c);
-            } else {
-                lo = lo.max(d / c);
-            }
-        }
+        let (mut lo, mut hi) = on_line(
+            self.bounds
+                .iter()
+                .map(|b| (b.c0[0] + b.c1[0] * rho, b.d0 + b.d1 * rho)),
+            tiny,
+        )?;
         for d in &self.discs {
             let (r0, r1) = (d.rows.0[0], d.rows.1[0]);
             let (t0, t1) = (rho * d.mu * d.n0, rho * d.mu * d.n[0]);
@@ -568,6 +561,27 @@ fn null_space<S: RealField + Copy>(responses: &DMatrix<S>, m: usize) -> Option<D
     Some(DMatrix::from_fn(m, null.len(), |r, c| v_t[(null[c], r)]))
 }
 
+/// The interval `[lo, hi]` (ends infinite where unbounded) of the line's
+/// coordinate `z` that linear bounds `c z ≤ d` leave, or `None` where a
+/// bound along no direction (`|c| ≤ tiny`) is violated (`d < −tiny`); it
+/// may be empty, `lo > hi`.
+fn on_line<S: RealField + Copy>(bounds: impl Iterator<Item = (S, S)>, tiny: S) -> Option<(S, S)> {
+    let zero = S::zero();
+    let (mut lo, mut hi) = (-S::one() / zero, S::one() / zero);
+    for (c, d) in bounds {
+        if c.abs() <= tiny {
+            if d < -tiny {
+                return None;
+            }
+        } else if c > zero {
+            hi = hi.min(d / c);
+        } else {
+            lo = lo.max(d / c);
+        }
+    }
+    Some((lo, hi))
+}
+
 /// The point of `S(ρ)` nearest the origin (in `k` orthonormal
 /// coordinates of the null space), or `None` where `S(ρ)` is empty.
 fn project<S: RealField + Copy>(bounds: &[Bound<S>], k: usize, rho: S) -> Option<DVector<S>> {
@@ -581,35 +595,8 @@ fn project<S: RealField + Copy>(bounds: &[Bound<S>], k: usize, rho: S) -> Option
     let tiny = nalgebra::convert::<f64, S>(1e-13) * scale;
     if k == 1 {
         // Each bound an end of an interval; the origin clamped into it.
-        let (mut lo, mut hi) = (S::zero(), S::zero());
-        let (mut has_lo, mut has_hi) = (false, false);
-        for (c, d) in &rows {
-            let (c, d) = (c[0], *d);
-            if c.abs() <= tiny {
-                if d < -tiny {
-                    return None;
-                }
-            } else if c > S::zero() {
-                let end = d / c;
-                hi = if has_hi { hi.min(end) } else { end };
-                has_hi = true;
-            } else {
-                let end = d / c;
-                lo = if has_lo { lo.max(end) } else { end };
-                has_lo = true;
-            }
-        }
-        if has_lo && has_hi && lo > hi {
-            return None;
-        }
-        let mut z = S::zero();
-        if has_lo {
-            z = z.max(lo);
-        }
-        if has_hi {
-            z = z.min(hi);
-        }
-        return Some(DVector::from_element(1, z));
+        let (lo, hi) = on_line(rows.iter().map(|(c, d)| (c[0], *d)), tiny)?;
+        return (lo <= hi).then(|| DVector::from_element(1, S::zero().max(lo).min(hi)));
     }
     // The projection's dual: w = d + C Cᵀ y ≥ 0, y ≥ 0, yᵀ w = 0, and
     // z = −Cᵀ y (the basis orthonormal: the metric of the forces is the

@@ -404,13 +404,13 @@ fn least_solve<S: RealField + Copy>(a: DMatrix<S>, b: &DVector<S>) -> Option<(DV
             // The refinement no longer gains.
             break;
         }
-        let next = (round < REFINEMENTS)
-            .then(|| svd.solve(&residual, eps).ok())
-            .flatten();
         best = Some((x.clone(), r, size));
-        match next {
-            Some(dx) => x += dx,
-            None => break,
+        if round == REFINEMENTS {
+            break;
+        }
+        match svd.solve(&residual, eps) {
+            Ok(dx) => x += dx,
+            Err(_) => break,
         }
     }
     best.and_then(|(x, r, size)| (r <= c(1e-8) * size).then_some((x, rank)))

@@ -317,6 +317,26 @@ pub fn pivot_ratio<S: RealField + Copy, const N: usize>(m: &SMatrix<S, N, N>) ->
     Some(largest / smallest)
 }
 
+/// The result `x` of a solve by a factorization with pivots `d` (`M = Lᵀ
+/// D L`), judged as [`solve_mass_matrix`] judges Cholesky's: `None` where
+/// a pivot or `x` is not finite, or the smallest pivot is not above `N ε`
+/// times the largest (`M` not positive definite, or so ill-conditioned
+/// that `x` would be noise). The check of the solve a `lagrangian!` robot
+/// emits for its tree (`solve_mass_matrix`, `solve_velocity_mass_matrix`).
+#[inline]
+pub fn checked_solution<S: RealField + Copy, const N: usize>(
+    d: &[S; N],
+    x: SVector<S, N>,
+) -> Option<SVector<S, N>> {
+    let Some(&first) = d.first() else {
+        return Some(x);
+    };
+    let extremes = d
+        .iter()
+        .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    (all_finite(d) & all_finite(x.as_slice()) && well_conditioned::<S, N>(extremes)).then_some(x)
+}
+
 /// Whether the smallest pivot's magnitude exceeds `N ε` times the largest
 /// one's (true for `N = 0`, whose range is `(0, 0)`).
 #[inline]
