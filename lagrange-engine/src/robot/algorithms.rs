@@ -116,6 +116,18 @@ struct Si {
     c: M3,
 }
 
+/// A rigid body's (or a rigid composite's) spatial inertia by its ten
+/// parameters: the mass, the first moment `h = m c` and the inertia `Ī`
+/// about the frame's origin (symmetric). The mass matrix's composites are
+/// rigid, so CRBA carries these instead of a general [`Si`]: `C = m 1`
+/// stays a number and `B = [h]×` a vector through every transform.
+#[derive(Clone, Copy)]
+struct Rigid {
+    m: Val,
+    h: V3,
+    i: M3,
+}
+
 /// The transform from a parent body's frame to a body's, at `q`: the
 /// constant joint placement then the joint's motion.
 struct Xf {
@@ -313,6 +325,56 @@ impl Cx<'_> {
             c: c1,
         }
     }
+    /// A rigid inertia in the child's frame, in its parent's: `h' = E h +
+    /// m r`, `Ī' = E Ī Eᵀ + 2 (r·g) 1 − r gᵀ − g rᵀ + m (|r|² 1 − r rᵀ)` with
+    /// `g = E h` (the parallel-axis theorem about the parent's origin;
+    /// [`Self::inertia_up`] on `rigid`'s matrices, in fewer operations).
+    fn rigid_up(&mut self, x: &Xf, b: &Rigid) -> Rigid {
+        let g = self.up(x, b.h);
+        let rot = self.congruence_up(x, &b.i, true);
+        let r = x.r;
+        let mr = self.scale3(b.m, r);
+        let h = self.add3(g, mr);
+        let mut i = [[ZERO; 3]; 3];
+        for k in 0..3 {
+            for l in k..3 {
+                let x = if k == l {
+                    // 2 Σ_{j≠k} r_j g_j + m Σ_{j≠k} r_j².
+                    let (a, c) = ((k + 1) % 3, (k + 2) % 3);
+                    let rg = self.t.dot(&[r[a], r[c]], &[g[a], g[c]]);
+                    let rg2 = self.t.add(rg, rg);
+                    let rr = self.t.dot(&[r[a], r[c]], &[mr[a], mr[c]]);
+                    let y = self.t.add(rot[k][k], rg2);
+                    self.t.add(y, rr)
+                } else {
+                    // −(r_k g_l + g_k r_l + m r_k r_l).
+                    let a = self.t.mul(r[k], g[l]);
+                    let c = self.t.mul(g[k], r[l]);
+                    let d = self.t.mul(mr[k], r[l]);
+                    let y = self.t.sub(rot[k][l], a);
+                    let y = self.t.sub(y, c);
+                    self.t.sub(y, d)
+                };
+                i[k][l] = x;
+                i[l][k] = x;
+            }
+        }
+        Rigid { m: b.m, h, i }
+    }
+    fn rigid_add(&mut self, x: &Rigid, y: &Rigid) -> Rigid {
+        let mut i = x.i;
+        for k in 0..3 {
+            for l in k..3 {
+                i[k][l] = self.t.add(x.i[k][l], y.i[k][l]);
+                i[l][k] = i[k][l];
+            }
+        }
+        Rigid {
+            m: self.t.add(x.m, y.m),
+            h: self.add3(x.h, y.h),
+            i,
+        }
+    }
     fn si_add(&mut self, x: &Si, y: &Si) -> Si {
         let mut out = *x;
         for k in 0..3 {
@@ -326,20 +388,58 @@ impl Cx<'_> {
     }
 }
 
-fn rigid(b: &Body) -> Si {
-    rigid_mass(&Mass {
-        mass: b.mass,
-        h: b.h,
-        inertia: b.inertia,
-    })
+fn rigid(t: &mut Trace, b: &Body) -> Si {
+    spatial(&rigid10_body(t, b))
 }
 
-fn rigid_mass(b: &Mass) -> Si {
-    let h = k3(b.h);
-    let m = Val::K(b.mass);
+fn rigid_mass(t: &mut Trace, b: &Mass) -> Si {
+    spatial(&rigid10(t, b))
+}
+
+/// A body's ten parameters: its constants, or where `parameters(..)` names
+/// it, the struct field's `[S; 10]` (Pinocchio's order: `m`, `h`, `Ixx,
+/// Ixy, Iyy, Ixz, Iyz, Izz`) read as inputs.
+fn rigid10(t: &mut Trace, b: &Mass) -> Rigid {
+    match &b.param {
+        None => Rigid {
+            m: Val::K(b.mass),
+            h: k3(b.h),
+            i: km3(b.inertia),
+        },
+        Some(field) => {
+            let field = quote::format_ident!("{}", field);
+            let mut p = [ZERO; 10];
+            for (k, x) in p.iter_mut().enumerate() {
+                *x = t.input_once(quote::quote!(self.#field[#k]));
+            }
+            let i = [[p[4], p[5], p[7]], [p[5], p[6], p[8]], [p[7], p[8], p[9]]];
+            Rigid {
+                m: p[0],
+                h: [p[1], p[2], p[3]],
+                i,
+            }
+        }
+    }
+}
+
+fn rigid10_body(t: &mut Trace, b: &Body) -> Rigid {
+    rigid10(
+        t,
+        &Mass {
+            mass: b.mass,
+            h: b.h,
+            inertia: b.inertia,
+            param: b.param.clone(),
+        },
+    )
+}
+
+/// A rigid inertia as a spatial one: `A = Ī`, `B = [h]×`, `C = m 1`.
+fn spatial(b: &Rigid) -> Si {
+    let m = b.m;
     Si {
-        a: km3(b.inertia),
-        b: Cx::skew(h),
+        a: b.i,
+        b: Cx::skew(b.h),
         c: [[m, ZERO, ZERO], [ZERO, m, ZERO], [ZERO, ZERO, m]],
     }
 }
@@ -443,7 +543,7 @@ pub fn rnea(
         } else {
             ab
         };
-        let inertia = rigid_mass(fb.mass);
+        let inertia = rigid_mass(cx.t, fb.mass);
         let ia = cx.inertia_times(&inertia, ab);
         let iv = cx.inertia_times(&inertia, vb);
         let vf = cx.cross_force(vb, iv);
@@ -474,7 +574,7 @@ pub fn rnea(
         let c = cx.cross_motion(v[i], vj);
         let ai = cx.sv_add(ax, aj);
         a[i] = cx.sv_add(ai, c);
-        let inertia = rigid(&bodies[i]);
+        let inertia = rigid(cx.t, &bodies[i]);
         let ia = cx.inertia_times(&inertia, a[i]);
         let iv = cx.inertia_times(&inertia, v[i]);
         let vf = cx.cross_force(v[i], iv);
@@ -505,21 +605,23 @@ pub fn crba(t: &mut Trace, bodies: &[Body], fb: Option<&Floating>, q: &[Val]) ->
     let xs = transforms(t, bodies, q);
     let mut cx = Cx { t };
     let n = bodies.len();
-    let mut ic: Vec<Si> = bodies.iter().map(rigid).collect();
-    let mut ic_root = fb.map(|fb| rigid_mass(fb.mass));
+    let mut ic: Vec<Rigid> = bodies.iter().map(|b| rigid10_body(cx.t, b)).collect();
+    let mut ic_root = fb.map(|fb| rigid10(cx.t, fb.mass));
     for i in (0..n).rev() {
         match (bodies[i].parent, ic_root) {
             (Some(p), _) => {
-                let up = cx.inertia_up(&xs[i], &ic[i]);
-                ic[p] = cx.si_add(&ic[p], &up);
+                let up = cx.rigid_up(&xs[i], &ic[i]);
+                ic[p] = cx.rigid_add(&ic[p], &up);
             }
             (None, Some(root)) => {
-                let up = cx.inertia_up(&xs[i], &ic[i]);
-                ic_root = Some(cx.si_add(&root, &up));
+                let up = cx.rigid_up(&xs[i], &ic[i]);
+                ic_root = Some(cx.rigid_add(&root, &up));
             }
             (None, None) => {}
         }
     }
+    let ic: Vec<Si> = ic.iter().map(spatial).collect();
+    let ic_root = ic_root.as_ref().map(spatial);
     let o = if fb.is_some() { 6 } else { 0 };
     let mut m = vec![vec![ZERO; n + o]; n + o];
     for i in 0..n {
@@ -619,11 +721,11 @@ pub fn aba(
     let (tau_b, tau) = split(fb.is_some(), tau);
     let mut v = vec![SV0; n];
     let mut c = vec![SV0; n];
-    let mut ia: Vec<Si> = bodies.iter().map(rigid).collect();
+    let mut ia: Vec<Si> = bodies.iter().map(|b| rigid(cx.t, b)).collect();
     let mut pa = vec![SV0; n];
     // The base's articulated inertia and bias force, from its own body.
     let mut root = fb.map(|fb| {
-        let inertia = rigid_mass(fb.mass);
+        let inertia = rigid_mass(cx.t, fb.mass);
         let iv = cx.inertia_times(&inertia, vb);
         (inertia, cx.cross_force(vb, iv))
     });
@@ -758,7 +860,8 @@ pub fn kinetic(
     let mut v = vec![SV0; bodies.len()];
     let mut twice = ZERO;
     if let Some(fb) = fb {
-        let iv = cx.inertia_times(&rigid_mass(fb.mass), vb);
+        let inertia = rigid_mass(cx.t, fb.mass);
+        let iv = cx.inertia_times(&inertia, vb);
         twice = cx.sv_dot(vb, iv);
     }
     for (i, b) in bodies.iter().enumerate() {
@@ -770,7 +873,8 @@ pub fn kinetic(
         let vp = b.parent.map_or(vb, |p| v[p]);
         let vx = cx.motion(&xs[i], vp);
         v[i] = cx.sv_add(vx, vj);
-        let iv = cx.inertia_times(&rigid(b), v[i]);
+        let inertia = rigid(cx.t, b);
+        let iv = cx.inertia_times(&inertia, v[i]);
         let e = cx.sv_dot(v[i], iv);
         twice = cx.t.add(twice, e);
     }
@@ -790,8 +894,9 @@ pub fn potential(t: &mut Trace, bodies: &[Body], fb: Option<&Floating>, q: &[Val
     let (z_root, h_root) = match fb {
         Some(fb) => {
             let zb = [fb.rot[2][0], fb.rot[2][1], fb.rot[2][2]];
-            let mz = cx.t.mul(Val::K(fb.mass.mass), fb.pos[2]);
-            let zh = cx.dot3(zb, k3(fb.mass.h));
+            let b = rigid10(cx.t, fb.mass);
+            let mz = cx.t.mul(b.m, fb.pos[2]);
+            let zh = cx.dot3(zb, b.h);
             sum = cx.t.add(mz, zh);
             (zb, fb.pos[2])
         }
@@ -802,8 +907,9 @@ pub fn potential(t: &mut Trace, bodies: &[Body], fb: Option<&Floating>, q: &[Val
         let dz = cx.dot3(zp, xs[i].r);
         height[i] = cx.t.add(hp, dz);
         up[i] = cx.down(&xs[i], zp);
-        let mz = cx.t.mul(Val::K(b.mass), height[i]);
-        let zh = cx.dot3(up[i], k3(b.h));
+        let b = rigid10_body(cx.t, b);
+        let mz = cx.t.mul(b.m, height[i]);
+        let zh = cx.dot3(up[i], b.h);
         let e = cx.t.add(mz, zh);
         sum = cx.t.add(sum, e);
     }

@@ -111,7 +111,7 @@ fn rates(t: &mut Trace, rot: &M3, q: &[Val], v: &[Val]) -> Vec<Val> {
 pub(super) fn emit(input: &Input, bodies: &[Body], mass: &Mass) -> TokenStream {
     let n = bodies.len();
     let (nq, nv) = (7 + n, 6 + n);
-    let (vis, name, attrs) = (&input.vis, &input.name, &input.attrs);
+    let name = &input.name;
     let rel = input.path.value();
     let names: Vec<&str> = BASE
         .iter()
@@ -200,10 +200,9 @@ pub(super) fn emit(input: &Input, bodies: &[Body], mass: &Mass) -> TokenStream {
     let sv = quote!(::lagrange::nalgebra::SVector<S, #nv>);
     let include = input.include();
     let holonomic = quote!(::lagrange::Holonomic<#nq, 1>);
+    let (item, new) = super::robot_struct(input, bodies, mass);
     quote! {
-        #(#attrs)*
-        #[derive(Clone, Copy, Debug, Default, PartialEq)]
-        #vis struct #name<S = f64>(::core::marker::PhantomData<S>);
+        #item
 
         // The URDF read at compile time: rebuilt when it changes.
         #include
@@ -222,11 +221,7 @@ pub(super) fn emit(input: &Input, bodies: &[Body], mass: &Mass) -> TokenStream {
             pub const VELOCITY_NAMES: [&'static str; #nv] = [#(#velocity_names),*];
             /// The names of the constraints: the quaternion's unit norm.
             pub const CONSTRAINTS: [&'static str; 1] = ["unit_quaternion"];
-            /// The robot (its constants are in the code).
-            #[inline]
-            pub const fn new() -> Self {
-                Self(::core::marker::PhantomData)
-            }
+            #new
             /// Inverse dynamics by RNEA: the forces `τ(q, ν, ν̇)` that give
             /// the accelerations `ν̇`, gravity included: the wrench on the
             /// base (force, moment, in its frame), then the joints'.

@@ -24,6 +24,7 @@ pub mod tree;
 pub mod urdf;
 
 use algorithms::frames::{self, Frame};
+use algorithms::regressor;
 use proc_macro2::{Span, TokenStream};
 use quote::{format_ident, quote};
 use syn::parse::{ParseStream, Parser};
@@ -44,6 +45,10 @@ struct Input {
     /// parameters `π` (opt-in, as the energy models' regressor: `10 n`
     /// columns, the largest item of a large robot).
     regressor: bool,
+    /// `parameters(field = "link", ..)`: struct fields holding the ten
+    /// inertial parameters of the named links' bodies, read by the code
+    /// instead of the file's constants (for identification).
+    params: Vec<(Ident, LitStr)>,
     /// A robot written as bodies and joints: its links and joints (and
     /// `path` is a string of its name), instead of a file.
     inline: Option<language::Inline>,
@@ -124,12 +129,74 @@ fn regressor_flag(m: &syn::meta::ParseNestedMeta, regressor: &mut bool) -> syn::
     Ok(())
 }
 
+/// `parameters(field = "link", ..)` in a robot's `#[lagrange(..)]`: given
+/// once, each field and each link once.
+fn parameters_list(
+    m: &syn::meta::ParseNestedMeta,
+    params: &mut Option<Vec<(Ident, LitStr)>>,
+) -> syn::Result<()> {
+    let usage = "`parameters(payload = \"link7\")` makes the struct's field `payload: [S; 10]` hold the ten \
+                 inertial parameters of link `link7`'s body, which the code reads instead of the file's";
+    if !m.input.peek(syn::token::Paren) {
+        return Err(m.error(format!("`parameters` lists fields and links: {usage}")));
+    }
+    if params.is_some() {
+        return Err(m.error("`parameters` is given twice"));
+    }
+    let list = params.insert(Vec::new());
+    let content;
+    let paren = syn::parenthesized!(content in m.input);
+    if content.is_empty() {
+        return Err(syn::Error::new(
+            paren.span.join(),
+            format!("`parameters()` names no field: {usage}"),
+        ));
+    }
+    while !content.is_empty() {
+        let field: Ident = content.parse().map_err(|e| {
+            syn::Error::new(
+                e.span(),
+                format!("a field's name is an identifier: {usage}"),
+            )
+        })?;
+        if !content.peek(Token![=]) {
+            return Err(syn::Error::new(
+                field.span(),
+                format!("`{field}` names the link whose parameters it holds: `{field} = \"link\"`"),
+            ));
+        }
+        content.parse::<Token![=]>()?;
+        let link: LitStr = content.parse()?;
+        if list.iter().any(|(f, _)| *f == field) {
+            return Err(syn::Error::new(
+                field.span(),
+                format!("field `{field}` is given twice"),
+            ));
+        }
+        if let Some((f, _)) = list.iter().find(|(_, l)| l.value() == link.value()) {
+            return Err(syn::Error::new(
+                link.span(),
+                format!(
+                    "link `{}` is given twice (its field is `{f}`)",
+                    link.value()
+                ),
+            ));
+        }
+        list.push((field, link));
+        if !content.is_empty() {
+            content.parse::<Token![,]>()?;
+        }
+    }
+    Ok(())
+}
+
 fn parse(input: TokenStream) -> syn::Result<Input> {
     let parser = |stream: ParseStream| -> syn::Result<Input> {
         let mut attrs = stream.call(Attribute::parse_outer)?;
         let mut path = None;
         let mut floating = false;
         let mut regressor = false;
+        let mut params = None;
         let mut error: Option<syn::Error> = None;
         attrs.retain(|a| {
             if !a.path().is_ident("lagrange") {
@@ -152,11 +219,14 @@ fn parse(input: TokenStream) -> syn::Result<Input> {
                     Ok(())
                 } else if m.path.is_ident("regressor") {
                     regressor_flag(&m, &mut regressor)
+                } else if m.path.is_ident("parameters") {
+                    parameters_list(&m, &mut params)
                 } else {
                     Err(m.error(
                         "a robot from URDF takes `#[lagrange(urdf = \"path\")]`, with `floating` for a floating \
-                         base and `regressor` for the inertial-parameter regressor, and nothing else: its dynamics \
-                         are Featherstone's recursions, not derived from T and V",
+                         base, `regressor` for the inertial-parameter regressor and `parameters(field = \"link\")` \
+                         for links' inertial parameters as fields, and nothing else: its dynamics are \
+                         Featherstone's recursions, not derived from T and V",
                     ))
                 }
             });
@@ -231,6 +301,7 @@ fn parse(input: TokenStream) -> syn::Result<Input> {
             locks,
             floating,
             regressor,
+            params: params.unwrap_or_default(),
             inline: None,
         })
     };
@@ -244,6 +315,7 @@ fn parse_inline(input: TokenStream) -> syn::Result<Input> {
     let parser = |stream: ParseStream| -> syn::Result<Input> {
         let mut attrs = stream.call(Attribute::parse_outer)?;
         let mut regressor = false;
+        let mut params = None;
         let mut error: Option<syn::Error> = None;
         attrs.retain(|a| {
             if !a.path().is_ident("lagrange") {
@@ -252,10 +324,13 @@ fn parse_inline(input: TokenStream) -> syn::Result<Input> {
             let r = a.parse_nested_meta(|m| {
                 if m.path.is_ident("regressor") {
                     regressor_flag(&m, &mut regressor)
+                } else if m.path.is_ident("parameters") {
+                    parameters_list(&m, &mut params)
                 } else {
                     Err(m.error(
-                        "a robot written as bodies and joints takes one `#[lagrange(..)]` option, `regressor` (the \
-                         inertial-parameter regressor): a floating base is the joint `floating base -> trunk`, its \
+                        "a robot written as bodies and joints takes two `#[lagrange(..)]` options, `regressor` (the \
+                         inertial-parameter regressor) and `parameters(field = \"body\")` (bodies' inertial \
+                         parameters as fields): a floating base is the joint `floating base -> trunk`, its \
                          dynamics are Featherstone's recursions",
                     ))
                 }
@@ -296,6 +371,7 @@ fn parse_inline(input: TokenStream) -> syn::Result<Input> {
             locks,
             floating: inline.floating,
             regressor,
+            params: params.unwrap_or_default(),
             inline: Some(inline),
         })
     };
@@ -347,12 +423,13 @@ fn load(
         None => err(format!("{rel}: {}", r.message)),
     };
     let robot = urdf::read(&text).map_err(at)?;
-    let (bodies, root) = tree::bodies(&robot, &locks, input.floating).map_err(|e| match e {
-        TreeError::File(r) => at(r),
-        TreeError::Lock(k, message) => {
-            syn::Error::new(input.locks[k].0.span(), format!("{message} (in `{rel}`)"))
-        }
-    })?;
+    let (mut bodies, mut root) =
+        tree::bodies(&robot, &locks, input.floating).map_err(|e| match e {
+            TreeError::File(r) => at(r),
+            TreeError::Lock(k, message) => {
+                syn::Error::new(input.locks[k].0.span(), format!("{message} (in `{rel}`)"))
+            }
+        })?;
     if input.floating {
         if let Some(b) = bodies
             .iter()
@@ -365,8 +442,74 @@ fn load(
             )));
         }
     }
+    assign_parameters(input, &robot, &mut bodies, &mut root)?;
     let frames = frames::frames(&robot, &locks, &bodies);
     Ok((bodies, root, frames))
+}
+
+/// Each link `parameters(..)` names, its field set on the body it is (a
+/// moving joint's child, or a floating base's root), or an error on the
+/// link's string: a link that is not the robot's, a fixed base, a link
+/// welded to another (whose body holds its mass).
+fn assign_parameters(
+    input: &Input,
+    robot: &urdf::Urdf,
+    bodies: &mut [Body],
+    root: &mut Mass,
+) -> syn::Result<()> {
+    let whose = match &input.inline {
+        None => format!("`{}`", input.path.value()),
+        Some(_) => format!("robot `{}`", input.name),
+    };
+    let (link_word, links_word) = match &input.inline {
+        None => ("link", "links"),
+        Some(_) => ("body", "bodies"),
+    };
+    for (field, link) in &input.params {
+        let name = link.value();
+        let err = |m: String| Err(syn::Error::new(link.span(), m));
+        let Some(l) = robot.links.iter().position(|x| x.name == name) else {
+            return err(format!("{whose} has no {link_word} `{name}`"));
+        };
+        let field = field.to_string();
+        if l == robot.root {
+            if !input.floating {
+                return err(format!(
+                    "{link_word} `{name}` is the fixed base: it does not move, and its mass enters no dynamics"
+                ));
+            }
+            root.param = Some(field);
+            continue;
+        }
+        let parent_joint = |l: usize| robot.joints.iter().find(|j| j.child == l);
+        let Some(joint) = parent_joint(l) else {
+            return err(format!("{link_word} `{name}` is attached by no joint"));
+        };
+        if let Some(b) = bodies.iter_mut().find(|b| b.name == joint.name) {
+            b.param = Some(field);
+            continue;
+        }
+        // Welded (fixed, or locked): up to the link whose body it is part of.
+        let mut owner = joint.parent;
+        for _ in 0..robot.joints.len() {
+            match parent_joint(owner) {
+                Some(j) if !bodies.iter().any(|b| b.name == j.name) => owner = j.parent,
+                _ => break,
+            }
+        }
+        let owner = &robot.links[owner].name;
+        let how = if input.locks.iter().any(|(_, k)| k.joint == joint.name) {
+            "locked"
+        } else {
+            "fixed"
+        };
+        return err(format!(
+            "{link_word} `{name}` is welded to `{owner}` (joint `{}` is {how}): its mass is part of that body's, \
+             and `parameters` names the {links_word} that move: `{field} = \"{owner}\"`",
+            joint.name
+        ));
+    }
+    Ok(())
 }
 
 /// The bodies and frames of a robot written in the language, its tree's
@@ -377,16 +520,17 @@ fn load_inline(
 ) -> syn::Result<(Vec<Body>, Mass, Vec<Frame>)> {
     let locks: Vec<Lock> = input.locks.iter().map(|(_, l)| l.clone()).collect();
     let robot = &inline.urdf;
-    let (bodies, root) = tree::bodies(robot, &locks, input.floating).map_err(|e| match e {
-        TreeError::File(r) => syn::Error::new(
-            inline.span(r.line).unwrap_or_else(|| input.name.span()),
-            match r.line {
-                Some(_) => r.message,
-                None => format!("robot `{}`: {}", input.name, r.message),
-            },
-        ),
-        TreeError::Lock(k, message) => syn::Error::new(input.locks[k].0.span(), message),
-    })?;
+    let (mut bodies, mut root) =
+        tree::bodies(robot, &locks, input.floating).map_err(|e| match e {
+            TreeError::File(r) => syn::Error::new(
+                inline.span(r.line).unwrap_or_else(|| input.name.span()),
+                match r.line {
+                    Some(_) => r.message,
+                    None => format!("robot `{}`: {}", input.name, r.message),
+                },
+            ),
+            TreeError::Lock(k, message) => syn::Error::new(input.locks[k].0.span(), message),
+        })?;
     if input.floating {
         if let Some(b) = bodies
             .iter()
@@ -404,6 +548,7 @@ fn load_inline(
             ));
         }
     }
+    assign_parameters(input, robot, &mut bodies, &mut root)?;
     let frames = frames::frames(robot, &locks, &bodies);
     Ok((bodies, root, frames))
 }
@@ -435,8 +580,8 @@ pub fn expand(input: TokenStream, manifest_dir: Option<&std::path::Path>) -> Tok
             ));
             items
         }
-        Ok((bodies, _, frames)) => {
-            let mut items = emit(&input, &bodies);
+        Ok((bodies, root, frames)) => {
+            let mut items = emit(&input, &bodies, &root);
             items.extend(api::emit(&input.name, &bodies, &frames, input.regressor));
             items
         }
@@ -465,6 +610,17 @@ fn check_states(n: usize) -> [Vec<f64>; 3] {
 /// `M` positive definite at a few states: every joint moves some mass (on
 /// a floating base, `M` in the velocities; the base's pose does not enter it).
 fn check(input: &Input, bodies: &[Body], root: &Mass) -> syn::Result<()> {
+    // At the file's parameters, the named ones too (`new()`'s).
+    let bodies: Vec<Body> = bodies
+        .iter()
+        .cloned()
+        .map(|b| Body { param: None, ..b })
+        .collect();
+    let root = &Mass {
+        param: None,
+        ..root.clone()
+    };
+    let bodies = &bodies[..];
     let n = bodies.len();
     let mut t = Trace::default();
     let q: Vec<Val> = (0..n).map(|i| t.input(quote!(q[#i]))).collect();
@@ -554,10 +710,81 @@ fn function_of(
     t.emit(&outs)
 }
 
-fn emit(input: &Input, bodies: &[Body]) -> TokenStream {
-    let n = bodies.len();
+/// The robot's struct and its `new()`: a unit of `PhantomData`, or with
+/// `parameters(..)` a field of ten inertial parameters per named link,
+/// which `new()` sets to the file's.
+fn robot_struct(input: &Input, bodies: &[Body], root: &Mass) -> (TokenStream, TokenStream) {
     let (vis, name, attrs) = (&input.vis, &input.name, &input.attrs);
+    if input.params.is_empty() {
+        return (
+            quote! {
+                #(#attrs)*
+                #[derive(Clone, Copy, Debug, Default, PartialEq)]
+                #vis struct #name<S = f64>(::core::marker::PhantomData<S>);
+            },
+            quote! {
+                /// The robot (its constants are in the code).
+                #[inline]
+                pub const fn new() -> Self {
+                    Self(::core::marker::PhantomData)
+                }
+            },
+        );
+    }
+    let simd = quote! {
+        S: ::lagrange::nalgebra::SimdRealField + ::core::marker::Copy,
+        S::Element: ::lagrange::nalgebra::RealField + ::core::marker::Copy,
+    };
+    let mut fields = Vec::new();
+    let mut values = Vec::new();
+    for (field, link) in &input.params {
+        let key = field.to_string();
+        // `assign_parameters` gave every field its body.
+        let pi = match bodies.iter().find(|b| b.param.as_deref() == Some(&key)) {
+            Some(b) => regressor::parameters(b),
+            None => regressor::base_parameters(root),
+        };
+        let doc = format!(
+            "The ten inertial parameters of `{}`'s body (what is fixed or locked to it included), in \
+             Pinocchio's order: `m`, the first moment `m c` (3), the inertia about the joint frame `Ixx, Ixy, \
+             Iyy, Ixz, Iyz, Izz`, in the body's axes (its ten columns of the regressor). Every method reads \
+             them; [`new`](Self::new) sets the file's.",
+            link.value()
+        );
+        fields.push(quote!(#[doc = #doc] #vis #field: [S; 10]));
+        let lits = pi.map(proc_macro2::Literal::f64_suffixed);
+        values.push(quote!(#field: [#(::lagrange::nalgebra::convert::<f64, S>(#lits)),*]));
+    }
+    (
+        quote! {
+            #(#attrs)*
+            #[derive(Clone, Copy, Debug, PartialEq)]
+            #vis struct #name<S = f64> {
+                #(#fields,)*
+            }
+
+            impl<S> ::core::default::Default for #name<S> where #simd {
+                #[inline]
+                fn default() -> Self {
+                    Self::new()
+                }
+            }
+        },
+        quote! {
+            /// The robot, its named inertial parameters the file's.
+            #[inline]
+            pub fn new() -> Self {
+                Self { #(#values,)* }
+            }
+        },
+    )
+}
+
+fn emit(input: &Input, bodies: &[Body], root: &Mass) -> TokenStream {
+    let n = bodies.len();
+    let name = &input.name;
     let rel = input.path.value();
+    let (item, new) = robot_struct(input, bodies, root);
     let names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
     let vector = |outs: Vec<TokenStream>| {
         quote!(::lagrange::nalgebra::SVector::<S, #n>::from_array_storage(
@@ -611,9 +838,7 @@ fn emit(input: &Input, bodies: &[Body]) -> TokenStream {
     let sv = quote!(::lagrange::nalgebra::SVector<S, #n>);
     let include = input.include();
     quote! {
-        #(#attrs)*
-        #[derive(Clone, Copy, Debug, Default, PartialEq)]
-        #vis struct #name<S = f64>(::core::marker::PhantomData<S>);
+        #item
 
         #include
 
@@ -623,11 +848,7 @@ fn emit(input: &Input, bodies: &[Body]) -> TokenStream {
             pub const DOF: usize = #n;
             /// Names of the coordinates: the moving joints, parents first.
             pub const COORDINATES: [&'static str; #n] = [#(#names),*];
-            /// The robot (its constants are in the code).
-            #[inline]
-            pub const fn new() -> Self {
-                Self(::core::marker::PhantomData)
-            }
+            #new
             /// Inverse dynamics by RNEA: the joint forces `τ(q, q̇, q̈)`
             /// that give the accelerations `q̈`, gravity included.
             #[inline]

@@ -54,6 +54,8 @@ pub struct Trace {
     ops: Vec<Op>,
     seen: HashMap<Op, u32>,
     inputs: Vec<TokenStream>,
+    /// [`Self::input_once`]'s inputs by their tokens.
+    named: HashMap<String, Val>,
 }
 
 /// The zero and the one.
@@ -105,6 +107,18 @@ impl Trace {
             id: self.push(Op::Input(n)),
             neg: false,
         }
+    }
+
+    /// The input read as `tokens`, made on the first call and the same
+    /// variable after (a parameter read by several bodies' terms).
+    pub fn input_once(&mut self, tokens: TokenStream) -> Val {
+        let key = tokens.to_string();
+        if let Some(&v) = self.named.get(&key) {
+            return v;
+        }
+        let v = self.input(tokens);
+        self.named.insert(key, v);
+        v
     }
 
     /// The sine and cosine of an input variable.

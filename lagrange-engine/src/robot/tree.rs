@@ -27,6 +27,10 @@ pub struct Body {
     pub h: [f64; 3],
     /// The inertia about the body's origin, in its axes.
     pub inertia: [[f64; 3]; 3],
+    /// The struct's field holding its ten inertial parameters, where
+    /// `parameters(..)` names its link: the code reads them there instead
+    /// of the three constants above (which `new()` writes into it).
+    pub param: Option<String>,
 }
 
 /// The mass of the root link and of what is fixed to it: a floating base's
@@ -39,6 +43,8 @@ pub struct Mass {
     pub h: [f64; 3],
     /// The inertia about the origin.
     pub inertia: [[f64; 3]; 3],
+    /// As [`Body::param`].
+    pub param: Option<String>,
 }
 
 /// A joint locked at a value: an angle, or a displacement.
@@ -156,6 +162,7 @@ pub fn bodies(urdf: &Urdf, locks: &[Lock], floating: bool) -> Result<(Vec<Body>,
                             mass: 0.0,
                             h: [0.0; 3],
                             inertia: [[0.0; 3]; 3],
+                            param: None,
                         });
                         (Some(bodies.len() - 1), Placement::IDENTITY)
                     }

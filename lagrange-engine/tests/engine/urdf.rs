@@ -244,8 +244,78 @@ fn urdf_floating_misuse_is_an_error() {
     );
     let text = expand_with("urdf = \"x.urdf\", fixed", "");
     assert!(
-        error_of(&text).contains("with `floating` for a floating base and `regressor` for the"),
+        error_of(&text).contains("with `floating` for a floating base, `regressor` for the"),
         "{text}"
+    );
+}
+
+/// `parameters(field = "link")`: each mistake one error on its tokens.
+#[test]
+fn urdf_parameters_misuse_is_one_error_on_its_tokens() {
+    let tree = "urdf = \"../tests/data/robots/tree.urdf\"";
+    let panda = "urdf = \"../tests/data/robots/panda.urdf\"";
+    let locked = "locked: panda_finger_joint1 = 0.0, panda_finger_joint2 = 0.0;";
+    for (attribute, body, message) in [
+        ("parameters", "", "`parameters` lists fields and links"),
+        ("parameters()", "", "`parameters()` names no field"),
+        (
+            "parameters(arm)",
+            "",
+            "`arm` names the link whose parameters it holds",
+        ),
+        (
+            "parameters(a = \"arm\", a = \"hub\")",
+            "",
+            "field `a` is given twice",
+        ),
+        (
+            "parameters(a = \"arm\", b = \"arm\")",
+            "",
+            "link `arm` is given twice (its field is `a`)",
+        ),
+        (
+            "parameters(a = \"arm\"), parameters(b = \"hub\")",
+            "",
+            "`parameters` is given twice",
+        ),
+        ("parameters(a = \"elbow\")", "", "has no link `elbow`"),
+        (
+            "parameters(a = \"base\")",
+            "",
+            "link `base` is the fixed base",
+        ),
+        (
+            "parameters(a = \"weight\")",
+            "",
+            "link `weight` is welded to `wrist` (joint `weight_mount` is fixed): its mass is part of that body's",
+        ),
+    ] {
+        let text = expand_with(&format!("{tree}, {attribute}"), body);
+        let e = error_of(&text);
+        assert!(e.contains(message), "{attribute}: {e}");
+        assert_eq!(
+            text.matches("compile_error").count(),
+            1,
+            "{attribute}: {text:.600}"
+        );
+    }
+    // A finger locked is welded to the hand, which is fixed to link 7.
+    let text = expand_with(
+        &format!("{panda}, parameters(f = \"panda_leftfinger\")"),
+        locked,
+    );
+    assert!(
+        error_of(&text).contains(
+            "link `panda_leftfinger` is welded to `panda_link7` (joint `panda_finger_joint1` is locked)"
+        ),
+        "{text:.600}"
+    );
+    // Named, a link's parameters are fields the code reads.
+    let text = expand_with(&format!("{tree}, parameters(wrist = \"wrist\")"), "");
+    assert!(!text.contains("compile_error"), "{text:.600}");
+    assert!(
+        text.contains("pub wrist : [S ; 10]") && text.contains("self . wrist [9usize]"),
+        "{text:.600}"
     );
 }
 
@@ -768,7 +838,7 @@ fn the_regressor_is_written_only_where_asked_for() {
         .unwrap();
     let refused = lagrange_engine::expand(tokens).to_string();
     assert!(
-        refused.contains("takes one `#[lagrange(..)]` option, `regressor`"),
+        refused.contains("takes two `#[lagrange(..)]` options, `regressor`"),
         "{refused:.300}"
     );
 }
