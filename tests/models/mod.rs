@@ -17,6 +17,7 @@ mod named_lets;
 pub(crate) mod parameter_derivatives;
 mod physics_names;
 mod robot_frames;
+mod robot_parameters;
 mod robots;
 mod textbook_models;
 mod trigonometry;

@@ -1,0 +1,320 @@
+//! A robot's inertial parameters as fields of its struct
+//! (`#[lagrange(parameters(field = "link"))]`): at the file's values
+//! (`new()`), the same bits as the robot with its constants folded; with
+//! other values, every method moves with them as the regressor says (`Y π`
+//! is RNEA's τ for the changed `π`), `M` with ABA and the kinetic energy,
+//! the potential energy with the gravity torques; on a fixed base (the
+//! tests' tree, its wrist with the weight welded to it) and on a floating
+//! one (the trunk's own parameters).
+
+use super::robots::Tree;
+use lagrange::nalgebra::{Matrix3, Quaternion, SMatrix, SVector, UnitQuaternion, Vector3};
+use lagrange::prelude::*;
+
+lagrangian! {
+    /// `tree.urdf` with its wrist's body (the weight welded to it included)
+    /// and its arm's as fields.
+    #[lagrange(urdf = "tests/data/robots/tree.urdf", regressor, parameters(wrist = "wrist", arm = "arm"))]
+    pub struct TreeParameters {}
+}
+
+lagrangian! {
+    /// A free trunk with an arm and a forearm, in constants.
+    #[lagrange(regressor)]
+    pub struct Swimmer {
+        bodies:
+            trunk: mass 3.0, com [0.02, 0, -0.01], inertia [[0.05, 0.001, 0], [0.001, 0.04, 0.002], [0, 0.002, 0.03]];
+            arm: mass 0.7, com [0, 0, 0.15], inertia diag(0.004, 0.004, 0.0006);
+            fore: mass 0.4, com [0.1, 0, 0], inertia diag(0.0002, 0.002, 0.002);
+        joints:
+            free: floating base -> trunk;
+            shoulder: revolute trunk -> arm, at translate(0.1, 0, 0.05), axis [0, 1, 0];
+            elbow: revolute arm -> fore, at translate(0, 0, 0.3) * rotate_x(0.3), axis [0, 0.6, 0.8];
+    }
+}
+
+lagrangian! {
+    /// [`Swimmer`] with the trunk's and the forearm's parameters as fields.
+    #[lagrange(regressor, parameters(trunk = "trunk", fore = "fore"))]
+    pub struct SwimmerParameters {
+        bodies:
+            trunk: mass 3.0, com [0.02, 0, -0.01], inertia [[0.05, 0.001, 0], [0.001, 0.04, 0.002], [0, 0.002, 0.03]];
+            arm: mass 0.7, com [0, 0, 0.15], inertia diag(0.004, 0.004, 0.0006);
+            fore: mass 0.4, com [0.1, 0, 0], inertia diag(0.0002, 0.002, 0.002);
+        joints:
+            free: floating base -> trunk;
+            shoulder: revolute trunk -> arm, at translate(0.1, 0, 0.05), axis [0, 1, 0];
+            elbow: revolute arm -> fore, at translate(0, 0, 0.3) * rotate_x(0.3), axis [0, 0.6, 0.8];
+    }
+}
+
+/// States spread over `[-2, 2]` (angles), `[-3, 3]` (rates, accelerations).
+fn spread<const N: usize>(seed: u64, count: usize) -> Vec<[SVector<f64, N>; 3]> {
+    let mut state = seed;
+    let mut next = move || {
+        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    (0..count)
+        .map(|_| {
+            [
+                SVector::from_fn(|_, _| 2.0 * next()),
+                SVector::from_fn(|_, _| 3.0 * next()),
+                SVector::from_fn(|_, _| 3.0 * next()),
+            ]
+        })
+        .collect()
+}
+
+/// A rigid body's ten parameters in Pinocchio's order, about the frame's
+/// origin: mass `m`, centre of mass `c`, inertia `ic` about `c`.
+fn parameters(m: f64, c: Vector3<f64>, ic: Matrix3<f64>) -> [f64; 10] {
+    let io = ic + m * (c.norm_squared() * Matrix3::identity() - c * c.transpose());
+    let h = m * c;
+    [
+        m,
+        h.x,
+        h.y,
+        h.z,
+        io[(0, 0)],
+        io[(0, 1)],
+        io[(1, 1)],
+        io[(0, 2)],
+        io[(1, 2)],
+        io[(2, 2)],
+    ]
+}
+
+#[test]
+fn named_parameters_at_the_files_values_give_the_constant_robots_bits() {
+    let (file, named) = (Tree::<f64>::new(), TreeParameters::<f64>::new());
+    // `new()` writes the file's parameters: the body's slice of PARAMETERS.
+    assert_eq!(named.wrist[..], Tree::<f64>::PARAMETERS[20..30]);
+    assert_eq!(named.arm[..], Tree::<f64>::PARAMETERS[30..40]);
+    // The parameters read at run time instead of folded at compile time:
+    // the same operations on the same numbers (a product by a constant
+    // zero or one is exact either way), hence the same bits.
+    for [q, v, a] in spread::<4>(11, 40) {
+        assert_eq!(file.mass_matrix(0.0, &q), named.mass_matrix(0.0, &q));
+        assert_eq!(
+            file.nonlinear_effects(&q, &v),
+            named.nonlinear_effects(&q, &v)
+        );
+        assert_eq!(
+            file.inverse_dynamics(&q, &v, &a),
+            named.inverse_dynamics(&q, &v, &a)
+        );
+        assert_eq!(
+            file.forward_dynamics(&q, &v, &a),
+            named.forward_dynamics(&q, &v, &a)
+        );
+        assert_eq!(
+            file.kinetic_energy(0.0, &q, &v),
+            named.kinetic_energy(0.0, &q, &v)
+        );
+        assert_eq!(
+            file.potential_energy(0.0, &q),
+            named.potential_energy(0.0, &q)
+        );
+    }
+    // The fields are the scalar's: in f32, `M` to f32's rounding (6e-8 a
+    // operation, a few hundred operations: 1e-5 of its largest entry).
+    let q = SVector::<f64, 4>::new(0.3, 0.05, -1.2, 0.8);
+    let m32 = TreeParameters::<f32>::new().mass_matrix(0.0, &q.cast::<f32>());
+    let m64 = file.mass_matrix(0.0, &q);
+    assert!((m32.cast::<f64>() - m64).amax() < 1e-5 * m64.amax());
+    let (file, named) = (Swimmer::<f64>::new(), SwimmerParameters::<f64>::new());
+    assert_eq!(named.trunk[..], Swimmer::<f64>::PARAMETERS[0..10]);
+    assert_eq!(named.fore[..], Swimmer::<f64>::PARAMETERS[20..30]);
+    for (q, v, a) in floating_states(12, 40) {
+        assert_eq!(
+            file.velocity_mass_matrix(&q),
+            named.velocity_mass_matrix(&q)
+        );
+        assert_eq!(
+            file.inverse_dynamics(&q, &v, &a),
+            named.inverse_dynamics(&q, &v, &a)
+        );
+        assert_eq!(
+            file.forward_dynamics(&q, &v, &a),
+            named.forward_dynamics(&q, &v, &a)
+        );
+        let qdot = file.rates(&q, &v);
+        assert_eq!(
+            file.kinetic_energy(0.0, &q, &qdot),
+            named.kinetic_energy(0.0, &q, &qdot)
+        );
+        assert_eq!(
+            file.potential_energy(0.0, &q),
+            named.potential_energy(0.0, &q)
+        );
+    }
+}
+
+/// The swimmer's states: its position, a unit quaternion, its two joints'
+/// angles; its velocities `ν` and accelerations `ν̇` (8 each).
+fn floating_states(
+    seed: u64,
+    count: usize,
+) -> Vec<(SVector<f64, 9>, SVector<f64, 8>, SVector<f64, 8>)> {
+    spread::<9>(seed, count)
+        .into_iter()
+        .map(|[x, v, a]| {
+            let mut q = x;
+            let quat = x.fixed_rows::<4>(3).normalize();
+            q.fixed_rows_mut::<4>(3).copy_from(&quat);
+            (
+                q,
+                v.fixed_rows::<8>(0).into_owned(),
+                a.fixed_rows::<8>(0).into_owned(),
+            )
+        })
+        .collect()
+}
+
+/// `a` within `bound` of `b`, entry by entry, relative to `scale`.
+fn close<const R: usize, const C: usize>(
+    what: &str,
+    a: &SMatrix<f64, R, C>,
+    b: &SMatrix<f64, R, C>,
+    scale: f64,
+    bound: f64,
+) {
+    let e = (a - b).amax() / scale;
+    assert!(
+        e < bound,
+        "{what}: {e:.2e} of {scale:.3e}, bound {bound:.0e}"
+    );
+}
+
+/// `|Y| |π|`, entry by entry: the scale of the rounding of `Y π`.
+fn rounding_scale<const N: usize, const P: usize>(
+    y: &SMatrix<f64, N, P>,
+    pi: &SVector<f64, P>,
+) -> f64 {
+    (y.abs() * pi.abs()).amax()
+}
+
+#[test]
+fn changed_parameters_move_every_method_as_the_regressor_says() {
+    let file = Tree::<f64>::new();
+    let mut named = TreeParameters::<f64>::new();
+    // A heavier wrist (its weight swapped for a 0.8 kg tool off its axis)
+    // and a lighter arm, both rigid bodies (positive inertias about their
+    // centres of mass that keep the triangle inequality).
+    let tool = Matrix3::new(
+        0.003, 0.0002, 0.0, 0.0002, 0.0025, -0.0001, 0.0, -0.0001, 0.0012,
+    );
+    named.wrist = parameters(1.4, Vector3::new(0.01, -0.02, 0.09), tool);
+    named.arm = parameters(
+        0.5,
+        Vector3::new(0.0, 0.1, 0.01),
+        Matrix3::from_diagonal(&Vector3::new(0.004, 0.0008, 0.0035)),
+    );
+    let mut pi = SVector::<f64, 40>::from_column_slice(&Tree::<f64>::PARAMETERS);
+    pi.fixed_rows_mut::<10>(20).copy_from_slice(&named.wrist);
+    pi.fixed_rows_mut::<10>(30).copy_from_slice(&named.arm);
+    let mut moved = 0.0_f64;
+    for [q, v, a] in spread::<4>(13, 40) {
+        let tau = named.inverse_dynamics(&q, &v, &a);
+        let y = file.regressor(&q, &v, &a);
+        // Y π sums 40 products: its rounding is some ε of |Y| |π| (2e-16
+        // each, 40 of them, 1e-14); 1e-13 of that scale.
+        close(
+            "τ against Y π",
+            &tau,
+            &(y * pi),
+            rounding_scale(&y, &pi),
+            1e-13,
+        );
+        moved = moved.max((tau - file.inverse_dynamics(&q, &v, &a)).amax() / tau.amax());
+        // ABA and CRBA read the same parameters: M q̈ + nle = τ, to the
+        // rounding of ABA's recursion (a few hundred operations, each
+        // ε of the terms' scale |M| |q̈| + |nle| + |τ|): 1e-12 of it.
+        let m = named.mass_matrix(0.0, &q);
+        let nle = named.nonlinear_effects(&q, &v);
+        let qdd = named.forward_dynamics(&q, &v, &tau);
+        let scale = (m.abs() * qdd.abs()).amax() + nle.amax() + tau.amax();
+        close("M q̈ + nle against τ", &(m * qdd + nle), &tau, scale, 1e-12);
+        // T = ½ q̇ᵀ M q̇, to rounding (1e-14 of T's terms).
+        let t = named.kinetic_energy(0.0, &q, &v);
+        let vmv = 0.5 * v.dot(&(m * v));
+        let terms = 0.5 * v.abs().dot(&(m.abs() * v.abs()));
+        assert!(
+            (t - vmv).abs() < 1e-13 * terms,
+            "T {t} against ½ vᵀ M v {vmv}"
+        );
+        // The gravity torques are ∂V/∂q: central differences at h = 1e-5,
+        // truncation h² |∂³V| ~ 1e-10 of the torques, rounding ε |V| / h
+        // ~ 1e-11 of them; compared to 1e-8 of the largest.
+        let g = named.gravity_torques(&q);
+        let h = 1e-5;
+        let dv = SVector::<f64, 4>::from_fn(|i, _| {
+            let mut e = SVector::<f64, 4>::zeros();
+            e[i] = h;
+            (named.potential_energy(0.0, &(q + e)) - named.potential_energy(0.0, &(q - e)))
+                / (2.0 * h)
+        });
+        close("g against ∂V/∂q", &g, &dv, g.amax(), 1e-8);
+    }
+    // They moved the dynamics, by far more than any bound above.
+    assert!(moved > 0.05, "τ moved by {moved:.2e} of itself");
+
+    let file = Swimmer::<f64>::new();
+    let mut named = SwimmerParameters::<f64>::new();
+    named.trunk = parameters(
+        4.2,
+        Vector3::new(0.0, 0.03, 0.02),
+        Matrix3::from_diagonal(&Vector3::new(0.06, 0.05, 0.03)),
+    );
+    named.fore = parameters(
+        0.9,
+        Vector3::new(0.12, 0.01, 0.0),
+        Matrix3::from_diagonal(&Vector3::new(0.0003, 0.003, 0.0029)),
+    );
+    let mut pi = SVector::<f64, 30>::from_column_slice(&Swimmer::<f64>::PARAMETERS);
+    pi.fixed_rows_mut::<10>(0).copy_from_slice(&named.trunk);
+    pi.fixed_rows_mut::<10>(20).copy_from_slice(&named.fore);
+    let mut moved = 0.0_f64;
+    for (q, v, a) in floating_states(14, 40) {
+        let tau = named.inverse_dynamics(&q, &v, &a);
+        let y = file.regressor(&q, &v, &a);
+        close(
+            "τ against Y π (floating)",
+            &tau,
+            &(y * pi),
+            rounding_scale(&y, &pi),
+            1e-13,
+        );
+        moved = moved.max((tau - file.inverse_dynamics(&q, &v, &a)).amax() / tau.amax());
+        let m = named.velocity_mass_matrix(&q);
+        let nle = named.nonlinear_effects(&q, &v);
+        let acc = named.forward_dynamics(&q, &v, &tau);
+        let scale = (m.abs() * acc.abs()).amax() + nle.amax() + tau.amax();
+        close(
+            "M ν̇ + nle against τ (floating)",
+            &(m * acc + nle),
+            &tau,
+            scale,
+            1e-12,
+        );
+        // The base's force at rest is its weight, the trunk's and the
+        // forearm's new masses in it, along the world's up in the base's
+        // axes (to rounding).
+        let g = named.gravity_torques(&q);
+        let total = 4.2 + 0.7 + 0.9;
+        let rot = UnitQuaternion::from_quaternion(Quaternion::new(q[3], q[4], q[5], q[6]));
+        let weight = rot.inverse() * Vector3::new(0.0, 0.0, 9.81 * total);
+        close(
+            "the base's weight",
+            &g.fixed_rows::<3>(0).into_owned(),
+            &weight,
+            weight.amax(),
+            1e-14,
+        );
+    }
+    assert!(moved > 0.05, "τ moved by {moved:.2e} of itself");
+}
