@@ -7,11 +7,12 @@
 //! squares through the generated regressor `Y(q, q̇, q̈)`, and the same
 //! controller run again with the identified payload added to its model.
 //!
-//! The robot simulated is the Panda plus the payload on `panda_link7`: its
-//! inverse dynamics are the generated ones plus the payload's columns of
-//! the regressor times its ten parameters (RNEA is linear in them), its
-//! mass matrix and forcing formed from those; the runtime's Dopri5
-//! integrates it.
+//! The Panda's last body's inertial parameters are a field of its struct
+//! (`#[lagrange(parameters(link7 = "panda_link7"))]`): the robot simulated
+//! is the Panda with the payload's ten parameters added there, its `M`
+//! and forcing the generated ones; the model a controller uses is the
+//! Panda without it, then with the identified parameters added the same
+//! way. The runtime's Dopri5 integrates the plant.
 //!
 //! `cargo run --release -p lagrange-studies --example robot_control`
 //!
@@ -26,7 +27,9 @@ use std::error::Error;
 
 lagrangian! {
     /// The Panda of example-robot-data, its fingers locked closed.
-    #[lagrange(urdf = "../tests/data/robots/panda.urdf", regressor)]
+    /// Its last body's inertial parameters are a field, `link7`: a payload
+    /// on it is added there.
+    #[lagrange(urdf = "../tests/data/robots/panda.urdf", regressor, parameters(link7 = "panda_link7"))]
     pub struct Panda {
         locked: panda_finger_joint1 = 0.0, panda_finger_joint2 = 0.0;
     }
@@ -85,63 +88,45 @@ fn payload_columns(panda: &Panda, q: &V, qdot: &V, qddot: &V) -> SMatrix<f64, 7,
         .into_owned()
 }
 
-/// A model of the robot: the URDF's Panda and a payload's parameters.
-#[derive(Clone, Copy)]
-struct Model {
-    panda: Panda,
-    payload: Pi,
+/// The Panda with a payload on `panda_link7`: its ten parameters added
+/// to the body's (parameters are linear: the sum is the rigid body of both).
+fn with_payload(payload: &Pi) -> Panda {
+    let mut panda = Panda::new();
+    for (p, x) in panda.link7.iter_mut().zip(payload.iter()) {
+        *p += x;
+    }
+    panda
 }
 
-impl Model {
-    /// `τ(q, q̇, q̈)`: RNEA, plus the payload through the regressor.
-    fn inverse_dynamics(&self, q: &V, qdot: &V, qddot: &V) -> V {
-        self.panda.inverse_dynamics(q, qdot, qddot)
-            + payload_columns(&self.panda, q, qdot, qddot) * self.payload
-    }
-
-    /// Computed torque towards `(q_d, q̇_d, q̈_d)`.
-    fn computed_torque(&self, q: &V, qdot: &V, (qd, qd_dot, qd_ddot): (V, V, V)) -> V {
-        let command = qd_ddot + (qd_dot - qdot) * KD + (qd - q) * KP;
-        self.inverse_dynamics(q, qdot, &command)
-    }
+/// Computed torque towards `(q_d, q̇_d, q̈_d)` with `model`'s inverse
+/// dynamics (RNEA, its payload among its parameters).
+fn computed_torque(model: &Panda, q: &V, qdot: &V, (qd, qd_dot, qd_ddot): (V, V, V)) -> V {
+    let command = qd_ddot + (qd_dot - qdot) * KD + (qd - q) * KP;
+    model.inverse_dynamics(q, qdot, &command)
 }
 
 /// The robot simulated: the Panda with the true payload, driven by
 /// `control(t, q, q̇)`.
 struct Plant<F> {
-    truth: Model,
+    truth: Panda,
     control: F,
 }
 
 impl<F: Fn(f64, &V, &V) -> V> Lagrangian<7> for Plant<F> {
     type Scalar = f64;
     const COORDINATES: [&'static str; 7] = Panda::<f64>::COORDINATES;
-    fn mass_matrix(&self, _t: f64, q: &V) -> SMatrix<f64, 7, 7> {
-        // The payload's M: its torques at rest, q̈ = e_j, less gravity's.
-        let z = V::zeros();
-        let p = &self.truth.payload;
-        let g = payload_columns(&self.truth.panda, q, &z, &z) * p;
-        let mut m = self.truth.panda.mass_matrix(0.0, q);
-        for j in 0..7 {
-            let e = V::from_fn(|i, _| if i == j { 1.0 } else { 0.0 });
-            let column = payload_columns(&self.truth.panda, q, &z, &e) * p - g;
-            m.set_column(j, &(m.column(j) + column));
-        }
-        m
+    fn mass_matrix(&self, t: f64, q: &V) -> SMatrix<f64, 7, 7> {
+        self.truth.mass_matrix(t, q)
     }
     fn forcing(&self, t: f64, q: &V, qdot: &V) -> V {
-        // M q̈ = τ − h: h = τ at q̈ = 0.
-        (self.control)(t, q, qdot) - self.truth.inverse_dynamics(q, qdot, &V::zeros())
+        // M q̈ = τ − nle.
+        (self.control)(t, q, qdot) - self.truth.nonlinear_effects(q, qdot)
     }
     fn kinetic_energy(&self, t: f64, q: &V, qdot: &V) -> f64 {
-        0.5 * qdot.dot(&(self.mass_matrix(t, q) * qdot))
+        self.truth.kinetic_energy(t, q, qdot)
     }
     fn potential_energy(&self, t: f64, q: &V) -> f64 {
-        // The payload's: g (m z + (R h)_z) on panda_link7's frame.
-        let p = &self.truth.payload;
-        let (r, o) = self.truth.panda.body_placements(q)[6];
-        let h = r * lagrange::nalgebra::Vector3::new(p[1], p[2], p[3]);
-        self.truth.panda.potential_energy(t, q) + 9.81 * (p[0] * o.z + h.z)
+        self.truth.potential_energy(t, q)
     }
 }
 
@@ -191,7 +176,7 @@ fn noise(seed: u64) -> impl FnMut() -> f64 {
 /// A run of the plant under `control` from `(q0, 0)`, sampled at 100 Hz
 /// for `seconds`: the samples `(t, q, q̇)`.
 fn simulate(
-    truth: Model,
+    truth: Panda,
     control: impl Fn(f64, &V, &V) -> V,
     q0: V,
     qdot0: V,
@@ -214,15 +199,8 @@ fn degrees(e: f64) -> f64 {
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
-    let panda = Panda::new();
-    let truth = Model {
-        panda,
-        payload: payload(),
-    };
-    let nominal = Model {
-        panda,
-        payload: Pi::zeros(),
-    };
+    let truth = with_payload(&payload());
+    let nominal = Panda::new();
     let tcp = Panda::<f64>::frame_index("panda_hand_tcp").ok_or("no panda_hand_tcp")?;
     println!(
         "Panda from its URDF: {} joints, {} frames, {} inertial parameters; payload {:.2} kg on panda_link7 (unknown to the model)",
@@ -236,10 +214,10 @@ fn main() -> Result<(), Box<dyn Error>> {
     // torque with zero desired motion, the nominal model.
     let hold_target = (ready(), V::zeros(), V::zeros());
     let q0 = ready() + V::from_element(0.1);
-    let hold = |model: Model| {
+    let hold = |model: Panda| {
         simulate(
             truth,
-            move |_t, q: &V, qdot: &V| model.computed_torque(q, qdot, hold_target),
+            move |_t, q: &V, qdot: &V| computed_torque(&model, q, qdot, hold_target),
             q0,
             V::zeros(),
             3.0,
@@ -258,7 +236,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     // (q, q̇, q̈ exact: the plant's own); the payload's ten parameters
     // solve τ_measured − τ_nominal(q, q̇, q̈) = Y_p(q, q̇, q̈) π_p by least
     // squares.
-    let control = move |t: f64, q: &V, qdot: &V| nominal.computed_torque(q, qdot, trajectory(t));
+    let control = move |t: f64, q: &V, qdot: &V| computed_torque(&nominal, q, qdot, trajectory(t));
     let (qd0, qd_dot0, _) = trajectory(0.0);
     let recording = simulate(truth, control, qd0, qd_dot0, 10.0)?;
     let plant = Plant { truth, control };
@@ -273,8 +251,8 @@ fn main() -> Result<(), Box<dyn Error>> {
             .ok_or("M not positive definite")?
             .solve(&plant.forcing(*t, q, qdot));
         let measured = control(*t, q, qdot) + V::from_fn(|_, _| NOISE * gauss());
-        let y = payload_columns(&panda, q, qdot, &qddot);
-        let r = measured - panda.inverse_dynamics(q, qdot, &qddot);
+        let y = payload_columns(&nominal, q, qdot, &qddot);
+        let r = measured - nominal.inverse_dynamics(q, qdot, &qddot);
         a.view_mut((7 * k, 0), (7, 10)).copy_from(&y);
         b.rows_mut(7 * k, 7).copy_from(&r);
     }
@@ -318,10 +296,8 @@ fn main() -> Result<(), Box<dyn Error>> {
     println!(
         "largest |error| / standard error: {worst:.2} (each ratio standard normal under Gaussian noise: beyond 3 with probability 0.27 %)"
     );
-    let identified = Model {
-        panda,
-        payload: Pi::from_iterator(estimate.iter().copied()),
-    };
+    // Into the model: the payload's ten added to the last body's field.
+    let identified = with_payload(&Pi::from_iterator(estimate.iter().copied()));
 
     // 3. Holding and tracking again, with the identified payload in the
     // model; tracking from on the trajectory, 10 s.
@@ -331,10 +307,10 @@ fn main() -> Result<(), Box<dyn Error>> {
         "hold, identified payload: joint error {:.2e}° at t = 3 s",
         degrees(error(q_end, &ready()))
     );
-    let track = |model: Model| {
+    let track = |model: Panda| {
         simulate(
             truth,
-            move |t, q: &V, qdot: &V| model.computed_torque(q, qdot, trajectory(t)),
+            move |t, q: &V, qdot: &V| computed_torque(&model, q, qdot, trajectory(t)),
             qd0,
             qd_dot0,
             10.0,
@@ -359,7 +335,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     let path: Vec<(f64, f64)> = track_identified
         .iter()
         .map(|(_, q, _)| {
-            let (_, p) = panda.frame_placement(q, tcp);
+            let (_, p) = nominal.frame_placement(q, tcp);
             (p.x, p.z)
         })
         .collect();
