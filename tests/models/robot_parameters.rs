@@ -8,7 +8,10 @@
 //! one (the trunk's own parameters).
 
 use super::robots::Tree;
-use lagrange::nalgebra::{Matrix3, Quaternion, SMatrix, SVector, UnitQuaternion, Vector3};
+use lagrange::ensemble::AutoF64x4;
+use lagrange::nalgebra::{
+    Matrix3, Quaternion, SMatrix, SVector, SimdValue, UnitQuaternion, Vector3,
+};
 use lagrange::prelude::*;
 
 lagrangian! {
@@ -126,6 +129,30 @@ fn named_parameters_at_the_files_values_give_the_constant_robots_bits() {
     let m32 = TreeParameters::<f32>::new().mass_matrix(0.0, &q.cast::<f32>());
     let m64 = file.mass_matrix(0.0, &q);
     assert!((m32.cast::<f64>() - m64).amax() < 1e-5 * m64.amax());
+    // And on SIMD lanes, four states at once, each lane its own state's
+    // (the lanes' sine and cosine may round a few ulps off the scalar's:
+    // 1e-14 of the torques).
+    let mut wide = TreeParameters::<AutoF64x4>::new();
+    wide.wrist[0] = AutoF64x4::splat(1.4);
+    let mut heavy = named;
+    heavy.wrist[0] = 1.4;
+    let states = spread::<4>(15, 4);
+    let lanes = |k: usize| {
+        SVector::<AutoF64x4, 4>::from_fn(|i, _| {
+            AutoF64x4::from([0, 1, 2, 3].map(|s| states[s][k][i]))
+        })
+    };
+    let tau = wide.inverse_dynamics(&lanes(0), &lanes(1), &lanes(2));
+    for (s, [q, v, a]) in states.iter().enumerate() {
+        let one = heavy.inverse_dynamics(q, v, a);
+        close(
+            "τ on a lane",
+            &tau.map(|x| x.extract(s)),
+            &one,
+            one.amax(),
+            1e-14,
+        );
+    }
     let (file, named) = (Swimmer::<f64>::new(), SwimmerParameters::<f64>::new());
     assert_eq!(named.trunk[..], Swimmer::<f64>::PARAMETERS[0..10]);
     assert_eq!(named.fore[..], Swimmer::<f64>::PARAMETERS[20..30]);
