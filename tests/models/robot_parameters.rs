@@ -7,7 +7,7 @@
 //! tests' tree, its wrist with the weight welded to it) and on a floating
 //! one (the trunk's own parameters).
 
-use super::robots::Tree;
+use super::robots::{Tree, spread};
 use lagrange::ensemble::AutoF64x4;
 use lagrange::nalgebra::{
     Matrix3, Quaternion, SMatrix, SVector, SimdValue, UnitQuaternion, Vector3,
@@ -49,27 +49,6 @@ lagrangian! {
             shoulder: revolute trunk -> arm, at translate(0.1, 0, 0.05), axis [0, 1, 0];
             elbow: revolute arm -> fore, at translate(0, 0, 0.3) * rotate_x(0.3), axis [0, 0.6, 0.8];
     }
-}
-
-/// States spread over `[-2, 2]` (angles), `[-3, 3]` (rates, accelerations).
-fn spread<const N: usize>(seed: u64, count: usize) -> Vec<[SVector<f64, N>; 3]> {
-    let mut state = seed;
-    let mut next = move || {
-        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
-    (0..count)
-        .map(|_| {
-            [
-                SVector::from_fn(|_, _| 2.0 * next()),
-                SVector::from_fn(|_, _| 3.0 * next()),
-                SVector::from_fn(|_, _| 3.0 * next()),
-            ]
-        })
-        .collect()
 }
 
 /// A rigid body's ten parameters in Pinocchio's order, about the frame's
@@ -225,6 +204,33 @@ fn rounding_scale<const N: usize, const P: usize>(
     (y.abs() * pi.abs()).amax()
 }
 
+/// The named robot's `τ` against the regressor's `Y π` for its changed
+/// `π`, and `M q̈ + nle` against `τ` (ABA, CRBA and RNEA read the same
+/// parameters), `q̈` ABA's answer to `τ`.
+fn consistent<const N: usize, const P: usize>(
+    tau: &SVector<f64, N>,
+    y: &SMatrix<f64, N, P>,
+    pi: &SVector<f64, P>,
+    m: &SMatrix<f64, N, N>,
+    nle: &SVector<f64, N>,
+    qdd: &SVector<f64, N>,
+) {
+    // Y π sums P products: its rounding is some ε of |Y| |π| (2e-16 each,
+    // 40 of them, 1e-14); 1e-13 of that scale.
+    close(
+        "τ against Y π",
+        tau,
+        &(y * pi),
+        rounding_scale(y, pi),
+        1e-13,
+    );
+    // M q̈ + nle = τ to the rounding of ABA's recursion (a few hundred
+    // operations, each ε of the terms' scale |M| |q̈| + |nle| + |τ|):
+    // 1e-12 of it.
+    let scale = (m.abs() * qdd.abs()).amax() + nle.amax() + tau.amax();
+    close("M q̈ + nle against τ", &(m * qdd + nle), tau, scale, 1e-12);
+}
+
 #[test]
 fn changed_parameters_move_every_method_as_the_regressor_says() {
     let file = Tree::<f64>::new();
@@ -247,25 +253,11 @@ fn changed_parameters_move_every_method_as_the_regressor_says() {
     let mut moved = 0.0_f64;
     for [q, v, a] in spread::<4>(13, 40) {
         let tau = named.inverse_dynamics(&q, &v, &a);
-        let y = file.regressor(&q, &v, &a);
-        // Y π sums 40 products: its rounding is some ε of |Y| |π| (2e-16
-        // each, 40 of them, 1e-14); 1e-13 of that scale.
-        close(
-            "τ against Y π",
-            &tau,
-            &(y * pi),
-            rounding_scale(&y, &pi),
-            1e-13,
-        );
-        moved = moved.max((tau - file.inverse_dynamics(&q, &v, &a)).amax() / tau.amax());
-        // ABA and CRBA read the same parameters: M q̈ + nle = τ, to the
-        // rounding of ABA's recursion (a few hundred operations, each
-        // ε of the terms' scale |M| |q̈| + |nle| + |τ|): 1e-12 of it.
         let m = named.mass_matrix(0.0, &q);
-        let nle = named.nonlinear_effects(&q, &v);
         let qdd = named.forward_dynamics(&q, &v, &tau);
-        let scale = (m.abs() * qdd.abs()).amax() + nle.amax() + tau.amax();
-        close("M q̈ + nle against τ", &(m * qdd + nle), &tau, scale, 1e-12);
+        let nle = named.nonlinear_effects(&q, &v);
+        consistent(&tau, &file.regressor(&q, &v, &a), &pi, &m, &nle, &qdd);
+        moved = moved.max((tau - file.inverse_dynamics(&q, &v, &a)).amax() / tau.amax());
         // T = ½ q̇ᵀ M q̇, to rounding (1e-14 of T's terms).
         let t = named.kinetic_energy(0.0, &q, &v);
         let vmv = 0.5 * v.dot(&(m * v));
@@ -308,26 +300,11 @@ fn changed_parameters_move_every_method_as_the_regressor_says() {
     let mut moved = 0.0_f64;
     for (q, v, a) in floating_states(14, 40) {
         let tau = named.inverse_dynamics(&q, &v, &a);
-        let y = file.regressor(&q, &v, &a);
-        close(
-            "τ against Y π (floating)",
-            &tau,
-            &(y * pi),
-            rounding_scale(&y, &pi),
-            1e-13,
-        );
-        moved = moved.max((tau - file.inverse_dynamics(&q, &v, &a)).amax() / tau.amax());
         let m = named.velocity_mass_matrix(&q);
-        let nle = named.nonlinear_effects(&q, &v);
         let acc = named.forward_dynamics(&q, &v, &tau);
-        let scale = (m.abs() * acc.abs()).amax() + nle.amax() + tau.amax();
-        close(
-            "M ν̇ + nle against τ (floating)",
-            &(m * acc + nle),
-            &tau,
-            scale,
-            1e-12,
-        );
+        let nle = named.nonlinear_effects(&q, &v);
+        consistent(&tau, &file.regressor(&q, &v, &a), &pi, &m, &nle, &acc);
+        moved = moved.max((tau - file.inverse_dynamics(&q, &v, &a)).amax() / tau.amax());
         // The base's force at rest is its weight, the trunk's and the
         // forearm's new masses in it, along the world's up in the base's
         // axes (to rounding).

@@ -748,7 +748,7 @@ fn go2_falls_keeping_its_energy_and_unit_quaternion() {
 
 /// States spread over the joints' ranges: angles and displacements in
 /// `[-2, 2]`, rates and accelerations in `[-3, 3]` (SplitMix64, seeded).
-fn spread<const N: usize>(seed: u64, count: usize) -> Vec<[SVector<f64, N>; 3]> {
+pub(super) fn spread<const N: usize>(seed: u64, count: usize) -> Vec<[SVector<f64, N>; 3]> {
     let mut state = seed;
     let mut next = move || {
         state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
