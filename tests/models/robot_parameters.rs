@@ -37,7 +37,9 @@ lagrangian! {
 }
 
 lagrangian! {
-    /// [`Swimmer`] with the trunk's and the forearm's parameters as fields.
+    /// [`Swimmer`] with the trunk's and the forearm's parameters as fields:
+    /// its bodies and joints written again, since the tests compare the
+    /// two robots.
     #[lagrange(regressor, parameters(trunk = "trunk", fore = "fore"))]
     pub struct SwimmerParameters {
         bodies:
