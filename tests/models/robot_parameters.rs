@@ -78,6 +78,10 @@ fn named_parameters_at_the_files_values_give_the_constant_robots_bits() {
     // `new()` writes the file's parameters: the body's slice of PARAMETERS.
     assert_eq!(named.wrist[..], Tree::<f64>::PARAMETERS[20..30]);
     assert_eq!(named.arm[..], Tree::<f64>::PARAMETERS[30..40]);
+    // An identified π (an nalgebra vector) goes in by assignment.
+    let mut twin = named;
+    twin.arm = SVector::<f64, 10>::from(named.arm).into();
+    assert_eq!(twin, named);
     // The parameters read at run time instead of folded at compile time:
     // the same operations on the same numbers (a product by a constant
     // zero or one is exact either way), hence the same bits.
