@@ -28,11 +28,11 @@ const FIGURES: &[Figure] = &[
         places: &[
             (
                 "ARCHITECTURE.md",
-                "`cargo test`, the README's command: 218 s.",
+                "`cargo test`, the README's command: 238 s.",
             ),
             (
                 "README.md",
-                "Run the test suite (218 s from a fresh clone on 2 cores;",
+                "Run the test suite (238 s from a fresh clone on 2 cores;",
             ),
         ],
     },
@@ -41,11 +41,11 @@ const FIGURES: &[Figure] = &[
         places: &[
             (
                 "ARCHITECTURE.md",
-                "`.ci/run`: 606 to 1203 s on recent runs, by the machine's load (606 s at the last measurement, load 1.6 to 1.8)",
+                "`.ci/run`: 606 to 1203 s on recent runs, by the machine's load (676 s at the last measurement, load 1.4 to 1.8)",
             ),
             (
                 ".ci/run",
-                "About 10 to 20 minutes from a fresh target on 2 cores, by the shared machine's load (606 s to 1203 s on recent runs, 606 s at the last measurement;",
+                "About 10 to 20 minutes from a fresh target on 2 cores, by the shared machine's load (606 s to 1203 s on recent runs, 676 s at the last measurement;",
             ),
         ],
     },

@@ -120,7 +120,7 @@ struct Si {
 /// parameters: the mass, the first moment `h = m c` and the inertia `Ī`
 /// about the frame's origin (symmetric). The mass matrix's composites are
 /// rigid, so CRBA carries these instead of a general [`Si`]: `C = m 1`
-/// stays a number and `B = [h]×` a vector through every transform.
+/// stays one scalar and `B = [h]×` a vector through every transform.
 #[derive(Clone, Copy)]
 struct Rigid {
     m: Val,
