@@ -162,7 +162,9 @@ fn parameters_list(
         if !content.peek(Token![=]) {
             return Err(syn::Error::new(
                 field.span(),
-                format!("`{field}` names the link whose parameters it holds: `{field} = \"link\"`"),
+                format!(
+                    "`{field}` names the link (or body) whose parameters it holds: `{field} = \"link\"`"
+                ),
             ));
         }
         content.parse::<Token![=]>()?;
@@ -176,10 +178,7 @@ fn parameters_list(
         if let Some((f, _)) = list.iter().find(|(_, l)| l.value() == link.value()) {
             return Err(syn::Error::new(
                 link.span(),
-                format!(
-                    "link `{}` is given twice (its field is `{f}`)",
-                    link.value()
-                ),
+                format!("`{}` is given twice (its field is `{f}`)", link.value()),
             ));
         }
         list.push((field, link));

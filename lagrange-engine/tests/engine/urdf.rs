@@ -261,7 +261,7 @@ fn urdf_parameters_misuse_is_one_error_on_its_tokens() {
         (
             "parameters(arm)",
             "",
-            "`arm` names the link whose parameters it holds",
+            "`arm` names the link (or body) whose parameters it holds",
         ),
         (
             "parameters(a = \"arm\", a = \"hub\")",
@@ -271,7 +271,7 @@ fn urdf_parameters_misuse_is_one_error_on_its_tokens() {
         (
             "parameters(a = \"arm\", b = \"arm\")",
             "",
-            "link `arm` is given twice (its field is `a`)",
+            "`arm` is given twice (its field is `a`)",
         ),
         (
             "parameters(a = \"arm\"), parameters(b = \"hub\")",
@@ -444,7 +444,12 @@ fn expand_inline(body: &str) -> String {
 /// The one `compile_error!` of a robot written in the language: its
 /// message and the source text its span covers (start to end, on one line).
 fn inline_error(body: &str) -> (String, String) {
-    let src = format!("pub struct Robot {{ {body} }}");
+    inline_error_with("", body)
+}
+
+/// [`inline_error`] with attributes before the struct.
+fn inline_error_with(attributes: &str, body: &str) -> (String, String) {
+    let src = format!("{attributes} pub struct Robot {{ {body} }}");
     let tokens: TokenStream = src.parse().unwrap();
     let out = lagrange_engine::expand(tokens);
     let mut found = Vec::new();
@@ -470,6 +475,53 @@ fn inline_error(body: &str) -> (String, String) {
     let line = src.lines().nth(start.line - 1).unwrap();
     let chars: Vec<char> = line.chars().collect();
     (message, chars[start.column..end.column].iter().collect())
+}
+
+/// `parameters(..)` on a robot written as bodies and joints: each mistake
+/// one error, on the tokens it is about.
+#[test]
+fn inline_parameters_mistakes_land_on_their_tokens() {
+    for (attributes, message, tokens) in [
+        (
+            "#[lagrange(parameters(w = \"weight\"))]",
+            "body `weight` is welded to `wrist` (joint `weight_mount` is fixed)",
+            "\"weight\"",
+        ),
+        (
+            "#[lagrange(parameters(w = \"elbow\"))]",
+            "robot `Robot` has no body `elbow`",
+            "\"elbow\"",
+        ),
+        (
+            "#[lagrange(parameters(w = \"base\"))]",
+            "body `base` is the fixed base",
+            "\"base\"",
+        ),
+        (
+            "#[lagrange(parameters(w = \"hub\", w = \"arm\"))]",
+            "field `w` is given twice",
+            "w",
+        ),
+        (
+            "#[lagrange(parameters(w = \"hub\", v = \"hub\"))]",
+            "`hub` is given twice (its field is `w`)",
+            "\"hub\"",
+        ),
+        (
+            "#[lagrange(parameters(w))]",
+            "`w` names the link (or body) whose parameters it holds",
+            "w",
+        ),
+        (
+            "#[lagrange(parameters())]",
+            "`parameters()` names no field",
+            "()",
+        ),
+    ] {
+        let (got, span) = inline_error_with(attributes, TREE);
+        assert!(got.contains(message), "{attributes}: {got}");
+        assert_eq!(span, tokens, "{attributes}: {got}");
+    }
 }
 
 /// A one-body robot whose body and joint are given.
