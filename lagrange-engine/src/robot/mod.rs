@@ -496,6 +496,13 @@ fn assign_parameters(
                 _ => break,
             }
         }
+        if owner == robot.root && !input.floating {
+            return err(format!(
+                "{link_word} `{name}` is fixed to the fixed base (through joint `{}`): it does not move, and its \
+                 mass enters no dynamics",
+                joint.name
+            ));
+        }
         let owner = &robot.links[owner].name;
         let how = if input.locks.iter().any(|(_, k)| k.joint == joint.name) {
             "locked"

@@ -299,6 +299,14 @@ fn urdf_parameters_misuse_is_one_error_on_its_tokens() {
             "{attribute}: {text:.600}"
         );
     }
+    // A link fixed to a fixed base moves with nothing.
+    let ur5 = "urdf = \"../tests/data/robots/ur5.urdf\"";
+    let text = expand_with(&format!("{ur5}, parameters(b = \"base_link\")"), "");
+    assert!(
+        error_of(&text)
+            .contains("link `base_link` is fixed to the fixed base (through joint `world_joint`)"),
+        "{text:.600}"
+    );
     // A finger locked is welded to the hand, which is fixed to link 7.
     let text = expand_with(
         &format!("{panda}, parameters(f = \"panda_leftfinger\")"),
