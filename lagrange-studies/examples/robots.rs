@@ -16,7 +16,10 @@
 //! `nonLinearEffects` and `cholesky::decompose` + `cholesky::solve` (the
 //! same factorization, looped over its parent table). Pinocchio's part is
 //! skipped, with the reason, where its Python or a C++ compiler is
-//! missing. `LAGRANGE_ROBOTS_ROUNDS` sets the interleaved rounds (5).
+//! missing. Last, the planar 64-link chain of the project's benches: our
+//! q̈ (the energy route's recursion over its links) against Pinocchio's
+//! ABA on the same chain, built by the bench. `LAGRANGE_ROBOTS_ROUNDS`
+//! sets the interleaved rounds (5).
 //!
 //! `cargo run --release -p lagrange-studies --example robots`
 //! (`LAGRANGE_PEERS_PYTHON` names a Python with `pin`, `example-robot-data`
@@ -67,7 +70,50 @@ lagrangian! {
     pub struct Romeo {}
 }
 
+lagrangian! {
+    /// The planar chain of the project's benches at 64 links: unit point
+    /// masses at the ends of unit rods, in absolute angles (the README's
+    /// indexed chain), solved by the recursion over its links: Pinocchio's
+    /// bench builds the same chain in relative angles (revolute joints
+    /// about z, gravity along −y), the same motion.
+    pub struct Chain64 {
+        const N = 64;
+        coordinates: theta[N];
+        parameters: m[N], l[N];
+        constants: g = 9.81;
+        let x[i in 0..N] = sum(j in 0..=i, l[j]*sin(theta[j]));
+        let y[i in 0..N] = -sum(j in 0..=i, l[j]*cos(theta[j]));
+        kinetic: sum(i in 0..N, m[i]/2*(dot(x[i])^2 + dot(y[i])^2));
+        potential: sum(i in 0..N, m[i]*g*y[i]);
+    }
+}
+
+/// The chain's links.
+const CHAIN: usize = 64;
+
 const CALLS: u32 = 200_000;
+
+/// q̈ of the 64-link chain (the model's `accelerations`, the recursion),
+/// ns per call, the median of 7 rounds of `CALLS / 10` calls. Not inlined:
+/// with its loop in `main`, the robots' closures there compiled otherwise
+/// (the Go2's RNEA measured 1078 against 728 ns).
+#[inline(never)]
+fn ours_chain() -> f64 {
+    let chain = Chain64::new([1.0; CHAIN], [1.0; CHAIN]);
+    let q = SVector::<f64, CHAIN>::from_fn(|i, _| 0.3 * (i as f64 * 1.7).sin());
+    let v = SVector::<f64, CHAIN>::from_fn(|i, _| (i as f64 * 2.3).cos());
+    let mut rounds: Vec<f64> = (0..7)
+        .map(|_| {
+            let start = Instant::now();
+            for _ in 0..CALLS / 10 {
+                black_box(chain.accelerations(0.0, black_box(&q), black_box(&v)));
+            }
+            start.elapsed().as_secs_f64() * 1e9 / f64::from(CALLS / 10)
+        })
+        .collect();
+    rounds.sort_by(f64::total_cmp);
+    rounds[3]
+}
 
 /// ns per call of `f`, the median of 7 rounds of `CALLS` calls.
 fn time_ns(mut f: impl FnMut()) -> f64 {
@@ -191,6 +237,9 @@ fn pinocchio(dir: &Path) -> Result<(std::path::PathBuf, Vec<String>), String> {
         args.push(name.to_string());
         args.push(dump.display().to_string());
     }
+    // The planar chain, built by the bench itself.
+    args.push("chain64".to_string());
+    args.push(CHAIN.to_string());
     if let Ok(bin) = std::env::var("LAGRANGE_PINOCCHIO_BENCH") {
         return Ok((bin.into(), args));
     }
@@ -244,8 +293,14 @@ fn run_pinocchio(bin: &Path, args: &[String]) -> Vec<(String, [f64; 4])> {
                 let at = w.iter().position(|x| *x == key)?;
                 w.get(at + 1)?.parse::<f64>().ok()
             };
+            let name = w.first()?.to_string();
+            // A bench built before the chain was added reads `64` as a
+            // dump: its line would not be the chain's.
+            if name.starts_with("chain") && num("nv")? != CHAIN as f64 {
+                return None;
+            }
             Some((
-                w.first()?.to_string(),
+                name,
                 [
                     num("aba_ns")?,
                     num("crba_ns")?,
@@ -270,6 +325,7 @@ fn main() {
         println!("Pinocchio skipped: {why}");
     }
     let mut ours_runs: Vec<[[f64; 4]; 5]> = Vec::new();
+    let mut chain_runs: Vec<f64> = Vec::new();
     let mut theirs_runs: Vec<Vec<(String, [f64; 4])>> = Vec::new();
     let rounds: usize = std::env::var("LAGRANGE_ROBOTS_ROUNDS")
         .ok()
@@ -284,6 +340,7 @@ fn main() {
             ours_floating!(Go2::new(), 19, 18),
             ours_floating!(Romeo::new(), 38, 37),
         ]);
+        chain_runs.push(ours_chain());
         if let Ok((bin, args)) = &peer {
             theirs_runs.push(run_pinocchio(bin, args));
         }
@@ -311,6 +368,21 @@ fn main() {
                 );
             }
         }
+    }
+    // The chain: q̈ alone (no M is formed: the recursion solves it).
+    let ours = median(chain_runs);
+    let theirs: Vec<f64> = theirs_runs
+        .iter()
+        .filter_map(|run| run.iter().find(|(n, _)| n == "chain64").map(|(_, x)| x[0]))
+        .collect();
+    if theirs.is_empty() {
+        println!("| chain64 | q̈ (recursion; ABA) | {ours:.1} | – | – |");
+    } else {
+        let theirs = median(theirs);
+        println!(
+            "| chain64 | q̈ (recursion; ABA) | {ours:.1} | {theirs:.1} | {:.2} |",
+            ours / theirs
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

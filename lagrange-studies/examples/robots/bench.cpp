@@ -31,6 +31,22 @@ template <class F> static double time_ns(F f, int calls) {
   return median(rounds);
 }
 
+// The planar N-link chain of the project's benches: unit point masses at the ends of
+// massless unit rods, revolute joints about z, gravity along -y (the inertia of a point
+// mass about its own centre is zero).
+static Model chain(int n) {
+  Model m;
+  m.gravity.linear(Eigen::Vector3d(0, -9.81, 0));
+  JointIndex parent = 0;
+  for (int i = 0; i < n; ++i) {
+    SE3 placement = SE3::Identity();
+    if (i > 0) placement.translation() = Eigen::Vector3d(0, -1.0, 0);
+    parent = m.addJoint(parent, JointModelRZ(), placement, "j" + std::to_string(i));
+    m.appendBodyToJoint(parent, Inertia(1.0, Eigen::Vector3d(0, -1.0, 0), Eigen::Matrix3d::Zero()), SE3::Identity());
+  }
+  return m;
+}
+
 // A model written by dump_model.py: per joint "TYPE parent R(9) t(3) mass c(3) Ixx Ixy Ixz Iyy Iyz Izz".
 static Model from_dump(const std::string& path) {
   Model m;
@@ -89,10 +105,17 @@ static void run(const std::string& name, Model& m, int calls) {
               crba_ns, crba_solve_ns, rnea_ns);
 }
 
-// Arguments: NAME DUMP [NAME DUMP ...], the dumps written by dump_model.py.
+// Arguments: NAME DUMP [NAME DUMP ...], the dumps written by dump_model.py; a NAME
+// starting with `chain` takes the number of links instead of a dump.
 int main(int argc, char** argv) {
   for (int i = 1; i + 1 < argc; i += 2) {
+    std::string name = argv[i];
+    if (name.rfind("chain", 0) == 0) {
+      Model m = chain(std::stoi(argv[i + 1]));
+      run(name, m, 20000);
+      continue;
+    }
     Model m = from_dump(argv[i + 1]);
-    run(argv[i], m, 200000);
+    run(name, m, 200000);
   }
 }
