@@ -41,11 +41,11 @@ const FIGURES: &[Figure] = &[
         places: &[
             (
                 "ARCHITECTURE.md",
-                "`.ci/run`: 606 to 1203 s on recent runs, by the machine's load (633 s at the last measurement, load 0.9 to 1.7)",
+                "`.ci/run`: 606 to 1203 s on recent runs, by the machine's load (627 s at the last measurement, load 1.0 to 1.8)",
             ),
             (
                 ".ci/run",
-                "About 10 to 20 minutes from a fresh target on 2 cores, by the shared machine's load (606 s to 1203 s on recent runs, 633 s at the last measurement;",
+                "About 10 to 20 minutes from a fresh target on 2 cores, by the shared machine's load (606 s to 1203 s on recent runs, 627 s at the last measurement;",
             ),
         ],
     },
